@@ -1,0 +1,205 @@
+"""Assemble parsed pieces (words, comments, checksum...) into a ``ParsedLine``.
+
+Both the lark parser and the fast path produce a flat, ordered list of pieces and hand it here, so the
+grouping of words into commands, and the syntax issues found on the way, are defined once.
+"""
+
+from __future__ import annotations
+
+import re
+
+from gclint.syntax.nodes import (
+    ASSIGNMENT,
+    GCODE,
+    IMPLICIT,
+    NUMBER,
+    STRING,
+    TEXT,
+    BlockDelete,
+    Checksum,
+    Command,
+    Comment,
+    Issue,
+    Node,
+    ParsedLine,
+    Stray,
+    Text,
+    Word,
+    is_number,
+    normalize_code,
+)
+
+# Codes whose argument is free text (see TEXT_CODE in grammar.lark).
+TEXT_CODES = frozenset(
+    ["M16", "M23", "M28", "M30", "M32", "M33", "M37", "M98", "M115", "M117", "M118", "M486"]
+    + ["M552", "M553", "M554", "M624", "M928", "M1002"]
+    + [f"M81{i}" for i in range(10)]
+)
+
+# A text argument made only of words (M486 S1, M98 P100 L2, M98 P"homez.g") is read as parameters.
+_NUM = r"[-+]?(?:\d+\.?\d*|\.\d+)"
+_TEXT_WORDS = re.compile(rf'(?:[ \t]*[A-Za-z][ \t]*(?:{_NUM}|"(?:[^"]|"")*"))+[ \t]*')
+_TEXT_WORD = re.compile(rf'([A-Za-z])[ \t]*({_NUM}|"(?:[^"]|"")*")')
+
+# Syntax issue codes (the SX rules in gclint/rules/syntax.py describe them).
+PARSE_ERROR = "SX001"
+DUPLICATE_WORD = "SX002"
+BAD_CHECKSUM_PLACE = "SX001"
+UNCLOSED_COMMENT = "SX005"
+BAD_NUMBER = "SX006"
+STRAY_VALUE = "SX007"
+
+
+class TextCommand:
+    """Piece: a free-text command (``M117 Hello``): its code word and its text."""
+
+    __slots__ = ("word", "text")
+
+    def __init__(self, word: Word, text: Text | None) -> None:
+        self.word = word
+        self.text = text
+
+
+class Assignment:
+    """Piece: a LinuxCNC parameter assignment (``#1 = 5``)."""
+
+    __slots__ = ("text", "target", "value")
+
+    def __init__(self, text: Text, target: str, value: str) -> None:
+        self.text = text
+        self.target = target
+        self.value = value
+
+
+def code_of(word: Word) -> str:
+    """The normalised command code of a G/M/T word."""
+    if word.kind == NUMBER and word.value is not None and is_number(word.value):
+        return normalize_code(word.letter, word.value)
+    return word.letter + (word.value or "")
+
+
+def assemble(
+    pieces: list,
+    block_delete: BlockDelete | None = None,
+    line_number: Word | None = None,
+) -> ParsedLine:
+    """Group ``pieces`` (in source order) into commands and collect syntax issues."""
+    commands: list[Command] = []
+    comments: list[Comment] = []
+    extra: list[Node] = []
+    issues: list[Issue] = []
+    checksum: Checksum | None = None
+    current: Command | None = None
+    current_words: list[Word] = []
+
+    def close() -> None:
+        nonlocal current, current_words
+        if current is not None:
+            current._words = tuple(current_words)
+            commands.append(current)
+        current = None
+        current_words = []
+
+    for piece in pieces:
+        if checksum is not None and not isinstance(piece, Comment):
+            issues.append(Issue(PARSE_ERROR, checksum.column, "the checksum must be at the end of the line"))
+            checksum = None
+        if isinstance(piece, Word):
+            letter = piece.letter
+            if piece.kind == NUMBER and piece.value is not None and not is_number(piece.value):
+                issues.append(
+                    Issue(BAD_NUMBER, piece.column, f"{letter} value {piece.value!r} is not a number")
+                )
+            # G and M words start a command; so does a T that starts the line or follows another T
+            # command (T2M6, T1 T2).  A G, M or T with no value after a command is a flag parameter
+            # (Bambu "M620 M", Marlin "M20 T", RepRapFirmware "T T{expr}").
+            if letter in "GMT" and (piece.value is not None or current is None):
+                starts = letter != "T" or current is None or (
+                    current.kind == GCODE and current.code[0] == "T" and current.word.value is not None  # type: ignore[index, union-attr]
+                )
+            else:
+                starts = False
+            if starts:
+                close()
+                if piece.value is None and letter != "T":
+                    issues.append(Issue(PARSE_ERROR, piece.column, f"{letter} needs a number"))
+                current = Command(code_of(piece), GCODE, piece.column, {}, word=piece)
+                continue
+            if current is None or current.kind not in (GCODE, IMPLICIT):
+                close()
+                current = Command(None, IMPLICIT, piece.column, {})
+            if letter in current.params:
+                issues.append(
+                    Issue(DUPLICATE_WORD, piece.column, f"{letter} appears more than once in {current.code or 'this block'}")
+                )
+            else:
+                current.params[letter] = piece.value
+            current_words.append(piece)
+        elif isinstance(piece, Comment):
+            comments.append(piece)
+            if not piece.closed:
+                issues.append(Issue(UNCLOSED_COMMENT, piece.column, "comment opened with '(' is never closed"))
+        elif isinstance(piece, Checksum):
+            checksum = piece
+            if piece.value is None:
+                issues.append(Issue(PARSE_ERROR, piece.column, "checksum '*' is not followed by a number"))
+        elif isinstance(piece, TextCommand):
+            close()
+            words = _text_words(piece.text)
+            params = {}
+            for w in words:
+                params.setdefault(w.letter, w.value)
+            commands.append(
+                Command(code_of(piece.word), TEXT, piece.word.column, params, word=piece.word, words=words, args=piece.text)
+            )
+        elif isinstance(piece, Assignment):
+            close()
+            commands.append(
+                Command(
+                    "#",
+                    ASSIGNMENT,
+                    piece.text.column,
+                    {"target": piece.target, "value": piece.value},
+                    words=(),
+                    args=piece.text,
+                )
+            )
+        elif isinstance(piece, Stray):
+            extra.append(piece)
+            issues.append(Issue(STRAY_VALUE, piece.column, f"value {piece.text!r} has no word letter and is ignored"))
+        else:  # pragma: no cover - a new piece type must be handled above
+            raise TypeError(f"unknown piece {piece!r}")
+    close()
+    if commands or line_number is not None or block_delete is not None or checksum is not None or extra:
+        kind = "code"
+    elif comments:
+        kind = "comment"
+    else:
+        kind = "blank"
+    return ParsedLine(
+        commands=tuple(commands),
+        comments=tuple(comments),
+        line_number=line_number,
+        checksum=checksum,
+        block_delete=block_delete,
+        issues=tuple(issues),
+        extra=tuple(extra),
+        kind=kind,
+    )
+
+
+def _text_words(text: Text | None) -> tuple[Word, ...]:
+    """The words of a free-text argument when it consists of words only, else ()."""
+    if text is None or not _TEXT_WORDS.fullmatch(text.text):
+        return ()
+    base = text.column
+    return tuple(
+        Word(
+            m.group(1).upper(),
+            m.group(2),
+            STRING if m.group(2).startswith('"') else NUMBER,
+            m.group(0),
+            base + m.start(),
+        )
+        for m in _TEXT_WORD.finditer(text.text)
+    )

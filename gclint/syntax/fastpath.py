@@ -1,0 +1,133 @@
+"""The fast path: parse the commonest line shapes with a few regular expressions.
+
+Real jobs are millions of lines of ``G1 X.. Y.. E..``; the lark parser reads about 30k lines/s, this
+path several times that.  It only accepts shapes whose parse it can reproduce exactly and returns None
+for anything else, which then goes to the grammar.  ``tests/test_fastpath.py`` checks on generated lines
+and on every corpus line that both give the same tree.
+
+Three tiers, cheapest first:
+
+1. blank lines and lines holding only a ``;`` or ``(...)`` comment;
+2. the canonical shape: upper-case words separated by whitespace, one G/M/T command (optionally after an
+   ``N`` line number), a trailing ``;`` comment.  Parameter words are not built until a rule asks for
+   them (``Command.words``);
+3. any sequence of letter-and-number words, upper or lower case, with or without spaces
+   (``G0X0Y0S12000M3``, ``g1 x 10``), grouped into commands by ``build.assemble``.
+"""
+
+from __future__ import annotations
+
+import re
+
+from gclint.syntax.build import TEXT_CODES, assemble
+from gclint.syntax.nodes import GCODE, NUMBER, Command, Comment, ParsedLine, Word, normalize_code
+
+_NUM = r"[-+]?(?:\d+\.?\d*|\.\d+)"
+_CANON = re.compile(rf"[ \t]*[A-Z]{_NUM}(?:[ \t]+[A-Z]{_NUM})*[ \t]*")
+_GENERAL = re.compile(rf"[ \t]*(?:[A-Za-z][ \t]*{_NUM}[ \t]*)+")
+_WORD = re.compile(rf"([A-Za-z])[ \t]*({_NUM})")
+_LINENO_VALUE = re.compile(r"\d+(?:\.\d+)?")
+
+_BLANK = ParsedLine(kind="blank")
+_CODES: dict[str, str] = {}
+
+
+def _code(token: str) -> str:
+    code = _CODES.get(token)
+    if code is None:
+        if len(_CODES) > 50000:
+            _CODES.clear()
+        code = _CODES[token] = normalize_code(token[0], token[1:])
+    return code
+
+
+def parse_fast(raw: str) -> ParsedLine | None:
+    """Parse ``raw`` if it has one of the fast shapes, else return None."""
+    if not raw:
+        return _BLANK
+    semi = raw.find(";")
+    body = raw if semi < 0 else raw[:semi]
+    # Tier 1: blank and comment-only lines.
+    stripped = body.strip(" \t")
+    if not stripped:
+        if semi < 0:
+            return _BLANK
+        return ParsedLine(comments=(Comment(raw[semi:], semi + 1, ";"),), kind="comment")
+    if stripped[0] == "(":
+        close = stripped.find(")")
+        if close == len(stripped) - 1 and semi < 0:
+            column = raw.find("(") + 1
+            return ParsedLine(comments=(Comment(stripped, column, "("),), kind="comment")
+        return None
+    if "0x" in body:
+        return None  # maybe a hex value (M708 A0x0b), which only the grammar reads
+    comments = (Comment(raw[semi:], semi + 1, ";"),) if semi >= 0 else ()
+    # Tier 2: the canonical shape.
+    if _CANON.fullmatch(body):
+        parsed = _canonical(raw, body, comments)
+        if parsed is not None:
+            return parsed
+    # Tier 3: any run of letter-and-number words.
+    if _GENERAL.fullmatch(body):
+        return _general(raw, body, comments)
+    return None
+
+
+def _canonical(raw: str, body: str, comments: tuple[Comment, ...]) -> ParsedLine | None:
+    tokens = body.split()
+    first = tokens[0]
+    line_number = None
+    start = 0
+    if first[0] == "N":
+        if not _LINENO_VALUE.fullmatch(first[1:]) or len(tokens) == 1:
+            return None
+        n_start = raw.find(first)
+        line_number = Word("N", first[1:], NUMBER, first, n_start + 1)
+        tokens = tokens[1:]
+        start = raw.find(tokens[0], n_start + len(first))
+        first = tokens[0]
+    else:
+        start = raw.find(first)
+    letter = first[0]
+    if letter not in "GMT":
+        return None
+    code = _code(first)
+    if code in TEXT_CODES:
+        return None
+    params = {}
+    for token in tokens[1:]:
+        p = token[0]
+        if p == "G" or p == "M" or (p == "T" and letter == "T") or p in params:
+            return None
+        params[p] = token[1:]
+    command = Command(code, GCODE, start + 1, params, src=raw, span=(start, len(body.rstrip(" \t"))))
+    return ParsedLine(commands=(command,), comments=comments, line_number=line_number, kind="code")
+
+
+def _general(raw: str, body: str, comments: tuple[Comment, ...]) -> ParsedLine | None:
+    pieces: list = []
+    for m in _WORD.finditer(body):
+        text = m.group(0)
+        value = m.group(2)
+        pieces.append(Word(m.group(1).upper(), value, NUMBER, text, m.start() + 1))
+    line_number = None
+    if pieces and pieces[0].letter == "N" and _LINENO_VALUE.fullmatch(pieces[0].value):  # type: ignore[arg-type]
+        line_number = pieces.pop(0)
+    if pieces and pieces[0].letter == "O":
+        return None  # an O-word statement (LinuxCNC), see grammar.lark
+    for piece in pieces:
+        if piece.letter in "GM" and normalize_code(piece.letter, piece.value) in TEXT_CODES:  # type: ignore[arg-type]
+            return None
+    pieces.extend(comments)
+    return assemble(pieces, None, line_number)
+
+
+def materialize_words(src: str, span: tuple[int, int], kind: str) -> tuple[Word | None, tuple[Word, ...]]:
+    """Build the code word and parameter words of a command the canonical tier left unbuilt."""
+    start, end = span
+    words = []
+    for m in _WORD.finditer(src, start, end):
+        words.append(Word(m.group(1).upper(), m.group(2), NUMBER, m.group(0), m.start() + 1))
+    if kind == GCODE and words:
+        return words[0], tuple(words[1:])
+    return None, tuple(words)  # pragma: no cover - only G/M/T commands are left unbuilt
