@@ -1,0 +1,299 @@
+"""The command line.  Each subcommand is a thin function: parse options, call library code, print.
+
+Exit codes (DESIGN.md): 0 no finding at warning level or above; 1 findings; 2 usage error or a file that
+could not be read.  Bad input never shows a traceback: one line on stderr naming the file and the reason.
+"""
+
+from __future__ import annotations
+
+import os
+import sys
+
+import click
+
+from gclint import __version__, dialects
+from gclint.config import ConfigError, parse_heads, parse_tool_map
+from gclint.engine import FileResult, Options
+from gclint.machine.profiles import PROFILES, UnknownPrinter, get_profile
+from gclint.rules.base import RuleError, Severity
+
+DIALECT_CHOICES = sorted(set(dialects.names()) | {"auto"})
+
+
+class UsageFailure(click.ClickException):
+    exit_code = 2
+
+
+def _fail(message: str) -> None:
+    raise UsageFailure(message)
+
+
+def _split(values: tuple[str, ...]) -> list[str]:
+    out: list[str] = []
+    for v in values:
+        out.extend(x.strip().upper() for x in v.split(",") if x.strip())
+    return out
+
+
+def _check_dialect(name: str | None, allow_auto: bool = True) -> str | None:
+    if name is None:
+        return None
+    if allow_auto and name.lower() == "auto":
+        return "auto"
+    try:
+        return dialects.get(name).name
+    except dialects.UnknownDialect as exc:
+        _fail(str(exc))
+    return None
+
+
+def _check_printer(name: str | None) -> str | None:
+    if name is None:
+        return None
+    try:
+        return get_profile(name).name
+    except UnknownPrinter as exc:
+        _fail(str(exc))
+    return None
+
+
+def _stdout_safe() -> None:
+    # File text may hold undecodable bytes (kept as surrogates); never crash while printing them.
+    for stream in (sys.stdout, sys.stderr):
+        try:
+            stream.reconfigure(errors="backslashreplace")  # type: ignore[attr-defined]
+        except (AttributeError, ValueError):
+            pass
+
+
+@click.group(context_settings={"help_option_names": ["-h", "--help"], "max_content_width": 110})
+@click.version_option(__version__, "-V", "--version", prog_name="gclint")
+def main() -> None:
+    """gclint: a linter and dialect translator for G-code, built first for Hyrel 3D printers."""
+    _stdout_safe()
+
+
+# -- check -----------------------------------------------------------------------------------------------
+
+
+@main.command()
+@click.argument("paths", nargs=-1, type=click.Path(allow_dash=True))
+@click.option("--dialect", "-d", metavar="D", help="hyrel, hyrel-v4, marlin, reprap, machinekit, carvera or auto (default).")
+@click.option("--printer", "-p", metavar="MODEL", help=f"Hyrel model: {', '.join(PROFILES)} (default 30m).")
+@click.option("--loaded", metavar="T0,T2", help="Head positions loaded on the yoke (else from the job header).")
+@click.option("--select", multiple=True, metavar="CODES", help="Only these rule codes or prefixes (comma separated).")
+@click.option("--ignore", multiple=True, metavar="CODES", help="Skip these rule codes or prefixes.")
+@click.option("--extend-select", multiple=True, metavar="CODES", help="Add these to the selected rules.")
+@click.option("--format", "-f", "fmt", default="text", show_default=True, metavar="F",
+              help="text, json, sarif, github, junit, html, full, grouped.")
+@click.option("--output", "-o", type=click.Path(dir_okay=False, writable=True, allow_dash=True), help="Write the report here.")
+@click.option("--exit-zero", is_flag=True, help="Exit 0 even when findings exist.")
+@click.option("--statistics", is_flag=True, help="Show the number of findings per code.")
+@click.option("--jobs", "-j", type=click.IntRange(min=1), default=None, help="Parallel processes (default: CPU count).")
+@click.option("--config", "config_file", type=click.Path(dir_okay=False), help="Configuration file (else found upward).")
+@click.option("--fix", is_flag=True, help="Apply the safe fixes in place.")
+@click.option("--unsafe-fixes", is_flag=True, help="With --fix, apply unsafe fixes too.")
+@click.option("--stdin-filename", metavar="NAME", help="Name to use for the file read from '-'.")
+@click.option("--no-cache", is_flag=True, help="Do not read or write the result cache.")
+@click.option("--cache-dir", type=click.Path(file_okay=False), envvar="GCLINT_CACHE_DIR", help="Cache folder (default .gclint_cache).")
+@click.option("--progress/--no-progress", default=None, help="Progress bar on stderr (default: on a terminal, for many files).")
+def check(
+    paths: tuple[str, ...],
+    dialect: str | None,
+    printer: str | None,
+    loaded: str | None,
+    select: tuple[str, ...],
+    ignore: tuple[str, ...],
+    extend_select: tuple[str, ...],
+    fmt: str,
+    output: str | None,
+    exit_zero: bool,
+    statistics: bool,
+    jobs: int | None,
+    config_file: str | None,
+    fix: bool,
+    unsafe_fixes: bool,
+    stdin_filename: str | None,
+    no_cache: bool,
+    cache_dir: str | None,
+    progress: bool | None,
+) -> None:
+    """Check G-code files and folders (- for standard input)."""
+    from gclint import runner
+    from gclint.reports import ReportContext, formats
+
+    writers = formats()
+    if fmt not in writers:
+        _fail(f"unknown format {fmt!r} (known: {', '.join(sorted(writers))})")
+    overrides: dict = {}
+    if dialect is not None:
+        overrides["dialect"] = _check_dialect(dialect)
+    if printer is not None:
+        overrides["printer"] = _check_printer(printer)
+    try:
+        if loaded is not None:
+            overrides["loaded"] = parse_heads(loaded)
+    except ConfigError as exc:
+        _fail(str(exc))
+    if select:
+        overrides["select"] = _split(select)
+    if ignore:
+        overrides["ignore"] = _split(ignore)
+    if extend_select:
+        overrides["extend_select"] = _split(extend_select)
+    if config_file is not None and not os.path.isfile(config_file):
+        _fail(f"{config_file}: configuration file not found")
+
+    files, problems = runner.collect(paths or (".",))
+    if fix and "-" in files:
+        _fail("--fix cannot rewrite standard input")
+    try:
+        from gclint.rules.base import all_rules
+
+        all_rules()
+        results = runner.run(
+            files,
+            Options(),
+            overrides,
+            explicit_config=config_file,
+            jobs=jobs or (runner.default_jobs() if len(files) > 1 else 1),
+            stdin_name=stdin_filename or "-",
+        )
+    except RuleError as exc:
+        _fail(str(exc))
+        return
+    if fix:
+        from gclint.fixes import apply_fixes
+
+        results = [apply_fixes(r, unsafe=unsafe_fixes) if r.error is None else r for r in results]
+    results = problems + results
+    for r in results:
+        if r.error:
+            click.echo(f"gclint: {r.error}", err=True)
+    ctx = ReportContext(tool_version=__version__, statistics=statistics)
+    _write_report(writers[fmt], results, ctx, output)
+    if any(r.error for r in results):
+        sys.exit(2)
+    worst = max((f.severity for r in results for f in r.findings), default=None)
+    if not exit_zero and worst is not None and worst >= Severity.WARNING:
+        sys.exit(1)
+
+
+def _write_report(writer, results: list[FileResult], ctx, output: str | None) -> None:
+    if output in (None, "-"):
+        writer(results, sys.stdout, ctx)
+        return
+    try:
+        with open(output, "w", encoding="utf-8", errors="backslashreplace", newline="\n") as fh:
+            writer(results, fh, ctx)
+    except OSError as exc:
+        _fail(f"{output}: cannot write the report: {exc.strerror or exc}")
+
+
+# -- translate -------------------------------------------------------------------------------------------
+
+
+@main.command()
+@click.argument("input_path", metavar="INPUT", type=click.Path(allow_dash=True), default="-")
+@click.option("--from", "source", required=True, metavar="D", help="Dialect of the input.")
+@click.option("--to", "target", required=True, metavar="D", help="Dialect to write.")
+@click.option("--output", "-o", metavar="OUT", type=click.Path(dir_okay=False, allow_dash=True), help="Output file (default: stdout).")
+@click.option("--in-place", is_flag=True, help="Replace INPUT (atomically).")
+@click.option("--unsupported", type=click.Choice(["ignore", "warn", "error"]), default="warn", show_default=True,
+              help="What to do with constructs that cannot be translated exactly.")
+@click.option("--annotate", is_flag=True, help="Add a '; gclint: ...' comment on each changed or dropped line.")
+@click.option("--printer", "-p", metavar="MODEL", help="Hyrel model of the target.")
+@click.option("--tool-map", metavar="0=T2,...", help="Source tool index -> Hyrel head address.")
+@click.option("--config", "config_file", type=click.Path(dir_okay=False), help="Configuration file (else found upward).")
+def translate(
+    input_path: str,
+    source: str,
+    target: str,
+    output: str | None,
+    in_place: bool,
+    unsupported: str,
+    annotate: bool,
+    printer: str | None,
+    tool_map: str | None,
+    config_file: str | None,
+) -> None:
+    """Translate INPUT from one dialect to another (- for standard input)."""
+    from gclint.translate.cli import run_translate
+
+    src = dialects.get(_check_dialect(source, allow_auto=False))  # type: ignore[arg-type]
+    dst = dialects.get(_check_dialect(target, allow_auto=False))  # type: ignore[arg-type]
+    if in_place and output:
+        _fail("use either --output or --in-place")
+    if in_place and input_path == "-":
+        _fail("--in-place needs a file, not standard input")
+    try:
+        mapping = parse_tool_map(tool_map) if tool_map else None
+    except ConfigError as exc:
+        _fail(str(exc))
+        return
+    code = run_translate(
+        input_path,
+        src,
+        dst,
+        output=input_path if in_place else output,
+        unsupported=unsupported,
+        annotate=annotate,
+        printer=_check_printer(printer),
+        tool_map=mapping,
+        config_file=config_file,
+    )
+    sys.exit(code)
+
+
+# -- rules and dialects ------------------------------------------------------------------------------------
+
+
+@main.command()
+@click.argument("code", required=False)
+@click.option("--format", "-f", "fmt", type=click.Choice(["text", "json"]), default="text", show_default=True)
+@click.option("--all", "show_all", is_flag=True, help="With no CODE: print every rule's full documentation.")
+def rules(code: str | None, fmt: str, show_all: bool) -> None:
+    """List the rules, or show one rule's documentation."""
+    import json
+
+    from gclint.rules.base import all_rules
+
+    try:
+        registry = all_rules()
+    except RuleError as exc:
+        _fail(str(exc))
+        return
+    if code:
+        key = code.strip().upper()
+        matched = [r for c, r in registry.items() if c == key or r.name == code.strip().lower()]
+        if not matched:
+            matched = [r for c, r in registry.items() if c.startswith(key)]
+        if not matched:
+            _fail(f"no rule {code!r} (see 'gclint rules')")
+        if fmt == "json":
+            docs = [r.doc() for r in matched]
+            click.echo(json.dumps(docs[0] if len(docs) == 1 else docs, indent=2, ensure_ascii=False))
+        else:
+            click.echo("\n".join(r.render_doc() for r in matched), nl=False)
+        return
+    if fmt == "json":
+        click.echo(json.dumps([r.doc() for r in registry.values()], indent=2, ensure_ascii=False))
+        return
+    if show_all:
+        click.echo("\n".join(r.render_doc() for r in registry.values()), nl=False)
+        return
+    for c, r in registry.items():
+        click.echo(f"{c}  {r.name:<34} {r.severity.label:<8} {r.summary}")
+
+
+@main.command(name="dialects")
+def list_dialects() -> None:
+    """List the dialects and their aliases."""
+    for d in dialects.all_dialects():
+        aliases = f" (also: {', '.join(d.aliases)})" if d.aliases else ""
+        click.echo(f"{d.name:<11} {d.title}{aliases}")
+    click.echo(f"{'auto':<11} detect from the file (directive, slicer header, codes); default {dialects.DEFAULT.name}")
+
+
+if __name__ == "__main__":  # pragma: no cover
+    main()

@@ -1,0 +1,198 @@
+"""Configuration: ``[tool.gclint]`` in pyproject.toml, or gclint.toml / .gclint.toml, found upward from
+the checked file (the nearest one wins, as in ruff).  Read as data only (tomllib); unknown keys and
+wrong types are errors that name the file and the key.
+
+    [tool.gclint]
+    dialect = "hyrel"
+    printer = "16a-dual"
+    loaded = ["T0", "T2"]
+    select = ["SX", "DL", "HY"]
+    ignore = ["HY029"]
+    extend-select = []
+    per-file-ignores = { "calibration/*.gcode" = ["HY006"] }
+    tool-map = { 0 = "T2", 1 = "T3" }
+    spindle-max-rpm = 24000
+"""
+
+from __future__ import annotations
+
+import os
+import re
+import tomllib
+from dataclasses import replace
+from functools import lru_cache
+from pathlib import Path
+
+from gclint.engine import Options
+
+CONFIG_NAMES = ("gclint.toml", ".gclint.toml", "pyproject.toml")
+
+
+class ConfigError(Exception):
+    """A configuration file that cannot be used; the message is one line naming the file."""
+
+
+def parse_heads(value: object, where: str = "--loaded") -> frozenset[int]:
+    """``"T0,T2"``, ``"0 2"``, ``["T0", 2]`` -> ``{0, 2}`` (v5 head positions)."""
+    items: list = []
+    if isinstance(value, str):
+        items = [v for v in re.split(r"[,\s]+", value.strip()) if v]
+    elif isinstance(value, (list, tuple)):
+        items = list(value)
+    else:
+        raise ConfigError(f"{where}: expected a list of heads such as T0,T2")
+    heads = set()
+    for item in items:
+        text = str(item).strip().upper()
+        if text.startswith("T"):
+            text = text[1:]
+        if not text.isdigit() or not 0 <= int(text) <= 19:
+            raise ConfigError(f"{where}: {item!r} is not a head position (T0-T19)")
+        heads.add(int(text))
+    return frozenset(heads)
+
+
+def parse_tool_map(value: object, where: str = "--tool-map") -> dict[int, int]:
+    """``"0=T2,1=T3"`` or ``{0 = "T2"}`` -> ``{0: 2, 1: 3}`` (source tool index -> Hyrel T address)."""
+    pairs: list[tuple[object, object]] = []
+    if isinstance(value, str):
+        for part in re.split(r"[,\s]+", value.strip()):
+            if not part:
+                continue
+            if "=" not in part:
+                raise ConfigError(f"{where}: {part!r} should look like 0=T2")
+            k, v = part.split("=", 1)
+            pairs.append((k, v))
+    elif isinstance(value, dict):
+        pairs = list(value.items())
+    else:
+        raise ConfigError(f"{where}: expected pairs such as 0=T2,1=T3")
+    out: dict[int, int] = {}
+    for k, v in pairs:
+        ks, vs = str(k).strip().upper().lstrip("T"), str(v).strip().upper().lstrip("T")
+        if not ks.isdigit() or not vs.isdigit() or int(vs) > 48:
+            raise ConfigError(f"{where}: {k}={v} is not a tool index and a Hyrel address (0=T2)")
+        out[int(ks)] = int(vs)
+    return out
+
+
+def _str_list(value: object, key: str, path: Path) -> list[str]:
+    if isinstance(value, str):
+        return [v for v in re.split(r"[,\s]+", value) if v]
+    if isinstance(value, list) and all(isinstance(v, str) for v in value):
+        return list(value)
+    raise ConfigError(f"{path}: '{key}' must be a list of rule codes or prefixes")
+
+
+_KEYS = {
+    "dialect",
+    "printer",
+    "loaded",
+    "select",
+    "ignore",
+    "extend-select",
+    "per-file-ignores",
+    "tool-map",
+    "spindle-max-rpm",
+}
+
+
+def load_file(path: Path) -> dict:
+    """The gclint table of a configuration file ({} when a pyproject.toml has none)."""
+    try:
+        with open(path, "rb") as fh:
+            data = tomllib.load(fh)
+    except tomllib.TOMLDecodeError as exc:
+        raise ConfigError(f"{path}: invalid TOML: {exc}") from None
+    except OSError as exc:
+        raise ConfigError(f"{path}: cannot read: {exc.strerror or exc}") from None
+    if path.name == "pyproject.toml":
+        table = data.get("tool", {}).get("gclint")
+        if table is None:
+            return {}
+    else:
+        table = data.get("tool", {}).get("gclint", data)
+    if not isinstance(table, dict):
+        raise ConfigError(f"{path}: the gclint section must be a table")
+    unknown = sorted(set(table) - _KEYS)
+    if unknown:
+        raise ConfigError(f"{path}: unknown option '{unknown[0]}' (known: {', '.join(sorted(_KEYS))})")
+    return table
+
+
+def apply(options: Options, table: dict, path: Path) -> Options:
+    """``options`` updated with a configuration table (command-line values are applied afterwards)."""
+    from gclint import dialects
+    from gclint.machine.profiles import UnknownPrinter, get_profile
+
+    changes: dict = {"config_path": str(path)}
+    if "dialect" in table:
+        name = table["dialect"]
+        if not isinstance(name, str):
+            raise ConfigError(f"{path}: 'dialect' must be a string")
+        if name != "auto":
+            try:
+                dialects.get(name)
+            except dialects.UnknownDialect as exc:
+                raise ConfigError(f"{path}: {exc}") from None
+        changes["dialect"] = name
+    if "printer" in table:
+        try:
+            get_profile(str(table["printer"]))
+        except UnknownPrinter as exc:
+            raise ConfigError(f"{path}: {exc}") from None
+        changes["printer"] = str(table["printer"])
+    if "loaded" in table:
+        changes["loaded"] = parse_heads(table["loaded"], f"{path}: 'loaded'")
+    if "select" in table:
+        changes["select"] = _str_list(table["select"], "select", path)
+    if "ignore" in table:
+        changes["ignore"] = _str_list(table["ignore"], "ignore", path)
+    if "extend-select" in table:
+        changes["extend_select"] = _str_list(table["extend-select"], "extend-select", path)
+    if "per-file-ignores" in table:
+        pfi = table["per-file-ignores"]
+        if not isinstance(pfi, dict):
+            raise ConfigError(f"{path}: 'per-file-ignores' must be a table of pattern = [codes]")
+        changes["per_file_ignores"] = {str(k): _str_list(v, f"per-file-ignores.{k}", path) for k, v in pfi.items()}
+    if "tool-map" in table:
+        changes["tool_map"] = parse_tool_map(table["tool-map"], f"{path}: 'tool-map'")
+    if "spindle-max-rpm" in table:
+        rpm = table["spindle-max-rpm"]
+        if not isinstance(rpm, (int, float)) or rpm <= 0:
+            raise ConfigError(f"{path}: 'spindle-max-rpm' must be a positive number")
+        changes["spindle_max_rpm"] = float(rpm)
+    return replace(options, **changes)
+
+
+@lru_cache(maxsize=256)
+def find_config(directory: str) -> Path | None:
+    """The nearest configuration file at or above ``directory`` (a pyproject.toml counts only with
+    a [tool.gclint] table)."""
+    current = Path(directory).resolve()
+    for folder in (current, *current.parents):
+        for name in CONFIG_NAMES:
+            candidate = folder / name
+            if candidate.is_file():
+                if name == "pyproject.toml":
+                    try:
+                        if not load_file(candidate):
+                            continue
+                    except ConfigError:
+                        raise
+                return candidate
+    return None
+
+
+def config_for(path: str, explicit: str | None = None) -> tuple[Path | None, dict]:
+    """The configuration file and table that apply to ``path`` (``explicit`` wins when given)."""
+    if explicit:
+        p = Path(explicit)
+        if not p.is_file():
+            raise ConfigError(f"{explicit}: configuration file not found")
+        return p, load_file(p)
+    directory = os.path.dirname(os.path.abspath(path)) if path != "-" else os.getcwd()
+    found = find_config(directory)
+    if found is None:
+        return None, {}
+    return found, load_file(found)

@@ -1,0 +1,161 @@
+"""Hyrel head addressing: what a T number means in firmware v5 and in v4, and the v4 -> v5 map.
+
+Sources: ../shared/seeds/hyrel-T_v5-addressing.wiki.txt ("Chart of Addresses"), and
+../shared/research/hyrel_v4.md sections 1-3 (v4 device addresses read from the Hyrel firmware tables).
+
+Everything inside gclint speaks v5 numbers: a physical head is its v5 position index 0-19 (T0-T4 yoke 1,
+T5-T9 yoke 2, ...).  v4 files are converted when read (``resolve_v4_*``) and written back with
+``V5_TO_V4``.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+# Kinds of address.
+HEAD = "head"
+SPINDLE = "spindle"
+LASER = "laser"
+AUX = "aux"
+BED = "bed"
+VIRTUAL = "virtual"  # clone squads T30-T39
+GROUP = "group"  # T40-T48: all devices, a yoke, all aux, all beds...
+RESERVED = "reserved"  # numbers with no device
+
+
+@dataclass(frozen=True)
+class Address:
+    """What one T number designates."""
+
+    number: int  # the number as written in the file
+    kind: str
+    v5: int | None  # the v5 address (for v4 files: the translated number), None when there is none
+    label: str
+    certain: bool = True  # False where the v4 -> v5 correspondence is inferred (research: medium/low)
+
+    @property
+    def position(self) -> int | None:
+        """The physical head position (v5 index 0-19), or None for other devices."""
+        return self.v5 if self.kind == HEAD else None
+
+    @property
+    def is_physical(self) -> bool:
+        """True for one real device (a head, the spindle, the laser, an aux port, a bed)."""
+        return self.kind in (HEAD, SPINDLE, LASER, AUX, BED)
+
+
+def yoke_label(position: int) -> str:
+    return f"yoke {position // 5 + 1}, position {position % 5 + 1}"
+
+
+# -- v5 (T_v5 "Chart of Addresses": T commands and T variables share these numbers) -----------------
+
+_V5_SPECIAL = {
+    20: (SPINDLE, "3-phase spindle"),
+    21: (LASER, "CO2 laser"),
+    22: (AUX, "Aux1"),
+    23: (AUX, "Aux2"),
+    24: (BED, "Bed1 / Chamber1"),
+    25: (BED, "Bed2 / Chamber2"),
+    40: (GROUP, "all devices"),
+    41: (GROUP, "yoke 1, all heads"),
+    42: (GROUP, "yoke 2, all heads"),
+    43: (GROUP, "yoke 3, all heads"),
+    44: (GROUP, "yoke 4, all heads"),
+    45: (GROUP, "all aux devices"),
+    46: (GROUP, "all beds / chambers"),
+    47: (GROUP, "all non-bed / non-chamber devices"),
+    48: (GROUP, "all virtual devices (T30-T39)"),
+}
+
+
+def resolve_v5(number: int) -> Address:
+    """The v5 meaning of ``T<number>`` (command or variable)."""
+    if 0 <= number <= 19:
+        return Address(number, HEAD, number, f"head T{number} ({yoke_label(number)})")
+    if number in _V5_SPECIAL:
+        kind, label = _V5_SPECIAL[number]
+        return Address(number, kind, number, f"{label} (T{number})")
+    if 30 <= number <= 39:
+        return Address(number, VIRTUAL, number, f"virtual head / clone squad T{number}")
+    return Address(number, RESERVED, None, f"T{number} (no device has this address)")
+
+
+# -- v4 (research/hyrel_v4.md) ----------------------------------------------------------------------
+
+# T variables inside M-codes are device addresses (hyrel_v4.md section 1-3); value: (kind, v5, label, certain)
+_V4_VARIABLES: dict[int, tuple[str, int | None, str, bool]] = {
+    0: (GROUP, 40, "all devices", True),
+    10: (GROUP, 41, "yoke 1, all heads", True),
+    16: (AUX, 22, "aux (yoke 1 aux position)", True),
+    20: (GROUP, 42, "yoke 2, all heads", True),
+    26: (SPINDLE, 20, "3-phase spindle", True),
+    30: (GROUP, 43, "yoke 3, all heads", False),
+    40: (GROUP, 44, "yoke 4, all heads", False),
+    41: (LASER, 21, "CO2 laser", True),
+    50: (GROUP, 48, "all groups (clone squads)", False),
+    90: (GROUP, 46, "all beds", True),
+    91: (BED, 24, "hotbed 1", True),
+    92: (BED, 25, "hotbed 2", True),
+    100: (GROUP, 47, "all heads (non-bed devices)", True),
+}
+for _i in range(5):
+    _V4_VARIABLES[11 + _i] = (HEAD, _i, f"yoke 1, position {_i + 1}", True)
+    _V4_VARIABLES[21 + _i] = (HEAD, 5 + _i, f"yoke 2, position {_i + 1}", True)
+    _V4_VARIABLES[31 + _i] = (HEAD, 10 + _i, f"yoke 3, position {_i + 1}", False)
+for _i in range(1, 8):
+    _V4_VARIABLES[50 + _i] = (VIRTUAL, 29 + _i, f"group {50 + _i}", False)
+# 42-45 (yoke 4 positions 2-5) exist in the firmware's mailbox list; 41 is the CO2 laser there too.
+for _i in range(1, 5):
+    _V4_VARIABLES[41 + _i] = (HEAD, 15 + _i, f"yoke 4, position {_i + 1}", False)
+
+# T commands (a line "T3") are tool numbers (hyrel_v4.md: toolNumberMap): 0-4 yoke 1, 5-9 yoke 2,
+# 10 aux, 11 CO2 laser, 12 spindle, 13/14 hotbeds; 50-57 select a group.
+_V4_COMMANDS: dict[int, tuple[str, int | None, str, bool]] = {
+    10: (AUX, 22, "aux", True),
+    11: (LASER, 21, "CO2 laser", True),
+    12: (SPINDLE, 20, "3-phase spindle", True),
+    13: (BED, 24, "hotbed 1", True),
+    14: (BED, 25, "hotbed 2", True),
+    50: (GROUP, 48, "all groups", False),
+}
+for _i in range(10):
+    _V4_COMMANDS[_i] = (HEAD, _i, yoke_label(_i), True)
+for _i in range(1, 8):
+    _V4_COMMANDS[50 + _i] = (VIRTUAL, 29 + _i, f"group {50 + _i}", False)
+
+
+def resolve_v4_variable(number: int) -> Address:
+    """The meaning of ``T<number>`` as a T variable (inside an M-code) in a v4 file."""
+    entry = _V4_VARIABLES.get(number)
+    if entry is None:
+        return Address(number, RESERVED, None, f"T{number} (no v4 device address)", True)
+    kind, v5, label, certain = entry
+    return Address(number, kind, v5, f"{label} (v4 T{number})", certain)
+
+
+def resolve_v4_command(number: int) -> Address:
+    """The meaning of a ``T<number>`` command line in a v4 file."""
+    entry = _V4_COMMANDS.get(number)
+    if entry is None:
+        return Address(number, RESERVED, None, f"T{number} (not a v4 tool number)", True)
+    kind, v5, label, certain = entry
+    return Address(number, kind, v5, f"{label} (v4 T{number})", certain)
+
+
+# v4 T variables that mean something else (or nothing) in v5: the ones HY008 looks for in a v5 file.
+# (T_v5 addresses T10-T19 exist only on three- and four-yoke machines; T90+ do not exist at all.)
+V4_STYLE_VARIABLES = frozenset(list(range(10, 17)) + list(range(21, 27)) + [90, 91, 92, 100])
+
+# The certain part of the v4 -> v5 map for T variables (issue 4 / hyrel_v4.md, confidence "high").
+V4_TO_V5_VARIABLE: dict[int, int] = {
+    n: v5 for n, (kind, v5, label, certain) in _V4_VARIABLES.items() if certain and v5 is not None
+}
+# And back; v5 numbers with no certain v4 variable are missing (translation reports them).
+V5_TO_V4_VARIABLE: dict[int, int] = {v5: n for n, v5 in V4_TO_V5_VARIABLE.items()}
+
+# T commands: v4 and v5 agree on heads 0-9.
+V4_TO_V5_COMMAND: dict[int, int] = {
+    n: v5 for n, (kind, v5, label, certain) in _V4_COMMANDS.items() if certain and v5 is not None
+}
+V5_TO_V4_COMMAND: dict[int, int] = {v5: n for n, v5 in V4_TO_V5_COMMAND.items()}

@@ -1,0 +1,177 @@
+"""What a dialect is: the codes it knows (with their parameters), its addressing, its header detection.
+
+A dialect module builds one ``Dialect`` from tables.  Dialects that differ little from another one are
+written as a delta (``base.derive(...)``), in the manner of sqlfluff's ``copy_as``.
+"""
+
+from __future__ import annotations
+
+import re
+from dataclasses import dataclass, field, replace
+from typing import Callable, Iterable, Mapping
+
+
+@dataclass(frozen=True)
+class Param:
+    """One parameter of a code.
+
+    ``minimum``/``maximum`` bound the value; ``integer`` requires a whole number; ``choices`` lists the
+    only allowed values; ``forbidden`` letters must not appear at all.  ``rule`` names the rule that reports a value outside these bounds (``DL003``
+    by default); ``source`` names the section of the seed document the fact comes from.
+    """
+
+    letter: str
+    meaning: str = ""
+    required: bool = False
+    minimum: float | None = None
+    maximum: float | None = None
+    integer: bool = False
+    choices: tuple[float, ...] | None = None
+    rule: str = "DL003"
+    source: str = ""
+    forbidden: bool = False  # the letter must not appear at all (the meaning says why)
+
+    def problem(self, value: float | None) -> str | None:
+        """Why ``value`` is not allowed, or None.  ``value`` is None for a letter with no number."""
+        if self.forbidden:
+            return f"{self.letter}: {self.meaning}"
+        if value is None:
+            return None
+        if self.choices is not None and value not in self.choices:
+            allowed = ", ".join(_fmt(c) for c in self.choices)
+            return f"{self.letter}{_fmt(value)} is not one of {allowed}"
+        if self.integer and value != int(value):
+            return f"{self.letter}{_fmt(value)} must be a whole number"
+        if self.minimum is not None and value < self.minimum:
+            return f"{self.letter}{_fmt(value)} is below the minimum {_fmt(self.minimum)}"
+        if self.maximum is not None and value > self.maximum:
+            return f"{self.letter}{_fmt(value)} is above the maximum {_fmt(self.maximum)}"
+        return None
+
+
+@dataclass(frozen=True)
+class Code:
+    """A command code a dialect has.
+
+    ``params`` is None when the parameters are not catalogued (any letter is accepted); otherwise it
+    maps each accepted letter to its ``Param``.  ``supported`` is False for codes the dialect documents
+    as not supported (Hyrel's G10/G11).
+    """
+
+    code: str
+    summary: str = ""
+    params: Mapping[str, Param] | None = None
+    supported: bool = True
+    source: str = ""
+
+    def param(self, letter: str) -> Param | None:
+        return None if self.params is None else self.params.get(letter)
+
+
+def code(name: str, summary: str = "", *params: Param, source: str = "", supported: bool = True, open_params: bool = False) -> Code:
+    """Shorthand for a ``Code`` whose parameters are listed (``open_params`` leaves them unchecked)."""
+    table = None if open_params else {p.letter: p for p in params}
+    return Code(name, summary, table, supported, source)
+
+
+def codes(names: Iterable[str] | str, summary: str = "") -> list[Code]:
+    """Codes with no parameter catalogue, from a list or a space-separated string (``"M104 M109"``)."""
+    if isinstance(names, str):
+        names = names.split()
+    return [Code(n, summary) for n in names]
+
+
+def span(letter: str, first: int, last: int) -> str:
+    """``span("M", 810, 819)`` -> ``"M810 M811 ... M819"``."""
+    return " ".join(f"{letter}{i}" for i in range(first, last + 1))
+
+
+@dataclass(frozen=True)
+class Detection:
+    """How ``--dialect auto`` recognises a file: regular expressions over the file's head, each with a
+    weight.  The dialect with the highest total wins; ties and zero scores fall back to ``hyrel``."""
+
+    patterns: tuple[tuple[str, int], ...] = ()
+    extensions: tuple[str, ...] = ()
+    extension_weight: int = 1
+
+    def score(self, head: str, path: str) -> int:
+        total = 0
+        for pattern, weight in self.patterns:
+            if re.search(pattern, head, re.MULTILINE):
+                total += weight
+        if path.lower().endswith(self.extensions):
+            total += self.extension_weight
+        return total
+
+
+@dataclass(frozen=True)
+class Dialect:
+    """A G-code dialect: the codes it has and how its files look.
+
+    ``family`` groups dialects that share semantics (``"hyrel"``, ``"reprap"``, ``"linuxcnc"``).
+    ``extended_commands`` accepts Klipper-style ``NAME KEY=VALUE`` commands; ``meta_commands`` accepts
+    RepRapFirmware's ``if``/``var``/``echo``...; ``owords`` accepts LinuxCNC O-words and ``#`` parameters.
+    ``open_codes`` is a predicate for codes the dialect accepts without listing them (user M-codes,
+    macros).  ``unknown_severity`` is how serious an unknown code is on this firmware.
+    """
+
+    name: str
+    title: str
+    family: str
+    codes: Mapping[str, Code]
+    aliases: tuple[str, ...] = ()
+    detection: Detection = Detection()
+    extended_commands: bool = False
+    meta_commands: bool = False
+    owords: bool = False
+    open_codes: Callable[[str], bool] | None = None
+    unknown_severity: str = "warning"
+    description: str = ""
+    sources: tuple[str, ...] = ()
+    extras: Mapping[str, object] = field(default_factory=dict)
+
+    def accepts(self, kind: str, code: str | None) -> bool:
+        """Whether the dialect has a command of this kind and code (see syntax.nodes for kinds)."""
+        if kind in ("gcode", "text"):
+            return code is not None and self.knows(code)
+        if kind == "extended":
+            return self.extended_commands
+        if kind == "meta":
+            return self.meta_commands
+        if kind in ("oword", "assignment"):
+            return self.owords
+        return True
+
+    def knows(self, code: str) -> bool:
+        if code in self.codes:
+            return True
+        return self.open_codes is not None and self.open_codes(code)
+
+    def spec(self, code: str) -> Code | None:
+        return self.codes.get(code)
+
+    def derive(self, name: str, title: str, *, add: Iterable[Code] = (), remove: Iterable[str] = (), **changes) -> "Dialect":
+        """A new dialect that is this one plus ``add`` minus ``remove`` (codes), with other fields changed."""
+        table = dict(self.codes)
+        for c in remove:
+            table.pop(c, None)
+        for c in add:
+            table[c.code] = c
+        return replace(self, name=name, title=title, codes=table, **changes)
+
+
+def table(*groups: Iterable[Code] | Code) -> dict[str, Code]:
+    """Build a code table from codes and lists of codes (later entries replace earlier ones)."""
+    out: dict[str, Code] = {}
+    for group in groups:
+        if isinstance(group, Code):
+            out[group.code] = group
+        else:
+            for c in group:
+                out[c.code] = c
+    return out
+
+
+def _fmt(value: float) -> str:
+    return str(int(value)) if value == int(value) else f"{value:g}"

@@ -1,0 +1,81 @@
+"""Machinekit FDM (LinuxCNC interpreter with the FDM remaps), also used for plain LinuxCNC programs.
+
+The FDM codes come from the Machinekit-FDM remap.ini (research/dialects.md 1.8 [MK]) and the seed README
+(../shared/seeds/machinekit-fdm-mcodes.md: M104 P<index> S<temp>, M106 P<index> S<pwm> I, M109 P S).  The base
+language is LinuxCNC's RS274NGC: O-words, #parameters, [expressions], user M-codes M100-M199.
+"""
+
+from __future__ import annotations
+
+from gclint.dialects.base import Detection, Dialect, Param, code, codes, span, table
+
+P = Param
+
+_LINUXCNC_G = (
+    "G0 G1 G2 G3 G4 G5 G5.1 G5.2 G5.3 G7 G8 G10 G17 G17.1 G18 G18.1 G19 G19.1 G20 G21 G28 G28.1 G30 G30.1 G33"
+    " G33.1 G38.2 G38.3 G38.4 G38.5 G40 G41 G41.1 G42 G42.1 G43 G43.1 G43.2 G49 G52 G53 G54 G55 G56 G57 G58"
+    " G59 G59.1 G59.2 G59.3 G61 G61.1 G64 G70 G71 G71.1 G71.2 G72 G72.1 G72.2 G73 G74 G76 G80 G81 G82 G83 G84"
+    " G85 G86 G87 G88 G89 G90 G90.1 G91 G91.1 G92 G92.1 G92.2 G92.3 G93 G94 G95 G96 G97 G98 G99"
+)
+_LINUXCNC_M = (
+    "M0 M1 M2 M3 M4 M5 M6 M7 M8 M9 M19 M30 M48 M49 M50 M51 M52 M53 M60 M61 M62 M63 M64 M65 M66 M67 M68 M70"
+    " M71 M72 M73 M98 M99"
+)
+# Machinekit-FDM remap.ini (final flavour: value in P, index in T) and the seed README flavour.
+_FDM = [
+    code("M104", "set extruder temperature", P("P", "temperature (final) or sensor index (seed)"), P("S", "temperature (seed)"),
+         P("T", "extruder index (final)"), P("I", "immediate"), source="remap.ini / seed README"),
+    code("M106", "fan / device PWM", P("P", "PWM value (final) or device index (seed)"), P("S", "PWM 0-255 (seed)"),
+         P("T", "fan index (final)"), P("I", "execute immediately"), source="remap.ini / seed README"),
+    code("M107", "fan off", P("T", "fan index"), P("P", "device index (seed)"), P("I", "immediate"), source="remap.ini"),
+    code("M109", "set extruder temperature and wait", P("P", "temperature (final) or sensor index (seed)"),
+         P("S", "temperature (seed)"), P("T", "extruder index"), source="remap.ini / seed README"),
+    code("M140", "set bed temperature", P("P", "temperature"), P("S", "temperature (RepRap style)"), P("I", "immediate")),
+    code("M141", "set chamber temperature", P("P", "temperature"), P("S", "temperature (RepRap style)"), P("I", "immediate")),
+    code("M190", "bed temperature and wait", P("P", "temperature"), P("S", "temperature (RepRap style)")),
+    code("M191", "chamber temperature and wait", P("P", "temperature"), P("S", "temperature (RepRap style)")),
+    code("M200", "filament diameter (velocity extrusion)", P("D", "diameter", required=True)),
+    code("M207", "retraction length and speed", P("P", "length, mm"), P("Q", "speed, mm/s")),
+    code("M221", "extrusion scale factor", P("P", "factor (0.96 = 96 %)")),
+    *codes("G22 G23 G28 G29 G29.1 G29.2 G30 M226 M280 M300 M400 M420 M700 M701 M702 M710 M600 M601 M306"),
+]
+
+
+def _open(code: str) -> bool:
+    # T<n> selects a tool; M100-M199 are user M-codes (external programs); G#<x> codes are computed.
+    if code[0] == "T" or "#" in code or "[" in code:
+        return True
+    if code[0] == "M" and code[1:].isdigit():
+        return 100 <= int(code[1:]) <= 199
+    return False
+
+
+MACHINEKIT = Dialect(
+    name="machinekit",
+    title="Machinekit FDM / LinuxCNC (RS274NGC with the FDM remaps)",
+    family="linuxcnc",
+    codes=table(codes(_LINUXCNC_G), codes(_LINUXCNC_M), _FDM),
+    aliases=("linuxcnc", "machinekit-fdm"),
+    detection=Detection(
+        patterns=(
+            (r"(?i)^;\s*gcode_flavor\s*=\s*machinekit", 12),
+            (r"(?im)^\s*o\s*(?:\d+|<[^>]*>)\s+(?:sub|if|while|do|call|repeat|endsub)\b", 8),
+            (r"#<[A-Za-z_][^>]*>", 5),
+            (r"^\s*#\d+\s*=", 5),
+            (r"^\s*G2[23]\b", 3),
+            (r"^\s*M10[49]\s+P\d+\s+S\d", 3),
+            (r"^\s*M10[49]\s+P[\d.]+(?:\s+T\d+)?\s*(?:;|$)", 3),
+            (r"^\s*G1\b[^;\n]*\bA-?[\d.]", 1),
+        ),
+        extensions=(".ngc",),
+        extension_weight=4,
+    ),
+    owords=True,
+    open_codes=_open,
+    unknown_severity="error",  # the LinuxCNC interpreter stops on an unknown code
+    description="Machinekit's FDM configuration of the LinuxCNC interpreter; also plain LinuxCNC programs.",
+    sources=("seeds/machinekit-fdm-mcodes.md", "research/dialects.md section 1.8 [MK, LCNC]"),
+    extras={"fan_max": 255},
+)
+
+_ = span

@@ -1,0 +1,69 @@
+"""Marlin 2.x (and the Marlin-like flavours of slicers: Prusa firmware, Bambu, Creality, Klipper hosts).
+
+Inventory from the Marlin G-code reference (marlinfw.org, research/dialects.md section 1 [MAR]) plus
+the codes Prusa and Bambu firmware add, as found in the corpus.  Parameters are not catalogued: Marlin
+ignores letters it does not use.  Klipper extended commands (``SET_FAN_SPEED ...``) are accepted because
+Klipper hosts read Marlin-flavour files.
+"""
+
+from __future__ import annotations
+
+from gclint.dialects.base import Detection, Dialect, codes, span, table
+
+_G = (
+    "G0 G1 G2 G3 G4 G5 G6 G10 G11 G12 G17 G18 G19 G20 G21 G26 G27 G28 G29 G29.1 G29.2 G30 G31 G32 G33 G34 G35"
+    " G38.2 G38.3 G38.4 G38.5 G42 G53 G54 G55 G56 G57 G58 G59 G59.1 G59.2 G59.3 G60 G61 G76 G80 G90 G91 G92"
+    " G92.1 G425"
+)
+_M = (
+    "M0 M1 M3 M4 M5 M7 M8 M9 M10 M11 M16 M17 M18 M20 M21 M22 M23 M24 M25 M26 M27 M28 M29 M30 M31 M32 M33 M34"
+    " M42 M43 M48 M73 M75 M76 M77 M78 M80 M81 M82 M83 M84 M85 M86 M87 M92 M100 M102 M104 M105 M106 M107 M108"
+    " M109 M110 M111 M112 M113 M114 M115 M117 M118 M119 M120 M121 M122 M123 M125 M126 M127 M128 M129 M140 M141"
+    " M143 M145 M149 M150 M154 M155 M163 M164 M165 M166 M190 M191 M192 M193 M200 M201 M202 M203 M204 M205"
+    " M206 M207 M208 M209 M211 M217 M218 M220 M221 M226 M240 M250 M255 M256 M260 M261 M280 M281 M282 M290"
+    " M300 M301 M302 M303 M304 M305 M306 M350 M351 M355 M360 M361 M362 M363 M364 M380 M381 M400 M401 M402"
+    " M403 M404 M405 M406 M407 M410 M412 M413 M420 M421 M422 M423 M425 M428 M430 M486 M493 M500 M501 M502"
+    " M503 M504 M510 M511 M512 M524 M540 M569 M575 M592 M593 M600 M603 M605 M665 M666 M672 M701 M702 M710"
+    " M808 M851 M852 M860 M861 M862 M863 M864 M865 M866 M867 M868 M869 M871 M876 M900 M906 M907 M908 M909"
+    " M910 M911 M912 M913 M914 M915 M916 M917 M918 M919 M928 M951 M993 M994 M995 M997 M999 M7219"
+)
+# Prusa firmware (MK3/MINI/MMU) and Bambu Lab / Creality additions seen in slicer output.
+_VENDOR = (
+    "G80 G81 G162 M73.2 M115 M142 M221 M591 M593 M601 M602 M603 M708 M709 M860 M862.1 M862.2 M862.3 M862.4"
+    " M862.5 M862.6 M900 M913 M914 M915 M916 M917 M975 M981 M982 M983 M991 M1002 M1003 M1006 M1007 M620"
+    " M620.1 M620.3 M620.10 M620.11 M621 M622 M622.1 M623 M624 M625 M630 M960 M970 M970.3 M971 M974 M976"
+    " M400 G29.1 G29.2 G39 G150 G383 G392 M190 M106 M104 M109"
+)
+
+
+def _open(code: str) -> bool:
+    # T<n> selects extruder n; Marlin's "T" alone and Prusa MMU's T?/Tx/Tc are accepted too.
+    return code[0] == "T"
+
+
+MARLIN = Dialect(
+    name="marlin",
+    title="Marlin 2.x (Marlin-flavour slicer output, Prusa, Bambu, Klipper hosts)",
+    family="reprap",
+    codes=table(codes(_G), codes(_M), codes(_VENDOR), codes(span("M", 810, 819))),
+    aliases=("marlin2", "prusa", "klipper"),
+    detection=Detection(
+        patterns=(
+            (r"(?i)^;\s*FLAVOR:\s*Marlin", 10),
+            (r"(?i)^;\s*FLAVOR:\s*(?:RepRap|Griffin|UltiGCode)", 6),
+            (r"(?i)^;\s*gcode_flavor\s*=\s*(?:marlin|marlin2|reprap|repetier|teacup|makerware|sailfish|mach3|smoothie|klipper|sprinter|no-extrusion)\s*$", 10),
+            (r"(?i)generated (?:by|with) (?:PrusaSlicer|Slic3r|SuperSlicer|OrcaSlicer|BambuStudio|Cura|Simplify3D|KISSlicer|ideaMaker|Skeinforge)", 3),
+            (r"^\s*M862\.\d", 3),
+            (r"^\s*M73\s+P", 2),
+            (r"^\s*(?:SET_|EXCLUDE_OBJECT|START_PRINT|PRINT_START)", 3),
+            (r"^\s*M8[23]\b", 1),
+        ),
+        extensions=(".gcode", ".gco"),
+    ),
+    extended_commands=True,
+    open_codes=_open,
+    unknown_severity="warning",  # Marlin echoes "Unknown command" and goes on (anchors.md, Marlin)
+    description="Marlin firmware and Marlin-flavour output of the common slicers.",
+    sources=("research/dialects.md section 1 [MAR]",),
+    extras={"fan_max": 255},
+)

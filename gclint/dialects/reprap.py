@@ -1,0 +1,66 @@
+"""RepRapFirmware 3.x (Duet): G/M codes, meta commands (if, var, echo...), {expressions}, macros.
+
+Inventory from the Duet G-code dictionary (research/dialects.md section 1 [RRF]).  RepRapFirmware runs
+a macro file for a code it does not know (sys/M<n>.g, sys/G<n>.g), so unknown codes are only a warning.
+"""
+
+from __future__ import annotations
+
+from gclint.dialects.base import Detection, Dialect, codes, span, table
+
+_G = (
+    "G0 G1 G2 G3 G4 G10 G11 G17 G18 G19 G20 G21 G22 G23 G29 G30 G31 G32 G38.2 G38.3 G38.4 G38.5 G53 G54 G55"
+    " G56 G57 G58 G59 G59.1 G59.2 G59.3 G60 G68 G69 G90 G91 G92 G93 G94"
+)
+_M = (
+    "M0 M1 M2 M3 M4 M5 M6 M7 M8 M9 M17 M18 M20 M21 M22 M23 M24 M25 M26 M27 M28 M29 M30 M32 M36 M36.1 M37 M38"
+    " M39 M42 M73 M80 M81 M82 M83 M84 M86 M92 M98 M99 M101 M102 M103 M104 M105 M106 M107 M108 M109 M110 M111"
+    " M112 M114 M115 M116 M117 M118 M119 M120 M121 M122 M140 M141 M143 M144 M150 M190 M191 M200 M201 M201.1"
+    " M203 M204 M205 M206 M207 M208 M220 M221 M226 M260 M260.1 M260.2 M261 M261.1 M261.2 M280 M290 M291 M292"
+    " M300 M301 M302 M303 M304 M305 M307 M308 M309 M350 M374 M375 M376 M400 M401 M402 M404 M408 M409 M409.1"
+    " M450 M451 M452 M453 M470 M471 M472 M486 M500 M501 M502 M503 M505 M540 M550 M551 M552 M553 M554 M555"
+    " M556 M557 M558 M559 M560 M561 M562 M563 M564 M566 M567 M568 M569 M569.1 M569.2 M569.3 M569.4 M569.5"
+    " M569.6 M569.7 M569.8 M569.9 M570 M571 M572 M573 M574 M575 M576 M577 M578 M579 M580 M581 M582 M584 M585"
+    " M586 M586.4 M587 M588 M589 M591 M592 M593 M594 M595 M596 M597 M598 M599 M600 M601 M602 M603 M605 M650 M651"
+    " M665 M666 M667 M669 M671 M672 M673 M674 M675 M701 M702 M703 M851 M905 M906 M907 M908 M909 M910 M911 M912"
+    " M913 M914 M915 M916 M917 M918 M929 M950 M951 M952 M953 M954 M955 M956 M957 M997 M998 M999"
+)
+
+META_KEYWORDS = frozenset("if elif else while break continue var global set echo abort return".split())
+
+
+def _open(code: str) -> bool:
+    # Tools T0-T49, T-1 (deselect), T with an expression; any other G/M code may be a macro file.
+    return code[0] in "TGM"
+
+
+REPRAP = Dialect(
+    name="reprap",
+    title="RepRapFirmware 3.x (Duet)",
+    family="reprap",
+    codes=table(codes(_G), codes(_M)),
+    aliases=("rrf", "reprapfirmware", "duet"),
+    detection=Detection(
+        patterns=(
+            (r"(?i)^;\s*gcode_flavor\s*=\s*reprapfirmware", 12),
+            (r"(?i)^;\s*FLAVOR:\s*RepRap\s*\(RepRap\)", 8),
+            (r"^\s*(?:if|elif|while|var|global|set|echo|abort)\b", 6),
+            (r"\{[^}\n]*(?:var|global|param|move|state|heat|tools|sensors)\.", 5),
+            (r"^\s*M98\s+P\"", 4),
+            (r"^\s*M563\s", 4),
+            (r"^\s*G10\s+P\d+\s+[RS]", 3),
+            (r"^\s*M(?:550|552|569|584|950|308|307)\s", 3),
+            (r"^\s*T-1\b", 2),
+        ),
+        extensions=(".g",),
+        extension_weight=2,
+    ),
+    meta_commands=True,
+    open_codes=_open,
+    unknown_severity="warning",
+    description="Duet RepRapFirmware 3: meta commands, object-model expressions, macro files.",
+    sources=("research/dialects.md section 1 [RRF]",),
+    extras={"fan_max": 255},
+)
+
+_ = span  # (kept for symmetry with the other dialect modules)

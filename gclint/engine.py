@@ -1,0 +1,298 @@
+"""Lint one file: read lines, parse, dispatch commands to rules, track the machine state.
+
+One pass, one line at a time; nothing but findings is kept, so memory does not grow with the file.
+Rules are called through a dispatch table built per command code the first time the code is seen, so
+a ``G1`` line only touches the rules that listen to ``G1``.
+"""
+
+from __future__ import annotations
+
+import fnmatch
+import os
+import re
+from dataclasses import dataclass, field
+from typing import Callable, Iterable
+
+from gclint import dialects
+from gclint.dialects.base import Dialect
+from gclint.machine.interpreter import Interpreter
+from gclint.machine.profiles import DEFAULT_PROFILE, PrinterProfile, get_profile
+from gclint.machine.state import MachineState
+from gclint.rules.base import ANY_T, Finding, Fix, Rule, Severity, all_rules, select_rules
+from gclint.syntax.nodes import GCODE, Command, Line
+from gclint.syntax.parse import parse_line
+from gclint.syntax.source import Source, SourceError
+
+
+@dataclass
+class Options:
+    """Everything that shapes a check, from the command line and the configuration file."""
+
+    dialect: str = "auto"
+    printer: str = DEFAULT_PROFILE
+    loaded: frozenset[int] | None = None  # v5 head positions; None = take them from the job header
+    select: list[str] | None = None
+    ignore: list[str] = field(default_factory=list)
+    extend_select: list[str] = field(default_factory=list)
+    per_file_ignores: dict[str, list[str]] = field(default_factory=dict)
+    env_flavor: str | None = None  # SLIC3R_GCODE_FLAVOR for postprocess
+    spindle_max_rpm: float | None = None
+    tool_map: dict[int, int] = field(default_factory=dict)
+    config_path: str | None = None
+
+    def cache_key(self) -> str:
+        return repr(
+            (
+                self.dialect,
+                self.printer,
+                sorted(self.loaded) if self.loaded is not None else None,
+                self.select,
+                sorted(self.ignore),
+                sorted(self.extend_select),
+                sorted((k, sorted(v)) for k, v in self.per_file_ignores.items()),
+                self.env_flavor,
+                self.spindle_max_rpm,
+                sorted(self.tool_map.items()),
+            )
+        )
+
+
+@dataclass
+class FileResult:
+    """What checking one file produced."""
+
+    path: str
+    findings: list[Finding] = field(default_factory=list)
+    dialect: str | None = None
+    dialect_reason: str = ""
+    lines: int = 0
+    error: str | None = None  # the file could not be read (exit code 2)
+
+    def counts(self) -> dict[str, int]:
+        out = {"error": 0, "warning": 0, "info": 0}
+        for f in self.findings:
+            out[f.severity.label] += 1
+        return out
+
+
+_NOQA = re.compile(r"(?i)\bnoqa\b(?:\s*:\s*([A-Za-z]{2}\d{0,3}(?:\s*[,\s]\s*[A-Za-z]{2}\d{0,3})*))?")
+_DIRECTIVE = re.compile(r"(?i)\bgclint:\s*(disable|enable)\b(?:\s*=\s*([A-Za-z]{2}\d{0,3}(?:\s*,\s*[A-Za-z]{2}\d{0,3})*))?")
+
+
+def _codes(text: str | None) -> tuple[str, ...]:
+    if not text:
+        return ("ALL",)
+    return tuple(c.upper() for c in re.split(r"[,\s]+", text.strip()) if c)
+
+
+class FileContext:
+    """The per-file world a rule sees: dialect, printer, options, machine state, and the findings."""
+
+    def __init__(self, path: str, dialect: Dialect, profile: PrinterProfile, options: Options) -> None:
+        self.path = path
+        self.dialect = dialect
+        self.profile = profile
+        self.options = options
+        self.state = MachineState(loaded_heads=options.loaded)
+        self.interpreter = Interpreter(dialect, self.state)
+        self.findings: list[Finding] = []
+        self._current: Line | None = None
+        self.enabled_codes: frozenset[str] = frozenset()
+        self.noqa: dict[int, tuple[str, ...]] = {}
+        self.directives: list[tuple[int, str, tuple[str, ...]]] = []
+
+    def enabled(self, code: str) -> bool:
+        """Whether the rule ``code`` is selected for this run."""
+        return code in self.enabled_codes
+
+    def add(
+        self,
+        rule: Rule | type[Rule],
+        line: Line | int,
+        column: int,
+        message: str,
+        *,
+        fix: Fix | None = None,
+        severity: Severity | None = None,
+        end_column: int | None = None,
+    ) -> None:
+        if isinstance(line, Line):
+            number, text = line.number, line.raw
+        else:
+            number, text = line, None
+        self.findings.append(
+            Finding(
+                path=self.path,
+                line=number,
+                column=max(1, column),
+                code=rule.code,
+                severity=severity if severity is not None else rule.severity,
+                message=message,
+                name=rule.name,
+                fix=fix,
+                end_column=end_column,
+                source=text,
+            )
+        )
+
+    # -- suppression ------------------------------------------------------------------------------------
+
+    def read_directives(self, line: Line) -> None:
+        for comment in line.parsed.comments:
+            body = comment.body
+            if "noqa" in body or "NOQA" in body or "gclint" in body.lower():
+                m = _NOQA.search(body)
+                if m:
+                    self.noqa[line.number] = self.noqa.get(line.number, ()) + _codes(m.group(1))
+                for d in _DIRECTIVE.finditer(body):
+                    self.directives.append((line.number, d.group(1).lower(), _codes(d.group(2))))
+
+    def suppressed(self, finding: Finding) -> bool:
+        codes = self.noqa.get(finding.line)
+        if codes and _matches(finding.code, codes):
+            return True
+        disabled = False
+        for number, action, codes in self.directives:
+            if number > finding.line:
+                break
+            if _matches(finding.code, codes):
+                disabled = action == "disable"
+        return disabled
+
+
+def _matches(code: str, selectors: Iterable[str]) -> bool:
+    return any(s == "ALL" or code.startswith(s) for s in selectors)
+
+
+class Linter:
+    """Checks files with one set of options.  Reusable across files (rules are instantiated per file)."""
+
+    def __init__(self, options: Options | None = None) -> None:
+        self.options = options or Options()
+        select = self.options.select
+        if select is not None or self.options.extend_select:
+            base = select if select is not None else [r.code for r in all_rules().values() if r.default_enabled]
+            select = list(base) + list(self.options.extend_select)
+        self.rule_classes = select_rules(all_rules().values(), select, self.options.ignore)
+        self.profile = get_profile(self.options.printer)
+        self.fixed_dialect = None if self.options.dialect == "auto" else dialects.get(self.options.dialect)
+
+    # -- entry points ---------------------------------------------------------------------------------
+
+    def check_path(self, path: str) -> FileResult:
+        try:
+            source = Source.open(path)
+        except SourceError as exc:
+            return FileResult(path, error=str(exc))
+        return self.check_source(source)
+
+    def check_text(self, text: str, path: str = "<text>") -> FileResult:
+        return self.check_source(Source.from_text(text, path))
+
+    def check_source(self, source: Source) -> FileResult:
+        path = source.display
+        if self.fixed_dialect is not None:
+            dialect, reason = self.fixed_dialect, "--dialect"
+            directive = dialects.detect(source.head_text(), path)
+            if directive[1].startswith("'gclint: dialect="):
+                dialect, reason = directive
+        else:
+            dialect, reason = dialects.detect(source.head_text(), path, self.options.env_flavor)
+        result = FileResult(path, dialect=dialect.name, dialect_reason=reason)
+        ctx = FileContext(path, dialect, self.profile, self.options)
+        try:
+            self._run(source, ctx, result)
+        except SourceError as exc:
+            result.error = str(exc)
+            return result
+        ignored = self._per_file_ignores(path)
+        result.findings = [
+            f for f in ctx.findings if not ctx.suppressed(f) and not (ignored and _matches(f.code, ignored))
+        ]
+        result.findings.sort(key=Finding.sort_key)
+        return result
+
+    def _per_file_ignores(self, path: str) -> tuple[str, ...]:
+        out: list[str] = []
+        norm = path.replace(os.sep, "/")
+        for pattern, codes in self.options.per_file_ignores.items():
+            if fnmatch.fnmatch(norm, pattern) or fnmatch.fnmatch(os.path.basename(norm), pattern) or fnmatch.fnmatch(norm, "*/" + pattern):
+                out.extend(c.upper() for c in codes)
+        return tuple(out)
+
+    # -- the loop --------------------------------------------------------------------------------------
+
+    def _run(self, source: Source, ctx: FileContext, result: FileResult) -> None:
+        dialect = ctx.dialect
+        classes = [cls for cls in self.rule_classes if cls.applies_to(dialect.name, dialect.family)]
+        ctx.enabled_codes = frozenset(cls.code for cls in classes)
+        rules = [cls(ctx) for cls in classes]
+        by_code: dict[str, list[Callable[[Line, Command], None]]] = {}
+        any_t: list[Callable[[Line, Command], None]] = []
+        unknown: list[Callable[[Line, Command], None]] = []
+        line_hooks = [r.check_line for r in rules if r.on_line]
+        numbered_hooks = [r.check_line for r in rules if r.on_numbered]
+        issue_hooks = [r.check_issues for r in rules if r.on_issue]
+        comment_hooks = [r.check_comment for r in rules if r.on_comment]
+        for r in rules:
+            for c in r.codes:
+                if c == ANY_T:
+                    any_t.append(r.check)
+                else:
+                    by_code.setdefault(c, []).append(r.check)
+            if r.on_unknown_code:
+                unknown.append(r.check)
+
+        dispatch: dict[str | None, tuple[Callable[[Line, Command], None], ...]] = {}
+
+        def build(cmd: Command) -> tuple[Callable[[Line, Command], None], ...]:
+            code = cmd.code
+            handlers = list(by_code.get(code, ())) if code is not None else []
+            if code is not None and cmd.kind == GCODE and code[0] == "T":
+                handlers.extend(any_t)
+            if not dialect.accepts(cmd.kind, code):
+                handlers.extend(unknown)
+            out = tuple(handlers)
+            dispatch[code] = out
+            return out
+
+        state = ctx.state
+        apply = ctx.interpreter.apply
+        read_directives = ctx.read_directives
+        parse = parse_line
+        number = 0
+        get = dispatch.get
+        for chunk in source.chunks():
+            for raw, ending in chunk:
+                number += 1
+                parsed = parse(raw)
+                line = Line(number, raw, ending, parsed)
+                state.line_number = number
+                if parsed.comments:
+                    read_directives(line)
+                    for hook in comment_hooks:
+                        for comment in parsed.comments:
+                            hook(line, comment)
+                if parsed.issues:
+                    for hook in issue_hooks:
+                        hook(line)
+                if parsed.line_number is not None or parsed.checksum is not None:
+                    for hook in numbered_hooks:
+                        hook(line)
+                for hook in line_hooks:
+                    hook(line)
+                for cmd in parsed.commands:
+                    handlers = get(cmd.code)
+                    if handlers is None:
+                        handlers = build(cmd)
+                    for handler in handlers:
+                        handler(line, cmd)
+                    apply(cmd, line)
+        result.lines = number
+        for r in rules:
+            r.finish()
+
+
+def check_text(text: str, **options) -> list[Finding]:
+    """Convenience for tests and library users: the findings for G-code ``text``."""
+    return Linter(Options(**options)).check_text(text).findings

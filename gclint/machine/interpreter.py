@@ -1,0 +1,468 @@
+"""Apply commands to a ``MachineState`` with the semantics of a dialect.
+
+One table of handlers per dialect family; the same code can mean different things (M30 ends a Hyrel
+job but deletes a file on Marlin; G90 resets the E mode on Marlin only).  Facts come from
+../shared/research/dialects.md section 1 and the Hyrel seed pages; each handler names its source.
+"""
+
+from __future__ import annotations
+
+from typing import Callable
+
+from gclint.dialects.addressing import Address, resolve_v5
+from gclint.dialects.base import Dialect
+from gclint.machine.state import EVALUES, NATIVE, MachineState
+from gclint.syntax.nodes import GCODE, IMPLICIT, Command, Line, is_number
+
+Handler = Callable[[Command, Line], None]
+
+_AXES = "XYZAB"
+_MOTION = frozenset({"G0", "G1", "G2", "G3"})
+
+
+def _int(text: str | None) -> int | None:
+    """An integer parameter value (``"12"``, ``"12.0"``), or None."""
+    if text is None or not is_number(text) or len(text) > 12:
+        return None
+    value = float(text)
+    return int(value) if value == int(value) else None
+
+
+class Interpreter:
+    """Tracks ``state`` through the commands of one file."""
+
+    def __init__(self, dialect: Dialect, state: MachineState | None = None) -> None:
+        self.dialect = dialect
+        self.state = state if state is not None else MachineState()
+        self.family = dialect.family
+        self.resolve_variable: Callable[[int], Address] = dialect.extras.get("resolve_variable", resolve_v5)  # type: ignore[assignment]
+        self.resolve_command: Callable[[int], Address] = dialect.extras.get("resolve_command", resolve_v5)  # type: ignore[assignment]
+        self.handlers: dict[str, Handler] = self._handlers()
+
+    # -- addressing ----------------------------------------------------------------------------------
+
+    def address(self, cmd: Command, letter: str = "T") -> Address | None:
+        """The device a command's T variable designates (v4 numbers translated); None without T."""
+        number = _int(cmd.params.get(letter))
+        if number is None:
+            return None
+        return self.resolve_variable(number)
+
+    def target(self, cmd: Command) -> int | None:
+        """The v5 address of the device a command acts on: its T variable, else the focused head."""
+        address = self.address(cmd)
+        if address is not None:
+            return address.v5
+        return self.state.tool
+
+    def tool_command_address(self, cmd: Command) -> Address | None:
+        """The address a ``T<n>`` command line selects, or None when ``n`` is not a number."""
+        if cmd.kind != GCODE or not cmd.code or cmd.code[0] != "T":
+            return None
+        number = _int(cmd.code[1:])
+        return None if number is None else self.resolve_command(number)
+
+    # -- dispatch ------------------------------------------------------------------------------------
+
+    def apply(self, cmd: Command, line: Line) -> None:
+        handler = self.handlers.get(cmd.code)  # type: ignore[arg-type]
+        if handler is not None:
+            handler(cmd, line)
+        elif cmd.kind == IMPLICIT:
+            mode = self.state.motion_mode
+            if mode is not None and any(a in cmd.params for a in _AXES):
+                self._motion(cmd, line, mode)
+        elif cmd.kind == GCODE and cmd.code and cmd.code[0] == "T":
+            self._tool(cmd, line)
+
+    def _handlers(self) -> dict[str, Handler]:
+        h: dict[str, Handler] = {
+            "G0": self._g0,
+            "G1": self._g1,
+            "G2": self._arc,
+            "G3": self._arc,
+            "G4": _ignore,
+            "G17": lambda c, l: self._plane(17),
+            "G18": lambda c, l: self._plane(18),
+            "G19": lambda c, l: self._plane(19),
+            "G20": lambda c, l: setattr(self.state, "units", "inch"),
+            "G21": lambda c, l: setattr(self.state, "units", "mm"),
+            "G90": self._g90,
+            "G91": self._g91,
+            "G92": self._g92,
+            "G28": self._g28,
+            "M82": lambda c, l: setattr(self.state, "e_absolute", True),
+            "M83": lambda c, l: setattr(self.state, "e_absolute", False),
+            "M104": self._set_temp,
+            "M109": self._set_temp,
+            "M140": self._set_temp,
+            "M141": self._set_temp,
+            "M190": self._set_temp,
+            "M191": self._set_temp,
+            "M18": self._motors_off,
+            "M84": self._motors_off,
+        }
+        if self.family == "hyrel":
+            h.update(
+                {
+                    "G16": lambda c, l: self._plane(16),
+                    "G2.1": self._spiral_in_place,
+                    "G3.1": self._spiral_in_place,
+                    "G2.2": self._arc,
+                    "G3.2": self._arc,
+                    "G2.3": self._arc,
+                    "G3.3": self._arc,
+                    "G53": self._g53,
+                    "G93": self._g93,
+                    "M3": self._spindle_on,
+                    "M4": self._spindle_on,
+                    "M5": self._spindle_off,
+                    "M6": self._declare_head,
+                    "M30": self._end_of_job_hyrel,
+                    "M106": self._fan_range,
+                    "M116": lambda c, l: self.state.pending_w0.clear(),
+                    "M229": self._m229,
+                    "M620": self._m620,
+                    "M660": self._m660,
+                    "M702": self._m702,
+                    "M703": self._m703,
+                    "M704": self._m704,
+                    "M756": self._m756,
+                    "G81": self._g81,
+                }
+            )
+            for n in range(54, 60):
+                h[f"G{n}"] = self._fixture
+        elif self.family == "reprap":
+            h.update({"M3": self._spindle_on, "M4": self._spindle_on, "M5": self._spindle_off})
+            if self.dialect.name == "reprap":
+                h.update({"M0": self._end_of_program, "M2": self._end_of_program})
+        else:  # linuxcnc, smoothie (CNC families)
+            h.update(
+                {
+                    "M2": self._end_of_program,
+                    "M30": self._end_of_program,
+                    "M3": self._spindle_on,
+                    "M4": self._spindle_on,
+                    "M5": self._spindle_off,
+                    "M6": self._tool_change,
+                    "G53": _ignore,
+                }
+            )
+        return h
+
+    # -- motion --------------------------------------------------------------------------------------
+
+    def _g0(self, cmd: Command, line: Line) -> None:
+        self._motion(cmd, line, "G0")
+
+    def _g1(self, cmd: Command, line: Line) -> None:
+        self._motion(cmd, line, "G1")
+
+    def _arc(self, cmd: Command, line: Line) -> None:
+        self._motion(cmd, line, cmd.code)  # type: ignore[arg-type]
+
+    def _spiral_in_place(self, cmd: Command, line: Line) -> None:
+        # G2.1: "Effective ending X/Y is always the same as the current XY" (Hyrel Gcode page)
+        self._motion(cmd, line, cmd.code, xy=False)  # type: ignore[arg-type]
+
+    def _motion(self, cmd: Command, line: Line, mode: str, xy: bool = True) -> None:
+        st = self.state
+        p = cmd.params
+        pos = st.position
+        if st.absolute:
+            for axis in _AXES:
+                v = p.get(axis)
+                if v is not None and (xy or axis not in "XY"):
+                    pos.set_raw(axis, v)
+        else:
+            for axis in _AXES:
+                v = p.get(axis)
+                if v is not None and (xy or axis not in "XY"):
+                    try:
+                        pos.add(axis, float(v))
+                    except ValueError:
+                        pos.forget(axis)
+        feed = p.get("F")
+        if feed is not None:
+            one_shot = mode == "G0" and self.family in ("hyrel", "smoothie")  # Hyrel/Carvera: G0 F one-shot
+            if not one_shot:
+                try:
+                    st.feed = float(feed)
+                except ValueError:
+                    st.feed = None
+                if mode != "G0":
+                    st.working_feed_set = True
+        st.moved = True
+        if mode in _MOTION:
+            st.motion_mode = mode
+        e = p.get("E")
+        if "E" in p:
+            if mode != "G0" and self._is_printing(e):
+                if not st.printed:
+                    st.printed = True
+                    st.first_print_line = line.number
+            self._advance_e(e)
+        if self.family == "hyrel":
+            h = p.get("H")
+            if h is not None:
+                register = _int(h)
+                st.applied_height_register = register
+                st.applied_height_line = line.number
+
+    def _is_printing(self, e: str | None) -> bool:
+        # Hyrel native flow: "E will trigger a working or printing move" whatever its value (G1 section);
+        # elsewhere a move extrudes when E advances.
+        if self.family == "hyrel" and self.state.flow_mode == NATIVE:
+            return True
+        if e is None:
+            return False
+        try:
+            value = float(e)
+        except ValueError:
+            return False
+        if self.state.e_absolute:
+            return self.state.e_position is None or value > self.state.e_position
+        return value > 0
+
+    def _advance_e(self, e: str | None) -> None:
+        st = self.state
+        try:
+            value = float(e) if e is not None else None
+        except ValueError:
+            value = None
+        if value is None:
+            st.e_position = None
+        elif st.e_absolute:
+            st.e_position = value
+        elif st.e_position is not None:
+            st.e_position += value
+
+    def _plane(self, plane: int) -> None:
+        self.state.plane = plane
+
+    def _g90(self, cmd: Command, line: Line) -> None:
+        self.state.absolute = True
+        if self.dialect.name == "marlin":  # Marlin: G90 also sets absolute E (dialects.md 1.1 G90)
+            self.state.e_absolute = True
+
+    def _g91(self, cmd: Command, line: Line) -> None:
+        self.state.absolute = False
+        if self.dialect.name == "marlin":
+            self.state.e_absolute = False
+
+    def _g92(self, cmd: Command, line: Line) -> None:
+        st = self.state
+        for axis in _AXES:
+            v = cmd.params.get(axis)
+            if v is not None:
+                st.position.set_raw(axis, v)
+        if "E" in cmd.params:
+            e = cmd.params["E"]
+            try:
+                st.e_position = float(e) if e is not None else 0.0
+            except ValueError:
+                st.e_position = None
+        if self.family == "hyrel" and any(a in cmd.params for a in _AXES):
+            st.g92_offsets_active = True
+
+    def _g28(self, cmd: Command, line: Line) -> None:
+        st = self.state
+        listed = [a for a in _AXES if a in cmd.params]
+        if self.family == "hyrel":
+            # G28 homes only the listed axes; afterwards G92, H and fixture offsets are cleared and a
+            # head offset of 0 is applied (Gcode page, "G28 Send X, Y to Physical Home").
+            homed = listed
+            st.g92_offsets_active = False
+            st.fixture_offsets_active = False
+            st.applied_height_register = None
+            st.applied_height_line = None
+        elif self.family == "reprap":
+            homed = listed or ["X", "Y", "Z"]  # Marlin/RRF: bare G28 homes all axes
+        else:
+            # LinuxCNC G28 goes to a stored position; Carvera G28 goes to the clearance position.
+            for axis in listed or list(_AXES):
+                st.position.forget(axis)
+            st.moved = True
+            return
+        for axis in homed:
+            st.position.set(axis, 0.0)
+            st.homed_axes.add(axis)
+        if "Z" in homed:
+            st.z_homed_line = line.number
+        if homed:
+            st.motors_off_line = None
+        st.moved = True
+
+    def _g53(self, cmd: Command, line: Line) -> None:
+        # Hyrel G53 is modal "Clear Offsets" (Gcode page, "G53 Clear Offsets")
+        self.state.fixture_offsets_active = False
+
+    def _fixture(self, cmd: Command, line: Line) -> None:
+        self.state.fixture_offsets_active = True
+
+    def _g93(self, cmd: Command, line: Line) -> None:
+        # Hyrel G93 clears G92 offsets (not inverse-time feed)
+        self.state.g92_offsets_active = False
+
+    def _g81(self, cmd: Command, line: Line) -> None:
+        st = self.state
+        for axis in "XY":
+            v = cmd.params.get(axis)
+            if v is not None:
+                st.position.set_raw(axis, v)
+        st.moved = True
+
+    def _motors_off(self, cmd: Command, line: Line) -> None:
+        # "All axes with homes must be rehomed after an M18." (Hyrel Gcode page, M18)
+        self.state.motors_off_line = line.number
+        self.state.homed_axes.clear()
+
+    # -- heads and tools -----------------------------------------------------------------------------
+
+    def _tool(self, cmd: Command, line: Line) -> None:
+        address = self.tool_command_address(cmd)
+        if address is None:
+            return
+        st = self.state
+        if self.family == "hyrel":
+            st.tool = address.v5
+        else:
+            st.tool = address.number
+        st.tool_line = line.number
+
+    def _tool_change(self, cmd: Command, line: Line) -> None:
+        # CNC M6: change to the tool prepared by T (LinuxCNC; Carvera M6 T<n>)
+        number = _int(cmd.params.get("T"))
+        if number is not None:
+            self.state.tool = number
+            self.state.tool_line = line.number
+
+    def _declare_head(self, cmd: Command, line: Line) -> None:
+        # Repetrel sends "M6 T# O..." for every loaded head at job start (T_v5, Default Mode)
+        address = self.address(cmd)
+        if address is not None and address.position is not None:
+            self.state.declared_heads.setdefault(address.position, line.number)
+
+    def _m702(self, cmd: Command, line: Line) -> None:
+        squad = _int(cmd.params.get("S"))
+        if squad is not None:
+            self.state.squads[squad] = set()
+
+    def _m703(self, cmd: Command, line: Line) -> None:
+        squad = _int(cmd.params.get("S"))
+        head = self.target(cmd)
+        if squad is not None and 30 <= squad <= 39 and head is not None:
+            self.state.squads.setdefault(squad, set()).add(head)
+
+    def _m704(self, cmd: Command, line: Line) -> None:
+        squad = _int(cmd.params.get("S"))
+        head = self.target(cmd)
+        if squad in self.state.squads and head is not None:
+            self.state.squads[squad].discard(head)  # type: ignore[index]
+
+    # -- temperatures, fans, flow ----------------------------------------------------------------------
+
+    def _set_temp(self, cmd: Command, line: Line) -> None:
+        st = self.state
+        if cmd.code in ("M140", "M190"):
+            device = self.address(cmd)
+            target = device.v5 if device is not None else 24
+        elif cmd.code in ("M141", "M191"):
+            device = self.address(cmd)
+            target = device.v5 if device is not None else 24
+        else:
+            target = self.target(cmd)
+        if target is None:
+            target = -1  # the focused head, unknown
+        s = cmd.get("S")
+        if s is not None:
+            st.targets[target] = s
+        if self.family == "hyrel" and cmd.code in ("M109", "M190", "M191"):
+            w = cmd.params.get("W")
+            if w is not None and _int(w) == 0:
+                st.pending_w0[target] = line.number
+
+    def _fan_range(self, cmd: Command, line: Line) -> None:
+        c = cmd.get("C")
+        if c is not None and c > 0:
+            self.state.fan_range = c
+            self.state.fan_range_line = line.number
+
+    def _m229(self, cmd: Command, line: Line) -> None:
+        e = _int(cmd.params.get("E"))
+        if e == 1:
+            self.state.flow_mode = EVALUES
+            self.state.m229_line = line.number
+        elif e == 0:
+            self.state.flow_mode = NATIVE
+            self.state.m229_line = line.number
+
+    def _m756(self, cmd: Command, line: Line) -> None:
+        self.state.layer_height = cmd.get("S")
+
+    def _m660(self, cmd: Command, line: Line) -> None:
+        register = _int(cmd.params.get("H"))
+        if register is not None:
+            self.state.tool_height_offsets[register] = cmd.get("Z")
+
+    # -- lasers and spindles -------------------------------------------------------------------------
+
+    def _m620(self, cmd: Command, line: Line) -> None:
+        address = self.address(cmd)
+        if address is None or address.v5 is None:
+            return
+        e = _int(cmd.params.get("E"))
+        if e == 1:
+            self.state.emitters_enabled[address.v5] = line.number
+            self.state.laser_enabled_any = True
+        elif e == 0 or e is None:
+            # groups (v5 T40/T47, v4 T100) switch off every emitter
+            if address.kind == "group":
+                self.state.emitters_enabled.clear()
+            else:
+                self.state.emitters_enabled.pop(address.v5, None)
+
+    def _spindle_on(self, cmd: Command, line: Line) -> None:
+        device = self.target(cmd) if self.family == "hyrel" else 0
+        if device is None:
+            device = -1
+        s = cmd.get("S")
+        if s is not None and s == 0:  # "S0 is the same as turning it off" (M3 section)
+            self.state.spindles.pop(device, None)
+            return
+        self.state.spindles[device] = ("cw" if cmd.code == "M3" else "ccw", line.number)
+
+    def _spindle_off(self, cmd: Command, line: Line) -> None:
+        device = self.target(cmd) if self.family == "hyrel" else 0
+        if device is None or "T" not in cmd.params:
+            self.state.spindles.clear() if device is None else self.state.spindles.pop(device, None)
+        else:
+            self.state.spindles.pop(device, None)
+
+    # -- end of job ------------------------------------------------------------------------------------
+
+    def _end_of_job_hyrel(self, cmd: Command, line: Line) -> None:
+        # M30: "dissolves any cloning setups, changes head index to 0, clears fixture offsets (G53), clears
+        # any M229 E-value settings, resets M106 persistent range, ... resets M660 head offsets to 0"
+        st = self.state
+        st.after_m30 = True
+        st.m30_line = line.number
+        st.flow_mode = NATIVE
+        st.fan_range = 100.0
+        st.fan_range_line = None
+        st.tool_height_offsets.clear()
+        st.applied_height_register = None
+        if st.squads:
+            st.squads_dissolved_line = line.number
+        st.squads.clear()
+        st.fixture_offsets_active = False
+        st.tool = 0
+
+    def _end_of_program(self, cmd: Command, line: Line) -> None:
+        self.state.after_m30 = True
+        self.state.m30_line = line.number
+
+
+def _ignore(cmd: Command, line: Line) -> None:
+    return None

@@ -1,0 +1,92 @@
+"""Hyrel printer models: head positions, axes and the aux devices each one has.
+
+Sources: T_v5 "Using the T with the ESR and 30M / EHR and 16A / 16A (Dual Yoke)" for head positions;
+Gcode page "G0 Rapid Move" note ("All Hyrel printers have built-in support for three axes. Hyrel model
+16A and EHR printers may be expanded to five") for A/B; "Controlling Aux Devices" for which model has
+which port (M671 30M/ESR only, M676 16A only, ...); "M253 Turn On Lathe" (16A only); "M660" (EHR needs
+G28 Z0).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+
+@dataclass(frozen=True)
+class PrinterProfile:
+    name: str
+    title: str
+    positions: tuple[int, ...]  # v5 head addresses with a tool slot
+    axes: str  # axes the model can have
+    aux_codes: frozenset[str]  # model-specific aux port codes it has (M670-M689)
+    lathe: bool = False
+    needs_z_home_for_m660: bool = False
+
+    @property
+    def max_position(self) -> int:
+        return max(self.positions)
+
+    def describe_positions(self) -> str:
+        return f"T0-T{self.max_position}"
+
+
+_ALWAYS = frozenset({"M670", "M672", "M673", "M689"})
+
+PROFILES: dict[str, PrinterProfile] = {
+    p.name: p
+    for p in (
+        PrinterProfile(
+            "30m",
+            "System 30M (one yoke, four tool slots T0-T3)",
+            (0, 1, 2, 3),
+            "XYZ",
+            _ALWAYS | {"M671", "M675", "M677", "M679"},
+        ),
+        PrinterProfile(
+            "esr",
+            "Engine SR (one yoke, four tool slots T0-T3)",
+            (0, 1, 2, 3),
+            "XYZ",
+            _ALWAYS | {"M671", "M679"},
+        ),
+        PrinterProfile(
+            "ehr",
+            "Engine HR (one yoke, five tool slots T0-T4; A/B optional)",
+            (0, 1, 2, 3, 4),
+            "XYZAB",
+            _ALWAYS,
+            needs_z_home_for_m660=True,
+        ),
+        PrinterProfile(
+            "16a",
+            "Hydra 16A, single yoke (T0-T4; A/B optional; lathe)",
+            (0, 1, 2, 3, 4),
+            "XYZAB",
+            _ALWAYS | {"M675", "M676", "M678", "M684", "M685"},
+            lathe=True,
+        ),
+        PrinterProfile(
+            "16a-dual",
+            "Hydra 16A, dual yoke (T0-T9; A/B optional; lathe)",
+            tuple(range(10)),
+            "XYZAB",
+            _ALWAYS | {"M675", "M676", "M678", "M684", "M685"},
+            lathe=True,
+        ),
+    )
+}
+
+DEFAULT_PROFILE = "30m"
+
+
+class UnknownPrinter(ValueError):
+    pass
+
+
+def get_profile(name: str) -> PrinterProfile:
+    key = name.strip().lower().replace("_", "-")
+    key = {"16a-single": "16a", "hydra16a": "16a", "16a-2": "16a-dual", "16a2": "16a-dual", "system30m": "30m"}.get(key, key)
+    profile = PROFILES.get(key)
+    if profile is None:
+        raise UnknownPrinter(f"unknown printer {name!r} (known: {', '.join(PROFILES)})")
+    return profile

@@ -1,0 +1,130 @@
+"""The machine's modal state while a job runs, as the target firmware understands it.
+
+Rules read this state; they never scan back through lines.  ``Interpreter`` (interpreter.py) updates it
+command by command, with the semantics of the file's dialect.  Heads are v5 position numbers (0-19)
+whatever the dialect; other devices keep their v5 address (20 spindle, 21 laser, 24/25 beds...).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+NATIVE = "native"  # Hyrel native flow: E marks printing moves only
+EVALUES = "evalues"  # Hyrel M229 E1: E amounts drive the flow
+
+
+@dataclass(slots=True)
+class Position:
+    """The last commanded position.  Axes are None until known.
+
+    Absolute moves keep the value's source text and convert it only when read (most jobs never ask),
+    relative moves accumulate numbers.
+    """
+
+    _raw: dict = field(default_factory=dict)  # axis -> source text of an absolute value
+    _num: dict = field(default_factory=dict)  # axis -> float
+
+    def set_raw(self, axis: str, text: str) -> None:
+        self._raw[axis] = text
+        self._num.pop(axis, None)
+
+    def set(self, axis: str, value: float | None) -> None:
+        self._raw.pop(axis, None)
+        self._num[axis] = value
+
+    def get(self, axis: str) -> float | None:
+        text = self._raw.get(axis)
+        if text is not None:
+            try:
+                value: float | None = float(text)
+            except ValueError:
+                value = None
+            self._num[axis] = value
+            del self._raw[axis]
+            return value
+        return self._num.get(axis)
+
+    def add(self, axis: str, delta: float) -> None:
+        current = self.get(axis)
+        self._num[axis] = None if current is None else current + delta
+
+    def forget(self, axis: str) -> None:
+        self._raw.pop(axis, None)
+        self._num.pop(axis, None)
+
+    def snapshot(self) -> dict[str, float | None]:
+        return {axis: self.get(axis) for axis in sorted(set(self._raw) | set(self._num))}
+
+
+@dataclass(slots=True)
+class MachineState:
+    """Modal state.  Line numbers (``*_line``) say where a setting was made, for messages."""
+
+    # positioning and units
+    units: str = "mm"  # G21 / G20
+    absolute: bool = True  # G90 / G91 (X Y Z A B)
+    e_absolute: bool = True  # M82 / M83 (and G90/G91 on Marlin)
+    plane: int = 17  # G16 (Hyrel "any"), G17, G18, G19
+    motion_mode: str | None = None  # modal G0/G1/G2/G3 for lines with axis words only (LinuxCNC)
+    position: Position = field(default_factory=Position)
+    e_position: float | None = 0.0
+    feed: float | None = None  # modal F of working moves
+    working_feed_set: bool = False  # an F was given on G1/G2/G3 (Hyrel: G0 F is one-shot)
+
+    # flow (Hyrel M229, M221, M756)
+    flow_mode: str = NATIVE
+    m229_line: int | None = None
+    layer_height: float | None = None
+
+    # heads and tools
+    tool: int | None = None  # focused head/device (v5 address)
+    tool_line: int | None = None
+    declared_heads: dict[int, int] = field(default_factory=dict)  # position -> line of its M6 T# O...
+    loaded_heads: frozenset[int] | None = None  # from --loaded or configuration; None = unknown
+    squads: dict[int, set[int]] = field(default_factory=dict)  # squad (30-39) -> heads
+    squads_dissolved_line: int | None = None  # last M30 that dissolved squads
+
+    # fans (Hyrel M106 C range persists until M30)
+    fan_range: float = 100.0
+    fan_range_line: int | None = None
+
+    # tool-height offsets (Hyrel M660 H.. Z.. then G1 H..)
+    tool_height_offsets: dict[int, float | None] = field(default_factory=dict)
+    applied_height_register: int | None = None
+    applied_height_line: int | None = None
+
+    # homing and motors
+    homed_axes: set[str] = field(default_factory=set)
+    z_homed_line: int | None = None
+    motors_off_line: int | None = None  # last M18/M84 not followed by homing
+    fixture_offsets_active: bool = False
+    g92_offsets_active: bool = False
+
+    # temperatures
+    targets: dict[int, float] = field(default_factory=dict)  # device -> last set temperature
+    pending_w0: dict[int, int] = field(default_factory=dict)  # device -> line of M109/M190/M191 W0 awaiting M116
+
+    # lasers, UV pens, spindles
+    emitters_enabled: dict[int, int] = field(default_factory=dict)  # device -> line of M620 T# E1
+    laser_enabled_any: bool = False  # an M620 E1 has been seen (M621 applies to it)
+    spindles: dict[int, tuple[str, int]] = field(default_factory=dict)  # device -> ("cw"|"ccw", line)
+
+    # job progress
+    moved: bool = False  # any motion command so far
+    printed: bool = False  # any printing (working, extruding) move so far
+    first_print_line: int | None = None
+    after_m30: bool = False
+    m30_line: int | None = None
+    line_number: int = 0  # the line being processed
+
+    def e_values(self) -> bool:
+        """True when Hyrel uses the E amounts (M229 E1 active)."""
+        return self.flow_mode == EVALUES
+
+    def head_loaded(self, position: int) -> bool | None:
+        """Whether a head sits at ``position``; None when no one knows."""
+        if self.loaded_heads is not None:
+            return position in self.loaded_heads
+        if self.declared_heads:
+            return position in self.declared_heads
+        return None

@@ -1,0 +1,298 @@
+"""What a rule is, what it reports, and the registry of rules.
+
+A rule is a class that declares its metadata (code, name, default severity, summary, explanation with
+a bad and a good example, the source it comes from) and the command codes it listens to.  The engine
+makes one instance per file and calls ``check(line, cmd)`` for each command whose code the rule listens
+to, with the machine state as it was *before* that command.  Rules read the state through
+``self.state`` and never scan back through lines.
+
+Third-party rules are registered through the ``gclint.rules`` entry point group: each entry point names
+a module (importing it registers its rules) or a ``Rule`` subclass.
+"""
+
+from __future__ import annotations
+
+import textwrap
+from dataclasses import dataclass, field
+from enum import IntEnum
+from typing import TYPE_CHECKING, ClassVar, Iterable
+
+from gclint.syntax.nodes import Command, Comment, Line, Node
+
+if TYPE_CHECKING:
+    from gclint.engine import FileContext
+
+
+class Severity(IntEnum):
+    INFO = 0
+    WARNING = 1
+    ERROR = 2
+
+    @property
+    def label(self) -> str:
+        return self.name.lower()
+
+    @classmethod
+    def parse(cls, text: str) -> "Severity":
+        try:
+            return cls[text.strip().upper()]
+        except KeyError:
+            raise ValueError(f"unknown severity {text!r} (use error, warning or info)") from None
+
+
+@dataclass(frozen=True, slots=True)
+class Edit:
+    """Replace columns ``start``..``end`` (1-based, end exclusive) of line ``line`` with ``text``."""
+
+    line: int
+    start: int
+    end: int
+    text: str
+
+
+@dataclass(frozen=True, slots=True)
+class Fix:
+    """A fix for a finding.  ``safe`` fixes are applied by ``--fix``; unsafe ones need ``--unsafe-fixes``."""
+
+    message: str
+    edits: tuple[Edit, ...]
+    safe: bool = True
+
+    def to_dict(self) -> dict:
+        return {
+            "message": self.message,
+            "applicability": "safe" if self.safe else "unsafe",
+            "edits": [{"line": e.line, "column": e.start, "end_column": e.end, "content": e.text} for e in self.edits],
+        }
+
+
+@dataclass(slots=True)
+class Finding:
+    """One problem at one place in one file."""
+
+    path: str
+    line: int
+    column: int
+    code: str
+    severity: Severity
+    message: str
+    name: str = ""
+    fix: Fix | None = None
+    end_column: int | None = None
+    source: str | None = field(default=None, compare=False)  # the line's text, for reports
+
+    def to_dict(self) -> dict:
+        out = {
+            "path": self.path,
+            "line": self.line,
+            "column": self.column,
+            "end_column": self.end_column if self.end_column is not None else self.column,
+            "code": self.code,
+            "name": self.name,
+            "severity": self.severity.label,
+            "message": self.message,
+        }
+        if self.fix is not None:
+            out["fix"] = self.fix.to_dict()
+        return out
+
+    def sort_key(self) -> tuple:
+        return (self.path, self.line, self.column, self.code)
+
+
+# Pseudo-codes a rule can listen to besides command codes.
+ANY_T = "T*"  # every T<n> command line
+
+
+class Rule:
+    """Base class of all rules.  Subclasses set the class attributes and override the hooks they need."""
+
+    code: ClassVar[str] = ""
+    name: ClassVar[str] = ""
+    severity: ClassVar[Severity] = Severity.WARNING
+    summary: ClassVar[str] = ""
+    explanation: ClassVar[str] = ""  # why it matters; markdown allowed
+    example_bad: ClassVar[str] = ""  # G-code that triggers the rule
+    example_good: ClassVar[str] = ""  # the corrected G-code
+    source: ClassVar[str] = ""  # the section of the seed documents the rule comes from
+    codes: ClassVar[tuple[str, ...]] = ()  # command codes to listen to (ANY_T for T commands)
+    families: ClassVar[tuple[str, ...] | None] = None  # dialect families it applies to; None = all
+    dialects: ClassVar[tuple[str, ...] | None] = None  # or exact dialect names
+    on_line: ClassVar[bool] = False  # call check_line for every line (use sparingly)
+    on_comment: ClassVar[bool] = False  # call check_comment for every comment
+    on_unknown_code: ClassVar[bool] = False  # call check for codes the dialect does not have
+    on_numbered: ClassVar[bool] = False  # call check_line for lines with an N number or a checksum
+    on_issue: ClassVar[bool] = False  # call check_issues for lines with syntax issues
+    fixable: ClassVar[bool] = False
+    default_enabled: ClassVar[bool] = True
+
+    def __init__(self, ctx: "FileContext") -> None:
+        self.ctx = ctx
+        self.state = ctx.state
+
+    # -- hooks -----------------------------------------------------------------------------------------
+
+    def check(self, line: Line, cmd: Command) -> None:
+        """Called for each command the rule listens to, before the command changes the state."""
+
+    def check_line(self, line: Line) -> None:
+        """Called for every line (``on_line``) or numbered lines (``on_numbered``)."""
+
+    def check_comment(self, line: Line, comment: Comment) -> None:
+        """Called for every comment (``on_comment``)."""
+
+    def check_issues(self, line: Line) -> None:
+        """Called for lines with syntax issues (``on_issue``)."""
+
+    def finish(self) -> None:
+        """Called once after the last line."""
+
+    # -- reporting -------------------------------------------------------------------------------------
+
+    def report(
+        self,
+        line: Line | int,
+        message: str,
+        *,
+        node: Node | Command | None = None,
+        column: int | None = None,
+        fix: Fix | None = None,
+        severity: Severity | None = None,
+    ) -> None:
+        """Report a finding at ``node`` (or ``column``) of ``line``."""
+        end = None
+        if isinstance(node, Command):
+            column = node.column
+            word = node.word
+            end = word.end_column if word is not None else None
+        elif node is not None:
+            column = node.column
+            end = node.end_column
+        self.ctx.add(self, line, column or 1, message, fix=fix, severity=severity, end_column=end)
+
+    # -- documentation ---------------------------------------------------------------------------------
+
+    @classmethod
+    def applies_to(cls, dialect_name: str, family: str) -> bool:
+        if cls.dialects is not None and dialect_name not in cls.dialects:
+            return False
+        return cls.families is None or family in cls.families
+
+    @classmethod
+    def doc(cls) -> dict:
+        """The rule's documentation as data (``gclint rules --format json``)."""
+        return {
+            "code": cls.code,
+            "name": cls.name,
+            "severity": cls.severity.label,
+            "summary": cls.summary,
+            "explanation": textwrap.dedent(cls.explanation).strip(),
+            "example_bad": textwrap.dedent(cls.example_bad).strip("\n"),
+            "example_good": textwrap.dedent(cls.example_good).strip("\n"),
+            "source": cls.source,
+            "listens_to": list(cls.codes),
+            "applies_to": list(cls.dialects or cls.families or ["all"]),
+            "fixable": cls.fixable,
+            "url": f"https://gclint.dev/rules/{cls.code}",
+        }
+
+    @classmethod
+    def render_doc(cls) -> str:
+        """The rule's documentation as text (``gclint rules CODE``)."""
+        d = cls.doc()
+        parts = [f"{d['code']} {d['name']} ({d['severity']})", "", d["summary"], ""]
+        if d["explanation"]:
+            parts += ["## Why", "", d["explanation"], ""]
+        if d["example_bad"]:
+            parts += ["## Example", "", "Bad:", "", textwrap.indent(d["example_bad"], "    "), ""]
+        if d["example_good"]:
+            parts += ["Good:", "", textwrap.indent(d["example_good"], "    "), ""]
+        parts += [f"Applies to: {', '.join(d['applies_to'])}"]
+        if d["source"]:
+            parts += [f"Source: {d['source']}"]
+        if d["fixable"]:
+            parts += ["Fix: available (gclint check --fix)"]
+        return "\n".join(parts).rstrip() + "\n"
+
+
+_REGISTRY: dict[str, type[Rule]] = {}
+
+
+class RuleError(Exception):
+    """A rule (or a plugin) that cannot be loaded; the message names it."""
+
+
+def register(cls: type[Rule]) -> type[Rule]:
+    """Class decorator: add a rule to the registry (codes must be unique)."""
+    if not cls.code or len(cls.code) != 5 or not cls.code[:2].isalpha() or not cls.code[2:].isdigit():
+        raise RuleError(f"rule {cls.__name__}: code {cls.code!r} is not two letters and three digits")
+    existing = _REGISTRY.get(cls.code)
+    if existing is not None and existing is not cls and existing.__qualname__ != cls.__qualname__:
+        raise RuleError(f"rule {cls.__name__}: code {cls.code} is already used by {existing.__name__}")
+    _REGISTRY[cls.code] = cls
+    return cls
+
+
+_LOADED = False
+
+
+def all_rules() -> dict[str, type[Rule]]:
+    """Every registered rule by code (built-in rules and plugins), sorted by code."""
+    global _LOADED
+    if not _LOADED:
+        _LOADED = True
+        import gclint.rules  # noqa: F401  (imports the built-in rule modules)
+
+        _load_plugins()
+    return dict(sorted(_REGISTRY.items()))
+
+
+def _load_plugins() -> None:
+    from importlib.metadata import entry_points
+
+    for ep in entry_points(group="gclint.rules"):
+        try:
+            obj = ep.load()
+        except Exception as exc:  # a broken plugin must name itself, not crash gclint
+            raise RuleError(f"rule plugin {ep.name!r} ({ep.value}) failed to load: {type(exc).__name__}: {exc}") from None
+        if isinstance(obj, type) and issubclass(obj, Rule):
+            register(obj)
+        elif isinstance(obj, (list, tuple)):
+            for item in obj:
+                if isinstance(item, type) and issubclass(item, Rule):
+                    register(item)
+
+
+def select_rules(rules: Iterable[type[Rule]], select: Iterable[str] | None, ignore: Iterable[str]) -> list[type[Rule]]:
+    """Rules whose code matches ``select`` (default: all rules enabled by default) and not ``ignore``.
+
+    Selectors are codes or prefixes (``HY``, ``HY0``, ``HY003``) or ``ALL``.  The most specific
+    selector wins, as in ruff: ``--select HY --ignore HY0`` drops HY0xx but ``--select HY003
+    --ignore HY`` keeps HY003; on a tie, ignore wins.
+    """
+    select = [s.strip().upper() for s in select if s.strip()] if select is not None else None
+    ignore = [s.strip().upper() for s in ignore if s.strip()]
+    out = []
+    for rule in rules:
+        if select is None:
+            sel = 0 if rule.default_enabled else -1
+        else:
+            sel = _specificity(rule.code, select)
+        if sel >= 0 and sel > _specificity(rule.code, ignore):
+            out.append(rule)
+    return out
+
+
+def _specificity(code: str, selectors: list[str]) -> int:
+    best = -1
+    for s in selectors:
+        if s == "ALL":
+            best = max(best, 0)
+        elif code.startswith(s):
+            best = max(best, len(s))
+    return best
+
+
+def matches(code: str, selectors: Iterable[str]) -> bool:
+    """True when ``code`` starts with one of ``selectors`` (``ALL`` matches everything)."""
+    return any(s == "ALL" or code.startswith(s) for s in selectors)

@@ -1,0 +1,184 @@
+"""DL: dialect conformance.  Whether the dialect has a code, takes a parameter, allows a value.
+
+The facts are the dialect's tables (gclint/dialects/*.py).  ``ParamTableRule`` checks the parameters
+that a table entry assigns to a rule (``Param(rule="HY023")``); the HY rules whose check is a range
+in the Hyrel table subclass it, so the range lives once, as data.
+"""
+
+from __future__ import annotations
+
+from gclint.dialects.base import Param
+from gclint.rules.base import Rule, Severity, register
+from gclint.syntax.nodes import EXTENDED, GCODE, IMPLICIT, META, OWORD, TEXT, Command, Line, to_number
+
+
+@register
+class UnknownCode(Rule):
+    code = "DL001"
+    name = "unknown-code"
+    severity = Severity.WARNING
+    summary = "A code the dialect does not have"
+    explanation = """
+        Each firmware knows its own list of codes.  An unknown code is skipped at best (Marlin prints
+        "Unknown command"); on Hyrel, Repetrel reuses many numbers for other things (M204, M205, M220...
+        mean something else there), and LinuxCNC stops the program.  The severity follows the dialect:
+        error on Hyrel and Machinekit/LinuxCNC, warning elsewhere.
+    """
+    example_bad = "; gclint: dialect=hyrel\nM204 S1000"
+    example_good = "; gclint: dialect=hyrel\nM203 X6000 Y6000"
+    source = "dialect inventories (research/dialects.md 1.8; Hyrel Gcode page, Code_Chart)"
+    on_unknown_code = True
+
+    def check(self, line: Line, cmd: Command) -> None:
+        dialect = self.ctx.dialect
+        severity = Severity.parse(dialect.unknown_severity)
+        kind = cmd.kind
+        if kind in (GCODE, TEXT):
+            message = f"{cmd.code} is not a {dialect.title} code"
+        elif kind == EXTENDED:
+            message = f"{cmd.code}: {dialect.title} has no Klipper-style extended commands"
+        elif kind == META:
+            message = f"'{cmd.code}': {dialect.title} has no RepRapFirmware meta commands"
+        elif kind == OWORD:
+            message = f"O-word: {dialect.title} has no LinuxCNC O-word subroutines or control flow"
+        elif kind == IMPLICIT:
+            return
+        else:
+            message = f"'#' parameters: {dialect.title} has no LinuxCNC parameters"
+        self.report(line, message, node=cmd, severity=severity)
+
+
+class ParamTableRule(Rule):
+    """Checks a command's parameters against the dialect table entries that name this rule.
+
+    Listens to every code with at least one such parameter; reports values outside the bounds, letters
+    marked forbidden, and (for ``required`` parameters) missing letters.
+    """
+
+    report_missing = True
+
+    def __init__(self, ctx) -> None:
+        super().__init__(ctx)
+        self.table: dict[str, list[Param]] = {}
+        for spec in ctx.dialect.codes.values():
+            if spec.params:
+                mine = [p for p in spec.params.values() if p.rule == self.code]
+                if mine:
+                    self.table[spec.code] = mine
+        self.codes = tuple(self.table)
+
+    def check(self, line: Line, cmd: Command) -> None:
+        params = cmd.params
+        for p in self.table.get(cmd.code, ()):  # type: ignore[arg-type]
+            if p.letter not in params:
+                if p.required and self.report_missing:
+                    self.report(line, self.missing_message(cmd, p), node=cmd)
+                continue
+            raw = params[p.letter]
+            if p.forbidden:
+                self.report(line, f"{cmd.code}: {p.letter} is not allowed ({p.meaning})", node=cmd.param(p.letter) or cmd)
+                continue
+            if raw is None:
+                if p.required:
+                    self.report(line, f"{cmd.code}: {p.letter} needs a value", node=cmd.param(p.letter) or cmd)
+                continue
+            value = to_number(raw)
+            if value is None:
+                continue  # not a plain number (expression, bad number: SX006)
+            problem = p.problem(value)
+            if problem is not None:
+                self.report(line, self.range_message(cmd, p, problem), node=cmd.param(p.letter) or cmd)
+
+    def missing_message(self, cmd: Command, p: Param) -> str:
+        return f"{cmd.code} needs {p.letter} ({p.meaning})"
+
+    def range_message(self, cmd: Command, p: Param, problem: str) -> str:
+        return f"{cmd.code}: {problem} ({p.meaning})"
+
+
+@register
+class ValueOutOfRange(ParamTableRule):
+    code = "DL003"
+    name = "value-out-of-range"
+    severity = Severity.WARNING
+    summary = "A parameter value outside the range the dialect documents"
+    explanation = """
+        The dialect's documentation gives a range for many parameters (percentages 0-100, flags 0 or
+        1, register numbers).  Firmware clamps or ignores values outside it, so the command does less
+        than it says.  Ranges that have a dedicated rule (HY0nn) are reported by that rule.
+    """
+    example_bad = "; gclint: dialect=hyrel\nM229 E2 D1"
+    example_good = "; gclint: dialect=hyrel\nM229 E1 D1"
+    source = "dialect tables (gclint/dialects/*.py), each entry naming its source"
+    report_missing = False  # DL004 reports missing parameters
+
+
+@register
+class MissingParameter(ParamTableRule):
+    code = "DL004"
+    name = "missing-parameter"
+    severity = Severity.ERROR
+    summary = "A parameter the code requires is missing"
+    explanation = """
+        Some codes do nothing, or something else, without a parameter: Hyrel M756 without S has no
+        layer height to set, M702 without S has no squad to establish.
+    """
+    example_bad = "; gclint: dialect=hyrel\nM756"
+    example_good = "; gclint: dialect=hyrel\nM756 S0.2"
+    source = "dialect tables (gclint/dialects/*.py)"
+
+    def __init__(self, ctx) -> None:
+        Rule.__init__(self, ctx)
+        self.table = {}
+        for spec in ctx.dialect.codes.values():
+            if spec.params:
+                mine = [p for p in spec.params.values() if p.required and p.rule == "DL003"]
+                if mine:
+                    self.table[spec.code] = mine
+        self.codes = tuple(self.table)
+
+    def check(self, line: Line, cmd: Command) -> None:
+        for p in self.table.get(cmd.code, ()):  # type: ignore[arg-type]
+            if p.letter not in cmd.params:
+                self.report(line, f"{cmd.code} needs {p.letter} ({p.meaning})", node=cmd)
+
+
+@register
+class UnknownParameter(Rule):
+    code = "DL002"
+    name = "unknown-parameter"
+    severity = Severity.WARNING
+    summary = "A parameter letter the code does not take in this dialect"
+    explanation = """
+        A letter the code does not document is ignored by the firmware, which usually means the author
+        expected another firmware's meaning (Marlin's "M106 P1" fan index is a duty cycle on Hyrel;
+        "M18 S30" is a timeout on Marlin but Hyrel's M18 takes nothing and cuts the motors at once).
+    """
+    example_bad = "; gclint: dialect=hyrel\nM84 S30"
+    example_good = "; gclint: dialect=hyrel\nM84"
+    source = "dialect tables (gclint/dialects/*.py)"
+
+    def __init__(self, ctx) -> None:
+        super().__init__(ctx)
+        self.allowed: dict[str, frozenset[str]] = {
+            spec.code: frozenset(spec.params) for spec in ctx.dialect.codes.values() if spec.params is not None
+        }
+        self.codes = tuple(self.allowed)
+        self._seen: dict[tuple, tuple[str, ...]] = {}
+
+    def check(self, line: Line, cmd: Command) -> None:
+        key = (cmd.code, *cmd.params)
+        unknown = self._seen.get(key)
+        if unknown is None:
+            allowed = self.allowed[cmd.code]  # type: ignore[index]
+            unknown = tuple(letter for letter in cmd.params if letter not in allowed)
+            if len(self._seen) < 4096:
+                self._seen[key] = unknown
+        for letter in unknown:
+            spec = self.ctx.dialect.spec(cmd.code)  # type: ignore[arg-type]
+            takes = "nothing" if not spec.params else " ".join(sorted(spec.params))  # type: ignore[union-attr]
+            self.report(
+                line,
+                f"{cmd.code} does not take {letter} in {self.ctx.dialect.name} (it takes {takes})",
+                node=cmd.param(letter) or cmd,
+            )

@@ -1,0 +1,182 @@
+"""SX: syntax and structure.  The parser finds the problems (syntax/build.py, larkparse.py); these rules
+name them, document them and check what needs more than one line (N numbers, checksums)."""
+
+from __future__ import annotations
+
+from gclint.rules.base import Rule, Severity, register
+from gclint.syntax.nodes import Line
+
+
+class _IssueRule(Rule):
+    """Reports the parser's issues that carry this rule's code."""
+
+    on_issue = True
+
+    def check_issues(self, line: Line) -> None:
+        for issue in line.issues:
+            if issue.code == self.code:
+                self.report(line, issue.message, column=issue.column)
+
+
+@register
+class ParseError(_IssueRule):
+    code = "SX001"
+    name = "parse-error"
+    severity = Severity.ERROR
+    summary = "The line is not valid G-code in any dialect gclint knows"
+    explanation = """
+        The grammar (gclint/grammar.lark) could not read the line: an unexpected character, a bracket
+        that is never closed, a G or M word without a number, a checksum in the middle of the line.
+        Firmware reacts to such lines in different ways: some skip them, some stop the job, some read
+        part of the line and silently ignore the rest.
+    """
+    example_bad = "G1 X10 Y20 )"
+    example_good = "G1 X10 Y20"
+    source = "grammar.lark"
+
+
+@register
+class DuplicateWord(_IssueRule):
+    code = "SX002"
+    name = "duplicate-word"
+    severity = Severity.ERROR
+    summary = "The same parameter letter appears twice in one command"
+    explanation = """
+        "G1 X10 X20" is ambiguous: firmware keeps either the first or the last value, and LinuxCNC
+        refuses the line ("Multiple X words on one line").  Write each letter once.
+    """
+    example_bad = "G1 X10 Y5 X20"
+    example_good = "G1 X20 Y5"
+    source = "LinuxCNC rs274ngc errors (research/anchors.md)"
+
+
+@register
+class LineNumberSequence(Rule):
+    code = "SX003"
+    name = "line-number-sequence"
+    severity = Severity.WARNING
+    summary = "N line numbers go backwards, repeat, or skip on checksummed lines"
+    explanation = """
+        N numbers label lines.  In CNC programs they should increase; under the RepRap host protocol
+        (lines with a *checksum) each N must be the previous one plus one, or the firmware asks for a
+        resend ("Line Number is not Last Line Number+1").  M110 sets the next number.
+    """
+    example_bad = "N10 G1 X1\nN5 G1 X2"
+    example_good = "N10 G1 X1\nN20 G1 X2"
+    source = "Marlin queue.cpp (research/anchors.md, Marlin)"
+    on_numbered = True
+
+    def __init__(self, ctx) -> None:
+        super().__init__(ctx)
+        self.last: float | None = None
+
+    def check_line(self, line: Line) -> None:
+        word = line.parsed.line_number
+        if word is None:
+            return
+        value = word.number
+        if value is None:
+            return
+        commands = line.parsed.commands
+        if commands and commands[0].code == "M110":  # M110 N<n>: set the current line number
+            self.last = value
+            return
+        last = self.last
+        self.last = value
+        if last is None:
+            return
+        if line.parsed.checksum is not None and value != last + 1:
+            self.report(line, f"N{_n(value)} follows N{_n(last)}: checksummed lines must count up by one", node=word)
+        elif value <= last:
+            self.report(line, f"N{_n(value)} is not greater than the previous N{_n(last)}", node=word)
+
+
+@register
+class ChecksumMismatch(Rule):
+    code = "SX004"
+    name = "checksum-mismatch"
+    severity = Severity.ERROR
+    summary = "The *checksum does not match the line"
+    explanation = """
+        Under the RepRap host protocol the number after "*" is the XOR of every byte before it.  A
+        wrong checksum makes the firmware reject the line and ask for a resend; in a file it means the
+        line was edited after the checksums were written.
+    """
+    example_bad = "N8 G1 X3.0 Y3.0*30"
+    example_good = "N8 G1 X3.0 Y3.0*37"
+    source = "Marlin queue.cpp, RepRap G-code page (checksums)"
+    on_numbered = True
+    fixable = True
+
+    def check_line(self, line: Line) -> None:
+        checksum = line.parsed.checksum
+        if checksum is None:
+            return
+        expected = compute_checksum(line.raw[: checksum.column - 1])
+        actual = checksum.value
+        if actual is None:
+            return  # reported by SX001
+        if actual != expected:
+            from gclint.rules.base import Edit, Fix
+
+            start = checksum.column
+            fix = Fix(f"set the checksum to {expected}", (Edit(line.number, start, checksum.end_column, f"*{expected}"),))
+            self.report(line, f"checksum is {actual}, the line's bytes give {expected}", node=checksum, fix=fix)
+
+
+def compute_checksum(text: str) -> int:
+    """XOR of the bytes of ``text`` (the part of a line before ``*``)."""
+    value = 0
+    for byte in text.encode("utf-8", "surrogateescape"):
+        value ^= byte
+    return value
+
+
+@register
+class UnclosedComment(_IssueRule):
+    code = "SX005"
+    name = "unclosed-comment"
+    severity = Severity.ERROR
+    summary = "A comment opened with '(' is not closed on the same line"
+    explanation = """
+        Parenthesised comments end at ")" on the same line.  LinuxCNC refuses an unclosed comment;
+        printers that accept "(" comments may swallow the rest of the line, or the next one.
+    """
+    example_bad = "G0 X10 (move to the clamp"
+    example_good = "G0 X10 (move to the clamp)"
+    source = "LinuxCNC rs274ngc errors: Unclosed comment found"
+
+
+@register
+class InvalidNumber(_IssueRule):
+    code = "SX006"
+    name = "invalid-number"
+    severity = Severity.ERROR
+    summary = "A word's value is not a number"
+    explanation = """
+        G-code numbers are an optional sign, digits and at most one decimal point.  "X1.2.3", "X--1"
+        or "X-" are read differently by every firmware (often as 0 or as the first valid prefix), so
+        the move goes somewhere nobody intended.
+    """
+    example_bad = "G1 X1.2.3 Y4"
+    example_good = "G1 X1.23 Y4"
+    source = "RepRap G-code page (fields)"
+
+
+@register
+class StrayValue(_IssueRule):
+    code = "SX007"
+    name = "stray-value"
+    severity = Severity.WARNING
+    summary = "A number with no word letter (firmware ignores it)"
+    explanation = """
+        "G1 0.200 F10000" has a number that belongs to no letter: firmware skips it, so whatever it
+        was meant to be (usually a Z height whose "Z" got lost) does not happen.
+    """
+    example_bad = "G1 0.200 F10000"
+    example_good = "G1 Z0.200 F10000"
+    source = "RepRap G-code page (fields)"
+
+
+def _n(value: float) -> str:
+    return str(int(value)) if value == int(value) else str(value)

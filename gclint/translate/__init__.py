@@ -1,0 +1,11 @@
+"""Translation between dialects: read with the source dialect, map by meaning, write with the target.
+
+``translate_source`` streams a file through a ``Translator`` and yields output text line by line.
+Untouched lines are rendered from their lossless tree, so they come out byte for byte.
+"""
+
+from __future__ import annotations
+
+from gclint.translate.engine import TranslationResult, Translator, translate_source, translator_for, UnsupportedPair
+
+__all__ = ["TranslationResult", "Translator", "translate_source", "translator_for", "UnsupportedPair"]

@@ -1,0 +1,74 @@
+"""The translation engine.  A ``Translator`` for a dialect pair turns each source line into zero or more
+output lines; the identity translator (same dialect on both sides) keeps every line as it is."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from typing import Iterator
+
+from gclint.dialects.base import Dialect
+from gclint.rules.base import Finding
+from gclint.syntax.nodes import Line
+from gclint.syntax.parse import parse_line
+from gclint.syntax.source import Source
+
+
+class UnsupportedPair(Exception):
+    """No translator exists for this pair of dialects (yet)."""
+
+
+@dataclass
+class TranslationResult:
+    """Findings (TR codes) and counts gathered while translating one file."""
+
+    path: str
+    source_dialect: str
+    target_dialect: str
+    findings: list[Finding] = field(default_factory=list)
+    lines_in: int = 0
+    lines_changed: int = 0
+
+
+class Translator:
+    """Identity translator; subclasses override ``translate_line`` (and ``header``/``footer``)."""
+
+    def __init__(self, source: Dialect, target: Dialect, options=None) -> None:
+        self.source = source
+        self.target = target
+        self.options = options
+
+    def start(self, result: TranslationResult) -> Iterator[str]:
+        return iter(())
+
+    def translate_line(self, line: Line, result: TranslationResult) -> Iterator[str]:
+        yield line.render()
+
+    def finish(self, result: TranslationResult) -> Iterator[str]:
+        return iter(())
+
+
+def translator_for(source: Dialect, target: Dialect, options=None) -> Translator:
+    if source.name == target.name:
+        return Translator(source, target, options)
+    try:
+        from gclint.translate import pairs  # the dialect-pair translators (issue: translation)
+    except ImportError:
+        pairs = None  # type: ignore[assignment]
+    if pairs is not None:
+        translator = pairs.get(source, target, options)
+        if translator is not None:
+            return translator
+    raise UnsupportedPair(f"translation from {source.name} to {target.name} is not supported")
+
+
+def translate_source(source: Source, translator: Translator, result: TranslationResult) -> Iterator[str]:
+    """Yield the translated text of ``source``, line by line (line endings included)."""
+    yield from translator.start(result)
+    number = 0
+    for chunk in source.chunks():
+        for raw, ending in chunk:
+            number += 1
+            line = Line(number, raw, ending, parse_line(raw))
+            yield from translator.translate_line(line, result)
+    result.lines_in = number
+    yield from translator.finish(result)
