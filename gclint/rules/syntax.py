@@ -78,8 +78,9 @@ class LineNumberSequence(Rule):
         if value is None:
             return
         commands = line.parsed.commands
-        if commands and commands[0].code == "M110":  # M110 N<n>: set the current line number
-            self.last = value
+        if commands and commands[0].code == "M110":  # "N<n> M110 N<m>": the next line is N<m+1>
+            reset = commands[0].get("N")
+            self.last = reset if reset is not None else value
             return
         last = self.last
         self.last = value
@@ -103,7 +104,7 @@ class ChecksumMismatch(Rule):
         line was edited after the checksums were written.
     """
     example_bad = "N8 G1 X3.0 Y3.0*30"
-    example_good = "N8 G1 X3.0 Y3.0*37"
+    example_good = "N8 G1 X3.0 Y3.0*33"
     source = "Marlin queue.cpp, RepRap G-code page (checksums)"
     on_numbered = True
     fixable = True

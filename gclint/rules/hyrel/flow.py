@@ -1,0 +1,1 @@
+"""(rules added by the Hyrel rules work)"""

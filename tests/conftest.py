@@ -1,0 +1,43 @@
+"""Shared test helpers.  The corpus is read in place from ../shared/corpus (never copied)."""
+
+from __future__ import annotations
+
+import os
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+
+ROOT = Path(__file__).resolve().parent.parent
+CORPUS = Path(os.environ.get("GCLINT_CORPUS", ROOT.parent / "shared" / "corpus")).resolve()
+FIXTURES = ROOT / "tests" / "fixtures"
+
+
+def corpus_available() -> bool:
+    return CORPUS.is_dir()
+
+
+needs_corpus = pytest.mark.skipif(not corpus_available(), reason=f"corpus not found at {CORPUS}")
+
+
+def run_cli(*args: str, input: bytes | None = None, cwd: str | os.PathLike | None = None, env: dict | None = None,
+            timeout: float = 120) -> subprocess.CompletedProcess:
+    """Run ``python -m gclint ARGS`` in a subprocess (the real command line)."""
+    full_env = dict(os.environ)
+    full_env.pop("GCLINT_CACHE_DIR", None)
+    if env:
+        full_env.update(env)
+    return subprocess.run(
+        [sys.executable, "-m", "gclint", *args],
+        input=input,
+        capture_output=True,
+        cwd=cwd,
+        env=full_env,
+        timeout=timeout,
+    )
+
+
+@pytest.fixture
+def cli():
+    return run_cli
