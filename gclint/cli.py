@@ -147,6 +147,9 @@ def check(
     files, problems = runner.collect(paths or (".",))
     if fix and "-" in files:
         _fail("--fix cannot rewrite standard input")
+    from gclint import progress as progress_bar
+
+    bar = progress_bar.ProgressBar(files) if progress_bar.wanted(progress, fmt, files) else None
     try:
         from gclint.rules.base import all_rules
 
@@ -158,10 +161,14 @@ def check(
             explicit_config=config_file,
             jobs=jobs or (runner.default_jobs() if len(files) > 1 else 1),
             stdin_name=stdin_filename or "-",
+            progress=bar.advance if bar is not None else None,
         )
     except RuleError as exc:
         _fail(str(exc))
         return
+    finally:
+        if bar is not None:
+            bar.close()
     if fix:
         from gclint.fixes import apply_fixes
 

@@ -21,6 +21,7 @@ from gclint.machine.state import MachineState
 from gclint.rules.base import ANY_T, Finding, Fix, Rule, Severity, all_rules, select_rules
 from gclint.syntax.nodes import GCODE, Command, Line
 from gclint.syntax.parse import parse_line
+from gclint.syntax.sniff import not_gcode_reason
 from gclint.syntax.source import Source, SourceError
 
 
@@ -191,6 +192,10 @@ class Linter:
 
     def check_source(self, source: Source) -> FileResult:
         path = source.display
+        reason = not_gcode_reason(source.head_text(8192))
+        if reason is not None:
+            source.close()
+            return FileResult(path, error=f"{path}: {reason}")
         if self.fixed_dialect is not None:
             dialect, reason = self.fixed_dialect, "--dialect"
             directive = dialects.detect(source.head_text(), path)
@@ -226,14 +231,19 @@ class Linter:
         dialect = ctx.dialect
         classes = [cls for cls in self.rule_classes if cls.applies_to(dialect.name, dialect.family)]
         ctx.enabled_codes = frozenset(cls.code for cls in classes)
-        rules = [cls(ctx) for cls in classes]
+        rules: list[Rule] = []
+        for cls in classes:
+            try:
+                rules.append(cls(ctx))
+            except Exception as exc:  # a broken rule (often a plugin) must not stop the check
+                _rule_failed(result, cls, exc, None)
         by_code: dict[str, list[Callable[[Line, Command], None]]] = {}
         any_t: list[Callable[[Line, Command], None]] = []
         unknown: list[Callable[[Line, Command], None]] = []
-        line_hooks = [r.check_line for r in rules if r.on_line]
-        numbered_hooks = [r.check_line for r in rules if r.on_numbered]
-        issue_hooks = [r.check_issues for r in rules if r.on_issue]
-        comment_hooks = [r.check_comment for r in rules if r.on_comment]
+        line_hooks = tuple(r.check_line for r in rules if r.on_line)
+        numbered_hooks = tuple(r.check_line for r in rules if r.on_numbered)
+        issue_hooks = tuple(r.check_issues for r in rules if r.on_issue)
+        comment_hooks = tuple(r.check_comment for r in rules if r.on_comment)
         for r in rules:
             for c in r.codes:
                 if c == ANY_T:
@@ -244,6 +254,28 @@ class Linter:
                 unknown.append(r.check)
 
         dispatch: dict[str | None, tuple[Callable[[Line, Command], None], ...]] = {}
+
+        def disable(hook: Callable, exc: Exception, line_number: int | None) -> None:
+            # A rule raised: say so once (naming the rule, the file and the line), drop the rule for the
+            # rest of this file and go on.  The loops below iterate over tuples, so replacing them here
+            # does not skip the other rules' hooks on the current line.
+            nonlocal line_hooks, numbered_hooks, issue_hooks, comment_hooks
+            rule = getattr(hook, "__self__", None)
+            if rule is None or rule not in rules:  # pragma: no cover - hooks are bound rule methods
+                raise exc
+            rules.remove(rule)
+            _rule_failed(result, type(rule), exc, line_number)
+
+            def keep(hooks: Iterable[Callable]) -> tuple:
+                return tuple(h for h in hooks if getattr(h, "__self__", None) is not rule)
+
+            line_hooks, numbered_hooks = keep(line_hooks), keep(numbered_hooks)
+            issue_hooks, comment_hooks = keep(issue_hooks), keep(comment_hooks)
+            for code, handlers in list(by_code.items()):
+                by_code[code] = list(keep(handlers))
+            any_t[:] = keep(any_t)
+            unknown[:] = keep(unknown)
+            dispatch.clear()
 
         def build(cmd: Command) -> tuple[Callable[[Line, Command], None], ...]:
             code = cmd.code
@@ -268,29 +300,61 @@ class Linter:
                 parsed = parse(raw)
                 line = Line(number, raw, ending, parsed)
                 state.line_number = number
+                # Every rule call is guarded (a "try" costs nothing until something raises, Python 3.11+).
                 if parsed.comments:
                     read_directives(line)
                     for hook in comment_hooks:
-                        for comment in parsed.comments:
-                            hook(line, comment)
+                        try:
+                            for comment in parsed.comments:
+                                hook(line, comment)
+                        except Exception as exc:
+                            disable(hook, exc, number)
                 if parsed.issues:
                     for hook in issue_hooks:
-                        hook(line)
+                        try:
+                            hook(line)
+                        except Exception as exc:
+                            disable(hook, exc, number)
                 if parsed.line_number is not None or parsed.checksum is not None:
                     for hook in numbered_hooks:
-                        hook(line)
+                        try:
+                            hook(line)
+                        except Exception as exc:
+                            disable(hook, exc, number)
                 for hook in line_hooks:
-                    hook(line)
+                    try:
+                        hook(line)
+                    except Exception as exc:
+                        disable(hook, exc, number)
                 for cmd in parsed.commands:
                     handlers = get(cmd.code)
                     if handlers is None:
                         handlers = build(cmd)
                     for handler in handlers:
-                        handler(line, cmd)
+                        try:
+                            handler(line, cmd)
+                        except Exception as exc:
+                            disable(handler, exc, number)
                     apply(cmd, line)
         result.lines = number
-        for r in rules:
-            r.finish()
+        for r in list(rules):
+            try:
+                r.finish()
+            except Exception as exc:
+                disable(r.finish, exc, None)
+
+
+def _rule_failed(result: FileResult, rule: type[Rule], exc: Exception, line_number: int | None) -> None:
+    """Record that ``rule`` raised while checking ``result.path``: one line for the user (exit code 2)."""
+    where = f" at line {line_number}" if line_number is not None else ""
+    detail = f"{type(exc).__name__}: {exc}".splitlines()[0][:200] if str(exc) else type(exc).__name__
+    origin = rule.__module__.split(".")[0]
+    blame = "" if origin == "gclint" else f" from plugin module {rule.__module__!r}"
+    message = (
+        f"{result.path}: internal error in rule {rule.code} ({rule.name or rule.__name__}){blame}{where}: {detail};"
+        " the rule was skipped for the rest of the file"
+    )
+    result.error = message if result.error is None else f"{result.error}; {message}"
 
 
 def check_text(text: str, **options) -> list[Finding]:

@@ -82,6 +82,9 @@ def check_one(path: str, options: Options) -> FileResult:
         return FileResult(path, error=f"{path}: nesting too deep to check")
     except MemoryError:
         return FileResult(path, error=f"{path}: out of memory while checking")
+    except Exception as exc:  # a bug in gclint itself: name the file, keep going with the others
+        detail = f"{type(exc).__name__}: {exc}".splitlines()[0][:200]
+        return FileResult(path, error=f"{path}: internal error while checking ({detail}); please report this")
 
 
 def _check_task(args: tuple[str, Options]) -> FileResult:
@@ -112,6 +115,9 @@ def run(
                 results[index] = linter.check_source(Source(_stdin(), stdin_name))
             except SourceError as exc:
                 results[index] = FileResult(stdin_name, error=str(exc))
+            except Exception as exc:  # a bug in gclint itself: one line, no traceback
+                detail = f"{type(exc).__name__}: {exc}".splitlines()[0][:200]
+                results[index] = FileResult(stdin_name, error=f"{stdin_name}: internal error while checking ({detail}); please report this")
             continue
         tasks.append((path, options))
     order = [i for i in range(len(files)) if i not in results]

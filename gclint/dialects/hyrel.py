@@ -69,8 +69,8 @@ _SPIRAL1 = [
     P("S", "segment length or count"),
     P("R", "0 spiral in, 1 spiral out after inward jump, 2 spiral out", choices=(0, 1, 2), rule="HY018"),
     P("F", "feed rate"),
-    P("X", "G2.1 ends where it starts: no X", rule="HY018", forbidden=True),
-    P("Y", "G2.1 ends where it starts: no Y", rule="HY018", forbidden=True),
+    P("X", "a G2.1/G3.1 spiral ends where it starts: no X", rule="HY018", forbidden=True),
+    P("Y", "a G2.1/G3.1 spiral ends where it starts: no Y", rule="HY018", forbidden=True),
 ]
 
 _SPIRAL2 = [
@@ -255,8 +255,10 @@ HYREL_CODES = table(
     code("M791", "snap a camera image", source="M791 Snap Image"),
     code("M792", "execute an action (SAY/PIC/VID/SEND/BEEP/SHELL after ';')", source="M792 Execute Action"),
     # -- Hidden codes (Sekret page) -------------------------------------------------------------------
-    code("G38", "probe", *_axes("relative move"), P("T", "probe head"), P("P", "probe connection", minimum=0, maximum=29, integer=True),
-         P("D", "only 1 is supported", choices=(1,)), P("I", "polarity", **FLAG01), P("H", "head offset register"),
+    # P: 0-5 with T, 0-29 without ("0 ... must specify probeHead via T arg"); "D only 1 is presently supported"
+    code("G38", "probe", *_axes("relative move"), P("T", "probe head"),
+         P("P", "probe connection", minimum=0, maximum=29, integer=True, rule="HY062"),
+         P("D", "only 1 is supported", choices=(1,), rule="HY062"), P("I", "polarity", **FLAG01), P("H", "head offset register"),
          P("O", "additional offset"), P("F", "feed rate (one-shot)"), source="G38 Distance Probing (hidden codes)"),
 )
 

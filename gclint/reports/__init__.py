@@ -24,17 +24,20 @@ Writer = Callable[[list[FileResult], TextIO, ReportContext], None]
 
 
 def formats() -> dict[str, Writer]:
-    from gclint.reports import json_report, text
+    from gclint.reports import github, html, json_report, junit, sarif, text
 
-    out: dict[str, Writer] = {
+    return {
         "text": text.write,
         "concise": text.write,
+        "full": text.write_full,
+        "grouped": text.write_grouped,
         "json": json_report.write,
+        "sarif": sarif.write,
+        "github": github.write,
+        "junit": junit.write,
+        "html": html.write,
     }
-    try:
-        from gclint.reports import extra  # formats added by later modules (sarif, github, junit, html...)
 
-        out.update(extra.FORMATS)
-    except ImportError:
-        pass
-    return out
+
+# Formats read by programs: no progress bar, nothing but the report on stdout.
+MACHINE_FORMATS = frozenset({"json", "sarif", "github", "junit", "html"})

@@ -9,6 +9,18 @@ from gclint.engine import FileResult
 
 
 def write(results: list[FileResult], out: TextIO, ctx) -> None:
+    for result in results:
+        for f in result.findings:
+            out.write(f"{f.path}:{f.line}:{f.column}: {f.code}{_mark(f, ctx)} {f.message}\n")
+    write_summary(results, out, ctx)
+
+
+def _mark(f, ctx) -> str:
+    return " [*]" if (f.fix is not None and f.fix.safe and ctx.show_fixes) else ""
+
+
+def write_summary(results: list[FileResult], out: TextIO, ctx) -> None:
+    """Statistics (with --statistics), then the totals line shared by the text formats."""
     total = Counter()
     fixable = 0
     files_with = 0
@@ -16,10 +28,8 @@ def write(results: list[FileResult], out: TextIO, ctx) -> None:
         if result.findings:
             files_with += 1
         for f in result.findings:
-            mark = " [*]" if (f.fix is not None and f.fix.safe and ctx.show_fixes) else ""
-            out.write(f"{f.path}:{f.line}:{f.column}: {f.code}{mark} {f.message}\n")
             total[f.severity.label] += 1
-            if mark:
+            if _mark(f, ctx):
                 fixable += 1
     if ctx.statistics:
         write_statistics(results, out)
@@ -46,3 +56,40 @@ def write_statistics(results: list[FileResult], out: TextIO) -> None:
     for code, n in sorted(counts.items(), key=lambda kv: (-kv[1], kv[0])):
         name, severity = names[code]
         out.write(f"{n:>7}  {code}  {name:<32} [{severity}]  first at {first[code]}\n")
+
+
+def write_full(results: list[FileResult], out: TextIO, ctx) -> None:
+    """``--format full``: each finding with its source line and a caret under the columns it covers."""
+    from gclint.reports.common import message, source_line
+
+    for result in results:
+        for f in result.findings:
+            out.write(f"{f.path}:{f.line}:{f.column}: {f.code}{_mark(f, ctx)} {message(f)}\n")
+            line = source_line(f)
+            if line is not None:
+                gutter = " " * len(str(f.line))
+                shown = line.expandtabs(4)
+                start = len(line[: max(0, f.column - 1)].expandtabs(4))
+                end_column = f.end_column if f.end_column is not None and f.end_column > f.column else f.column + 1
+                width = max(1, len(line[: end_column - 1].expandtabs(4)) - start)
+                out.write(f" {gutter} |\n {f.line} | {shown}\n {gutter} | {' ' * start}{'^' * width}\n")
+            if f.fix is not None and ctx.show_fixes:
+                out.write(f" {' ' * len(str(f.line))} = fix{'' if f.fix.safe else ' (unsafe)'}: {f.fix.message}\n")
+            out.write("\n")
+    write_summary(results, out, ctx)
+
+
+def write_grouped(results: list[FileResult], out: TextIO, ctx) -> None:
+    """``--format grouped``: findings under their file's name, like ``ruff --output-format grouped``."""
+    from gclint.reports.common import message
+
+    for result in results:
+        if not result.findings:
+            continue
+        out.write(f"{result.path}:\n")
+        width = max(len(f"{f.line}:{f.column}") for f in result.findings)
+        for f in result.findings:
+            where = f"{f.line}:{f.column}"
+            out.write(f"  {where:<{width}} {f.code}{_mark(f, ctx)} {message(f)}\n")
+        out.write("\n")
+    write_summary(results, out, ctx)

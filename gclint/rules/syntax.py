@@ -15,7 +15,8 @@ class _IssueRule(Rule):
     def check_issues(self, line: Line) -> None:
         for issue in line.issues:
             if issue.code == self.code:
-                self.report(line, issue.message, column=issue.column)
+                severity = Severity.parse(issue.severity) if issue.severity else None
+                self.report(line, issue.message, column=issue.column, severity=severity)
 
 
 @register
@@ -43,7 +44,8 @@ class DuplicateWord(_IssueRule):
     summary = "The same parameter letter appears twice in one command"
     explanation = """
         "G1 X10 X20" is ambiguous: firmware keeps either the first or the last value, and LinuxCNC
-        refuses the line ("Multiple X words on one line").  Write each letter once.
+        refuses the line ("Multiple X words on one line").  Write each letter once.  A letter repeated
+        with the same value ("G0 X0 Y0 X0") is only a warning: every firmware gets the same value.
     """
     example_bad = "G1 X10 Y5 X20"
     example_good = "G1 X20 Y5"

@@ -37,7 +37,7 @@ TEXT_CODES = frozenset(
 )
 
 # A text argument made only of words (M486 S1, M98 P100 L2, M98 P"homez.g") is read as parameters.
-_NUM = r"[-+]?(?:\d+\.?\d*|\.\d+)"
+_NUM = r"[-+]?(?:\d+(?:\.\d*)?|\.\d+)"  # unambiguous: no backtracking blow-up (see fastpath._NUM)
 _TEXT_WORDS = re.compile(rf'(?:[ \t]*[A-Za-z][ \t]*(?:{_NUM}|"(?:[^"]|"")*"))+[ \t]*')
 _TEXT_WORD = re.compile(rf'([A-Za-z])[ \t]*({_NUM}|"(?:[^"]|"")*")')
 
@@ -103,6 +103,7 @@ def assemble(
     for piece in pieces:
         if checksum is not None and not isinstance(piece, Comment):
             issues.append(Issue(PARSE_ERROR, checksum.column, "the checksum must be at the end of the line"))
+            extra.append(checksum)  # kept in the tree (lossless), but not the line's checksum
             checksum = None
         if isinstance(piece, Word):
             letter = piece.letter
@@ -129,9 +130,14 @@ def assemble(
                 close()
                 current = Command(None, IMPLICIT, piece.column, {})
             if letter in current.params:
-                issues.append(
-                    Issue(DUPLICATE_WORD, piece.column, f"{letter} appears more than once in {current.code or 'this block'}")
-                )
+                where = current.code or "this block"
+                if current.params[letter] == piece.value:
+                    # The same value twice is redundant, not ambiguous: every firmware gets the same value.
+                    issues.append(
+                        Issue(DUPLICATE_WORD, piece.column, f"{piece.text.strip()} is repeated in {where}", "warning")
+                    )
+                else:
+                    issues.append(Issue(DUPLICATE_WORD, piece.column, f"{letter} appears more than once in {where}"))
             else:
                 current.params[letter] = piece.value
             current_words.append(piece)

@@ -22,7 +22,9 @@ import re
 from gclint.syntax.build import TEXT_CODES, assemble
 from gclint.syntax.nodes import GCODE, NUMBER, Command, Comment, ParsedLine, Word, normalize_code
 
-_NUM = r"[-+]?(?:\d+\.?\d*|\.\d+)"
+# Unambiguous ("\d+\.?\d*" can split a run of digits many ways: exponential backtracking on a long
+# line of words that ends in junk).
+_NUM = r"[-+]?(?:\d+(?:\.\d*)?|\.\d+)"
 _CANON = re.compile(rf"[ \t]*[A-Z]{_NUM}(?:[ \t]+[A-Z]{_NUM})*[ \t]*")
 _GENERAL = re.compile(rf"[ \t]*(?:[A-Za-z][ \t]*{_NUM}[ \t]*)+")
 _WORD = re.compile(rf"([A-Za-z])[ \t]*({_NUM})")

@@ -100,9 +100,18 @@ def _error_line(raw: str, exc: Exception) -> ParsedLine:
 
 
 def _text(tree: Tree | Token) -> str:
+    # Iterative: "X[[[[...]]]]" nests as deep as the line is long (a recursive walk hit RecursionError).
     if not isinstance(tree, Tree):
         return str(tree)
-    return "".join(_text(c) for c in tree.children)
+    parts: list[str] = []
+    stack: list[Tree | Token] = [tree]
+    while stack:
+        node = stack.pop()
+        if isinstance(node, Tree):
+            stack.extend(reversed(node.children))
+        else:
+            parts.append(str(node))
+    return "".join(parts)
 
 
 def _first_token(tree: Tree | Token) -> Token:

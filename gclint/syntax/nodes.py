@@ -32,7 +32,7 @@ OWORD = "oword"  # LinuxCNC O-words: o100 if [#1 GT 2]
 ASSIGNMENT = "assignment"  # LinuxCNC parameter assignment: #1 = 5
 PERCENT = "percent"  # % program delimiter
 
-_STRICT_NUMBER = re.compile(r"[-+]?(?:\d+\.?\d*|\.\d+)|0x[0-9A-Fa-f]+")
+_STRICT_NUMBER = re.compile(r"[-+]?(?:\d+(?:\.\d*)?|\.\d+)|0x[0-9A-Fa-f]+")  # unambiguous: linear time
 
 
 class Node:
@@ -194,12 +194,13 @@ class BlockDelete(Node):
 class Issue:
     """A syntax problem found while parsing; the SX rules turn these into findings."""
 
-    __slots__ = ("code", "column", "message")
+    __slots__ = ("code", "column", "message", "severity")
 
-    def __init__(self, code: str, column: int, message: str) -> None:
+    def __init__(self, code: str, column: int, message: str, severity: str | None = None) -> None:
         self.code = code
         self.column = column
         self.message = message
+        self.severity = severity  # None: the rule's default severity
 
     def __eq__(self, other: object) -> bool:
         return (
@@ -207,6 +208,7 @@ class Issue:
             and self.code == other.code
             and self.column == other.column
             and self.message == other.message
+            and self.severity == other.severity
         )
 
     def __hash__(self) -> int:

@@ -1,1 +1,345 @@
-"""(rules added by the Hyrel rules work)"""
+"""HY flow rules: native flow versus E values (M229), fans (M106), flow settings (M221, M756, M721/M722).
+
+Sources: the Hyrel Gcode page ("Controlling Material Flow", "M106 Set Cooling / Etc.") and the catalogue
+in ../shared/research/dialects.md section 3.  Hyrel's two ways to control flow: native flow (the default)
+ignores E amounts and computes flow from speed, layer height and width; `M229 E1 D1` uses the slicer's
+E values.  ``MachineState.flow_mode`` says which one is active.
+"""
+
+from __future__ import annotations
+
+from gclint.dialects.base import Param
+from gclint.rules.base import Rule, Severity, register
+from gclint.rules.dialect import ParamTableRule
+from gclint.rules.hyrel.motion import MoveChecks, MoveRule
+from gclint.syntax.nodes import Command, Line, to_number
+
+
+def _fmt(value: float) -> str:
+    return f"{value:g}"
+
+
+@register
+class M229E1D0(Rule):
+    code = "HY001"
+    name = "m229-e1-d0"
+    severity = Severity.ERROR
+    summary = "M229 E1 D0 is an illegal combination"
+    explanation = """
+        M229 switches Hyrel between native flow (E0) and the slicer's E values (E1); D chooses how the
+        steps reach the head: D0 on the head controller, D1-D3 through the motion controller.  The page
+        says: "Note: E1 D0 is an illegal combination."  `M229 E1 D1` is "the default way to enable E
+        values".  M229 E1 without D, when no earlier M229 chose D1-D3, is reported as a warning: D0 is
+        how v3 and earlier worked, so the routing may still be D0.
+    """
+    example_bad = "M229 E1 D0"
+    example_good = "M229 E1 D1"
+    source = "Gcode page, M229 Use E Values (catalogue H01, F01)"
+    codes = ("M229",)
+    families = ("hyrel",)
+
+    def __init__(self, ctx) -> None:
+        super().__init__(ctx)
+        self.routing_set = False  # an earlier M229 gave D1-D3
+
+    def check(self, line: Line, cmd: Command) -> None:
+        p = cmd.params
+        e = to_number(p["E"]) if p.get("E") is not None else None  # type: ignore[arg-type]
+        d = to_number(p["D"]) if p.get("D") is not None else None  # type: ignore[arg-type]
+        if e == 1 and d == 0:
+            self.report(line, "M229 E1 D0 is an illegal combination: use M229 E1 D1 to enable E values",
+                        node=cmd.param("D") or cmd)
+        elif e == 1 and "D" not in p and not self.routing_set:
+            self.report(
+                line,
+                "M229 E1 without D: no earlier M229 chose D1-D3, and E1 with D0 is illegal; write M229 E1 D1",
+                node=cmd,
+                severity=Severity.WARNING,
+            )
+        if d is not None:
+            self.routing_set = d >= 1
+
+
+@register
+class FanDutyOverRange(ParamTableRule):
+    code = "HY011"
+    name = "fan-duty-over-range"
+    severity = Severity.WARNING
+    summary = "M106 S above the active C range, or P above 100 %"
+    explanation = """
+        Hyrel's M106 S is a duty cycle within the range set by C: "if unspecified, the default is C100
+        (use C255 to be compatible with most slicers)", and "all following M106 commands for the rest of
+        this print job will be based on this range".  A slicer's `M106 S255` with the default range asks
+        for 255 % and runs the fan (or UV LEDs) at full power whatever the slicer meant: put `M106 C255`
+        in the header.  P is "the percent of duty cycle ... to come on only during extrusion moves"
+        (0-100), not Marlin's fan index; with both S and P on one line the firmware uses S.
+    """
+    example_bad = "M106 T0 S128"
+    example_good = """
+        M106 C255
+        M106 T0 S128
+    """
+    source = "Gcode page, M106 Set Cooling / Etc. (catalogue H09, H10)"
+    families = ("hyrel",)
+
+    def check(self, line: Line, cmd: Command) -> None:
+        super().check(line, cmd)  # P 0-100 (table: M106 P)
+        p = cmd.params
+        text = p.get("S")
+        if text is None:
+            return
+        duty = to_number(text)
+        if duty is None:
+            return
+        st = self.state
+        c = cmd.get("C")
+        if c is not None and c > 0:
+            fan_range, where = c, "on this line"
+        else:
+            fan_range = st.fan_range
+            where = f"set on line {st.fan_range_line}" if st.fan_range_line is not None else "the default"
+        if duty > fan_range:
+            hint = "; slicer fan values are 0-255: add M106 C255 before it" if duty <= 255 and fan_range != 255 else ""
+            self.report(
+                line,
+                f"M106 S{text} is above the fan range C{_fmt(fan_range)} ({where}): the duty is clamped to 100 %{hint}",
+                node=cmd.param("S") or cmd,
+            )
+        if "P" in p:
+            self.report(line, "M106 with both S and P: S is used and P (duty during extrusion only) is ignored",
+                        node=cmd.param("P") or cmd)
+
+    def range_message(self, cmd: Command, p: Param, problem: str) -> str:
+        return f"M106: {problem} (P is the percent duty during extrusion moves only, 0-100; not a fan index)"
+
+
+@register
+class FanRangeValue(ParamTableRule):
+    code = "HY012"
+    name = "fan-range-value"
+    severity = Severity.WARNING
+    summary = "M106 C outside 1-255 (warning) or other than 100/255 (info)"
+    explanation = """
+        "Cn is the range (0-100 or 0-255) that we will use; if unspecified, the default is C100 (use C255
+        to be compatible with most slicers)."  The range stays until M30.  The firmware fits C into 1-255,
+        so a value outside it does not do what it says (warning); any other value in 1-255 works but is
+        not one of the two documented ranges (info).
+    """
+    example_bad = "M106 C1000"
+    example_good = "M106 C255"
+    source = "Gcode page, M106 Set Cooling / Etc. (catalogue H09, F02)"
+    families = ("hyrel",)
+
+    def check(self, line: Line, cmd: Command) -> None:
+        super().check(line, cmd)  # C 1-255 (table: M106 C)
+        c = cmd.get("C")
+        if c is not None and 1 <= c <= 255 and c not in (100, 255):
+            self.report(
+                line,
+                f"M106 C{cmd.raw('C')}: the documented fan ranges are C100 (the default) and C255 (slicers)",
+                node=cmd.param("C") or cmd,
+                severity=Severity.INFO,
+            )
+
+    def range_message(self, cmd: Command, p: Param, problem: str) -> str:
+        return f"M106: {problem} (the fan range; the firmware fits it into 1-255)"
+
+
+@register
+class EModeWithoutM229(Rule):
+    code = "HY013"
+    name = "e-mode-without-m229"
+    severity = Severity.WARNING
+    summary = "M82/M83 while E values are not enabled (M229 E1)"
+    explanation = """
+        M82 and M83 choose absolute or relative E values: "Note, this only works on v4 and later, when E
+        values are enabled via M229."  In native flow the E amounts are ignored, so M82/M83 there changes
+        nothing.  Enable E values first (`M229 E1 D1`), or drop the line.
+    """
+    example_bad = "M83"
+    example_good = """
+        M229 E1 D1
+        M83
+    """
+    source = "Gcode page, M82 Absolute E-Values / M83 Relative E-Values (catalogue H37)"
+    codes = ("M82", "M83")
+    families = ("hyrel",)
+
+    def check(self, line: Line, cmd: Command) -> None:
+        if not self.state.e_values():
+            self.report(line, f"{cmd.code} has no effect: E values are not enabled (put M229 E1 D1 before it)", node=cmd)
+
+
+@register
+class M756IgnoredUnderM229(Rule):
+    code = "HY014"
+    name = "m756-ignored-under-m229"
+    severity = Severity.WARNING
+    summary = "M756 layer height while E values are enabled: ignored"
+    explanation = """
+        M756 sets the layer height that native flow uses: "Note: this command is ignored if you are using
+        M229 E1 D1 to enable use of E values."  Under M229 E1 the slicer's E amounts set the flow, so the
+        layer height written here has no effect.
+    """
+    example_bad = """
+        M229 E1 D1
+        M756 S0.2
+    """
+    example_good = """
+        M229 E0
+        M756 S0.2
+    """
+    source = "Gcode page, M756 Set Height for Flow (catalogue H38)"
+    codes = ("M756",)
+    families = ("hyrel",)
+
+    def check(self, line: Line, cmd: Command) -> None:
+        st = self.state
+        if st.e_values():
+            self.report(line, f"M756 is ignored: E values are enabled (M229 E1 on line {st.m229_line})", node=cmd)
+
+
+@register
+class FlowMultiplierRange(ParamTableRule):
+    code = "HY033"
+    name = "flow-multiplier-range"
+    severity = Severity.WARNING
+    summary = "G1 S / M221 S is a flow multiplier (0-15.99); M221 S above 2 looks like a percentage"
+    explanation = """
+        On Hyrel, `G1 ... Sn` is "a one-time (non-persistent) material flow rate multiplier" and M221 S
+        "is the direct flow multiplier": 1.0 is the flow as computed.  The firmware accepts 0 to 15.99.
+        Marlin's `M221 S95` means 95 %; on Hyrel it asks for 95 times the flow (clamped).  An M221 S above
+        2 is reported as a likely percentage: write `M221 S0.95`.  (On Marlin/RRF, S on G1 is laser power.)
+    """
+    example_bad = "M221 T0 S95"
+    example_good = "M221 T0 S0.95"
+    source = "Gcode page, G1 Working Move and M221 Set Flow Rate (catalogue H15, H39, F04)"
+    families = ("hyrel",)
+
+    LIKELY_PERCENT = 2.0
+
+    def __init__(self, ctx) -> None:
+        super().__init__(ctx)
+        MoveChecks.join(self, "flow_multiplier")  # G1 S is checked from the one G0/G1 listener
+
+    def check(self, line: Line, cmd: Command) -> None:
+        if cmd.code == "M221":
+            s = cmd.get("S")
+            if s is not None and s > self.LIKELY_PERCENT:
+                self.report(
+                    line,
+                    f"M221 S{cmd.raw('S')} is a flow multiplier on Hyrel ({_fmt(s)} times the flow, at most 15.99); "
+                    f"it looks like a percentage: for {_fmt(s)} % write S{_fmt(s / 100)}",
+                    node=cmd.param("S") or cmd,
+                )
+                return
+        super().check(line, cmd)
+
+    def range_message(self, cmd: Command, p: Param, problem: str) -> str:
+        return f"{cmd.code}: {problem} (S is a flow multiplier, 0-15.99; 1.0 = as computed)"
+
+
+@register
+class PrimeSpeedUnits(Rule):
+    code = "HY054"
+    name = "prime-speed-units"
+    severity = Severity.WARNING
+    summary = "M721/M722 S is motor pulses per second (normally 10,000), not mm/s"
+    explanation = """
+        M721 (unprime) and M722 (prime) take S, "the speed at which unprime moves should be executed; this
+        is normally 10,000" motor pulses per second, and E, a number of motor pulses.  A speed below 100
+        looks like a retract speed in mm/s or mm/min copied from another firmware (Marlin's M207 F, RRF's
+        M207 S), and makes the unprime crawl or never finish.  Lines with E0 (no unprime) are not reported.
+    """
+    example_bad = "M721 T0 S35 E100 P-15"
+    example_good = "M721 T0 S10000 E100 P-15"
+    source = "Gcode page, M721 Set Unprime Values and M722 Set Prime Values (catalogue H62)"
+    codes = ("M721", "M722")
+    families = ("hyrel",)
+
+    LOWEST = 100.0
+
+    def check(self, line: Line, cmd: Command) -> None:
+        speed = cmd.get("S")
+        if speed is None or speed >= self.LOWEST:
+            return
+        if cmd.get("E") == 0:
+            return  # no pulses to move: the speed does not matter
+        action = "unprime" if cmd.code == "M721" else "prime"
+        self.report(
+            line,
+            f"{cmd.code} S{cmd.raw('S')}: the {action} speed is in motor pulses per second (normally 10,000); "
+            f"{_fmt(speed)} looks like mm/s or mm/min from another firmware",
+            node=cmd.param("S") or cmd,
+        )
+
+
+@register
+class SlicerEWithoutM229(MoveRule):
+    code = "HY060"
+    name = "slicer-e-without-m229"
+    severity = Severity.INFO
+    summary = "Sliced E amounts in a file that never enables E values: native flow ignores them"
+    explanation = """
+        "If you do not use that command [M229 E1 D1], we do not use that E value (except to distinguish
+        printing from non-printing moves) we calculate for flow based purely on travel speed, declared
+        layer thickness, and nozzle diameter."  A file whose G1 moves carry changing E amounts, as slicers
+        write them, and that has no M229 at all, prints with Hyrel's native flow: the widths come from
+        M221 W and M756/M221 Z, not from the slicer.  Add `M229 E1 D1` to the header to use the E values.
+        Reported once per file, at the first G1 with E.
+    """
+    example_bad = """
+        G1 X10 Y10 E0.52 F1200
+        G1 X20 Y10 E1.04
+        G1 X20 Y20 E1.57
+        G1 X10 Y20 E2.09
+        G1 X10 Y11 E2.56
+        M30
+    """
+    example_good = """
+        M229 E1 D1
+        G1 X10 Y10 E0.52 F1200
+        G1 X20 Y10 E1.04
+        G1 X20 Y20 E1.57
+        G1 X10 Y20 E2.09
+        G1 X10 Y11 E2.56
+        M30
+    """
+    source = "Gcode page, Controlling Material Flow and G1 Working Move (catalogue H60)"
+    slot = "slicer_e"
+
+    DISTINCT = 5  # this many different E amounts look sliced (native Hyrel jobs write E1 on every move)
+
+    def __init__(self, ctx) -> None:
+        super().__init__(ctx)
+        self.first: Line | None = None
+        self.last: str | None = None
+        self.amounts: list[str] = []
+        self.sliced = False
+
+    def move(self, line: Line, cmd: Command) -> None:
+        # called for G1 lines with E until the amounts look sliced
+        text = cmd.params["E"]
+        if text == self.last or text is None:
+            return
+        if self.state.m229_line is not None:
+            self.moves.slicer_e = None  # the file uses M229: nothing to report
+            return
+        self.last = text
+        if self.first is None:
+            self.first = line
+        if text not in self.amounts:
+            self.amounts.append(text)
+            if len(self.amounts) >= self.DISTINCT:
+                self.sliced = True
+                self.moves.slicer_e = None
+
+    def finish(self) -> None:
+        if self.sliced and self.state.m229_line is None and self.first is not None:
+            shown = ", ".join(f"E{a}" for a in self.amounts[:3])
+            self.report(
+                self.first,
+                f"the E amounts look sliced ({shown}, ...) but the file never enables E values: native flow "
+                "ignores them and computes flow from speed, layer height (M756, M221 Z) and width (M221 W); "
+                "add M229 E1 D1 to use them",
+            )

@@ -1,1 +1,292 @@
-"""(rules added by the Hyrel rules work)"""
+"""HY rules for lasers, UV pens, spindles and lathes (M620-M623, M3/M4/M5, M253-M255, M30).
+
+Sources: the Hyrel Gcode page ("Controlling Lasers and UV Pens", "Controlling Spindles and Lathes", "M30
+End of Program") and the catalogue in ../shared/research/dialects.md section 3 (H29, H31-H34, H48,
+H49).  ``MachineState.emitters_enabled`` and ``spindles`` say which devices are on.
+"""
+
+from __future__ import annotations
+
+from gclint.dialects.addressing import LASER, V5_TO_V4_VARIABLE, resolve_v4_variable, resolve_v5
+from gclint.dialects.base import Param
+from gclint.rules.base import Rule, Severity, register
+from gclint.rules.dialect import ParamTableRule
+from gclint.syntax.nodes import Command, Line
+
+
+class _DeviceRule(Rule):
+    """Names devices (kept as v5 addresses in the state) the way the file writes them."""
+
+    families = ("hyrel",)
+
+    def number(self, v5: int) -> int:
+        """The T number the file uses for the device at v5 address ``v5``."""
+        if self.ctx.dialect.extras.get("firmware") == 4:
+            return V5_TO_V4_VARIABLE.get(v5, v5)
+        return v5
+
+    def label(self, v5: int) -> str:
+        if v5 < 0:
+            return "the focused head"
+        if self.ctx.dialect.extras.get("firmware") == 4 and v5 in V5_TO_V4_VARIABLE:
+            return resolve_v4_variable(V5_TO_V4_VARIABLE[v5]).label
+        return resolve_v5(v5).label
+
+    def t_word(self, v5: int) -> str:
+        return " T#" if v5 < 0 else f" T{self.number(v5)}"
+
+
+@register
+class EmitterNeedsTarget(ParamTableRule):
+    code = "HY020"
+    name = "emitter-needs-target"
+    severity = Severity.ERROR
+    summary = "M620 without T: the laser/UV pen to enable must be named"
+    explanation = """
+        M620 enables (E1) or disables (E0) a laser or UV pen.  Its T is the "target head - MUST be
+        specified, can NOT be inherited": unlike most codes, M620 does not fall back to the focused head.
+        Without T nothing is enabled (and the firmware reports a missing T argument).
+    """
+    example_bad = "M620 E1"
+    example_good = "M620 T21 E1"
+    source = "Gcode page, M620 Enable Device (catalogue H31)"
+    families = ("hyrel",)
+
+    def missing_message(self, cmd: Command, p: Param) -> str:
+        return "M620 needs T: the target device MUST be specified, it can NOT be inherited from the focused head"
+
+
+@register
+class EmitDurationTooLong(_DeviceRule):
+    code = "HY021"
+    name = "emit-duration-too-long"
+    severity = Severity.ERROR
+    summary = "M623 D over 60,000 ms (any device) or over 1,000 ms (lasers and other non-UV devices)"
+    explanation = """
+        M623 emits for D milliseconds: "Dn max for UV pens is 60,000 (1 minute); Dn max for other devices
+        1,000 (1 second)".  Above 60,000 is an error for every device.  Between 1,000 and 60,000 only a UV
+        pen may run: gclint knows the CO2 laser (T21) is not one, so with the laser enabled that is an
+        error; other devices are heads whose type a G-code file does not say (a UV pen or a diode laser),
+        so it is a warning to check that the enabled device is a UV pen.
+    """
+    example_bad = """
+        M620 T21 E1
+        M623 P80 D5000
+    """
+    example_good = """
+        M620 T21 E1
+        M623 P80 D500
+    """
+    source = "Gcode page, M623 Duration Emit (catalogue H33)"
+    codes = ("M623",)
+
+    UV_MAX = 60000.0
+    OTHER_MAX = 1000.0
+
+    def check(self, line: Line, cmd: Command) -> None:
+        d = cmd.get("D")
+        if d is None or d <= self.OTHER_MAX:
+            return
+        node = cmd.param("D") or cmd
+        text = cmd.raw("D")
+        if d > self.UV_MAX:
+            self.report(line, f"M623 D{text} ms is over 60,000 ms (1 minute), the most even a UV pen allows", node=node)
+            return
+        enabled = self.state.emitters_enabled
+        lasers = [dev for dev in enabled if resolve_v5(dev).kind == LASER]
+        if enabled and len(lasers) == len(enabled):
+            self.report(line, f"M623 D{text} ms is over 1,000 ms (1 second), the most for {self.label(lasers[0])}; "
+                              "only UV pens may emit up to 60,000 ms", node=node)
+        else:
+            self.report(line, f"M623 D{text} ms is over 1,000 ms (1 second): allowed only if the enabled device is a UV pen "
+                              "(up to 60,000 ms); lasers and other devices stop at 1,000 ms",
+                        node=node, severity=Severity.WARNING)
+
+
+@register
+class SpindlePowerOver100(ParamTableRule):
+    code = "HY023"
+    name = "spindle-power-over-100"
+    severity = Severity.WARNING
+    summary = "M3/M4 S is percent power (0-100); a larger value looks like RPM"
+    explanation = """
+        Hyrel's M3/M4 take "Sn - power (0-100%)" and run "using the value set on the head for RPM".  CNC
+        programs (LinuxCNC, Carvera, Marlin with a spindle) write `M3 S12000` in RPM, which Hyrel clamps
+        to full power.  Convert RPM to a percentage of the spindle's maximum speed.
+    """
+    example_bad = "M3 T20 S12000"
+    example_good = "M3 T20 S75"
+    source = "Gcode page, M3 Turn On Spindle (CW) (catalogue H48, F12)"
+    families = ("hyrel",)
+
+    def range_message(self, cmd: Command, p: Param, problem: str) -> str:
+        value = cmd.get(p.letter)
+        if value is not None and value > 100:
+            return f"{cmd.code} S{cmd.raw('S')}: S is percent power (0-100) on Hyrel, not RPM; {problem}"
+        return f"{cmd.code}: {problem} (S is percent power, 0-100)"
+
+
+@register
+class SpindleDirectionChange(_DeviceRule):
+    code = "HY024"
+    name = "spindle-direction-change"
+    severity = Severity.ERROR
+    summary = "M3 to M4 (or M4 to M3) on a running spindle without M5 or S0 between"
+    explanation = """
+        "Note: DO NOT CHANGE DIRECTION while the spindle is in motion."  Reversing a turning spindle with
+        M4 after M3 (or M3 after M4) strains the motor and the tool.  Stop it first with `M5 T#` (or
+        `M3 S0`, "the same as turning it off"), wait for it to stop, then start it the other way.
+        Spindles on different heads are tracked separately.
+    """
+    example_bad = """
+        M3 T20 S75
+        M4 T20 S75
+    """
+    example_good = """
+        M3 T20 S75
+        M5 T20
+        G4 S2
+        M4 T20 S75
+    """
+    source = "Gcode page, M3 Turn On Spindle (CW) (catalogue H48)"
+    codes = ("M3", "M4")
+
+    def check(self, line: Line, cmd: Command) -> None:
+        if cmd.get("S") == 0:
+            return  # S0 turns it off
+        device = self.ctx.interpreter.target(cmd)
+        if device is None:
+            device = -1
+        running = self.state.spindles.get(device)
+        direction = "cw" if cmd.code == "M3" else "ccw"
+        if running is None or running[0] == direction:
+            return
+        started_by = "M3" if running[0] == "cw" else "M4"
+        t = self.t_word(device)
+        self.report(
+            line,
+            f"{cmd.code} reverses the spindle on {self.label(device)} while it still turns ({started_by} on line "
+            f"{running[1]}): stop it with M5{t} (or S0) before changing direction",
+            node=cmd,
+        )
+
+
+@register
+class EmitterOnAtEnd(_DeviceRule):
+    code = "HY028"
+    name = "emitter-on-at-end"
+    severity = Severity.WARNING
+    summary = "A laser or UV pen still enabled, or a spindle still turning, at M30 or the end of the file"
+    explanation = """
+        The laser and UV pen examples end with "M620 T# E0 ; disable target device <= should be before
+        M30 command": M30 ends the job but does not say the device was switched off.  Likewise "the
+        spindle tool is turned on with an M3 or M4 before this command, and turned off with an M5 after all
+        work is done".  Reported at M30, or at the line that switched the device on when the file ends
+        without M30.
+    """
+    example_bad = """
+        M620 T21 E1
+        M621 P40
+        G1 X10 Y10 E1 F600
+        M30
+    """
+    example_good = """
+        M620 T21 E1
+        M621 P40
+        G1 X10 Y10 E1 F600
+        M620 T21 E0
+        M30
+    """
+    source = "Gcode page, Laser Examples / UV Pen Examples and G81 Peck Drilling (catalogue H34, H29)"
+    codes = ("M30",)
+
+    def __init__(self, ctx) -> None:
+        super().__init__(ctx)
+        self.reported: set[tuple[str, int, int]] = set()  # (kind, device, line switched on)
+
+    def check(self, line: Line, cmd: Command) -> None:
+        self._left_on(line, "at M30")
+
+    def finish(self) -> None:
+        self._left_on(None, "at the end of the file")
+
+    def _left_on(self, at: Line | None, when: str) -> None:
+        st = self.state
+        for device, on_line in sorted(st.emitters_enabled.items()):
+            key = ("emitter", device, on_line)
+            if key in self.reported:
+                continue
+            self.reported.add(key)
+            t = self.t_word(device)
+            self.report(
+                at if at is not None else on_line,
+                f"{self.label(device)} is still enabled {when} (M620{t} E1 on line {on_line}): add M620{t} E0 before M30",
+            )
+        for device, (direction, on_line) in sorted(st.spindles.items()):
+            key = ("spindle", device, on_line)
+            if key in self.reported:
+                continue
+            self.reported.add(key)
+            started_by = "M3" if direction == "cw" else "M4"
+            t = self.t_word(device)
+            self.report(
+                at if at is not None else on_line,
+                f"the spindle on {self.label(device)} is still turning {when} ({started_by} on line {on_line}): "
+                f"add M5{t} before M30",
+            )
+
+
+@register
+class LaserPowerBeforeEnable(_DeviceRule):
+    code = "HY040"
+    name = "laser-power-before-enable"
+    severity = Severity.WARNING
+    summary = "M621/M623 with no laser or UV pen enabled by M620 T# E1"
+    explanation = """
+        M621 takes no T: "No tool is specified; this will happen on the laser already enabled with M620."
+        M623 likewise emits on the enabled laser or UV pen.  Before any `M620 T# E1` (or after the device
+        was disabled) there is no device for the power to go to.
+    """
+    example_bad = """
+        M621 P40
+        M620 T21 E1
+    """
+    example_good = """
+        M620 T21 E1
+        M621 P40
+    """
+    source = "Gcode page, M621 Set Laser Power and M623 Duration Emit (catalogue H32)"
+    codes = ("M621", "M623")
+
+    def check(self, line: Line, cmd: Command) -> None:
+        st = self.state
+        if st.emitters_enabled:
+            return
+        if st.laser_enabled_any:
+            why = "every device enabled with M620 E1 has been disabled again"
+        else:
+            why = "no laser or UV pen has been enabled yet"
+        self.report(line, f"{cmd.code} sets the power of the device enabled with M620 T# E1, but {why}", node=cmd)
+
+
+@register
+class LatheOnNon16A(Rule):
+    code = "HY041"
+    name = "lathe-on-non-16a"
+    severity = Severity.ERROR
+    summary = "M253/M254/M255 lathe codes on a printer other than the Hydra 16A"
+    explanation = """
+        M253 (lathe on, clockwise), M254 (counter-clockwise) and M255 (lathe off) drive the lathe motor:
+        "Only available on Hydra 16A models."  Choose the printer with `--printer 16a` (or `16a-dual`)
+        when the job is for a 16A.
+    """
+    example_bad = "; gclint-test: printer=30m dialect=hyrel\nM253 S75"
+    example_good = "; gclint-test: printer=16a dialect=hyrel\nM253 S75"
+    source = "Gcode page, M253 Turn On Lathe (CW) (catalogue H49)"
+    codes = ("M253", "M254", "M255")
+    families = ("hyrel",)
+
+    def check(self, line: Line, cmd: Command) -> None:
+        profile = self.ctx.profile
+        if not profile.lathe:
+            self.report(line, f"{cmd.code}: the lathe is only available on Hydra 16A models, not the {profile.title}", node=cmd)

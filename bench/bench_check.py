@@ -1,0 +1,59 @@
+"""Benchmark: gclint check --jobs 1 against a bare regex tokenizer and gcodeparser, in the same run.
+
+    python bench/bench_check.py [PATH ...]      (default: ../shared/corpus/marlin)
+
+Each task runs in a fresh process, ROUNDS times, interleaved, and the fastest round counts (the machine
+is shared and noisy: compare ratios measured in the same run, not absolute speeds across runs).  Prints
+lines/s, the ratio to the regex baseline, and peak memory.  Not a test.
+"""
+
+from __future__ import annotations
+
+import json
+import os
+import subprocess
+import sys
+from pathlib import Path
+
+HERE = Path(__file__).resolve().parent
+DEFAULT = HERE.parent.parent / "shared" / "corpus" / "marlin"
+ROUNDS = int(os.environ.get("BENCH_ROUNDS", "3"))
+TASKS = ["regex", "gcodeparser", "check", "check-hyrel"]
+
+
+def measure(task: str, paths: list[str]) -> dict:
+    out = subprocess.run(
+        [sys.executable, str(HERE / "_measure.py"), task, *paths], check=True, capture_output=True, text=True
+    )
+    return json.loads(out.stdout.strip().splitlines()[-1])
+
+
+def main() -> None:
+    paths = sys.argv[1:] or [str(DEFAULT)]
+    tasks = list(TASKS)
+    try:
+        import gcodeparser  # noqa: F401
+    except ImportError:
+        tasks.remove("gcodeparser")
+        print("(gcodeparser not installed: pip install gcodeparser, or pip install -e '.[bench]')")
+    best: dict[str, dict] = {}
+    for _ in range(ROUNDS):
+        for task in tasks:
+            r = measure(task, paths)
+            if task not in best or r["seconds"] < best[task]["seconds"]:
+                best[task] = r
+    base = best["regex"]["lines"] / best["regex"]["seconds"]
+    print(f"{'task':<14}{'lines':>12}{'seconds':>10}{'lines/s':>12}{'vs regex':>10}{'peak MB':>10}")
+    for task in tasks:
+        r = best[task]
+        speed = r["lines"] / r["seconds"]
+        print(f"{task:<14}{r['lines']:>12,}{r['seconds']:>10.2f}{speed:>12,.0f}{speed / base:>9.2f}x{r['peak_mb']:>10.0f}")
+    if "gcodeparser" in best:
+        gp = best["gcodeparser"]["lines"] / best["gcodeparser"]["seconds"]
+        for task in ("check", "check-hyrel"):
+            speed = best[task]["lines"] / best[task]["seconds"]
+            print(f"{task} vs gcodeparser: {speed / gp:.2f}x")
+
+
+if __name__ == "__main__":
+    main()

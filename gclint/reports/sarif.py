@@ -1,0 +1,172 @@
+"""``--format sarif``: SARIF 2.1.0 (OASIS), the format GitHub code scanning and most CI dashboards read.
+
+One run; ``tool.driver.rules`` describes every rule that produced a result (summary, explanation with
+examples as help text, ``helpUri``, default level); each result points at ``path:line:column`` with the
+line (secrets masked) as its snippet.  Files that could not be read become tool execution
+notifications, and the invocation is then marked unsuccessful.
+"""
+
+from __future__ import annotations
+
+import hashlib
+import json
+import os
+from pathlib import PurePosixPath, PureWindowsPath
+from typing import TextIO
+from urllib.parse import quote
+
+from gclint.engine import FileResult
+from gclint.reports.common import clean, codes_in, message, rule_docs, source_line
+from gclint.rules.base import Finding, Severity
+
+SCHEMA = "https://docs.oasis-open.org/sarif/sarif/v2.1.0/errata01/os/schemas/sarif-schema-2.1.0.json"
+INFORMATION_URI = "https://gclint.dev"
+LEVELS = {Severity.ERROR: "error", Severity.WARNING: "warning", Severity.INFO: "note"}
+_DOC_LEVELS = {"error": "error", "warning": "warning", "info": "note"}
+
+
+def artifact_uri(path: str) -> tuple[str, str | None]:
+    """A SARIF ``uri`` (and ``uriBaseId``) for a path as gclint printed it.
+
+    Relative paths stay relative to the folder gclint ran in (``%SRCROOT%``), which is what GitHub code
+    scanning expects when gclint runs at the repository root; absolute paths become ``file://`` URIs.
+    """
+    if path == "-" or not path:
+        return "stdin", None
+    windows = PureWindowsPath(path)
+    if windows.drive and windows.is_absolute():
+        return "file:///" + quote(windows.as_posix(), safe="/:"), None
+    posix = path.replace(os.sep, "/") if os.sep != "/" else path
+    if posix.startswith("/"):
+        return "file://" + quote(posix, safe="/"), None
+    parts = [p for p in PurePosixPath(posix).parts if p != "."]
+    return quote("/".join(parts), safe="/"), "%SRCROOT%"
+
+
+def _rule_descriptor(code: str, doc: dict | None, finding: Finding | None) -> dict:
+    if doc is None:  # a code with no registered rule (e.g. a plugin that is gone): describe it briefly
+        name = finding.name if finding is not None and finding.name else code
+        return {"id": code, "name": name, "shortDescription": {"text": name}}
+    help_parts = [doc["summary"]]
+    if doc["explanation"]:
+        help_parts += ["", doc["explanation"]]
+    markdown = list(help_parts)
+    if doc["example_bad"]:
+        help_parts += ["", "Bad:", doc["example_bad"]]
+        markdown += ["", "Bad:", "", "```gcode", doc["example_bad"], "```"]
+    if doc["example_good"]:
+        help_parts += ["", "Good:", doc["example_good"]]
+        markdown += ["", "Good:", "", "```gcode", doc["example_good"], "```"]
+    descriptor = {
+        "id": code,
+        "name": _pascal(doc["name"]) if doc["name"] else code,
+        "shortDescription": {"text": doc["summary"] or code},
+        "fullDescription": {"text": doc["explanation"] or doc["summary"] or code},
+        "help": {"text": "\n".join(help_parts), "markdown": "\n".join(markdown)},
+        "helpUri": doc["url"],
+        "defaultConfiguration": {"level": _DOC_LEVELS.get(doc["severity"], "warning")},
+        "properties": {"tags": [code[:2], *doc["applies_to"]], "kebab-name": doc["name"]},
+    }
+    if doc["source"]:
+        descriptor["properties"]["source"] = doc["source"]
+    return descriptor
+
+
+def _pascal(kebab: str) -> str:
+    # SARIF names are conventionally identifiers; keep the kebab-case name in properties
+    return "".join(p[:1].upper() + p[1:] for p in kebab.replace("_", "-").split("-") if p)
+
+
+def _fingerprint(f: Finding) -> str:
+    # Stable across runs and insertions above the line: the code, the file and the line's text.
+    text = f.source if f.source is not None else str(f.line)
+    data = "\0".join((f.code, f.path, text.strip())).encode("utf-8", "surrogateescape")
+    return hashlib.sha256(data).hexdigest()[:32]
+
+
+def build(results: list[FileResult], ctx) -> dict:
+    """The SARIF log as a dict."""
+    codes = sorted(codes_in(results))
+    docs = rule_docs(set(codes))
+    first: dict[str, Finding] = {}
+    for r in results:
+        for f in r.findings:
+            first.setdefault(f.code, f)
+    rules = [_rule_descriptor(code, docs.get(code), first.get(code)) for code in codes]
+    index = {code: i for i, code in enumerate(codes)}
+
+    artifacts: list[dict] = []
+    artifact_index: dict[str, int] = {}
+    results_out: list[dict] = []
+    notifications: list[dict] = []
+    for r in results:
+        uri, base = artifact_uri(r.path)
+        if r.error:
+            notifications.append(
+                {
+                    "level": "error",
+                    "message": {"text": clean(r.error)},
+                    "locations": [{"physicalLocation": {"artifactLocation": _location(uri, base)}}],
+                }
+            )
+            continue
+        if r.path not in artifact_index:
+            artifact_index[r.path] = len(artifacts)
+            artifact: dict = {"location": _location(uri, base), "sourceLanguage": "gcode"}
+            if r.dialect:
+                artifact["properties"] = {"dialect": r.dialect, "dialectReason": clean(r.dialect_reason), "lines": r.lines}
+            artifacts.append(artifact)
+        for f in r.findings:
+            region: dict = {"startLine": max(1, f.line), "startColumn": max(1, f.column)}
+            if f.end_column is not None and f.end_column > f.column:
+                region["endColumn"] = f.end_column
+            snippet = source_line(f)
+            if snippet is not None:
+                region["snippet"] = {"text": snippet}
+            location = _location(uri, base)
+            location["index"] = artifact_index[r.path]
+            result: dict = {
+                "ruleId": f.code,
+                "ruleIndex": index[f.code],
+                "level": LEVELS[f.severity],
+                "message": {"text": message(f)},
+                "locations": [{"physicalLocation": {"artifactLocation": location, "region": region}}],
+                "partialFingerprints": {"gclint/v1": _fingerprint(f)},
+            }
+            if f.fix is not None:
+                result["properties"] = {"fix": f.fix.message, "fixApplicability": "safe" if f.fix.safe else "unsafe"}
+            results_out.append(result)
+
+    invocation: dict = {"executionSuccessful": not notifications}
+    if notifications:
+        invocation["toolExecutionNotifications"] = notifications
+    run: dict = {
+        "tool": {
+            "driver": {
+                "name": "gclint",
+                "version": ctx.tool_version or "0",
+                "semanticVersion": ctx.tool_version or "0.0.0",
+                "informationUri": INFORMATION_URI,
+                "rules": rules,
+            }
+        },
+        "invocations": [invocation],
+        "artifacts": artifacts,
+        "results": results_out,
+        "columnKind": "unicodeCodePoints",
+    }
+    if any(a["location"].get("uriBaseId") for a in artifacts):
+        run["originalUriBaseIds"] = {"%SRCROOT%": {"description": {"text": "The folder gclint ran in."}}}
+    return {"$schema": SCHEMA, "version": "2.1.0", "runs": [run]}
+
+
+def _location(uri: str, base: str | None) -> dict:
+    out = {"uri": uri}
+    if base:
+        out["uriBaseId"] = base
+    return out
+
+
+def write(results: list[FileResult], out: TextIO, ctx) -> None:
+    json.dump(build(results, ctx), out, indent=2, ensure_ascii=False)
+    out.write("\n")

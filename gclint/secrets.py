@@ -1,0 +1,156 @@
+"""Find and mask secrets in G-code text: API keys, passwords and tokens that slicers or people leave in jobs.
+
+PrusaSlicer and its forks append their whole configuration to the job as comments, which has included
+``; printhost_apikey = ...`` and ``; printhost_password = ...`` (OctoPrint File Check has a
+``leaked_api_key`` check for exactly this, research/anchors.md); hand-edited start G-code carries URLs
+with ``user:password@host`` and tokens pasted from a browser.  A job file travels (print farms, git, shared
+folders), so such a secret is leaked to everyone who gets the job.
+
+``find(text)`` returns the spans of the secret *values*; ``mask(text)`` replaces each value with ``*`` of the
+same length (so columns and carets in reports stay aligned) and keeps the key name, so a report still says
+what leaked: ``; printhost_apikey = ********************************``.  Every output that prints file
+text (rule messages, ``Finding.source``, report source lines) should go through ``mask``.
+
+All patterns are bounded or anchored on a literal so that a 1 MB adversarial line is scanned in linear
+time; a cheap test of hint substrings skips the patterns for ordinary comments (``;TYPE:WALL-OUTER``).
+"""
+
+from __future__ import annotations
+
+import re
+from dataclasses import dataclass
+
+__all__ = ["Secret", "find", "mask", "has_secret", "MASK_CHAR"]
+
+MASK_CHAR = "*"
+
+
+@dataclass(frozen=True, slots=True)
+class Secret:
+    """A secret value at ``text[start:end]``; ``kind`` says what it looks like (for messages)."""
+
+    start: int
+    end: int
+    kind: str
+
+
+# Key names whose value is a secret.  "key" alone is not enough ("printhost_authorization_type = key").
+_KEYWORDS = re.compile(
+    r"(?i)api[_-]?key|apikey|api[_-]?token|access[_-]?token|auth[_-]?token|refresh[_-]?token"
+    r"|client[_-]?secret|private[_-]?key|secret|password|passwd|passphrase|pwd|token"
+)
+# After a keyword: the rest of the key name, an optional closing quote, "=" or ":", then the value
+# (quoted, or up to whitespace, ';', a quote, ',' or ')').  Every repetition is bounded.
+_AFTER_KEYWORD = re.compile(
+    r"""[A-Za-z0-9_.-]{0,40}["']?[ \t]{0,8}[=:][ \t]{0,8}(?:"([^"\r\n]{1,512})"|'([^'\r\n]{1,512})'|([^\s;"',)]{1,512}))"""
+)
+_URL_CREDENTIALS = re.compile(r"(?i)\b[a-z][a-z0-9+.-]{0,20}://[^\s/@:;\"'<>]{1,256}:([^\s/@;\"'<>]{1,256})@")
+_BEARER = re.compile(r"(?i)\bbearer[ \t]{1,8}([A-Za-z0-9._~+/=-]{8,512})")
+_TOKENS = re.compile(
+    r"\b(?:"
+    r"gh[pousr]_[A-Za-z0-9]{36}"  # GitHub tokens
+    r"|github_pat_[A-Za-z0-9_]{22,255}"
+    r"|AKIA[0-9A-Z]{16}"  # AWS access key id
+    r"|xox[baprs]-[A-Za-z0-9-]{10,200}"  # Slack
+    r"|glpat-[A-Za-z0-9_-]{20,64}"  # GitLab
+    r"|sk-[A-Za-z0-9_-]{20,200}"  # OpenAI-style secret keys
+    r"|eyJ[A-Za-z0-9_-]{8,2048}\.eyJ[A-Za-z0-9_-]{8,2048}\.[A-Za-z0-9_-]{8,2048}"  # JSON web tokens
+    r")(?![A-Za-z0-9_-])"
+)
+# OctoPrint API keys are 32 upper-case hex digits (uuid4().hex.upper()).
+_HEX_KEY = re.compile(r"(?<![0-9A-Za-z_-])(?=[0-9A-F]{0,31}[A-F])(?=[0-9A-F]{0,31}[0-9])[0-9A-F]{32}(?![0-9A-Za-z_-])")
+_PRIVATE_KEY = re.compile(r"-----BEGIN [A-Z ]{0,40}PRIVATE KEY-----")
+
+_HINTS = ("key", "pass", "secret", "token", "pwd", "bearer", "://", "ghp_", "gho_", "ghu_", "ghs_", "ghr_",
+          "github_pat_", "akia", "xox", "glpat-", "sk-", "eyj")
+
+# Values that are placeholders, not secrets: "; printhost_password = " has none, "= none", "= ***".
+_PLACEHOLDERS = frozenset({"none", "null", "nil", "false", "true", "no", "yes", "0", "1", "-", "''", '""', "n/a"})
+
+
+def _placeholder(value: str) -> bool:
+    v = value.strip().lower()
+    if not v or v in _PLACEHOLDERS:
+        return True
+    if len(set(v)) == 1 and v[0] in "*x.#?-_":
+        return True  # "****", "xxxx": already masked
+    return (v[0], v[-1]) in (("<", ">"), ("{", "}"), ("[", "]"), ("%", "%")) or v.startswith("$")
+
+
+def _hinted(text: str) -> bool:
+    lower = text.lower()
+    return any(h in lower for h in _HINTS)
+
+
+def find(text: str) -> list[Secret]:
+    """The secrets in ``text``, in order, not overlapping."""
+    found: list[Secret] = []
+    if len(text) >= 32:
+        for m in _HEX_KEY.finditer(text):
+            found.append(Secret(m.start(), m.end(), "API key"))
+        if "PRIVATE KEY-----" in text:
+            for m in _PRIVATE_KEY.finditer(text):
+                found.append(Secret(m.end(), len(text), "private key"))
+    if _hinted(text):
+        lower = text.lower()
+        pos = 0
+        while True:
+            k = _KEYWORDS.search(text, pos)
+            if k is None:
+                break
+            m = _AFTER_KEYWORD.match(text, k.end())
+            if m is None:
+                pos = k.end()
+                continue
+            group = 1 if m.group(1) is not None else 2 if m.group(2) is not None else 3
+            value = m.group(group)
+            if not _placeholder(value):
+                keyword = k.group(0).lower()
+                kind = "password" if "pass" in keyword or keyword == "pwd" else "token" if "token" in keyword else (
+                    "secret" if "secret" in keyword else "API key" if "key" in keyword else "secret")
+                found.append(Secret(m.start(group), m.end(group), kind))
+            pos = m.end()
+        if "://" in text and "@" in text:
+            for m in _URL_CREDENTIALS.finditer(text):
+                if not _placeholder(m.group(1)):
+                    found.append(Secret(m.start(1), m.end(1), "password in a URL"))
+        if "bearer" in lower:
+            for m in _BEARER.finditer(text):
+                found.append(Secret(m.start(1), m.end(1), "bearer token"))
+        for m in _TOKENS.finditer(text):
+            found.append(Secret(m.start(), m.end(), "access token"))
+    if len(found) <= 1:
+        return found
+    found.sort(key=lambda s: (s.start, -s.end))
+    merged: list[Secret] = []
+    for s in found:
+        if merged and s.start < merged[-1].end:
+            last = merged[-1]
+            if s.end > last.end:
+                merged[-1] = Secret(last.start, s.end, last.kind)
+            continue
+        merged.append(s)
+    return merged
+
+
+def has_secret(text: str) -> bool:
+    """True when ``text`` holds at least one secret."""
+    return bool(find(text))
+
+
+def mask(text: str) -> str:
+    """``text`` with every secret value replaced by ``*`` (same length); text without secrets is returned
+    as is (the same object), so calling it on every line of a report is cheap."""
+    if not text:
+        return text
+    secrets = find(text)
+    if not secrets:
+        return text
+    parts: list[str] = []
+    pos = 0
+    for s in secrets:
+        parts.append(text[pos : s.start])
+        parts.append(MASK_CHAR * (s.end - s.start))
+        pos = s.end
+    parts.append(text[pos:])
+    return "".join(parts)

@@ -1,0 +1,36 @@
+"""Recognise text files that are clearly not G-code (scripts, INI configuration, Org documents), so that
+``gclint check`` says so in one line instead of reporting every line as a parse error.
+
+Conservative on purpose: a G-code program never starts with a shebang, an INI section header, an Org
+heading, or a run of ``key = value`` lines, so none of these tests can refuse a real job.
+"""
+
+from __future__ import annotations
+
+import re
+
+_INI_SECTION = re.compile(r"\[[A-Za-z_][^\]\r\n]*\]\s*")
+_KEY_VALUE = re.compile(r"[A-Za-z_][A-Za-z0-9_.]*\s*=\s*")
+_ORG_HEADING = re.compile(r"\*+ \S")
+
+
+def not_gcode_reason(head: str) -> str | None:
+    """Why the text beginning with ``head`` is not G-code, or None when it may be G-code."""
+    if head.startswith("#!"):
+        first = head.split("\n", 1)[0].strip()
+        return f"a script ({first[:40]}), not G-code"
+    lines = [line.strip() for line in head.splitlines()[:200]]
+    content = [line for line in lines if line]
+    if not content:
+        return None
+    if _ORG_HEADING.match(content[0]):
+        return "an Org-mode document, not G-code"
+    code = [line for line in content if not line.startswith(("#", ";"))][:40]
+    if not code:
+        return None
+    if _INI_SECTION.fullmatch(code[0]):
+        return f"an INI configuration file (section {code[0]}), not G-code"
+    pairs = sum(1 for line in code if _KEY_VALUE.match(line))
+    if len(code) >= 3 and pairs >= 0.9 * len(code):
+        return "a 'key = value' configuration file (slicer or printer profile), not G-code"
+    return None
