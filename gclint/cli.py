@@ -24,6 +24,37 @@ class UsageFailure(click.ClickException):
     exit_code = 2
 
 
+class _Main(click.Group):
+    """The command group: whatever escapes a command becomes one line on stderr and exit code 2, never a
+    traceback (DESIGN.md).  ``GCLINT_DEBUG=1`` shows the traceback of an internal error."""
+
+    def invoke(self, ctx: click.Context):
+        try:
+            return super().invoke(ctx)
+        except (click.exceptions.ClickException, click.exceptions.Abort, click.exceptions.Exit):
+            raise
+        except OSError as exc:  # e.g. standard output on a full disk (> /dev/full) or a closed pipe
+            _abandon_stdout()
+            where = exc.filename if exc.filename is not None else "standard output"
+            raise UsageFailure(f"{where}: cannot write: {exc.strerror or exc}") from None
+        except Exception as exc:
+            if os.environ.get("GCLINT_DEBUG"):
+                raise
+            detail = f"{type(exc).__name__}: {exc}".splitlines()[0][:200]
+            raise UsageFailure(f"internal error: {detail} (please report it; GCLINT_DEBUG=1 shows the traceback)") from None
+
+
+def _abandon_stdout() -> None:
+    """After a failed write to standard output, point it at the null device so that the interpreter's final
+    flush does not print a second error."""
+    try:
+        devnull = os.open(os.devnull, os.O_WRONLY)
+        os.dup2(devnull, sys.stdout.fileno())
+        os.close(devnull)
+    except (OSError, ValueError, AttributeError):
+        pass
+
+
 def _fail(message: str) -> None:
     raise UsageFailure(message)
 
@@ -66,7 +97,7 @@ def _stdout_safe() -> None:
             pass
 
 
-@click.group(context_settings={"help_option_names": ["-h", "--help"], "max_content_width": 110})
+@click.group(cls=_Main, context_settings={"help_option_names": ["-h", "--help"], "max_content_width": 110})
 @click.version_option(__version__, "-V", "--version", prog_name="gclint")
 def main() -> None:
     """gclint: a linter and dialect translator for G-code, built first for Hyrel 3D printers."""
@@ -148,6 +179,7 @@ def check(
     if fix and "-" in files:
         _fail("--fix cannot rewrite standard input")
     from gclint import progress as progress_bar
+    from gclint.cache import ResultCache
 
     bar = progress_bar.ProgressBar(files) if progress_bar.wanted(progress, fmt, files) else None
     try:
@@ -162,6 +194,7 @@ def check(
             jobs=jobs or (runner.default_jobs() if len(files) > 1 else 1),
             stdin_name=stdin_filename or "-",
             progress=bar.advance if bar is not None else None,
+            cache=None if (no_cache or fix) else ResultCache(cache_dir),
         )
     except RuleError as exc:
         _fail(str(exc))
@@ -172,7 +205,14 @@ def check(
     if fix:
         from gclint.fixes import apply_fixes
 
-        results = [apply_fixes(r, unsafe=unsafe_fixes) if r.error is None else r for r in results]
+        fixed = []
+        for r in results:
+            if r.error is None:
+                # re-check with the very options of the first check (configuration and command line)
+                options = runner.options_for(r.path, Options(), overrides, config_file)
+                r = apply_fixes(r, unsafe=unsafe_fixes, linter=runner.linter_for(options))
+            fixed.append(r)
+        results = fixed
     results = problems + results
     for r in results:
         if r.error:
@@ -211,6 +251,11 @@ def _write_report(writer, results: list[FileResult], ctx, output: str | None) ->
 @click.option("--annotate", is_flag=True, help="Add a '; gclint: ...' comment on each changed or dropped line.")
 @click.option("--printer", "-p", metavar="MODEL", help="Hyrel model of the target.")
 @click.option("--tool-map", metavar="0=T2,...", help="Source tool index -> Hyrel head address.")
+@click.option("--flow", type=click.Choice(["evalues", "native"]), default=None,
+              help="Hyrel flow: keep the E amounts with M229 E1 D1 (evalues, default) or native flow (E1 markers).")
+@click.option("--set", "settings", multiple=True, metavar="KEY=VALUE",
+              help="Translation setting (repeatable): retract, fan-map, bed, chamber, temp-window, spindle, laser, "
+                   "air, max-feed, home-z, spindle-max-rpm.  See docs/translation.md.")
 @click.option("--config", "config_file", type=click.Path(dir_okay=False), help="Configuration file (else found upward).")
 def translate(
     input_path: str,
@@ -223,6 +268,8 @@ def translate(
     printer: str | None,
     tool_map: str | None,
     config_file: str | None,
+    flow: str | None = None,
+    settings: tuple[str, ...] = (),
 ) -> None:
     """Translate INPUT from one dialect to another (- for standard input)."""
     from gclint.translate.cli import run_translate
@@ -238,6 +285,13 @@ def translate(
     except ConfigError as exc:
         _fail(str(exc))
         return
+    from gclint.translate.options import parse_settings
+
+    try:
+        extra = parse_settings(settings)
+    except ValueError as exc:
+        _fail(str(exc))
+        return
     code = run_translate(
         input_path,
         src,
@@ -248,6 +302,8 @@ def translate(
         printer=_check_printer(printer),
         tool_map=mapping,
         config_file=config_file,
+        flow=flow,
+        settings=extra,
     )
     sys.exit(code)
 
@@ -301,6 +357,120 @@ def list_dialects() -> None:
         click.echo(f"{d.name:<11} {d.title}{aliases}")
     click.echo(f"{'auto':<11} detect from the file (directive, slicer header, codes); default {dialects.DEFAULT.name}")
 
+
+
+# -- explain ---------------------------------------------------------------------------------------------
+
+
+@main.command()
+@click.argument("file", required=False, type=click.Path(allow_dash=True))
+@click.option("--expression", "-e", "expressions", multiple=True, metavar="LINE",
+              help='G-code to explain, e.g. -e "M109 T0 S240 L10 U5" (repeatable; lines may be separated by \\n).')
+@click.option("--dialect", "-d", metavar="D", help="Dialect (default: detected from FILE; hyrel for -e).")
+@click.option("--format", "-f", "fmt", type=click.Choice(["text", "json"]), default="text", show_default=True)
+@click.option("--all-lines", is_flag=True, help="Also list lines with no command (comments, blank lines).")
+def explain(file: str | None, expressions: tuple[str, ...], dialect: str | None, fmt: str, all_lines: bool) -> None:
+    """Decode each command in the printer's own terms (FILE, - for stdin, or -e LINE)."""
+    import json
+
+    from gclint.explain import explain_source, explain_text
+    from gclint.syntax.source import Source, SourceError
+
+    if file and expressions:
+        _fail("give either FILE or -e LINE, not both")
+    if not file and not expressions:
+        _fail('nothing to explain: give a FILE or -e "M109 T0 S240"')
+    chosen = dialects.get(_check_dialect(dialect, allow_auto=True)) if dialect and dialect.lower() != "auto" else None  # type: ignore[arg-type]
+    if expressions:
+        text = "\n".join(e.replace("\\n", "\n") for e in expressions)
+        found = chosen or dialects.detect(text)[0] if dialect and dialect.lower() == "auto" else chosen or dialects.DEFAULT
+        items = explain_text(text, found)
+        source_name = "-e"
+    else:
+        try:
+            src = Source.open(file)  # type: ignore[arg-type]
+        except SourceError as exc:
+            _fail(str(exc))
+            return
+        found = chosen or dialects.detect(src.head_text(), file or "")[0]
+        items = explain_source(src, found)
+        source_name = file or "-"
+    try:
+        if fmt == "json":
+            click.echo(json.dumps({"dialect": found.name, "source": source_name,
+                                   "commands": [e.to_dict() for e in items]}, indent=2, ensure_ascii=False))
+            return
+        click.echo(f"; dialect: {found.name} ({found.title})")
+        last = None
+        for e in items:
+            if e.line != last:
+                click.echo(f"\n{e.line}: {e.source.strip()}" if source_name != "-e" else f"\n{e.source.strip()}")
+                last = e.line
+            click.echo(e.render())
+    except SourceError as exc:
+        _fail(str(exc))
+
+
+# -- slicer post-processing ------------------------------------------------------------------------------
+
+
+@main.command()
+@click.argument("path", type=click.Path(dir_okay=False))
+@click.option("--to", "target", metavar="D", help="Translate to this dialect first (e.g. hyrel); default: no translation.")
+@click.option("--from", "source", metavar="D", help="Dialect of the slicer's output (default: SLIC3R_GCODE_FLAVOR, else the header).")
+@click.option("--fail-on", type=click.Choice(["error", "warning", "never"]), default="error", show_default=True,
+              help="Exit 1 (the slicer stops the export) when a finding reaches this level.")
+@click.option("--printer", "-p", metavar="MODEL", help="Hyrel model of the target.")
+@click.option("--loaded", metavar="T0,T2", help="Head positions loaded on the yoke.")
+@click.option("--report", "report_path", type=click.Path(dir_okay=False), help="Report file (default: <output>.gclint.txt).")
+@click.option("--no-report", is_flag=True, help="Do not write a report file.")
+def postprocess(path: str, target: str | None, source: str | None, fail_on: str, printer: str | None, loaded: str | None,
+                report_path: str | None, no_report: bool) -> None:
+    """Slicer post-processing step: translate and check PATH in place (the path comes last)."""
+    from gclint import postprocess as pp
+
+    target_name = _check_dialect(target, allow_auto=False) if target else None
+    source_name = _check_dialect(source, allow_auto=True) if source else None
+    heads = None
+    if loaded is not None:
+        try:
+            heads = parse_heads(loaded)
+        except ConfigError as exc:
+            _fail(str(exc))
+    try:
+        code = pp.main(path, to=target_name, fail_on=fail_on, source=source_name, printer=_check_printer(printer),
+                       loaded=heads, report=report_path, no_report=no_report)
+    except RuleError as exc:
+        _fail(str(exc))
+        return
+    sys.exit(code)
+
+
+@main.command(name="cura-script")
+@click.option("--output", "-o", "folder", type=click.Path(file_okay=False), default=None,
+              help="Folder to write Gclint.py into (default: the current folder).")
+@click.option("--print", "to_stdout", is_flag=True, help="Print the script instead of writing it.")
+def cura_script(folder: str | None, to_stdout: bool) -> None:
+    """Write Gclint.py, a script for Cura's post-processing plugin."""
+    from gclint import cura_script as cs
+
+    if to_stdout:
+        click.echo(cs.render(), nl=False)
+        return
+    try:
+        path = cs.write(folder or ".")
+    except OSError as exc:
+        _fail(f"{folder or '.'}: cannot write {cs.SCRIPT_NAME}: {exc.strerror or exc}")
+        return
+    click.echo(f"wrote {path}")
+    folders = cs.cura_script_folders()
+    if folder is None:
+        if folders:
+            click.echo("Copy it into Cura's scripts folder, e.g.: " + str(folders[0]))
+        else:
+            click.echo("Copy it into the 'scripts' folder of Cura's configuration folder (Help > Show Configuration Folder).")
+    click.echo("Then restart Cura: Extensions > Post Processing > Modify G-Code > Add a script > gclint.")
+    click.echo("Note: Cura cannot stop an export; the script shows the findings and writes them into the G-code.")
 
 if __name__ == "__main__":  # pragma: no cover
     main()

@@ -188,7 +188,11 @@ class Linter:
         return self.check_source(source)
 
     def check_text(self, text: str, path: str = "<text>") -> FileResult:
-        return self.check_source(Source.from_text(text, path))
+        try:
+            source = Source.from_text(text, path)
+        except SourceError as exc:  # binary text (NUL bytes): a result with an error, as for check_path
+            return FileResult(path, error=str(exc))
+        return self.check_source(source)
 
     def check_source(self, source: Source) -> FileResult:
         path = source.display
@@ -347,7 +351,9 @@ class Linter:
 def _rule_failed(result: FileResult, rule: type[Rule], exc: Exception, line_number: int | None) -> None:
     """Record that ``rule`` raised while checking ``result.path``: one line for the user (exit code 2)."""
     where = f" at line {line_number}" if line_number is not None else ""
-    detail = f"{type(exc).__name__}: {exc}".splitlines()[0][:200] if str(exc) else type(exc).__name__
+    from gclint.secrets import mask  # the exception may quote file text
+
+    detail = mask(f"{type(exc).__name__}: {exc}".splitlines()[0][:200] if str(exc) else type(exc).__name__)
     origin = rule.__module__.split(".")[0]
     blame = "" if origin == "gclint" else f" from plugin module {rule.__module__!r}"
     message = (

@@ -13,7 +13,8 @@ from gclint.syntax.source import Source, SourceError
 
 
 def apply_fixes(result: FileResult, unsafe: bool = False, linter: Linter | None = None) -> FileResult:
-    """Fix ``result.path`` in place; returns the result of checking the fixed file."""
+    """Fix ``result.path`` in place; returns the result of checking the fixed file again with ``linter``
+    (pass the linter of the first check, so that its printer, loaded heads and selection apply)."""
     if any(f.code == "SX001" for f in result.findings):
         return result
     edits: dict[int, list[Edit]] = {}
@@ -38,13 +39,11 @@ def apply_fixes(result: FileResult, unsafe: bool = False, linter: Linter | None 
                     out.write(source.encode(text + ending))
     except (SourceError, OutputError) as exc:
         return FileResult(result.path, findings=result.findings, dialect=result.dialect, error=str(exc))
-    from gclint.runner import _linter  # the same options as the first check
-
     checker = linter
     if checker is None:
         from gclint.engine import Options
 
-        checker = _linter(Options(dialect=result.dialect or "auto"))
+        checker = Linter(Options(dialect=result.dialect or "auto"))
     return checker.check_path(result.path)
 
 

@@ -21,6 +21,9 @@ class AtomicWriter:
 
     def __init__(self, path: str, keep_mode_of: str | None = None) -> None:
         self.path = path
+        # Replace what a symbolic link points to, not the link (which would leave the real job untouched
+        # and turn the link into a copy).  Messages keep the name the user gave.
+        self._target = os.path.realpath(path) if os.path.islink(path) else path
         self.keep_mode_of = keep_mode_of
         self._tmp: str | None = None
         self._fh: BinaryIO | None = None
@@ -29,7 +32,7 @@ class AtomicWriter:
 
     def __enter__(self) -> "AtomicWriter":
         try:
-            st = os.stat(self.path)
+            st = os.stat(self._target)
             self._direct = not stat.S_ISREG(st.st_mode)
         except FileNotFoundError:
             self._direct = False
@@ -37,9 +40,9 @@ class AtomicWriter:
             raise OutputError(f"{self.path}: cannot write: {exc.strerror or exc}") from None
         try:
             if self._direct:
-                self._fh = open(self.path, "wb")  # noqa: SIM115
+                self._fh = open(self._target, "wb")  # noqa: SIM115
             else:
-                folder = os.path.dirname(os.path.abspath(self.path))
+                folder = os.path.dirname(os.path.abspath(self._target))
                 fd, self._tmp = tempfile.mkstemp(prefix=".gclint-", suffix=".tmp", dir=folder)
                 self._fh = os.fdopen(fd, "wb")
         except OSError as exc:
@@ -75,10 +78,10 @@ class AtomicWriter:
             return
         if self._tmp is not None:
             try:
-                source = self.keep_mode_of or (self.path if os.path.exists(self.path) else None)
+                source = self.keep_mode_of or (self._target if os.path.exists(self._target) else None)
                 if source is not None:
                     os.chmod(self._tmp, stat.S_IMODE(os.stat(source).st_mode))
-                os.replace(self._tmp, self.path)
+                os.replace(self._tmp, self._target)
             except OSError as err:
                 self._cleanup()
                 raise OutputError(f"{self.path}: cannot replace: {err.strerror or err}") from None

@@ -86,7 +86,7 @@ class ProgressBar:
         self._thread = threading.Thread(target=self._tick, name="gclint-progress", daemon=True)
         self._thread.start()
 
-    def __enter__(self) -> "ProgressBar":
+    def __enter__(self) -> ProgressBar:
         return self
 
     def __exit__(self, *exc) -> None:
@@ -107,7 +107,7 @@ class ProgressBar:
         if self.total:
             text += f"  {_size(self.done)}/{_size(self.total)}"
         text += f"  {_clock(elapsed)}"
-        if 0 < share < 1 and elapsed > 1:
+        if 0.1 <= share < 1 and elapsed > 1:  # earlier guesses swing too much to help
             text += f" left {_clock(elapsed / share - elapsed)}"
         bar_width = max(10, min(40, columns - len(text) - len("checking [] ") - 1))
         filled = int(bar_width * min(1.0, share))
@@ -150,6 +150,7 @@ class ProgressBar:
 
 def _columns(stream: TextIO) -> int:
     try:
-        return os.get_terminal_size(stream.fileno()).columns
+        columns = os.get_terminal_size(stream.fileno()).columns
     except (AttributeError, OSError, ValueError):
         return 80
+    return columns if columns > 0 else 80  # a terminal that does not say its size

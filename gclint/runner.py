@@ -7,11 +7,14 @@ import os
 from concurrent.futures import ProcessPoolExecutor
 from dataclasses import replace
 from pathlib import Path
-from typing import Callable, Iterable, Iterator
+from typing import TYPE_CHECKING, Callable, Iterable, Iterator
 
 from gclint.config import ConfigError, apply, config_for
 from gclint.engine import FileResult, Linter, Options
 from gclint.syntax.source import Source, SourceError
+
+if TYPE_CHECKING:
+    from gclint.cache import ResultCache
 
 GCODE_EXTENSIONS = (".gcode", ".gco", ".g", ".nc", ".ngc", ".cnc", ".tap")
 
@@ -64,6 +67,11 @@ def options_for(path: str, base: Options, overrides: dict, explicit_config: str 
 _LINTERS: dict[str, Linter] = {}
 
 
+def linter_for(options: Options) -> Linter:
+    """The (per-process, cached) linter for ``options``."""
+    return _linter(options)
+
+
 def _linter(options: Options) -> Linter:
     key = options.cache_key()
     linter = _LINTERS.get(key)
@@ -99,9 +107,15 @@ def run(
     jobs: int = 1,
     stdin_name: str = "-",
     progress: Callable[[FileResult], None] | None = None,
+    cache: "ResultCache | None" = None,
 ) -> list[FileResult]:
-    """Check ``files``; results come back in the order of ``files``."""
+    """Check ``files``; results come back in the order of ``files``.
+
+    With a ``cache``, files whose content, configuration and rule set are unchanged since the last run
+    are not checked again.
+    """
     tasks: list[tuple[str, Options]] = []
+    keys: dict[int, str] = {}
     results: dict[int, FileResult] = {}
     for index, path in enumerate(files):
         try:
@@ -117,12 +131,24 @@ def run(
                 results[index] = FileResult(stdin_name, error=str(exc))
             except Exception as exc:  # a bug in gclint itself: one line, no traceback
                 detail = f"{type(exc).__name__}: {exc}".splitlines()[0][:200]
-                results[index] = FileResult(stdin_name, error=f"{stdin_name}: internal error while checking ({detail}); please report this")
+                error = f"{stdin_name}: internal error while checking ({detail}); please report this"
+                results[index] = FileResult(stdin_name, error=error)
             continue
+        if cache is not None:
+            key = cache.settings_key(options.cache_key(), [r.code for r in _linter(options).rule_classes])
+            cached = cache.get(path, key)
+            if cached is not None:
+                results[index] = cached
+                if progress is not None:
+                    progress(cached)
+                continue
+            keys[index] = key
         tasks.append((path, options))
     order = [i for i in range(len(files)) if i not in results]
     for index, result in zip(order, _map(tasks, jobs)):
         results[index] = result
+        if cache is not None and index in keys:
+            cache.put(files[index], keys[index], result)
         if progress is not None:
             progress(result)
     return [results[i] for i in range(len(files))]

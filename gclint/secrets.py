@@ -11,8 +11,12 @@ same length (so columns and carets in reports stay aligned) and keeps the key na
 what leaked: ``; printhost_apikey = ********************************``.  Every output that prints file
 text (rule messages, ``Finding.source``, report source lines) should go through ``mask``.
 
-All patterns are bounded or anchored on a literal so that a 1 MB adversarial line is scanned in linear
-time; a cheap test of hint substrings skips the patterns for ordinary comments (``;TYPE:WALL-OUTER``).
+All patterns are bounded (possessive where giving characters back could only fail again) or anchored on a
+literal, so that a 1 MB adversarial line is scanned in linear time; a cheap test of hint substrings skips
+the patterns for ordinary comments (``;TYPE:WALL-OUTER``).
+
+Besides comments, one G-code command carries a secret by design: RepRapFirmware ``M587 S"network"
+P"password"`` (and ``M589`` for the access point) stores a WiFi password; its ``P`` value is masked too.
 """
 
 from __future__ import annotations
@@ -42,30 +46,85 @@ _KEYWORDS = re.compile(
 # After a keyword: the rest of the key name, an optional closing quote, "=" or ":", then the value
 # (quoted, or up to whitespace, ';', a quote, ',' or ')').  Every repetition is bounded.
 _AFTER_KEYWORD = re.compile(
-    r"""[A-Za-z0-9_.-]{0,40}["']?[ \t]{0,8}[=:][ \t]{0,8}(?:"([^"\r\n]{1,512})"|'([^'\r\n]{1,512})'|([^\s;"',)]{1,512}))"""
+    r"""[A-Za-z0-9_.-]{0,40}+["']?[ \t]{0,8}+[=:][ \t]{0,8}+"""
+    r"""(?:"([^"\r\n]{1,512})"|'([^'\r\n]{1,512})'|([^\s;"',)]{1,512}))"""
 )
 _URL_CREDENTIALS = re.compile(r"(?i)\b[a-z][a-z0-9+.-]{0,20}://[^\s/@:;\"'<>]{1,256}:([^\s/@;\"'<>]{1,256})@")
-_BEARER = re.compile(r"(?i)\bbearer[ \t]{1,8}([A-Za-z0-9._~+/=-]{8,512})")
+_BEARER = re.compile(r"(?i)\bbearer[ \t]{1,8}+([A-Za-z0-9._~+/=-]{8,512}+)")
 _TOKENS = re.compile(
     r"\b(?:"
     r"gh[pousr]_[A-Za-z0-9]{36}"  # GitHub tokens
-    r"|github_pat_[A-Za-z0-9_]{22,255}"
+    r"|github_pat_[A-Za-z0-9_]{22,255}+"
     r"|AKIA[0-9A-Z]{16}"  # AWS access key id
-    r"|xox[baprs]-[A-Za-z0-9-]{10,200}"  # Slack
-    r"|glpat-[A-Za-z0-9_-]{20,64}"  # GitLab
-    r"|sk-[A-Za-z0-9_-]{20,200}"  # OpenAI-style secret keys
+    r"|xox[baprs]-[A-Za-z0-9-]{10,200}+"  # Slack
+    r"|glpat-[A-Za-z0-9_-]{20,64}+"  # GitLab
+    r"|sk-[A-Za-z0-9_-]{20,200}+"  # OpenAI-style secret keys
     r"|eyJ[A-Za-z0-9_-]{8,2048}\.eyJ[A-Za-z0-9_-]{8,2048}\.[A-Za-z0-9_-]{8,2048}"  # JSON web tokens
     r")(?![A-Za-z0-9_-])"
 )
 # OctoPrint API keys are 32 upper-case hex digits (uuid4().hex.upper()).
 _HEX_KEY = re.compile(r"(?<![0-9A-Za-z_-])(?=[0-9A-F]{0,31}[A-F])(?=[0-9A-F]{0,31}[0-9])[0-9A-F]{32}(?![0-9A-Za-z_-])")
 _PRIVATE_KEY = re.compile(r"-----BEGIN [A-Z ]{0,40}PRIVATE KEY-----")
+# RepRapFirmware WiFi credentials: M587 S"ssid" P"password" (M589: access point).
+_WIFI = re.compile(
+    r'(?i)(?<![A-Za-z0-9])M0{0,4}58[79](?![\d.])[^;\r\n]{0,300}?(?<![A-Za-z0-9])P[ \t]{0,4}+"((?:[^"\r\n]|""){1,256}+)"'
+)
 
-_HINTS = ("key", "pass", "secret", "token", "pwd", "bearer", "://", "ghp_", "gho_", "ghu_", "ghs_", "ghr_",
-          "github_pat_", "akia", "xox", "glpat-", "sk-", "eyj")
+_HEX_RUN = re.compile(r"[0-9A-F]{32}")
+
+
+def _hinted(text: str) -> bool:
+    """Whether any pattern could match (the common case, ";TYPE:Perimeter", stops here).  A chain of
+    substring tests: several times faster than one case-insensitive regex or a loop."""
+    t = text.lower()
+    return (
+        "key" in t
+        or "pass" in t
+        or "secret" in t
+        or "token" in t
+        or "pwd" in t
+        or "bearer" in t
+        or "://" in t
+        or "gh" in t
+        or "akia" in t
+        or "xox" in t
+        or "glpat-" in t
+        or "sk-" in t
+        or "eyj" in t
+        or "58" in t
+    )
+
 
 # Values that are placeholders, not secrets: "; printhost_password = " has none, "= none", "= ***".
-_PLACEHOLDERS = frozenset({"none", "null", "nil", "false", "true", "no", "yes", "0", "1", "-", "''", '""', "n/a"})
+_PLACEHOLDERS = frozenset(
+    {
+        "none",
+        "null",
+        "nil",
+        "false",
+        "true",
+        "no",
+        "yes",
+        "0",
+        "1",
+        "-",
+        "''",
+        '""',
+        "n/a",
+        "password",
+        "passwd",
+        "secret",
+        "changeme",
+        "apikey",
+        "api_key",
+        "token",
+        "your_password",
+        "yourpassword",
+        "your_api_key",
+        "your-api-key",
+        "your_token",
+    }
+)
 
 
 def _placeholder(value: str) -> bool:
@@ -77,22 +136,27 @@ def _placeholder(value: str) -> bool:
     return (v[0], v[-1]) in (("<", ">"), ("{", "}"), ("[", "]"), ("%", "%")) or v.startswith("$")
 
 
-def _hinted(text: str) -> bool:
-    lower = text.lower()
-    return any(h in lower for h in _HINTS)
+def _kind(keyword: str) -> str:
+    keyword = keyword.lower()
+    if "pass" in keyword or keyword == "pwd":
+        return "password"
+    if "token" in keyword:
+        return "token"
+    if "key" in keyword:
+        return "API key"
+    return "secret"
 
 
 def find(text: str) -> list[Secret]:
     """The secrets in ``text``, in order, not overlapping."""
     found: list[Secret] = []
-    if len(text) >= 32:
+    if len(text) >= 32 and _HEX_RUN.search(text):
         for m in _HEX_KEY.finditer(text):
             found.append(Secret(m.start(), m.end(), "API key"))
+    if _hinted(text):
         if "PRIVATE KEY-----" in text:
             for m in _PRIVATE_KEY.finditer(text):
                 found.append(Secret(m.end(), len(text), "private key"))
-    if _hinted(text):
-        lower = text.lower()
         pos = 0
         while True:
             k = _KEYWORDS.search(text, pos)
@@ -105,20 +169,20 @@ def find(text: str) -> list[Secret]:
             group = 1 if m.group(1) is not None else 2 if m.group(2) is not None else 3
             value = m.group(group)
             if not _placeholder(value):
-                keyword = k.group(0).lower()
-                kind = "password" if "pass" in keyword or keyword == "pwd" else "token" if "token" in keyword else (
-                    "secret" if "secret" in keyword else "API key" if "key" in keyword else "secret")
-                found.append(Secret(m.start(group), m.end(group), kind))
+                found.append(Secret(m.start(group), m.end(group), _kind(k.group(0))))
             pos = m.end()
         if "://" in text and "@" in text:
             for m in _URL_CREDENTIALS.finditer(text):
                 if not _placeholder(m.group(1)):
                     found.append(Secret(m.start(1), m.end(1), "password in a URL"))
-        if "bearer" in lower:
-            for m in _BEARER.finditer(text):
-                found.append(Secret(m.start(1), m.end(1), "bearer token"))
+        for m in _BEARER.finditer(text):
+            found.append(Secret(m.start(1), m.end(1), "bearer token"))
         for m in _TOKENS.finditer(text):
             found.append(Secret(m.start(), m.end(), "access token"))
+        if "58" in text:
+            for m in _WIFI.finditer(text):
+                if not _placeholder(m.group(1)):
+                    found.append(Secret(m.start(1), m.end(1), "WiFi password"))
     if len(found) <= 1:
         return found
     found.sort(key=lambda s: (s.start, -s.end))

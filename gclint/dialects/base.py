@@ -63,15 +63,41 @@ class Code:
     params: Mapping[str, Param] | None = None
     supported: bool = True
     source: str = ""
+    meanings: Mapping[str, str] | None = None  # letter -> meaning when ``params`` is not catalogued (explain)
 
     def param(self, letter: str) -> Param | None:
         return None if self.params is None else self.params.get(letter)
+
+    def meaning(self, letter: str) -> str | None:
+        """What parameter ``letter`` means, from the catalogue or the uncatalogued meanings."""
+        param = self.param(letter)
+        if param is not None and param.meaning:
+            return param.meaning
+        return self.meanings.get(letter) if self.meanings else None
 
 
 def code(name: str, summary: str = "", *params: Param, source: str = "", supported: bool = True, open_params: bool = False) -> Code:
     """Shorthand for a ``Code`` whose parameters are listed (``open_params`` leaves them unchecked)."""
     table = None if open_params else {p.letter: p for p in params}
-    return Code(name, summary, table, supported, source)
+    meanings = {p.letter: p.meaning for p in params} if open_params and params else None
+    return Code(name, summary, table, supported, source, meanings)
+
+
+def describe(codes_table: dict[str, Code], descriptions: Mapping[str, str | tuple[str, Mapping[str, str]]]) -> dict[str, Code]:
+    """Give codes of ``codes_table`` a summary and parameter meanings (what ``gclint explain`` prints).
+
+    ``descriptions`` maps a code to ``"summary"`` or ``("summary", {"S": "meaning", ...})``.  Only codes
+    already in the table are described (a description never adds a code), and a catalogued parameter
+    table is left as it is.
+    """
+    out = dict(codes_table)
+    for name, description in descriptions.items():
+        existing = out.get(name)
+        if existing is None:
+            continue
+        summary, meanings = (description, None) if isinstance(description, str) else description
+        out[name] = replace(existing, summary=summary or existing.summary, meanings=dict(meanings) if meanings else existing.meanings)
+    return out
 
 
 def codes(names: Iterable[str] | str, summary: str = "") -> list[Code]:

@@ -6,7 +6,7 @@ in grbl mode: G4 P is seconds; M3 S is RPM; M6 T is an automatic tool change; M7
 
 from __future__ import annotations
 
-from gclint.dialects.base import Detection, Dialect, codes, span, table
+from gclint.dialects.base import Detection, Dialect, codes, describe, span, table
 
 _G = (
     "G0 G1 G2 G3 G4 G10 G17 G18 G19 G20 G21 G28 G28.1 G29 G30 G31 G32 G33 G38.2 G38.3 G38.4 G38.5 G53 G54 G55"
@@ -23,6 +23,58 @@ _M = (
     " M887 M888 M957 M958 M1000"
 )
 
+# What the common codes do, for ``gclint explain`` (seeds/carvera-mcodes.md; Smoothieware in grbl mode).
+_MOVE = {"X": "X", "Y": "Y", "Z": "Z", "A": "A axis (4th axis, degrees)", "F": "feed rate, mm/min", "S": "laser power or spindle speed"}
+_DESCRIPTIONS = {
+    "G0": ("rapid move", _MOVE),
+    "G1": ("linear move at feed rate", _MOVE),
+    "G2": ("clockwise arc", {**_MOVE, "I": "center X offset", "J": "center Y offset", "K": "center Z offset", "R": "radius"}),
+    "G3": ("counter-clockwise arc", {**_MOVE, "I": "center X offset", "J": "center Y offset", "K": "center Z offset", "R": "radius"}),
+    "G4": ("dwell", {"P": "seconds (grbl mode)", "S": "seconds"}),
+    "G10": ("set a work coordinate system", {"L": "L2: values, L20: so the current position gets them", "P": "coordinate system number"}),
+    "G17": "arc plane XY", "G18": "arc plane XZ", "G19": "arc plane YZ",
+    "G20": "units are inches", "G21": "units are millimetres",
+    "G28": "go to the clearance position",
+    "G38.2": "probe toward the workpiece, stop on contact, error if none",
+    "G53": "move in machine coordinates (this line only)",
+    "G54": "use work coordinate system 1", "G55": "use work coordinate system 2", "G56": "use work coordinate system 3",
+    "G57": "use work coordinate system 4", "G58": "use work coordinate system 5", "G59": "use work coordinate system 6",
+    "G90": "absolute positioning", "G91": "relative positioning",
+    "G92": ("set the current position (offset)", _MOVE),
+    "M1": "optional stop (pauses when M333 optional stop mode is on)",
+    "M2": "end of program: stop the spindle and the air",
+    "M3": ("start the spindle", {"S": "speed, RPM"}),
+    "M5": "stop the spindle",
+    "M6": ("automatic tool change (ATC) and tool length offset", {"T": "tool number (T0 wireless probe, T-1 none)"}),
+    "M7": "air on", "M9": "air off",
+    "M30": "end of program (no action on the Carvera)",
+    "M98": ("run a macro from gcodes/macros", {"P": "macro number"}),
+    "M99": "return from a subprogram",
+    "M203": ("maximum feed rates, mm/s", {"X": "X", "Y": "Y", "Z": "Z"}),
+    "M220": ("feed speed override", {"S": "percent"}),
+    "M221": ("soft endstops", {"S": "S0 off, S1 on"}),
+    "M223": ("spindle speed override", {"S": "percent"}),
+    "M321": "enter laser mode (drops the tool, calibrates the collet)",
+    "M322": "exit laser mode",
+    "M323": "laser test mode (very low power, for focusing)",
+    "M324": "exit laser test mode",
+    "M325": ("laser power override", {"S": "percent"}),
+    "M331": "auto vacuum on (runs with the spindle)",
+    "M332": "auto vacuum off",
+    "M400": "wait until every move is finished",
+    "M490.1": "tighten the spindle collet",
+    "M490.2": "loosen the collet and drop the tool",
+    "M491": "calibrate the tool length offset of the current tool",
+    "M493.2": ("set the current tool number", {"T": "tool (T-1 empty, T0 probe)"}),
+    "M600": "pause the current file",
+    "M601": "resume the current file",
+    "M801": ("vacuum on", {"S": "power, percent"}),
+    "M802": "vacuum off",
+    "M811": ("spindle cooling fan on", {"S": "power, percent"}),
+    "M812": "spindle cooling fan off",
+    "M821": "light on", "M822": "light off",
+}
+
 
 def _open(code: str) -> bool:
     return code[0] == "T" or "#" in code
@@ -32,7 +84,7 @@ CARVERA = Dialect(
     name="carvera",
     title="Makera Carvera (Smoothieware community firmware)",
     family="smoothie",
-    codes=table(codes(_G), codes(_M)),
+    codes=describe(table(codes(_G), codes(_M)), _DESCRIPTIONS),
     aliases=("smoothieware", "makera"),
     detection=Detection(
         patterns=(

@@ -41,6 +41,8 @@ _WAIT = [
     P("R", "stop waiting within +/- this many degrees of S"),
     P("W", "W0: set, do not wait until M116 (v5+)", choices=(0,)),
 ]
+# M109 Wait for Temp (Head): "Sn ... is the new set temperature in °C"; a head below 0 °C is a typo (HY051).
+_WAIT_HEAD = [P("S", "set temperature, C (optional)", minimum=0, rule="HY051") if p.letter == "S" else p for p in _WAIT]
 
 _ARC = [
     P("X", "end X"),
@@ -113,7 +115,8 @@ _PRIME = [
 HYREL_CODES = table(
     # -- Controlling Movement -------------------------------------------------------------------------
     code("G0", "rapid (non-working) move", *_axes("target"), P("F", "one-shot feed rate, mm/min"),
-         P("E", "not meaningful on G0 (HY030)"), P("H", "apply M660 register"), source="G0 Rapid Move"),
+         P("E", "not meaningful on G0 (HY030)"),
+         P("H", "apply the M660 tool-height register", minimum=0, maximum=59, integer=True, rule="HY034"), source="G0 Rapid Move"),
     code("G1", "working move", *_axes("target"), P("E", "printing move (amount used only under M229 E1)"),
          P("F", "feed rate, mm/min (persistent)"), P("H", "apply the M660 tool-height register", minimum=0, maximum=59, integer=True, rule="HY034"),
          P("S", "one-shot flow multiplier", minimum=0, maximum=15.99, rule="HY033"), source="G1 Working Move"),
@@ -140,7 +143,7 @@ HYREL_CODES = table(
          P("C", "range used by all later M106 (100 default, 255 for slicers)", minimum=1, maximum=255, rule="HY012"),
          P("P", "duty during extrusion moves only, percent", rule="HY011", **PCT), source="M106 Set Cooling / Etc."),
     code("M107", "fan / UV LED off", P("T", "target head"), source="M107 Stop Cooling / Etc."),
-    code("M109", "wait for head temperature", *_WAIT, source="M109 Wait for Temp (Head)"),
+    code("M109", "wait for head temperature", *_WAIT_HEAD, source="M109 Wait for Temp (Head)"),
     code("M116", "wait for all temperatures set with W0 (v5+)", source="M116 Wait for Temps (v5+)"),
     code("M140", "set bed temperature (no wait)", P("S", "temperature, C", minimum=-50), P("T", "target bed (default primary)"),
          source="M140 Set Temp (Bed)"),
@@ -304,8 +307,13 @@ HYREL_V5 = Dialect(
 HYREL_V4 = HYREL_V5.derive(
     "hyrel-v4",
     "Hyrel (Repetrel v4: T variables are device addresses T11-T15, T21-T25...)",
-    remove=["M116"],
     add=[
+        # "M116 is supported with version 5.x and later" (Gcode page): known, but not supported (HY027).
+        Code("M116", "wait for W0 temperatures (v5+ only: not on v4)", {}, False, "M116 Wait for Temps (v5+)"),
+        # v4 M702 seeds group S (50-57) with device T's settings (hyrel_v4.md section 4: 4.200c).
+        code("M702", "seed group S (50-57) with device T's settings (v4)", P("T", "device whose settings are copied"),
+             P("S", "group number", required=True, minimum=50, maximum=57, integer=True, rule="HY022"),
+             source="T_v4 / hyrel_v4.md section 4"),
         # v4 M703/M704 give a device an alias (hyrel_v4.md section 4); the v5 squad form needs S, but v4
         # jobs also use other letters (M703 T14 P10 in the corpus), so nothing is required here.
         code("M703", "add alias S to device T (v4)", P("T", "device"), P("S", "alias"), P("P", "firmware parameter"), P("C", "seed group (4.0 firmware)"),

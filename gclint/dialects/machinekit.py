@@ -7,7 +7,7 @@ language is LinuxCNC's RS274NGC: O-words, #parameters, [expressions], user M-cod
 
 from __future__ import annotations
 
-from gclint.dialects.base import Detection, Dialect, Param, code, codes, span, table
+from gclint.dialects.base import Detection, Dialect, Param, code, codes, describe, span, table
 
 P = Param
 
@@ -40,12 +40,68 @@ _FDM = [
     *codes("G22 G23 G28 G29 G29.1 G29.2 G30 M226 M280 M300 M400 M420 M700 M701 M702 M710 M600 M601 M306"),
 ]
 
+# What the common RS274NGC codes do, for ``gclint explain`` (LinuxCNC G-code and M-code references).
+_MOVE = {"X": "X", "Y": "Y", "Z": "Z", "A": "A axis", "B": "B axis", "C": "C axis", "F": "feed rate (G94: units/min)"}
+_CYCLE = {**_MOVE, "R": "retract plane", "P": "dwell at the bottom, s", "Q": "peck increment", "L": "repeats"}
+_DESCRIPTIONS = {
+    "G0": ("rapid move", _MOVE),
+    "G1": ("linear move at feed rate", _MOVE),
+    "G2": ("clockwise arc", {**_MOVE, "I": "center X offset", "J": "center Y offset", "K": "center Z offset", "R": "radius",
+                             "P": "number of turns"}),
+    "G3": ("counter-clockwise arc", {**_MOVE, "I": "center X offset", "J": "center Y offset", "K": "center Z offset", "R": "radius",
+                                     "P": "number of turns"}),
+    "G4": ("dwell", {"P": "seconds"}),
+    "G10": ("set the tool table or a coordinate system", {"L": "what to set (L1/L10 tool, L2/L20 coordinate system)",
+                                                          "P": "tool or coordinate system number", "R": "radius"}),
+    "G17": "arc plane XY", "G18": "arc plane XZ", "G19": "arc plane YZ",
+    "G20": "units are inches", "G21": "units are millimetres",
+    "G28": "go to the position stored with G28.1 (through the listed axes' intermediate point)",
+    "G28.1": "store the current absolute position for G28",
+    "G30": "go to the position stored with G30.1",
+    "G33": "spindle-synchronised motion (threading)",
+    "G38.2": "straight probe toward the workpiece, stop on contact, error if no contact",
+    "G40": "cutter compensation off",
+    "G41": ("cutter compensation left", {"D": "tool number"}),
+    "G42": ("cutter compensation right", {"D": "tool number"}),
+    "G43": ("tool length offset", {"H": "tool number (default: the loaded tool)"}),
+    "G49": "cancel tool length offset",
+    "G53": "move in machine coordinates (this line only)",
+    "G54": "use coordinate system 1", "G55": "use coordinate system 2", "G56": "use coordinate system 3",
+    "G57": "use coordinate system 4", "G58": "use coordinate system 5", "G59": "use coordinate system 6",
+    "G61": "exact path mode",
+    "G64": ("path blending", {"P": "path tolerance", "Q": "naive cam tolerance"}),
+    "G80": "cancel canned cycle",
+    "G81": ("drilling cycle", _CYCLE), "G82": ("drilling cycle with dwell", _CYCLE), "G83": ("peck drilling cycle", _CYCLE),
+    "G90": "absolute distance mode", "G91": "incremental distance mode",
+    "G92": ("coordinate system offset: the current point gets these values", _MOVE),
+    "G93": "inverse time feed mode", "G94": "units per minute feed mode", "G95": "units per revolution feed mode",
+    "G98": "canned cycles return to the initial level", "G99": "canned cycles return to the R level",
+    "M0": "pause the program (resume with cycle start)",
+    "M1": "optional pause",
+    "M2": "end of program",
+    "M3": ("spindle on, clockwise", {"S": "speed, RPM"}),
+    "M4": ("spindle on, counter-clockwise", {"S": "speed, RPM"}),
+    "M5": "spindle off",
+    "M6": ("tool change to the tool selected by T", {"T": "tool number"}),
+    "M7": "mist coolant on", "M8": "flood coolant on", "M9": "coolant off",
+    "M30": "end of program (rewind)",
+    "M60": "pallet change pause",
+    "M61": ("set the current tool number without a change", {"Q": "tool number"}),
+    "M62": ("digital output on, synchronised with motion", {"P": "output number"}),
+    "M63": ("digital output off, synchronised with motion", {"P": "output number"}),
+    "M64": ("digital output on, now", {"P": "output number"}),
+    "M65": ("digital output off, now", {"P": "output number"}),
+    "M66": ("wait on an input", {"P": "digital input", "E": "analog input", "L": "wait mode", "Q": "time-out, s"}),
+    "M67": ("analog output, synchronised with motion", {"E": "output number", "Q": "value"}),
+    "M68": ("analog output, now", {"E": "output number", "Q": "value"}),
+}
+
 
 def _open(code: str) -> bool:
     # T<n> selects a tool; M100-M199 are user M-codes (external programs); G#<x> codes are computed.
     if code[0] == "T" or "#" in code or "[" in code:
         return True
-    if code[0] == "M" and code[1:].isdigit():
+    if code[0] == "M" and code[1:].isdigit() and len(code) <= 4:  # no int() of a 5000-digit code
         return 100 <= int(code[1:]) <= 199
     return False
 
@@ -54,7 +110,7 @@ MACHINEKIT = Dialect(
     name="machinekit",
     title="Machinekit FDM / LinuxCNC (RS274NGC with the FDM remaps)",
     family="linuxcnc",
-    codes=table(codes(_LINUXCNC_G), codes(_LINUXCNC_M), _FDM),
+    codes=describe(table(codes(_LINUXCNC_G), codes(_LINUXCNC_M), _FDM), _DESCRIPTIONS),
     aliases=("linuxcnc", "machinekit-fdm"),
     detection=Detection(
         patterns=(

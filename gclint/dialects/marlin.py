@@ -8,7 +8,7 @@ Klipper hosts read Marlin-flavour files.
 
 from __future__ import annotations
 
-from gclint.dialects.base import Detection, Dialect, codes, span, table
+from gclint.dialects.base import Detection, Dialect, codes, describe, span, table
 
 _G = (
     "G0 G1 G2 G3 G4 G5 G6 G10 G11 G12 G17 G18 G19 G20 G21 G26 G27 G28 G29 G29.1 G29.2 G30 G31 G32 G33 G34 G35"
@@ -35,6 +35,80 @@ _VENDOR = (
     " M400 G29.1 G29.2 G39 G150 G383 G392 M190 M106 M104 M109"
 )
 
+# What the common codes do, for ``gclint explain`` (Marlin G-code reference, marlinfw.org; dialects.md 1 [MAR]).
+_MOVE = {"X": "X", "Y": "Y", "Z": "Z", "E": "extruder position", "F": "feed rate, mm/min (modal)", "S": "laser power (laser mode)"}
+_DESCRIPTIONS = {
+    "G0": ("rapid move (Marlin treats G0 like G1)", _MOVE),
+    "G1": ("linear move", _MOVE),
+    "G2": ("clockwise arc", {**_MOVE, "I": "center X offset from the start", "J": "center Y offset from the start",
+                             "R": "radius", "P": "number of full circles"}),
+    "G3": ("counter-clockwise arc", {**_MOVE, "I": "center X offset from the start", "J": "center Y offset from the start",
+                                     "R": "radius", "P": "number of full circles"}),
+    "G4": ("dwell", {"P": "milliseconds", "S": "seconds"}),
+    "G10": ("retract (firmware retraction)", {"S": "S1: swap retraction (multi-extruder)"}),
+    "G11": "recover (unretract) after G10",
+    "G20": "units are inches",
+    "G21": "units are millimetres",
+    "G28": ("auto home (all axes, or only the listed ones)", {"X": "home X", "Y": "home Y", "Z": "home Z",
+                                                            "O": "skip if already homed", "R": "raise Z first, mm"}),
+    "G29": "bed leveling (probe the bed)",
+    "G90": "absolute positioning (also absolute E)",
+    "G91": "relative positioning (also relative E)",
+    "G92": ("set the current position (no move)", {"X": "new X", "Y": "new Y", "Z": "new Z", "E": "new E position"}),
+    "M0": ("stop and wait for the user", {"P": "time out, ms", "S": "time out, s"}),
+    "M1": ("stop and wait for the user", {"P": "time out, ms", "S": "time out, s"}),
+    "M3": ("spindle or laser on, clockwise", {"S": "speed or power", "I": "inline laser mode"}),
+    "M4": ("spindle or laser on, counter-clockwise", {"S": "speed or power", "I": "inline laser mode"}),
+    "M5": "spindle or laser off",
+    "M17": "enable the steppers",
+    "M18": ("disable the steppers", {"S": "inactivity time-out, s"}),
+    "M73": ("set print progress (display)", {"P": "percent done", "R": "minutes remaining"}),
+    "M82": "absolute E values",
+    "M83": "relative E values",
+    "M84": ("disable the steppers", {"S": "inactivity time-out, s"}),
+    "M104": ("set hotend temperature (no wait)", {"S": "target temperature, C", "T": "extruder index", "B": "autotemp maximum",
+                                                  "F": "autotemp flag", "I": "material preset index"}),
+    "M105": "report temperatures",
+    "M106": ("set fan speed", {"P": "fan index", "S": "speed 0-255", "T": "secondary speed"}),
+    "M107": ("fan off", {"P": "fan index"}),
+    "M109": ("wait for hotend temperature", {"S": "target; wait only while heating", "R": "target; wait while heating or cooling",
+                                             "T": "extruder index", "B": "autotemp maximum", "F": "autotemp flag"}),
+    "M110": ("set the current line number", {"N": "line number"}),
+    "M112": "emergency stop",
+    "M114": "report the current position",
+    "M115": "report firmware information",
+    "M117": "show a message on the display",
+    "M118": "print a message to the host",
+    "M140": ("set bed temperature (no wait)", {"S": "target temperature, C", "I": "material preset index"}),
+    "M141": ("set chamber temperature (no wait)", {"S": "target temperature, C"}),
+    "M190": ("wait for bed temperature", {"S": "target; wait only while heating", "R": "target; wait while heating or cooling"}),
+    "M191": ("wait for chamber temperature", {"S": "target; wait only while heating", "R": "target; wait while heating or cooling"}),
+    "M200": ("filament diameter (volumetric extrusion)", {"D": "diameter, mm", "T": "extruder index"}),
+    "M201": ("maximum acceleration per axis, units/s²", {"X": "X", "Y": "Y", "Z": "Z", "E": "E"}),
+    "M203": ("maximum feed rate per axis, units/s", {"X": "X", "Y": "Y", "Z": "Z", "E": "E"}),
+    "M204": ("starting accelerations, units/s²", {"P": "printing moves", "R": "retracts", "T": "travel moves", "S": "printing and travel (legacy)"}),
+    "M205": ("advanced motion settings", {"B": "minimum segment time, µs", "E": "E jerk", "J": "junction deviation, mm",
+                                          "S": "minimum feed rate", "T": "minimum travel feed rate", "X": "X jerk", "Y": "Y jerk", "Z": "Z jerk"}),
+    "M206": ("home offsets", {"X": "X", "Y": "Y", "Z": "Z"}),
+    "M207": ("firmware retraction settings", {"S": "length, mm", "F": "feed rate, mm/min", "Z": "Z lift, mm"}),
+    "M220": ("feed rate percentage", {"S": "percent"}),
+    "M221": ("flow percentage", {"S": "percent", "T": "extruder index"}),
+    "M290": ("babystep", {"Z": "Z distance, mm"}),
+    "M300": ("play a tone", {"S": "frequency, Hz", "P": "duration, ms"}),
+    "M400": "wait until every move is finished",
+    "M420": ("bed leveling state", {"S": "S1 enable, S0 disable", "Z": "fade height, mm"}),
+    "M486": ("label or cancel objects", {"T": "number of objects", "S": "current object index", "C": "cancel the current object",
+                                         "P": "cancel object index", "U": "un-cancel object index"}),
+    "M500": "save settings to EEPROM",
+    "M501": "load settings from EEPROM",
+    "M502": "reset settings to factory defaults",
+    "M503": "report settings",
+    "M600": "filament change (pause, unload, load)",
+    "M862.1": ("check nozzle diameter (Prusa)", {"P": "diameter, mm"}),
+    "M862.3": ("check printer model (Prusa)", {"P": "model name"}),
+    "M900": ("linear advance", {"K": "advance factor"}),
+}
+
 
 def _open(code: str) -> bool:
     # T<n> selects extruder n; Marlin's "T" alone and Prusa MMU's T?/Tx/Tc are accepted too.
@@ -45,7 +119,7 @@ MARLIN = Dialect(
     name="marlin",
     title="Marlin 2.x (Marlin-flavour slicer output, Prusa, Bambu, Klipper hosts)",
     family="reprap",
-    codes=table(codes(_G), codes(_M), codes(_VENDOR), codes(span("M", 810, 819))),
+    codes=describe(table(codes(_G), codes(_M), codes(_VENDOR), codes(span("M", 810, 819))), _DESCRIPTIONS),
     aliases=("marlin2", "prusa", "klipper"),
     detection=Detection(
         patterns=(

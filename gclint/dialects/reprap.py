@@ -6,10 +6,10 @@ a macro file for a code it does not know (sys/M<n>.g, sys/G<n>.g), so unknown co
 
 from __future__ import annotations
 
-from gclint.dialects.base import Detection, Dialect, codes, span, table
+from gclint.dialects.base import Detection, Dialect, codes, describe, span, table
 
 _G = (
-    "G0 G1 G2 G3 G4 G10 G11 G17 G18 G19 G20 G21 G22 G23 G29 G30 G31 G32 G38.2 G38.3 G38.4 G38.5 G53 G54 G55"
+    "G0 G1 G2 G3 G4 G10 G11 G17 G18 G19 G20 G21 G22 G23 G28 G29 G30 G31 G32 G38.2 G38.3 G38.4 G38.5 G53 G54 G55"
     " G56 G57 G58 G59 G59.1 G59.2 G59.3 G60 G68 G69 G90 G91 G92 G93 G94"
 )
 _M = (
@@ -28,6 +28,72 @@ _M = (
 
 META_KEYWORDS = frozenset("if elif else while break continue var global set echo abort return".split())
 
+# What the common codes do, for ``gclint explain`` (Duet G-code dictionary; dialects.md 1 [RRF]).
+_MOVE = {"X": "X", "Y": "Y", "Z": "Z", "E": "extruder position", "F": "feed rate, mm/min (modal)",
+         "H": "H1: homing move that stops at the endstop, H2: move motors individually"}
+_DESCRIPTIONS = {
+    "G0": ("rapid move", _MOVE),
+    "G1": ("linear move", _MOVE),
+    "G2": ("clockwise arc", {**_MOVE, "I": "center X offset", "J": "center Y offset", "R": "radius"}),
+    "G3": ("counter-clockwise arc", {**_MOVE, "I": "center X offset", "J": "center Y offset", "R": "radius"}),
+    "G4": ("dwell", {"P": "milliseconds", "S": "seconds"}),
+    "G10": ("tool offsets and temperatures (with P), else firmware retraction",
+            {"P": "tool number", "X": "X offset", "Y": "Y offset", "Z": "Z offset", "R": "standby temperature, C", "S": "active temperature, C"}),
+    "G11": "unretract (firmware retraction)",
+    "G20": "units are inches",
+    "G21": "units are millimetres",
+    "G28": ("home (runs homeall.g, or homex.g... for the listed axes)", {"X": "home X", "Y": "home Y", "Z": "home Z"}),
+    "G29": "mesh bed compensation (probe, load or stop)",
+    "G30": "single Z probe",
+    "G32": "run bed.g (bed levelling)",
+    "G90": "absolute positioning",
+    "G91": "relative positioning",
+    "G92": ("set the current position (no move)", {"X": "new X", "Y": "new Y", "Z": "new Z", "E": "new E position"}),
+    "M0": "stop: cancel the print (runs stop.g)",
+    "M1": "sleep (runs sleep.g)",
+    "M3": ("spindle or laser on, clockwise", {"S": "speed or power", "P": "spindle number"}),
+    "M4": ("spindle on, counter-clockwise", {"S": "speed", "P": "spindle number"}),
+    "M5": "spindle or laser off",
+    "M82": "absolute E values",
+    "M83": "relative E values",
+    "M84": "disable the motors",
+    "M98": ("run a macro file", {"P": "file name"}),
+    "M99": "return from a macro",
+    "M104": ("set tool temperature (no wait)", {"S": "active temperature, C", "R": "standby temperature, C", "T": "tool number"}),
+    "M106": ("fan speed", {"P": "fan number", "S": "speed, 0-1 or 0-255", "H": "thermostatic heaters", "T": "thermostatic temperature"}),
+    "M107": "fan 0 off",
+    "M109": ("set tool temperature and wait", {"S": "active temperature, C", "R": "standby temperature, C", "T": "tool number"}),
+    "M116": ("wait for temperatures", {"P": "tool number", "H": "heater number", "C": "chamber", "S": "tolerance, C"}),
+    "M117": "show a message",
+    "M118": ("send a message", {"P": "destination", "S": "the message"}),
+    "M140": ("set bed temperature (no wait)", {"S": "active temperature, C", "R": "standby temperature, C", "H": "heater number"}),
+    "M141": ("set chamber temperature (no wait)", {"S": "temperature, C", "H": "heater number"}),
+    "M190": ("wait for bed temperature", {"S": "target; wait only while heating", "R": "target; wait while heating or cooling"}),
+    "M191": ("wait for chamber temperature", {"S": "target; wait only while heating", "R": "target; wait while heating or cooling"}),
+    "M201": ("maximum accelerations, mm/s²", {"X": "X", "Y": "Y", "Z": "Z", "E": "E"}),
+    "M203": ("maximum feed rates, mm/min", {"X": "X", "Y": "Y", "Z": "Z", "E": "E", "I": "minimum overall speed"}),
+    "M204": ("accelerations", {"P": "printing moves, mm/s²", "T": "travel moves, mm/s²"}),
+    "M207": ("firmware retraction settings", {"S": "length, mm", "R": "extra restart length, mm", "F": "retract speed, mm/min",
+                                              "T": "unretract speed, mm/min", "Z": "Z hop, mm"}),
+    "M220": ("speed factor", {"S": "percent"}),
+    "M221": ("extrusion factor", {"S": "percent", "D": "extruder drive"}),
+    "M291": ("show a message box", {"P": "message", "R": "title", "S": "mode (0-7)", "T": "time-out, s"}),
+    "M292": "acknowledge a message box",
+    "M400": "wait until every move is finished",
+    "M500": "save parameters to config-override.g",
+    "M550": ("set the machine name", {"P": "name"}),
+    "M563": ("define a tool", {"P": "tool number", "D": "extruder drives", "H": "heaters", "F": "fans", "S": "name"}),
+    "M566": ("maximum instantaneous speed changes (jerk), mm/min", {"X": "X", "Y": "Y", "Z": "Z", "E": "E"}),
+    "M568": ("tool settings", {"P": "tool number", "S": "active temperature, C", "R": "standby temperature, C", "A": "heater state"}),
+    "M569": ("stepper driver settings", {"P": "driver number", "S": "direction"}),
+    "M572": ("pressure advance", {"D": "extruder drive", "S": "seconds"}),
+    "M574": "endstop configuration",
+    "M584": "map axes to drivers",
+    "M906": ("motor currents, mA", {"X": "X", "Y": "Y", "Z": "Z", "E": "E", "I": "idle factor, percent"}),
+    "M950": ("create a heater, fan, spindle or GPIO port", {"H": "heater", "F": "fan", "P": "GPIO output", "J": "GPIO input",
+                                                            "C": "pin name", "Q": "PWM frequency, Hz", "T": "sensor number"}),
+}
+
 
 def _open(code: str) -> bool:
     # Tools T0-T49, T-1 (deselect), T with an expression; any other G/M code may be a macro file.
@@ -38,7 +104,7 @@ REPRAP = Dialect(
     name="reprap",
     title="RepRapFirmware 3.x (Duet)",
     family="reprap",
-    codes=table(codes(_G), codes(_M)),
+    codes=describe(table(codes(_G), codes(_M)), _DESCRIPTIONS),
     aliases=("rrf", "reprapfirmware", "duet"),
     detection=Detection(
         patterns=(

@@ -72,6 +72,12 @@ class Interpreter:
             mode = self.state.motion_mode
             if mode is not None and any(a in cmd.params for a in _AXES):
                 self._motion(cmd, line, mode)
+            elif "F" in cmd.params and self.family in ("linuxcnc", "smoothie"):
+                # a lone F word sets the modal feed (LinuxCNC, Carvera/grbl): "F1000" on its own line
+                try:
+                    self.state.feed = float(cmd.params["F"] or "")
+                except ValueError:
+                    self.state.feed = None
         elif cmd.kind == GCODE and cmd.code and cmd.code[0] == "T":
             self._tool(cmd, line)
 
@@ -194,6 +200,8 @@ class Interpreter:
                 if mode != "G0":
                     st.working_feed_set = True
         st.moved = True
+        if st.first_move_line is None:
+            st.first_move_line = line.number
         if mode in _MOTION:
             st.motion_mode = mode
         e = p.get("E")
@@ -202,13 +210,18 @@ class Interpreter:
                 if not st.printed:
                     st.printed = True
                     st.first_print_line = line.number
+                if st.first_print_since_home_line is None:
+                    st.first_print_since_home_line = line.number
+                if st.first_print_since_m30_line is None:
+                    st.first_print_since_m30_line = line.number
             self._advance_e(e)
         if self.family == "hyrel":
             h = p.get("H")
             if h is not None:
                 register = _int(h)
+                if register != st.applied_height_register or st.applied_height_line is None:
+                    st.applied_height_line = line.number
                 st.applied_height_register = register
-                st.applied_height_line = line.number
 
     def _is_printing(self, e: str | None) -> bool:
         # Hyrel native flow: "E will trigger a working or printing move" whatever its value (G1 section);
@@ -277,6 +290,7 @@ class Interpreter:
             st.fixture_offsets_active = False
             st.applied_height_register = None
             st.applied_height_line = None
+            st.first_print_since_home_line = None
         elif self.family == "reprap":
             homed = listed or ["X", "Y", "Z"]  # Marlin/RRF: bare G28 homes all axes
         else:
@@ -339,8 +353,9 @@ class Interpreter:
             self.state.tool_line = line.number
 
     def _declare_head(self, cmd: Command, line: Line) -> None:
-        # Repetrel sends "M6 T# O..." for every loaded head at job start (T_v5, Default Mode)
-        address = self.address(cmd)
+        # Repetrel sends "M6 T# O..." for every loaded head at job start (T_v5, Default Mode); an M6 T#
+        # without O is a tool change written the CNC way (HY038), not a declaration
+        address = self.address(cmd) if "O" in cmd.params else None
         if address is not None and address.position is not None:
             self.state.declared_heads.setdefault(address.position, line.number)
 
@@ -352,8 +367,9 @@ class Interpreter:
     def _m703(self, cmd: Command, line: Line) -> None:
         squad = _int(cmd.params.get("S"))
         head = self.target(cmd)
-        if squad is not None and 30 <= squad <= 39 and head is not None:
-            self.state.squads.setdefault(squad, set()).add(head)
+        # "M703 adds a single head to the Clone Squad we established with an M702" (T_v5): no M702, no squad
+        if squad in self.state.squads and head is not None:
+            self.state.squads[squad].add(head)  # type: ignore[index]
 
     def _m704(self, cmd: Command, line: Line) -> None:
         squad = _int(cmd.params.get("S"))
@@ -382,6 +398,8 @@ class Interpreter:
             w = cmd.params.get("W")
             if w is not None and _int(w) == 0:
                 st.pending_w0[target] = line.number
+            else:  # a plain wait on the device also waits for what an earlier W0 set
+                st.pending_w0.pop(target, None)
 
     def _fan_range(self, cmd: Command, line: Line) -> None:
         c = cmd.get("C")
@@ -453,6 +471,8 @@ class Interpreter:
         st.fan_range_line = None
         st.tool_height_offsets.clear()
         st.applied_height_register = None
+        st.applied_height_line = None
+        st.first_print_since_m30_line = None
         if st.squads:
             st.squads_dissolved_line = line.number
         st.squads.clear()

@@ -91,7 +91,7 @@ class MachineState:
     # tool-height offsets (Hyrel M660 H.. Z.. then G1 H..)
     tool_height_offsets: dict[int, float | None] = field(default_factory=dict)
     applied_height_register: int | None = None
-    applied_height_line: int | None = None
+    applied_height_line: int | None = None  # where the applied register was first applied (repeats keep it)
 
     # homing and motors
     homed_axes: set[str] = field(default_factory=set)
@@ -113,6 +113,9 @@ class MachineState:
     moved: bool = False  # any motion command so far
     printed: bool = False  # any printing (working, extruding) move so far
     first_print_line: int | None = None
+    first_move_line: int | None = None  # first G0/G1/G2/G3 (or spiral) move; homing does not count
+    first_print_since_home_line: int | None = None  # first printing move after the last Hyrel G28
+    first_print_since_m30_line: int | None = None  # first printing move after the last M30
     after_m30: bool = False
     m30_line: int | None = None
     line_number: int = 0  # the line being processed

@@ -9,7 +9,7 @@ its own way (HTML autoescape, XML escaping, GitHub command escaping); these help
 from __future__ import annotations
 
 import re
-from typing import Callable
+from collections.abc import Callable
 
 from gclint.engine import FileResult
 from gclint.rules.base import Finding

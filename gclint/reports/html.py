@@ -10,7 +10,7 @@ from __future__ import annotations
 
 import secrets as _random
 from dataclasses import dataclass, field
-from datetime import datetime, timezone
+from datetime import UTC, datetime
 from typing import TextIO
 
 from gclint.engine import FileResult
@@ -199,7 +199,7 @@ def render(results: list[FileResult], ctx, plot_budget: int = 6000) -> str:
     docs = rule_docs(codes_in(results))
     return template.render(
         version=ctx.tool_version,
-        generated=datetime.now(timezone.utc).strftime("%Y-%m-%d %H:%M UTC"),
+        generated=datetime.now(UTC).strftime("%Y-%m-%d %H:%M UTC"),
         files=files,
         totals=totals(results),
         unreadable=sum(1 for r in results if r.error),

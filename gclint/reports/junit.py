@@ -11,7 +11,7 @@ from __future__ import annotations
 
 import socket
 import xml.etree.ElementTree as ET
-from datetime import datetime, timezone
+from datetime import UTC, datetime
 from typing import TextIO
 
 from gclint.engine import FileResult
@@ -19,7 +19,7 @@ from gclint.reports.common import message, printable, source_line
 
 
 def build(results: list[FileResult], ctx) -> ET.Element:
-    timestamp = datetime.now(timezone.utc).replace(microsecond=0).strftime("%Y-%m-%dT%H:%M:%S")
+    timestamp = datetime.now(UTC).replace(microsecond=0).strftime("%Y-%m-%dT%H:%M:%S")
     hostname = printable(socket.gethostname() or "localhost")
     suites = ET.Element("testsuites", name="gclint")
     total_tests = total_failures = total_errors = 0

@@ -250,17 +250,25 @@ def all_rules() -> dict[str, type[Rule]]:
 def _load_plugins() -> None:
     from importlib.metadata import entry_points
 
+    import types
+
     for ep in entry_points(group="gclint.rules"):
+        plugin = f"rule plugin {ep.name!r} ({ep.value})"
         try:
             obj = ep.load()
-        except Exception as exc:  # a broken plugin must name itself, not crash gclint
-            raise RuleError(f"rule plugin {ep.name!r} ({ep.value}) failed to load: {type(exc).__name__}: {exc}") from None
-        if isinstance(obj, type) and issubclass(obj, Rule):
-            register(obj)
-        elif isinstance(obj, (list, tuple)):
-            for item in obj:
-                if isinstance(item, type) and issubclass(item, Rule):
-                    register(item)
+        except (Exception, SystemExit) as exc:  # a broken plugin must name itself, not crash gclint
+            detail = f"{type(exc).__name__}: {exc}".splitlines()[0][:200]
+            raise RuleError(f"{plugin} failed to load: {detail}") from None
+        if isinstance(obj, types.ModuleType):
+            continue  # importing the module registered its rules
+        items = obj if isinstance(obj, (list, tuple)) else [obj]
+        for item in items:
+            if not (isinstance(item, type) and issubclass(item, Rule)):
+                raise RuleError(f"{plugin} is not a module, a Rule subclass or a list of them: {item!r}"[:300])
+            try:
+                register(item)
+            except RuleError as exc:
+                raise RuleError(f"{plugin}: {exc}") from None
 
 
 def select_rules(rules: Iterable[type[Rule]], select: Iterable[str] | None, ignore: Iterable[str]) -> list[type[Rule]]:

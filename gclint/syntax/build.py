@@ -71,6 +71,14 @@ class Assignment:
         self.value = value
 
 
+MAX_DIGITS = 30  # per side of the decimal point; the fast path's patterns use the same bound
+
+
+def _too_long(value: str) -> bool:
+    whole, _, frac = value.lstrip("+-").partition(".")
+    return len(whole) > MAX_DIGITS or len(frac) > MAX_DIGITS
+
+
 def code_of(word: Word) -> str:
     """The normalised command code of a G/M/T word."""
     if word.kind == NUMBER and word.value is not None and is_number(word.value):
@@ -107,10 +115,13 @@ def assemble(
             checksum = None
         if isinstance(piece, Word):
             letter = piece.letter
-            if piece.kind == NUMBER and piece.value is not None and not is_number(piece.value):
-                issues.append(
-                    Issue(BAD_NUMBER, piece.column, f"{letter} value {piece.value!r} is not a number")
-                )
+            if piece.kind == NUMBER and piece.value is not None:
+                if not is_number(piece.value):
+                    issues.append(Issue(BAD_NUMBER, piece.column, f"{letter} value {piece.value!r} is not a number"))
+                elif _too_long(piece.value):
+                    issues.append(
+                        Issue(BAD_NUMBER, piece.column, f"{letter} value has {len(piece.value)} characters: no firmware reads a number this long")
+                    )
             # G and M words start a command; so does a T that starts the line or follows another T
             # command (T2M6, T1 T2).  A G, M or T with no value after a command is a flag parameter
             # (Bambu "M620 M", Marlin "M20 T", RepRapFirmware "T T{expr}").

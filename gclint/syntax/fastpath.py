@@ -26,8 +26,9 @@ from gclint.syntax.nodes import GCODE, NUMBER, Command, Comment, ParsedLine, Wor
 # Unambiguous ("\d+\.?\d*" can split a run of digits many ways: exponential backtracking on a long
 # line of words that ends in junk).  The canonical pattern also uses possessive quantifiers: it never
 # needs to backtrack, and that makes it about 25% faster.
-_NUM = r"[-+]?(?:\d+(?:\.\d*)?|\.\d+)"
-_NUM_P = r"[-+]?+(?:\d++(?:\.\d*+)?+|\.\d++)"
+# At most 30 digits before and after the point: longer numbers are reported (SX006) by the grammar path.
+_NUM = r"[-+]?(?:\d{1,30}(?:\.\d{0,30})?|\.\d{1,30})"
+_NUM_P = r"[-+]?+(?:\d{1,30}+(?:\.\d{0,30}+)?+|\.\d{1,30}+)"
 _CANON = re.compile(rf"[ \t]*+[A-Z]{_NUM_P}(?:[ \t]++[A-Z]{_NUM_P})*+[ \t]*+")
 _GENERAL = re.compile(rf"[ \t]*(?:[A-Za-z][ \t]*{_NUM}[ \t]*)+")
 _WORD = re.compile(rf"([A-Za-z])[ \t]*({_NUM})")

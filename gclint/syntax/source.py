@@ -152,7 +152,12 @@ class Source:
         pending = ""
         while True:
             final = not data
-            pending += decoder.decode(data, final=final)
+            try:
+                pending += decoder.decode(data, final=final)
+            except UnicodeDecodeError:  # an odd number of bytes: cut short, or not UTF-16 at all
+                raise SourceError(
+                    f"{self.display}: starts with a UTF-16 byte order mark but is not valid UTF-16 text"
+                ) from None
             cut = max(pending.rfind("\n"), pending.rfind("\r"))
             if cut >= 0 and (final or cut < len(pending) - 1 or pending[cut] == "\n"):
                 yield split_lines(pending[: cut + 1])

@@ -1,1 +1,647 @@
-"""(rules added by the Hyrel rules work)"""
+"""HY addressing rules: which head a T number names, whether it exists on the printer, whether it is
+loaded, v4 numbers in v5 files, clone squads.
+
+Sources: the T_v5 page (../shared/seeds/hyrel-T_v5-addressing.wiki.txt: "Chart of Addresses", the
+per-model tables, "Default Mode", "Explicit Mode", "Error Messages", M702-M704), the Gcode page
+("Understanding the T", "T Tool Change") and ../shared/research/hyrel_v4.md (v4 device addresses and the
+v4 -> v5 map), as catalogued in ../shared/research/dialects.md section 3 (H40-H46).
+
+A "T command" is a line ``T3`` (changes the focused head); a "T variable" is the T word of an M-code
+(``M104 T3 S200``: the device the command acts on).  ``Interpreter.address`` resolves T variables and
+``Interpreter.tool_command_address`` T commands, with the numbering of the file's dialect (v4 files are
+translated to v5 positions), so these rules speak v5 positions whatever the file.
+"""
+
+from __future__ import annotations
+
+from gclint.dialects.addressing import (
+    AUX,
+    BED,
+    GROUP,
+    HEAD,
+    LASER,
+    RESERVED,
+    SPINDLE,
+    V4_STYLE_VARIABLES,
+    VIRTUAL,
+    Address,
+    resolve_v4_variable,
+    resolve_v5,
+)
+from gclint.dialects.base import Dialect, Param
+from gclint.rules.base import ANY_T, Edit, Fix, Rule, Severity, register
+from gclint.rules.dialect import ParamTableRule
+from gclint.syntax.nodes import Command, Line, Word, is_number
+
+# -- helpers shared by the HY rules ------------------------------------------------------------------
+
+
+def int_value(text: str | None) -> int | None:
+    """A whole-number parameter value (``"12"``, ``"12.0"``), or None."""
+    if text is None or len(text) > 12 or not is_number(text):
+        return None
+    value = float(text)
+    return int(value) if value == int(value) else None
+
+
+def is_v5(ctx) -> bool:
+    """True for a file read with v5 addressing (dialect ``hyrel``), False for ``hyrel-v4``."""
+    return ctx.dialect.extras.get("firmware") == 5
+
+
+def t_variable_codes(dialect: Dialect) -> tuple[str, ...]:
+    """The codes whose T parameter is an address (a T variable) in the dialect's table."""
+    return tuple(code for code, spec in dialect.codes.items() if spec.params and "T" in spec.params)
+
+
+def reported_as_v4(ctx, cmd: Command, letter: str = "T") -> bool:
+    """True when HY008 reports this word as a v4 device number in a v5 file.
+
+    The other address rules then leave it alone: one cause, one finding (HY008 says what it most
+    likely means and how to write it in v5).
+    """
+    if not is_v5(ctx) or not ctx.enabled("HY008"):
+        return False
+    return int_value(cmd.params.get(letter)) in V4_STYLE_VARIABLES
+
+
+def heads_text(heads) -> str:
+    return ", ".join(f"T{h}" for h in sorted(heads)) or "none"
+
+
+def _t_number(cmd: Command) -> str:
+    return cmd.code[1:] if cmd.code else ""
+
+
+# -- HY006 ---------------------------------------------------------------------------------------------
+
+
+@register
+class ToolNotLoaded(Rule):
+    code = "HY006"
+    name = "tool-not-loaded"
+    severity = Severity.WARNING
+    summary = "A T command selects a head position where no head is loaded"
+    explanation = """
+        A T command moves Repetrel's focus to the head in that tool position.  When a job is loaded,
+        Repetrel "check[s] which heads are called out with T commands in your gcode ... and we compare
+        that with which tool positions on the yoke actually have heads.  If there is any mismatch,
+        warning message popups will appear."  gclint makes the same comparison before the job reaches
+        the printer.
+
+        The loaded heads come from `--loaded T0,T2` (or `loaded = ["T0", "T2"]` in the configuration);
+        without them, from the job header, where Repetrel writes one `M6 T# O...` line for every loaded
+        head.  When neither says which heads are loaded, the rule stays silent.  Each position is
+        reported once, at its first T command.  A position the printer model does not have at all is
+        HY007.
+    """
+    example_bad = """
+        M6 T0 O1 X0 Y0 Z0
+        T1
+    """
+    example_good = """
+        M6 T0 O1 X0 Y0 Z0
+        M6 T1 O2 X0 Y0 Z0
+        T1
+    """
+    source = "T_v5, Error Messages and Default Mode (M6 T# O... for every loaded head) (catalogue H43)"
+    codes = (ANY_T,)
+    families = ("hyrel",)
+
+    def __init__(self, ctx) -> None:
+        super().__init__(ctx)
+        self.seen: set[int] = set()
+        self.pending: list[tuple[Line, Command, Address]] = []  # waiting for the whole header (no --loaded)
+
+    def check(self, line: Line, cmd: Command) -> None:
+        address = self.ctx.interpreter.tool_command_address(cmd)
+        if address is None or address.position is None:
+            return
+        position = address.position
+        if position in self.seen:
+            return
+        self.seen.add(position)
+        if position not in self.ctx.profile.positions:
+            return  # HY007: the model has no such position
+        loaded = self.state.loaded_heads
+        if loaded is not None:
+            if position not in loaded:
+                self._report(line, cmd, address, f"loaded: {heads_text(loaded)}, from --loaded or the configuration")
+        else:
+            self.pending.append((line, cmd, address))
+
+    def finish(self) -> None:
+        declared = self.state.declared_heads
+        if self.state.loaded_heads is not None or not declared:
+            return  # nobody says which heads are loaded: stay silent
+        for line, cmd, address in self.pending:
+            if address.position not in declared:
+                self._report(line, cmd, address, f"the job header declares {heads_text(declared)} with M6 T# O...")
+
+    def _report(self, line: Line, cmd: Command, address: Address, where: str) -> None:
+        self.report(
+            line,
+            f"{cmd.code} selects {address.label}, but no head is loaded there ({where}); "
+            "Repetrel warns about the mismatch when the job is loaded",
+            node=cmd,
+        )
+
+
+# -- HY007 ---------------------------------------------------------------------------------------------
+
+
+@register
+class ToolBeyondModel(Rule):
+    code = "HY007"
+    name = "tool-beyond-model"
+    severity = Severity.ERROR
+    summary = "A T command or T variable names a head position the printer model does not have"
+    explanation = """
+        Each Hyrel model has a fixed number of tool positions (T_v5, "Using the T with ..."): the
+        System 30M and Engine SR have four (T0-T3), the Engine HR and the single-yoke Hydra 16A five
+        (T0-T4), the dual-yoke Hydra 16A ten (T0-T9).  T10-T19 exist only on three- and four-yoke units.
+        A T command or an M-code addressed to a position the model lacks selects or heats nothing, and
+        the moves that follow run with the wrong head.  Choose the printer with `--printer` (or
+        `printer = "16a-dual"` in the configuration); the default is the 30m.
+    """
+    example_bad = """
+        ; gclint-test: printer=30m
+        T4
+    """
+    example_good = """
+        ; gclint-test: printer=ehr
+        T4
+    """
+    source = (
+        "T_v5, Chart of Addresses and Using the T with the ESR and 30M / EHR and 16A / 16A (Dual Yoke) (catalogue H44)"
+    )
+    families = ("hyrel",)
+
+    def __init__(self, ctx) -> None:
+        super().__init__(ctx)
+        self.codes = (ANY_T, *t_variable_codes(ctx.dialect))  # type: ignore[misc]
+
+    def check(self, line: Line, cmd: Command) -> None:
+        interpreter = self.ctx.interpreter
+        address = interpreter.tool_command_address(cmd)
+        node: Command | Word | None = cmd
+        if address is None:
+            if reported_as_v4(self.ctx, cmd):
+                return
+            address = interpreter.address(cmd)
+            node = cmd.param("T")
+            what = f"{cmd.code} T{cmd.params.get('T')}"
+        else:
+            what = str(cmd.code)
+        if address is None or address.kind != HEAD:
+            return
+        profile = self.ctx.profile
+        if address.position not in profile.positions:
+            self.report(
+                line,
+                f"{what} names {address.label}, but a {profile.name} has tool positions "
+                f"{profile.describe_positions()} only ({profile.title})",
+                node=node,
+            )
+
+
+# -- HY008 ---------------------------------------------------------------------------------------------
+
+# The kinds of device a code's T variable can sensibly name, read as v5 (T_v5 chart; the Gcode page
+# "T# is the target head / bed / chamber / tool position").  Codes not listed take any device.
+_HEADS = frozenset({HEAD, VIRTUAL, GROUP})
+_FITS: dict[str, frozenset[str]] = {
+    **{c: _HEADS for c in "M104 M109 M106 M107 M221 M701 M702 M703 M704 M721 M722 M723 M728 M783".split()},  # noqa: SIM905
+    **{c: frozenset({BED, GROUP}) for c in ("M140", "M141", "M190", "M191")},
+    "M6": frozenset({HEAD, VIRTUAL, SPINDLE, LASER}),
+    "M620": frozenset({HEAD, LASER, GROUP}),
+    "M3": frozenset({HEAD, SPINDLE, GROUP}),
+    "M4": frozenset({HEAD, SPINDLE, GROUP}),
+    "M5": frozenset({HEAD, SPINDLE, GROUP}),
+    "G81": frozenset({HEAD, SPINDLE}),
+    "G38": frozenset({HEAD}),
+}
+_ANY_DEVICE = frozenset({HEAD, VIRTUAL, GROUP, SPINDLE, LASER, AUX, BED})
+_MAX_KEPT = 50_000  # findings kept for the end of the file (memory stays bounded on absurd files)
+
+
+@register
+class V4AddressingInV5(Rule):
+    code = "HY008"
+    name = "v4-addressing-in-v5"
+    severity = Severity.WARNING
+    fixable = True
+    summary = "A T variable uses v4 device numbering (T11-T15, T21-T25, T90-T92, T100...) in a v5 file"
+    explanation = """
+        Before Repetrel v5, "the nomenclature for T Commands and the T Variables were not the same": a
+        tool change said `T1`, but the M-codes for that head said `T12` (yoke 1 heads were T11-T15, yoke 2
+        T21-T25, the aux port T16, the spindle T26, the beds T91/T92, all beds T90, all heads T100, all
+        devices T0).  In v5 "T0 always means the first head on the first yoke, regardless of how or why we
+        are referring to it", so the old numbers name other devices or none: v4 `M109 T12 S200` heats
+        the second head, v5 reads it as head T12 on a third yoke that the printer does not have.
+
+        The rule reports T variables with v4 numbers whose v5 meaning does not fit the command (a head
+        the model lacks, a laser asked for a head temperature, an address that does not exist).  Numbers
+        that would make sense either way (`M140 T24` is Bed1 in v5) are reported only when the same
+        file uses v4 numbering elsewhere.  M703/M704 S values that are v4 head numbers are reported
+        too (`M703 T14 S12`: in v5, `S` is the head to copy).
+
+        Fix: `gclint check --fix` rewrites the number to its v5 address where the v4 -> v5 map is
+        certain (research/hyrel_v4.md, confidence "high"); never in a file with a parse error.  To
+        check a v4 job as v4 instead, use `--dialect hyrel-v4`.
+    """
+    example_bad = """
+        M6 T12 O2 X0 Y0 Z0
+        M109 T12 S200
+    """
+    example_good = """
+        M6 T1 O2 X0 Y0 Z0
+        M109 T1 S200
+    """
+    source = (
+        "Gcode page, Understanding the T; T_v5, The T and Chart of Addresses "
+        "(catalogue: research/hyrel_v4.md sections 1-3)"
+    )
+    families = ("hyrel",)
+    on_issue = True
+
+    def __init__(self, ctx) -> None:
+        super().__init__(ctx)
+        self.codes = t_variable_codes(ctx.dialect) if is_v5(ctx) else ()  # type: ignore[misc]
+        self.definite: list[tuple[Line, Word, str, int | None]] = []  # v5 meaning does not fit: surely v4
+        self.ambiguous: list[tuple[Line, Word, str, int | None]] = []  # would also make sense in v5
+        self.unparsable = False
+
+    def check_issues(self, line: Line) -> None:
+        if any(issue.code == "SX001" for issue in line.issues):
+            self.unparsable = True  # a fix is never applied to a file that does not parse
+
+    def check(self, line: Line, cmd: Command) -> None:
+        params = cmd.params
+        number = int_value(params.get("T"))
+        if number in V4_STYLE_VARIABLES:
+            self._variable(line, cmd, "T", number)  # type: ignore[arg-type]
+        if cmd.code in ("M703", "M704"):
+            number = int_value(params.get("S"))
+            if number in V4_STYLE_VARIABLES:
+                self._copied_head(line, cmd, number)  # type: ignore[arg-type]
+
+    def _variable(self, line: Line, cmd: Command, letter: str, number: int) -> None:
+        v4 = resolve_v4_variable(number)
+        v5 = resolve_v5(number)
+        problem = self._misfit(cmd.code, v5)  # type: ignore[arg-type]
+        word = cmd.param(letter)
+        if word is None:
+            return
+        target = v4.v5 if v4.certain else None
+        if problem is None:
+            message = (
+                f"{cmd.code} {letter}{number}: {letter}{number} is the v4 device address of {v4.label}; "
+                f"in v5 it is {v5.label}"
+            )
+            if len(self.ambiguous) < _MAX_KEPT:
+                self.ambiguous.append((line, word, message, target))
+            return
+        message = (
+            f"{cmd.code} {letter}{number} looks like v4 numbering: in v4 it is {v4.label}; "
+            f"in v5 {letter}{number} is {v5.label}{problem}"
+        )
+        if len(self.definite) < _MAX_KEPT:
+            self.definite.append((line, word, message, target))
+
+    def _copied_head(self, line: Line, cmd: Command, number: int) -> None:
+        # M703/M704 S: in v4 an alias (a device address, "M703 T14 S12": the pen answers to head 12);
+        # in v5 a squad (30-39) or "the head which T# will duplicate" (T_v5, M703).
+        v4 = resolve_v4_variable(number)
+        if v4.kind != HEAD:
+            return
+        v5 = resolve_v5(number)
+        if v5.kind == HEAD and v5.position in self.ctx.profile.positions:
+            return
+        word = cmd.param("S")
+        if word is None:
+            return
+        message = (
+            f"{cmd.code} S{number} looks like v4 numbering: in v4 S{number} is {v4.label}; in v5 S names the "
+            f"head to copy, and S{number} is {v5.label}{self._beyond(v5)}"
+        )
+        if len(self.definite) < _MAX_KEPT:
+            self.definite.append((line, word, message, v4.v5 if v4.certain else None))
+
+    def _misfit(self, code: str, v5: Address) -> str | None:
+        """Why the v5 reading does not fit the command, or None when it does."""
+        if v5.kind == RESERVED:
+            return ", an address no device has"
+        if v5.kind not in _FITS.get(code, _ANY_DEVICE):
+            return f", which {code} does not address"
+        if v5.kind == HEAD and v5.position not in self.ctx.profile.positions:
+            return self._beyond(v5)
+        return None
+
+    def _beyond(self, v5: Address) -> str:
+        if v5.kind == HEAD and v5.position not in self.ctx.profile.positions:
+            profile = self.ctx.profile
+            return f", a position a {profile.name} does not have ({profile.describe_positions()})"
+        return ""
+
+    def finish(self) -> None:
+        for line, word, message, target in self.definite:
+            self._report(line, word, message, target)
+        if self.definite:
+            first = self.definite[0][0].number
+            for line, word, message, target in self.ambiguous:
+                self._report(line, word, f"{message}, but this file uses v4 numbering (line {first})", target)
+
+    def _report(self, line: Line, word: Word, message: str, target: int | None) -> None:
+        letter = word.text[0]
+        if target is None:
+            self.report(line, f"{message}; the v4 -> v5 map is uncertain here: check the address by hand", node=word)
+            return
+        fix = None
+        if not self.unparsable:
+            fix = Fix(
+                f"Replace {word.text} with {letter}{target}",
+                (Edit(line.number, word.column, word.end_column, f"{letter}{target}"),),
+            )
+        self.report(line, f"{message}; in v5 write {letter.upper()}{target}", node=word, fix=fix)
+
+
+# -- HY022 ---------------------------------------------------------------------------------------------
+
+
+@register
+class SquadNumberRange(ParamTableRule):
+    code = "HY022"
+    name = "squad-number-range"
+    severity = Severity.ERROR
+    summary = "A clone squad number outside 30-39, or a squad command whose head is not one physical head"
+    explanation = """
+        M702 establishes a clone squad: "S# is the clone squad number designation and must be in the
+        range 30 - 39", and T# is the head whose flow settings are copied.  M703/M704 add or remove the
+        head T# to or from squad S#, "OR" make T# duplicate (or stop duplicating) the head S#: so S must
+        be a squad (30-39) or a physical head (T0-T19), and T one physical head.  Anything else
+        establishes nothing, and the heads the job expects to print together print alone (or not at
+        all).
+
+        In v4 files (`--dialect hyrel-v4`) M702 seeds the groups 50-57 instead (research/hyrel_v4.md
+        section 4), and M703/M704 give a device an alias, so only the M702 range is checked there.
+    """
+    example_bad = "M702 T0 S40"
+    example_good = "M702 T0 S30"
+    source = (
+        "T_v5, M702 Establish Clone Squad, M703 Add to Clone Squad, M704 Remove from Clone Squad (catalogue H40, H41)"
+    )
+    families = ("hyrel",)
+
+    def __init__(self, ctx) -> None:
+        super().__init__(ctx)
+        self.v5 = is_v5(ctx)
+        extra = ("M702", "M703", "M704") if self.v5 else ("M702",)
+        self.codes = tuple(dict.fromkeys((*self.codes, *(c for c in extra if c in ctx.dialect.codes))))  # type: ignore[misc]
+
+    def check(self, line: Line, cmd: Command) -> None:
+        super().check(line, cmd)
+        code = cmd.code
+        if code != "M702" and not self.v5:
+            return
+        if "T" in cmd.params and not reported_as_v4(self.ctx, cmd):
+            address = self.ctx.interpreter.address(cmd)
+            if address is not None and address.kind != HEAD:
+                role = "the head whose settings are copied" if code == "M702" else "the head to add or remove"
+                self.report(
+                    line,
+                    f"{code} T: T is {role} and must be one physical head (T0-T19); "
+                    f"T{cmd.params['T']} is {address.label}",
+                    node=cmd.param("T"),
+                )
+        if code in ("M703", "M704") and not reported_as_v4(self.ctx, cmd, "S"):
+            squad = int_value(cmd.params.get("S"))
+            if squad is not None and not (30 <= squad <= 39 or 0 <= squad <= 19):
+                self.report(
+                    line,
+                    f"{code} S{squad}: S must be a clone squad (30-39) or the head to copy (T0-T19)",
+                    node=cmd.param("S"),
+                )
+
+    def range_message(self, cmd: Command, p: Param, problem: str) -> str:
+        kind = "clone squad" if self.v5 else "v4 group"
+        return f"{cmd.code}: {problem}; {kind} numbers are {p.minimum:g}-{p.maximum:g}"
+
+    def missing_message(self, cmd: Command, p: Param) -> str:
+        return f"{cmd.code} needs S, the {'clone squad' if self.v5 else 'group'} number"
+
+
+# -- HY045 ---------------------------------------------------------------------------------------------
+
+# Codes whose T variable names the head that prints (their heads make a file multi-head).
+_HEAD_CODES = ("M104", "M109", "M106", "M107", "M221", "M721", "M722", "M723", "M728", "M620", "M3", "M4", "M5")
+
+
+@register
+class NoHeadFocusBeforePrinting(Rule):
+    code = "HY045"
+    name = "no-head-focus-before-printing"
+    severity = Severity.ERROR
+    summary = "A multi-head job prints (or moves) before a T command sets the focused head"
+    explanation = """
+        When a job starts, Repetrel "focus[es] on the first head it detects".  With one head that is
+        fine; "when printing with multiple heads, the requirement [is] to explicitly direct Repetrel's
+        focus": "force focus with a T command in the gcode before your first print move.  We recommend
+        doing this before any movements, in case your head will collide with the bed without the
+        offset."
+
+        A job is multi-head when more than one head is loaded (`--loaded`), declared (`M6 T# O...`),
+        selected with T commands or addressed by head commands (M104, M109, M221, M721...).  No T
+        command before the first printing move is an error; a T command after the first move but before
+        printing is a warning.  Homing (G28) is not a move here.
+    """
+    example_bad = """
+        M6 T0 O1 X0 Y0 Z0
+        M6 T1 O2 X20 Y0 Z0
+        G1 X10 Y10 E1 F1200
+        T1
+    """
+    example_good = """
+        M6 T0 O1 X0 Y0 Z0
+        M6 T1 O2 X20 Y0 Z0
+        T1
+        G1 X10 Y10 E1 F1200
+    """
+    source = "T_v5, Default Mode and Explicit Mode (catalogue H45)"
+    families = ("hyrel",)
+
+    def __init__(self, ctx) -> None:
+        super().__init__(ctx)
+        self.codes = (ANY_T, *(c for c in _HEAD_CODES if c in ctx.dialect.codes))  # type: ignore[misc]
+        self.heads: set[int] = set()
+        self.first_t: int | None = None
+
+    def check(self, line: Line, cmd: Command) -> None:
+        interpreter = self.ctx.interpreter
+        address = interpreter.tool_command_address(cmd)
+        if address is not None:
+            if self.first_t is None:
+                self.first_t = line.number
+        elif not reported_as_v4(self.ctx, cmd):
+            address = interpreter.address(cmd)
+        if address is not None and address.position is not None:
+            self.heads.add(address.position)
+
+    def finish(self) -> None:
+        st = self.state
+        heads = self.heads | set(st.declared_heads) | set(st.loaded_heads or ())
+        if len(heads) < 2:
+            return
+        first_print, first_move, first_t = st.first_print_line, st.first_move_line, self.first_t
+        names = heads_text(heads)
+        if first_print is not None and (first_t is None or first_t > first_print):
+            later = f"the first T command is at line {first_t}" if first_t is not None else "the file has no T command"
+            self.report(
+                first_print,
+                f"printing starts before any T command ({later}) in a job with heads {names}: "
+                "Repetrel prints with the first head it detects; put a T command before the first move",
+            )
+        elif first_move is not None and first_t is not None and first_t > first_move:
+            self.report(
+                first_move,
+                f"the first move comes before the first T command (line {first_t}) in a job with heads "
+                f"{names}: the head may collide with the bed without its offset",
+                severity=Severity.WARNING,
+            )
+
+
+# -- HY047 ---------------------------------------------------------------------------------------------
+
+
+@register
+class AddressOutOfTable(Rule):
+    code = "HY047"
+    name = "address-out-of-table"
+    severity = Severity.ERROR
+    summary = "A T number that no device has, or a T command that focuses a bed, an aux port or a group"
+    explanation = """
+        The T_v5 "Chart of Addresses" lists every address: T0-T19 heads, T20 spindle, T21 CO2 laser,
+        T22/T23 Aux1/Aux2, T24/T25 beds and chambers, T30-T39 virtual heads (clone squads), T40-T48
+        groups.  T26-T29 and T49 and above name nothing (error), and so do v4 numbers outside the v4
+        tables in a `hyrel-v4` file (a v4 T command is a tool number 0-9, 10-14 for the aux port, laser,
+        spindle and beds; 4.1+ firmware drops other T lines).
+
+        A T command changes which head "has the focus of the motion controller and is executing the
+        gcode": focusing a bed, an aux port or a group of devices is almost certainly a T variable
+        written as a T command (warning).
+    """
+    example_bad = "M104 T27 S200"
+    example_good = "M104 T2 S200"
+    source = "T_v5, Chart of Addresses; Gcode page, Understanding the T and T Tool Change (catalogue H44)"
+    families = ("hyrel",)
+
+    def __init__(self, ctx) -> None:
+        super().__init__(ctx)
+        self.codes = (ANY_T, *t_variable_codes(ctx.dialect))  # type: ignore[misc]
+
+    def check(self, line: Line, cmd: Command) -> None:
+        interpreter = self.ctx.interpreter
+        address = interpreter.tool_command_address(cmd)
+        if address is not None:
+            if address.kind == RESERVED:
+                self.report(line, f"{cmd.code}: {address.label}: the line selects no head", node=cmd)
+            elif address.kind in (BED, AUX, GROUP):
+                self.report(
+                    line,
+                    f"{cmd.code} makes {address.label} the focused tool: a T command selects the head "
+                    "that executes the moves; address other devices with the T variable of an M-code",
+                    node=cmd,
+                    severity=Severity.WARNING,
+                )
+            return
+        if cmd.params.get("T") is None or reported_as_v4(self.ctx, cmd):
+            return
+        address = interpreter.address(cmd)
+        if address is not None and address.kind == RESERVED:
+            self.report(
+                line,
+                f"{cmd.code} T{cmd.params['T']}: {address.label}: the command addresses nothing",
+                node=cmd.param("T"),
+            )
+
+
+# -- HY048 ---------------------------------------------------------------------------------------------
+
+
+@register
+class SquadNotEstablished(Rule):
+    code = "HY048"
+    name = "squad-not-established"
+    severity = Severity.WARNING
+    summary = "A clone squad (T30-T39) is used before M702 establishes it, or after M30 dissolved it"
+    explanation = """
+        M702 establishes a clone squad; M703 adds heads to "the Clone Squad we established with an
+        M702"; M704 removes a head that M703 added.  Using a squad number (M703/M704 S30, a T30 command,
+        `M104 T30`) before any `M702 ... S30` addresses a squad with no flow settings and no heads
+        (warning).  "Note that an M30 decommissions any clone squads that were in effect": a squad used
+        after an M30 without a new M702 is an error.  M704 for a head that is not in the squad is a
+        warning.  v5 only: in v4 files M703/M704 give aliases.
+    """
+    example_bad = "M703 T1 S30"
+    example_good = """
+        M702 T0 S30
+        M703 T1 S30
+    """
+    source = (
+        "T_v5, M702 Establish Clone Squad, M703 Add to Clone Squad, M704 Remove from Clone Squad (catalogue H41, H42)"
+    )
+    dialects = ("hyrel",)
+
+    def __init__(self, ctx) -> None:
+        super().__init__(ctx)
+        others = tuple(c for c in t_variable_codes(ctx.dialect) if c not in ("M702", "M703", "M704"))
+        self.codes = (ANY_T, "M30", "M703", "M704", *others)  # type: ignore[misc]
+        self.dissolved: dict[int, int] = {}  # squad -> line of the M30 that dissolved it
+        self.reported: set[tuple[int, bool]] = set()
+
+    def check(self, line: Line, cmd: Command) -> None:
+        code = cmd.code
+        squads = self.state.squads
+        if code == "M30":
+            for established in squads:
+                self.dissolved[established] = line.number
+            self.reported.clear()
+            return
+        if code in ("M703", "M704"):
+            squad = int_value(cmd.params.get("S"))
+            if squad is None or not 30 <= squad <= 39:
+                return
+            if squad not in squads:
+                self._missing(line, cmd.param("S") or cmd, squad, f"{code} S{squad}", once=False)
+            elif code == "M704":
+                head = self.ctx.interpreter.target(cmd)
+                if head is not None and head not in squads[squad]:
+                    self.report(line, f"M704 removes T{head} from squad S{squad}, but no M703 added it", node=cmd)
+            return
+        interpreter = self.ctx.interpreter
+        address = interpreter.tool_command_address(cmd)
+        node: Command | Word | None = cmd
+        if address is None:
+            address = interpreter.address(cmd)
+            node = cmd.param("T")
+        if address is not None and address.kind == VIRTUAL and address.v5 is not None and address.v5 not in squads:
+            what = str(cmd.code) if node is cmd else f"{cmd.code} T{cmd.params['T']}"
+            self._missing(line, node, address.v5, what, once=True)
+
+    def _missing(self, line: Line, node, squad: int, what: str, once: bool) -> None:
+        dissolved = self.dissolved.get(squad)
+        if once:
+            key = (squad, dissolved is not None)
+            if key in self.reported:
+                return
+            self.reported.add(key)
+        if dissolved is not None:
+            self.report(
+                line,
+                f"{what}: squad {squad} was dissolved by M30 at line {dissolved} ('an M30 decommissions any "
+                f"clone squads'); establish it again with M702 T# S{squad}",
+                node=node,
+                severity=Severity.ERROR,
+            )
+        else:
+            self.report(line, f"{what}: no M702 T# S{squad} has established squad {squad} before this line", node=node)

@@ -94,8 +94,8 @@ class ArcSegmentCountNotFullCircle(Rule):
         if s is None:
             return
         if s <= 0:
-            self.report(line, f"{cmd.code} S{text}: S must be a segment length (below 3 mm) or a segment count (3 or more)",
-                        node=cmd.param("S") or cmd, severity=Severity.WARNING)
+            message = f"{cmd.code} S{text}: S must be a segment length (below 3 mm) or a segment count (3 or more)"
+            self.report(line, message, node=cmd.param("S") or cmd, severity=Severity.WARNING)
         elif s >= 3 and arc_is_full_circle(cmd, self.state) is False:
             self.report(
                 line,
@@ -154,7 +154,8 @@ class SpiralLapParameters(ParamTableRule):
         super().check(line, cmd)  # P required, L, R, X/Y (table: G2.1/G3.1)
         p = cmd.params
         if p.get("R") is not None and to_number(p["R"]) == 2 and "L" not in p:  # type: ignore[arg-type]
-            self.report(line, f"{cmd.code} R2 (spiral out from here) needs L, the number of laps", node=cmd.param("R") or cmd)
+            message = f"{cmd.code} R2 (spiral out from here) needs L, the number of laps"
+            self.report(line, message, node=cmd.param("R") or cmd)
         if _centre_is_zero(cmd):
             self.report(line, f"{cmd.code} has no centre: I and J are both 0 or omitted", node=cmd)
 
@@ -185,8 +186,8 @@ class SpiralNeedsPitchOrLaps(Rule):
     def check(self, line: Line, cmd: Command) -> None:
         p = cmd.params
         if "P" not in p and "L" not in p:
-            self.report(line, f"{cmd.code} needs P (pitch between laps, mm) or L (number of laps); at least one must be given",
-                        node=cmd)
+            message = f"{cmd.code} needs P (pitch between laps, mm) or L (number of laps); at least one must be given"
+            self.report(line, message, node=cmd)
         elif "P" in p and "L" in p:
             self.report(line, f"{cmd.code} with both P and L: if they conflict, L is changed to match P",
                         node=cmd.param("L") or cmd, severity=Severity.INFO)
@@ -223,7 +224,8 @@ class ArcEAmountIgnored(Rule):
         if "E" in cmd.params and self.state.e_values():
             self.report(
                 line,
-                f"{cmd.code} is printed with native flow even under M229 E1 (line {self.state.m229_line}): its E amount is ignored",
+                f"{cmd.code} is printed with native flow even under M229 E1 (line {self.state.m229_line}): "
+                "its E amount is ignored",
                 node=cmd.param("E") or cmd,
             )
 
@@ -254,5 +256,8 @@ class PlainArcInOtherPlane(Rule):
     def check(self, line: Line, cmd: Command) -> None:
         plane = self.state.plane
         if plane != 17:
-            self.report(line, f"{cmd.code} is drawn in the XY plane: the G{plane} plane applies only to G2.x/G3.x arcs (use G2.3/G3.3)",
-                        node=cmd)
+            message = (
+                f"{cmd.code} is drawn in the XY plane: the G{plane} plane applies only to G2.x/G3.x arcs "
+                "(use G2.3/G3.3)"
+            )
+            self.report(line, message, node=cmd)

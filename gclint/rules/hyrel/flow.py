@@ -167,7 +167,8 @@ class EModeWithoutM229(Rule):
 
     def check(self, line: Line, cmd: Command) -> None:
         if not self.state.e_values():
-            self.report(line, f"{cmd.code} has no effect: E values are not enabled (put M229 E1 D1 before it)", node=cmd)
+            message = f"{cmd.code} has no effect: E values are not enabled (put M229 E1 D1 before it)"
+            self.report(line, message, node=cmd)
 
 
 @register
@@ -228,12 +229,16 @@ class FlowMultiplierRange(ParamTableRule):
             if s is not None and s > self.LIKELY_PERCENT:
                 self.report(
                     line,
-                    f"M221 S{cmd.raw('S')} is a flow multiplier on Hyrel ({_fmt(s)} times the flow, at most 15.99); "
-                    f"it looks like a percentage: for {_fmt(s)} % write S{_fmt(s / 100)}",
+                    f"M221 S{cmd.raw('S')} asks for {_fmt(s)} times the computed flow (S is a multiplier on Hyrel, at "
+                    f"most 15.99); if a percentage was meant (Marlin's M221), write S{_fmt(s / 100)} for {_fmt(s)} %",
                     node=cmd.param("S") or cmd,
                 )
                 return
         super().check(line, cmd)
+
+    def move(self, line: Line, cmd: Command) -> None:
+        """G1 lines with S (called by ``MoveChecks``)."""
+        ParamTableRule.check(self, line, cmd)
 
     def range_message(self, cmd: Command, p: Param, problem: str) -> str:
         return f"{cmd.code}: {problem} (S is a flow multiplier, 0-15.99; 1.0 = as computed)"
@@ -309,6 +314,9 @@ class SlicerEWithoutM229(MoveRule):
     slot = "slicer_e"
 
     DISTINCT = 5  # this many different E amounts look sliced (native Hyrel jobs write E1 on every move)
+    # Sliced E amounts change from the first moves on: after this many G1 with E and fewer than DISTINCT
+    # amounts, the job writes E as a printing mark and the rule stops looking.
+    LOOK_AT = 2000
 
     def __init__(self, ctx) -> None:
         super().__init__(ctx)
@@ -316,11 +324,15 @@ class SlicerEWithoutM229(MoveRule):
         self.last: str | None = None
         self.amounts: list[str] = []
         self.sliced = False
+        self.left = self.LOOK_AT
 
     def move(self, line: Line, cmd: Command) -> None:
         # called for G1 lines with E until the amounts look sliced
         text = cmd.params["E"]
         if text == self.last or text is None:
+            self.left -= 1
+            if self.left <= 0:
+                self.moves.slicer_e = None
             return
         if self.state.m229_line is not None:
             self.moves.slicer_e = None  # the file uses M229: nothing to report

@@ -1,1 +1,382 @@
-"""(rules added by the Hyrel rules work)"""
+"""HY job-flow rules: the end of the job (M30), line length, M0/M792 actions, the aux ports.
+
+Sources: the Hyrel Gcode page, "Other Commands" (M30 End of Program, M792 Execute Action), "M0 Stop
+Until Resume" and "Controlling Aux Devices" (M7, M8, M670-M689), the hidden-codes page (M673), as
+catalogued in ../shared/research/dialects.md section 3 (H35, H36, H47, H50, H51) and 3.3 (the
+100-character note).
+"""
+
+from __future__ import annotations
+
+from gclint.dialects.base import Param
+from gclint.machine.profiles import PROFILES
+from gclint.machine.state import EVALUES
+from gclint.rules.base import ANY_T, Rule, Severity, register
+from gclint.rules.dialect import ParamTableRule
+from gclint.rules.hyrel.addressing import int_value
+from gclint.syntax.nodes import Command, Line
+
+# -- HY009 ---------------------------------------------------------------------------------------------
+
+
+@register
+class CodeAfterM30(Rule):
+    code = "HY009"
+    name = "code-after-m30"
+    severity = Severity.ERROR
+    summary = "Commands after M30: they are not run as part of the job"
+    explanation = """
+        "M30 tells the printer that this job is complete.  No gocde after an M30 will be executed as part
+        of the previous job."  Whatever follows (a cool-down, a park move, M104 T0 S0, a second part)
+        is not run with the job, and M30 has already reset the state it relies on (M229, M106 range,
+        M660 registers, clone squads, fixture offsets; HY056).  Move those lines before M30.  Comments
+        and blank lines after M30 are fine.  Reported once per M30, at the first command after it.
+    """
+    example_bad = """
+        G1 X10 E1 F600
+        M30
+        M104 T0 S0
+    """
+    example_good = """
+        G1 X10 E1 F600
+        M104 T0 S0
+        M30
+    """
+    source = "Gcode page, M30 End of Program (catalogue H35)"
+    families = ("hyrel",)
+    on_line = True
+
+    def __init__(self, ctx) -> None:
+        super().__init__(ctx)
+        self.reported_for: int | None = None  # the M30 already reported
+
+    def check_line(self, line: Line) -> None:
+        st = self.state
+        if st.after_m30 and line.parsed.commands and st.m30_line != self.reported_for:
+            self.reported_for = st.m30_line
+            cmd = line.parsed.commands[0]
+            what = cmd.code or "this line"
+            self.report(
+                line,
+                f"{what} comes after M30 (line {st.m30_line}): 'No gcode after an M30 will be executed "
+                "as part of the previous job'",
+                node=cmd,
+            )
+
+
+# -- HY010 ---------------------------------------------------------------------------------------------
+
+
+@register
+class MissingM30(Rule):
+    code = "HY010"
+    name = "missing-m30"
+    severity = Severity.WARNING
+    summary = "A job that moves but never ends with M30"
+    explanation = """
+        "M30 tells the printer that this job is complete."  It also dissolves clone squads, clears the
+        fixture offsets, the M229 E-value mode, the M106 range and the M660 registers, resets the heads
+        to their stored values and triggers the queued reports (M772).  A job without M30 leaves all of
+        that in place for the next job and never reports its end.  Files without any move (settings
+        snippets) are not reported.
+    """
+    example_bad = "G1 X10 E1 F600"
+    example_good = """
+        G1 X10 E1 F600
+        M30
+    """
+    source = "Gcode page, M30 End of Program (catalogue H35)"
+    families = ("hyrel",)
+
+    def finish(self) -> None:
+        st = self.state
+        if st.m30_line is None and st.moved and st.line_number > 0:
+            self.report(
+                st.line_number,
+                "the job has no M30 at the end: Repetrel does not see the job as complete, and "
+                "its settings (M229, M106 range, M660, squads, fixture offsets) carry over",
+            )
+
+
+# -- HY029 ---------------------------------------------------------------------------------------------
+
+_LIMIT = 100  # "Note that all lines will be truncated at 100 characters." (M0 Stop Until Resume)
+
+
+@register
+class LineOver100Characters(Rule):
+    code = "HY029"
+    name = "line-over-100-characters"
+    severity = Severity.WARNING
+    summary = "A line longer than 100 characters: Repetrel truncates it"
+    explanation = """
+        The M0 section says "Note that all lines will be truncated at 100 characters."  Whether "all
+        lines" means the M0/M792 text or every line of the file is not clear, so gclint takes it as
+        written (research/dialects.md 3.3): a longer line loses what follows column 100: the end of an
+        M0/M792 message or action, a comment, or parameters of the command itself.  The message says
+        which.  Shorten the line or move the comment to a line of its own.
+    """
+    example_bad = (
+        "M0 ; SAY "
+        + "Please remove the part from the bed and load the next sheet, then press Play to go on."
+        + " Thank you"
+    )
+    example_good = "M0 ; SAY Remove the part, load the next sheet, press Play"
+    source = (
+        "Gcode page, M0 Stop Until Resume ('all lines will be truncated at 100 characters'); "
+        "research/dialects.md 3.3 (catalogue H47)"
+    )
+    families = ("hyrel",)
+    on_line = True
+
+    def check_line(self, line: Line) -> None:
+        raw = line.raw
+        if len(raw) <= _LIMIT:
+            return
+        parsed = line.parsed
+        lost_words = []
+        for cmd in parsed.commands:
+            if cmd.word is not None and cmd.word.end_column > _LIMIT + 1:
+                lost_words.append(cmd.word.text)
+            if cmd.code not in ("M0", "M792"):
+                lost_words.extend(w.text for w in cmd.words if w.end_column > _LIMIT + 1)
+        if lost_words:
+            detail = f"the command loses {' '.join(lost_words)}"
+        elif any(cmd.code in ("M0", "M792") for cmd in parsed.commands):
+            detail = "the M0/M792 text (message or action) is cut"
+        else:
+            detail = "only comment text is lost" if parsed.commands else "the comment is cut"
+        self.report(
+            line,
+            f"line is {len(raw)} characters long; Repetrel truncates lines at {_LIMIT}: {detail}",
+            column=_LIMIT + 1,
+        )
+
+
+# -- HY043 ---------------------------------------------------------------------------------------------
+
+_MODEL_AUX = sorted(set().union(*(p.aux_codes for p in PROFILES.values())), key=lambda c: int(c[1:]))
+
+
+@register
+class AuxPortNotOnModel(Rule):
+    code = "HY043"
+    name = "aux-port-not-on-model"
+    severity = Severity.WARNING
+    summary = "An aux-port code (M671-M685) that the printer model does not have"
+    explanation = """
+        Several aux ports exist on some models only: M671 danger lights and M679 vacuum "(30M/ESR
+        only)", M675 response LEDs "(30M/16A only)", M676 recirculation fan, M684 exhaust and M685 air
+        "(16A only)", M677 buzzer "(older 30Ms only)", M678 laser cross-hair "(16A with CO2 lasers
+        only)".  On another model the port is not there and the command does nothing.  Choose the
+        printer with `--printer` (default 30m).
+    """
+    example_bad = """
+        ; gclint-test: printer=30m
+        M676 S100
+    """
+    example_good = """
+        ; gclint-test: printer=16a
+        M676 S100
+    """
+    source = "Gcode page, Controlling Aux Devices (M671-M689) (catalogue H50)"
+    codes = tuple(_MODEL_AUX)
+    families = ("hyrel",)
+
+    def check(self, line: Line, cmd: Command) -> None:
+        profile = self.ctx.profile
+        if cmd.code in profile.aux_codes:
+            return
+        spec = self.ctx.dialect.spec(cmd.code)  # type: ignore[arg-type]
+        what = spec.summary if spec is not None else cmd.code
+        models = ", ".join(p.name for p in PROFILES.values() if cmd.code in p.aux_codes)
+        self.report(line, f"{cmd.code} ({what}) is not on a {profile.name} (it is on: {models})", node=cmd)
+
+
+# -- HY044 ---------------------------------------------------------------------------------------------
+
+_DEFAULT_100 = ("M7", "M8")  # "With no parameters, it is read as M7 S100"
+
+
+@register
+class AuxPercentRange(ParamTableRule):
+    code = "HY044"
+    name = "aux-percent-range"
+    severity = Severity.WARNING
+    summary = "An aux-port percentage outside 0-100, or an aux command without S (no change)"
+    explanation = """
+        The aux ports take "Sn is the percentage (0-100)": M7 and M8 ("default is 100"), the lights,
+        fans and air of M670-M689 ("0-100; no default - if no Sn, no change").  A larger value (a 0-255
+        duty from another firmware) is clamped (warning); M670-M689 without S change nothing (info).
+        The ranges are data in gclint/dialects/hyrel.py (`rule="HY044"`).
+    """
+    example_bad = "M7 S255"
+    example_good = "M7 S100"
+    source = "Gcode page, Controlling Aux Devices (M7, M8, M670-M689); hidden codes, M673 (catalogue H50, H51)"
+    families = ("hyrel",)
+
+    def check(self, line: Line, cmd: Command) -> None:
+        super().check(line, cmd)
+        if cmd.params.get("S") is None and cmd.code not in _DEFAULT_100:
+            self.report(
+                line,
+                f"{cmd.code} without a value for S changes nothing ('no default - if no Sn, no change')",
+                node=cmd,
+                severity=Severity.INFO,
+            )
+
+    def range_message(self, cmd: Command, p: Param, problem: str) -> str:
+        return f"{cmd.code}: {problem}: S is a percentage 0-100 (the firmware clamps it)"
+
+
+# -- HY056 ---------------------------------------------------------------------------------------------
+
+_FIXTURES = tuple(f"G{n}" for n in range(54, 60))
+
+
+@register
+class StateAssumedAcrossM30(Rule):
+    code = "HY056"
+    name = "state-assumed-across-m30"
+    severity = Severity.WARNING
+    summary = "Lines after M30 rely on settings that M30 reset (M106 range, M229 E1, focused head, fixture offsets)"
+    explanation = """
+        "M30 also dissolves any cloning setups, changes head index to 0, clears fixture offsets (G53),
+        clears any M229 E-value settings, resets M106 persistent range, ... resets M660 head offsets to
+        0".  In a file with more than one job (lines after M30, see HY009), the next job must set these
+        again: an M106 S after M30 is read on the 0-100 range (S255 becomes "255 %"), printing without a
+        new M229 E1 ignores the E amounts, printing without a T command uses head T0, and fixture
+        offsets are gone.  (M660 registers: HY034; clone squads: HY048.)
+    """
+    example_bad = """
+        M106 C255
+        M106 T0 S255
+        M30
+        M106 T0 S128
+    """
+    example_good = """
+        M106 C255
+        M106 T0 S255
+        M30
+        M106 C255
+        M106 T0 S128
+    """
+    source = "Gcode page, M30 End of Program; T_v5, M702 (an M30 decommissions any clone squads) (catalogue H36, H42)"
+    codes = ("M30", "M106", "M229", ANY_T, *_FIXTURES)
+    families = ("hyrel",)
+
+    def __init__(self, ctx) -> None:
+        super().__init__(ctx)
+        self.m30: Line | None = None
+        self.assumed: dict[str, str] = {}  # kind -> what M30 reset
+        self.again: dict[str, int] = {}  # kind -> first line that set it again after the M30
+        self.fixture_line: int | None = None
+        self.fan_warned = False
+
+    def check(self, line: Line, cmd: Command) -> None:
+        code = cmd.code
+        st = self.state
+        if code == "M30":
+            self._settle()
+            self.m30 = line
+            self.assumed = {}
+            if st.fan_range != 100.0:
+                self.assumed["fan"] = f"M106 C{st.fan_range:g} (line {st.fan_range_line})"
+            if st.flow_mode == EVALUES:
+                self.assumed["evalues"] = f"M229 E1 (line {st.m229_line})"
+            if st.tool not in (None, 0):
+                self.assumed["tool"] = f"the focus on T{st.tool} (line {st.tool_line})"
+            if st.fixture_offsets_active:
+                self.assumed["fixture"] = f"the fixture offsets (line {self.fixture_line})"
+            self.again = {}
+            self.fan_warned = False
+            return
+        if code in _FIXTURES:
+            self.fixture_line = line.number
+            self.again.setdefault("fixture", line.number)
+        elif code == "M229":
+            if int_value(cmd.params.get("E")) == 1:
+                self.again.setdefault("evalues", line.number)
+        elif code == "M106":
+            if "C" in cmd.params:
+                self.again.setdefault("fan", line.number)
+            elif "fan" in self.assumed and "fan" not in self.again and not self.fan_warned and "S" in cmd.params:
+                self.fan_warned = True
+                self.report(
+                    line,
+                    f"M106 S after M30 (line {self.m30.number}) is read on the default 0-100 range: M30 "  # type: ignore[union-attr]
+                    f"reset {self.assumed['fan']}; repeat the M106 C",
+                    node=cmd.param("S") or cmd,
+                )
+        elif self.m30 is not None and cmd.code and cmd.code[0] == "T":
+            self.again.setdefault("tool", line.number)
+
+    def finish(self) -> None:
+        self._settle()
+
+    def _settle(self) -> None:
+        m30, self.m30 = self.m30, None
+        printed = self.state.first_print_since_m30_line
+        if m30 is None or printed is None:
+            return
+        lost = [
+            what
+            for kind, what in self.assumed.items()
+            if kind != "fan" and (self.again.get(kind) is None or self.again[kind] > printed)
+        ]
+        if lost:
+            self.report(
+                m30,
+                f"printing resumes at line {printed} after this M30, which reset {', '.join(lost)}; set "
+                "them again before printing",
+                node=m30.commands[0] if m30.commands else None,
+            )
+
+
+# -- HY059 ---------------------------------------------------------------------------------------------
+
+_ACTIONS = ("SAY", "PIC", "VID", "SEND", "BEEP", "SHELL")
+
+
+@register
+class M0UnknownAction(Rule):
+    code = "HY059"
+    name = "m0-unknown-action"
+    severity = Severity.INFO
+    summary = "Text after ';' on M0/M792 that is not one of the actions SAY, PIC, VID, SEND, BEEP, SHELL"
+    explanation = """
+        M0 and M792 take actions after a semicolon, one per segment: "M0 ; SAY Hello Wilbur ; PIC
+        C:\\mr_ed.png" (SAY, PIC, VID, SEND, BEEP, SHELL).  Other text is not an action: M0 shows it on the
+        print mask ("All text following the ; will be echoed to the print mask") and M792 does nothing
+        with it.  A misspelt action (SPEAK, BEEEP) is silently lost.  Info only.  (SHELL itself is a
+        security finding, SC001.)
+    """
+    example_bad = "M792 ; SPEAK Hello Wilbur"
+    example_good = "M792 ; SAY Hello Wilbur"
+    source = "Gcode page, M0 Stop Until Resume and M792 Execute Action (catalogue H47)"
+    codes = ("M0", "M792")
+    families = ("hyrel",)
+
+    def check(self, line: Line, cmd: Command) -> None:
+        comment = next((c for c in line.parsed.comments if c.style == ";" and c.column > cmd.column), None)
+        if comment is None:
+            return
+        offset = comment.column + 1  # the column of the text after the ';'
+        for segment in comment.body.split(";"):
+            stripped = segment.lstrip(" \t")
+            column = offset + len(segment) - len(stripped)
+            offset += len(segment) + 1
+            if not stripped.strip():
+                continue
+            first = stripped.split(None, 1)[0]
+            if first.upper() in _ACTIONS or first.lower().startswith(("noqa", "gclint")):
+                continue
+            if cmd.code == "M0":
+                message = (
+                    f"M0 shows '{stripped.strip()[:40]}' on the print mask; '{first}' is not an action "
+                    f"({', '.join(_ACTIONS)})"
+                )
+            else:
+                message = f"M792: '{first}' is not an action ({', '.join(_ACTIONS)}); M792 does nothing with it"
+            self.report(line, message, column=column)
+            return

@@ -95,12 +95,17 @@ class EmitDurationTooLong(_DeviceRule):
         enabled = self.state.emitters_enabled
         lasers = [dev for dev in enabled if resolve_v5(dev).kind == LASER]
         if enabled and len(lasers) == len(enabled):
-            self.report(line, f"M623 D{text} ms is over 1,000 ms (1 second), the most for {self.label(lasers[0])}; "
-                              "only UV pens may emit up to 60,000 ms", node=node)
+            message = (
+                f"M623 D{text} ms is over 1,000 ms (1 second), the most for {self.label(lasers[0])}; "
+                "only UV pens may emit up to 60,000 ms"
+            )
+            self.report(line, message, node=node)
         else:
-            self.report(line, f"M623 D{text} ms is over 1,000 ms (1 second): allowed only if the enabled device is a UV pen "
-                              "(up to 60,000 ms); lasers and other devices stop at 1,000 ms",
-                        node=node, severity=Severity.WARNING)
+            message = (
+                f"M623 D{text} ms is over 1,000 ms (1 second): allowed only if the enabled device is a UV pen "
+                "(up to 60,000 ms); lasers and other devices stop at 1,000 ms"
+            )
+            self.report(line, message, node=node, severity=Severity.WARNING)
 
 
 @register
@@ -220,7 +225,8 @@ class EmitterOnAtEnd(_DeviceRule):
             t = self.t_word(device)
             self.report(
                 at if at is not None else on_line,
-                f"{self.label(device)} is still enabled {when} (M620{t} E1 on line {on_line}): add M620{t} E0 before M30",
+                f"{self.label(device)} is still enabled {when} (M620{t} E1 on line {on_line}): "
+                f"add M620{t} E0 before M30",
             )
         for device, (direction, on_line) in sorted(st.spindles.items()):
             key = ("spindle", device, on_line)
@@ -289,4 +295,5 @@ class LatheOnNon16A(Rule):
     def check(self, line: Line, cmd: Command) -> None:
         profile = self.ctx.profile
         if not profile.lathe:
-            self.report(line, f"{cmd.code}: the lathe is only available on Hydra 16A models, not the {profile.title}", node=cmd)
+            message = f"{cmd.code}: the lathe is only available on Hydra 16A models, not the {profile.title}"
+            self.report(line, message, node=cmd)

@@ -12,14 +12,14 @@ costs a few dict lookups in total.  Rules in other modules (flow.py) join the sa
 from __future__ import annotations
 
 import weakref
-from typing import ClassVar
+from types import MethodType
+from typing import ClassVar, Protocol
 
 from gclint.machine.state import NATIVE
 from gclint.rules.base import Rule, Severity, register
 from gclint.syntax.nodes import Command, Line, to_number
 
 _MOVES = ("G0", "G1")
-_AXES = ("X", "Y", "Z", "A", "B")
 _ARCS = ("G2", "G3", "G2.1", "G3.1", "G2.2", "G3.2", "G2.3", "G3.3")
 
 
@@ -27,12 +27,17 @@ def _moves_axis(params: dict) -> bool:
     return "X" in params or "Y" in params or "Z" in params or "A" in params or "B" in params
 
 
+class _Member(Protocol):
+    def move(self, line: Line, cmd: Command) -> None: ...
+
+
 class MoveChecks:
     """The G0/G1 checks of one file, run in one call per line.
 
-    Each slot holds the rule instance to call, or None when the rule is not enabled or has nothing
-    left to look for (rules clear and set their own slot).  The first rule that joins listens to
-    G0/G1 for all of them.
+    Each slot holds the rule to call, or None when the rule is not enabled or has nothing left to look
+    for (rules clear and set their own slot).  One member, the leader, listens to G0/G1 for all: its
+    ``check`` is replaced by ``_listen`` (or ``_listen_and_own`` when it has codes of its own), bound to
+    the leader, so the engine still sees a rule's method (and drops the leader if a check fails).
     """
 
     _by_context: ClassVar[weakref.WeakKeyDictionary] = weakref.WeakKeyDictionary()
@@ -40,15 +45,16 @@ class MoveChecks:
     def __init__(self, ctx) -> None:
         self.state = ctx.state
         self.leader: Rule | None = None
+        self.direct = False  # the leader has no codes of its own: the engine calls _listen itself
         self.rapid_e: RapidMoveWithE | None = None  # HY030: G0 with E
         self.travel_prints: TravelMarkedPrinting | None = None  # HY031: native-flow G1 with E
         self.relative_print: PrintingInRelativeMode | None = None  # HY032: G1 with E under G91
-        self.flow_multiplier: Rule | None = None  # HY033: G1 S
+        self.flow_multiplier: _Member | None = None  # HY033: G1 S
         self.motors_off: MotionAfterMotorsOff | None = None  # HY039: any move after M18/M84
         self.axis_on_model: AxisNotOnModel | None = None  # HY042: A/B words
         self.feed_undefined: G1FeedUndefined | None = None  # HY050: G1 before any working F
         self.inverse_time: NonModalG53OrInverseTime | None = None  # HY053: only while watching a G93
-        self.slicer_e: Rule | None = None  # HY060: E amounts that look sliced
+        self.slicer_e: _Member | None = None  # HY060: E amounts that look sliced
 
     @classmethod
     def of(cls, ctx) -> "MoveChecks":
@@ -63,59 +69,78 @@ class MoveChecks:
 
         The engine creates every rule of a file before it reads their ``codes``, so the leader can
         change while members join: a member with no codes of its own is preferred, because the engine
-        can then call ``MoveChecks.check`` directly instead of through the leader's own ``check``.
+        then calls the G0/G1 hook directly instead of through a dispatch on the code.
         """
         checks = cls.of(rule.ctx)
         if slot is not None:
             setattr(checks, slot, rule)
         own_codes = tuple(c for c in rule.codes if c not in _MOVES)
         rule.codes = own_codes  # type: ignore[misc]
+        rule.move_checks = checks  # type: ignore[attr-defined]
         leader = checks.leader
-        if leader is None or (not own_codes and leader.codes != _MOVES):
-            if leader is not None:  # hand over: the old leader goes back to its own codes
+        if leader is None or (not own_codes and not checks.direct):
+            if leader is not None:  # hand over: the old leader goes back to its own codes and check
                 del leader.check
                 leader.codes = tuple(c for c in leader.codes if c not in _MOVES)  # type: ignore[misc]
             checks.leader = rule
+            checks.direct = not own_codes
             rule.codes = (*own_codes, *_MOVES)  # type: ignore[misc]
-            if not own_codes:
-                rule.check = checks.check  # type: ignore[method-assign]
-            else:
-                own = rule.check
-                moves = checks.check
-
-                def check(line: Line, cmd: Command) -> None:
-                    code = cmd.code
-                    if code == "G1" or code == "G0":
-                        moves(line, cmd)
-                    else:
-                        own(line, cmd)
-
-                rule.check = check  # type: ignore[method-assign]
+            rule.check = MethodType(_listen if not own_codes else _listen_and_own, rule)  # type: ignore[method-assign]
         return checks
 
     def check(self, line: Line, cmd: Command) -> None:
-        p = cmd.params
-        st = self.state
-        if cmd.code == "G1":
-            if "E" in p:
-                if self.travel_prints is not None and st.flow_mode == NATIVE:
-                    self.travel_prints.move(line, cmd)
-                if self.relative_print is not None and not st.absolute:
-                    self.relative_print.move(line, cmd)
-                if self.slicer_e is not None:
-                    self.slicer_e.move(line, cmd)  # type: ignore[attr-defined]
-            if self.feed_undefined is not None and not st.working_feed_set:
-                self.feed_undefined.move(line, cmd)
-            if "S" in p and self.flow_multiplier is not None:
-                self.flow_multiplier.check(line, cmd)
-            if self.inverse_time is not None:
-                self.inverse_time.move(line, cmd)
-        elif "E" in p and self.rapid_e is not None:
-            self.rapid_e.move(line, cmd)
-        if st.motors_off_line is not None and self.motors_off is not None:
-            self.motors_off.move(line, cmd)
-        if self.axis_on_model is not None and ("A" in p or "B" in p):
-            self.axis_on_model.move(line, cmd)
+        """Run the G0/G1 checks of every member on one line."""
+        assert self.leader is not None
+        _listen(self.leader, line, cmd)
+
+
+def _listen(leader: Rule, line: Line, cmd: Command) -> None:
+    """The G0/G1 hook: calls each member only when the line has what it looks for."""
+    self: MoveChecks = leader.move_checks  # type: ignore[attr-defined]
+    p = cmd.params
+    st = self.state
+    if cmd.code == "G1":
+        if "E" in p:
+            travel = self.travel_prints
+            if travel is not None and st.flow_mode == NATIVE:
+                # Skip the call for the common printing moves, without converting E: a positive relative
+                # amount (slicers, M83), or the same amount as the last good move while the E position
+                # still equals it (native jobs write E1 on every printing move).
+                e = p["E"]
+                if not (
+                    ("X" in p or "Y" in p)
+                    and e is not None
+                    and (
+                        (not st.e_absolute and e[0] != "-" and e.strip("+0."))
+                        or (e == travel.fine and (not st.e_absolute or st.e_position == travel.fine_value))
+                    )
+                ):
+                    travel.move(line, cmd)
+            if self.relative_print is not None and not st.absolute:
+                self.relative_print.move(line, cmd)
+            if self.slicer_e is not None:
+                self.slicer_e.move(line, cmd)
+        if self.feed_undefined is not None and not st.working_feed_set:
+            self.feed_undefined.move(line, cmd)
+        if "S" in p and self.flow_multiplier is not None:
+            self.flow_multiplier.move(line, cmd)
+        if self.inverse_time is not None:
+            self.inverse_time.move(line, cmd)
+    elif "E" in p and self.rapid_e is not None:
+        self.rapid_e.move(line, cmd)
+    if st.motors_off_line is not None and self.motors_off is not None:
+        self.motors_off.move(line, cmd)
+    if self.axis_on_model is not None and ("A" in p or "B" in p):
+        self.axis_on_model.move(line, cmd)
+
+
+def _listen_and_own(leader: Rule, line: Line, cmd: Command) -> None:
+    """The hook of a leader that also has codes of its own."""
+    code = cmd.code
+    if code == "G1" or code == "G0":
+        _listen(leader, line, cmd)
+    else:
+        type(leader).check(leader, line, cmd)
 
 
 class MoveRule(Rule):
@@ -186,6 +211,13 @@ class TravelMarkedPrinting(MoveRule):
     source = "Gcode page, G1 Working Move (catalogue H13)"
     slot = "travel_prints"
 
+    def __init__(self, ctx) -> None:
+        super().__init__(ctx)
+        # The E text and value of the last move found fine: the G0/G1 listener skips the call for a move
+        # with the same E (and X or Y) while the E position still equals it.
+        self.fine: str | None = None
+        self.fine_value = 0.0
+
     def move(self, line: Line, cmd: Command) -> None:
         # called for G1 lines with E while native flow is active
         p = cmd.params
@@ -200,8 +232,9 @@ class TravelMarkedPrinting(MoveRule):
         text = p["E"]
         if text is None:
             return
-        value = to_number(text)
-        if value is None:
+        try:
+            value = float(text)
+        except ValueError:
             return
         st = self.state
         if value <= 0:
@@ -209,6 +242,7 @@ class TravelMarkedPrinting(MoveRule):
         elif st.e_absolute and st.e_position is not None and value < st.e_position:
             why = f"E{text} goes back from E{st.e_position:g} (a retract while moving)"
         else:
+            self.fine, self.fine_value = text, value
             return
         self.report(
             line,
@@ -252,8 +286,8 @@ class PrintingInRelativeMode(MoveRule):
             self.move(line, cmd)
 
     def move(self, line: Line, cmd: Command) -> None:
-        # called for lines with E under G91
-        if self.reported or not self._prints(cmd):
+        # called for lines with E under G91; an E-only line (a retract) is not printing a model
+        if self.reported or not (_moves_axis(cmd.params) or cmd.code != "G1") or not self._prints(cmd):
             return
         self.reported = True
         self.report(
@@ -264,15 +298,17 @@ class PrintingInRelativeMode(MoveRule):
         )
 
     def _prints(self, cmd: Command) -> bool:
-        st = self.state
-        if st.flow_mode == NATIVE:
-            return True  # any E triggers a printing move
-        value = to_number(cmd.params["E"] or "")
+        """Whether the author means the move to print (a zero or negative E is HY031's business)."""
+        text = cmd.params["E"]
+        if text is None:
+            return self.state.flow_mode == NATIVE  # a bare E marks a printing move
+        value = to_number(text)
         if value is None:
             return False
-        if st.e_absolute:
-            return st.e_position is None or value > st.e_position
-        return value > 0
+        st = self.state
+        if st.flow_mode == NATIVE or not st.e_absolute:
+            return value > 0  # native jobs write E1 on printing moves
+        return st.e_position is None or value > st.e_position
 
 
 @register
@@ -380,13 +416,12 @@ class AxisNotOnModel(MoveRule):
     slot = "axis_on_model"
 
     def __init__(self, ctx) -> None:
-        super().__init__(ctx)
         self.missing = tuple(a for a in ("A", "B") if a not in ctx.profile.axes)
         if not self.missing:
+            self.codes = ()  # type: ignore[misc,assignment]  # the model has A and B: nothing to check
+        super().__init__(ctx)
+        if not self.missing:
             self.moves.axis_on_model = None
-            self.codes = ()  # type: ignore[misc]
-            if self.moves.leader is self:
-                self.codes = _MOVES  # type: ignore[misc]
 
     def check(self, line: Line, cmd: Command) -> None:
         if self.missing:
@@ -456,7 +491,8 @@ class InchUnits(Rule):
     families = ("hyrel",)
 
     def check(self, line: Line, cmd: Command) -> None:
-        self.report(line, "G20 (inches) is experimental and unsupported on Hyrel equipment: use millimetres (G21)", node=cmd)
+        message = "G20 (inches) is experimental and unsupported on Hyrel equipment: use millimetres (G21)"
+        self.report(line, message, node=cmd)
 
 
 @register
@@ -611,7 +647,8 @@ class PauseSAndPAdd(Rule):
         if "S" in p and "P" in p:
             s, ms = cmd.get("S"), cmd.get("P")
             total = f" = {s + ms / 1000:g} s in total" if s is not None and ms is not None else ""
-            self.report(line, f"G4 S and P add up on Hyrel (S seconds + P milliseconds{total}); Marlin would use S only", node=cmd)
+            message = f"G4 S and P add up on Hyrel (S seconds + P milliseconds{total}); Marlin would use S only"
+            self.report(line, message, node=cmd)
 
 
 @register
@@ -648,10 +685,12 @@ class ProbeParameters(Rule):
                 limit = "0-5 with T (a probe on a head)" if has_t else "0-29 without T"
                 self.report(line, f"G38 P{p['P']}: the probe connection must be {limit}", node=node)
             elif value == 0 and not has_t:
-                self.report(line, "G38 P0 is a CAN-bus probe on a head: it must specify the probe head with T", node=node)
+                message = "G38 P0 is a CAN-bus probe on a head: it must specify the probe head with T"
+                self.report(line, message, node=node)
             elif not has_t and int(value) in self._UNUSED:
                 self.report(line, f"G38 P{p['P']} is an unused probe connection", node=node, severity=Severity.WARNING)
         if "D" not in p or p["D"] is None:
             self.report(line, "G38 needs D1 (the only probing mode presently supported)", node=cmd)
         elif to_number(p["D"]) != 1:  # type: ignore[arg-type]
-            self.report(line, f"G38 D{p['D']}: only D1 is presently supported", node=cmd.param("D") or cmd, severity=Severity.WARNING)
+            message = f"G38 D{p['D']}: only D1 is presently supported"
+            self.report(line, message, node=cmd.param("D") or cmd, severity=Severity.WARNING)

@@ -1,1 +1,348 @@
-"""(rules added by the Hyrel rules work)"""
+"""HY temperature rules: M104, M109/M190/M191 waits, W0 and M116.
+
+Sources: the Hyrel Gcode page, "Controlling Temperature" (M104, M109 Wait for Temp (Head), M116 Wait for
+Temps (v5+), M190, M191) and the T_v5 chart of addresses, as catalogued in
+../shared/research/dialects.md section 3 (H03-H08, H61).
+"""
+
+from __future__ import annotations
+
+from gclint.dialects.addressing import BED, GROUP, HEAD, RESERVED, VIRTUAL
+from gclint.dialects.base import Param
+from gclint.rules.base import Rule, Severity, register
+from gclint.rules.dialect import ParamTableRule
+from gclint.rules.hyrel.addressing import reported_as_v4
+from gclint.syntax.nodes import Command, Line
+
+_WAITS = ("M109", "M190", "M191")
+_GROUPS = (("H", "C"), ("L", "U"), ("R",))
+_WAITED = {"M109": "head", "M190": "bed", "M191": "chamber"}
+
+
+def _device(rule: Rule, cmd: Command) -> int:
+    """The device a temperature command acts on, keyed as the interpreter keys ``state.targets``."""
+    interpreter = rule.ctx.interpreter
+    if cmd.code in ("M190", "M191", "M140", "M141"):
+        address = interpreter.address(cmd)
+        device = address.v5 if address is not None else 24  # "default is the primary bed / chamber"
+    else:
+        device = interpreter.target(cmd)
+    return -1 if device is None else device
+
+
+# -- HY002 ---------------------------------------------------------------------------------------------
+
+
+@register
+class WaitParameterGroups(Rule):
+    code = "HY002"
+    name = "wait-parameter-groups"
+    severity = Severity.ERROR
+    summary = "M109/M190/M191 mixes the H/C, L/U and R ways of ending the wait"
+    explanation = """
+        A Hyrel wait ends in one of three ways: absolute limits (H "heat up to", C "cool down to"),
+        limits relative to S (L below, U above), or a window around S (R).  The page is explicit:
+        "Please use EITHER (H and/or C) OR (L and/or U) OR (R) with your M109 command", and "You can use
+        Hn or Ln, but not both.  You can use Cn or Un, but not both."  The firmware takes one group and
+        silently ignores the others, so the wait does not end where the line says.
+    """
+    example_bad = "M109 T0 S240 H230 L10"
+    example_good = "M109 T0 S240 L10 U5"
+    source = (
+        "Gcode page, M109 Wait for Temp (Head), M190 Wait for Temp (Bed), M191 Wait for Temp (Chamber) "
+        "(catalogue H03, H04)"
+    )
+    codes = _WAITS
+    families = ("hyrel",)
+
+    def check(self, line: Line, cmd: Command) -> None:
+        params = cmd.params
+        used = [group for group in _GROUPS if any(letter in params for letter in group)]
+        if len(used) < 2:
+            return
+        letters = ["".join(letter for letter in group if letter in params) for group in used]
+        both = []
+        if "H" in params and "L" in params:
+            both.append("'You can use Hn or Ln, but not both'")
+        if "C" in params and "U" in params:
+            both.append("'You can use Cn or Un, but not both'")
+        extra = f" ({'; '.join(both)})" if both else ""
+        self.report(
+            line,
+            f"{cmd.code} mixes {' with '.join(letters)}: 'use EITHER (H and/or C) OR (L and/or U) OR (R)'{extra}; "
+            "the firmware keeps one group and ignores the rest",
+            node=_second_group_word(cmd) or cmd,
+        )
+
+
+def _second_group_word(cmd: Command):
+    """The first word (in source order) of a group other than the group of the first H/C/L/U/R word."""
+    first = None
+    for word in cmd.words:
+        group = next((g for g in _GROUPS if word.letter in g), None)
+        if group is None:
+            continue
+        if first is None:
+            first = group
+        elif group is not first:
+            return word
+    return None
+
+
+# -- HY003 ---------------------------------------------------------------------------------------------
+
+
+@register
+class WaitOnGroupAddress(Rule):
+    code = "HY003"
+    name = "wait-on-group-address"
+    severity = Severity.ERROR
+    summary = "M109/M190/M191 addressed to a virtual or group address (T30-T48): the wait fails"
+    explanation = """
+        "Note, this will FAIL (non-fatally) if you address a virtual group address; be sure to use an
+        actual physical address."  A wait on T30-T39 (clone squads) or T40-T48 (all devices, a yoke,
+        all beds...) sets the temperature but never waits, so the job starts printing cold.  Wait on each
+        physical head or bed instead (`M109 T0 ...`, `M109 T1 ...`), or set them all with W0 and wait
+        with M116 (v5).  In v4 files the v4 group numbers count (T0 all devices, T10/T20 a yoke, T90 all
+        beds, T100 all heads, T50-T57 groups).
+    """
+    example_bad = "M109 T40 S200"
+    example_good = "M109 T0 S200"
+    source = "Gcode page, M109 Wait for Temp (Head) (also M190, M191) (catalogue H05)"
+    codes = _WAITS
+    families = ("hyrel",)
+
+    def check(self, line: Line, cmd: Command) -> None:
+        if "T" not in cmd.params:
+            return
+        address = self.ctx.interpreter.address(cmd)
+        if address is not None and address.kind in (VIRTUAL, GROUP):
+            self.report(
+                line,
+                f"{cmd.code} T{cmd.params['T']} waits on {address.label}, a virtual or group address: "
+                "the wait fails and the job goes on without waiting; address one physical device",
+                node=cmd.param("T"),
+            )
+
+
+# -- HY027 ---------------------------------------------------------------------------------------------
+
+
+@register
+class V5OnlyCodeOnV4(Rule):
+    code = "HY027"
+    name = "v5-only-code-on-v4"
+    severity = Severity.ERROR
+    summary = "M116 or a W0 wait in a v4 job: both exist only from Repetrel v5"
+    explanation = """
+        "Codes in Orange are supported on version 5 and above (v5+) only": M116 ("supported with
+        version 5.x and later") and the W0 of M109/M190/M191 ("will set the temp and advance to the next
+        line without pause, but upon executing M116, will pause until temp is reached").  On v4
+        firmware M116 does not exist and W0 does not defer the wait, so the job does not wait where it
+        means to.  Use a plain M109/M190/M191 wait on v4, or run the job on v5.
+    """
+    example_bad = """
+        ; gclint-test: dialect=hyrel-v4
+        M109 T11 S200 W0
+        M116
+    """
+    example_good = """
+        ; gclint-test: dialect=hyrel-v4
+        M109 T11 S200
+    """
+    source = "Gcode page, M109 Wait for Temp (Head) ([v5+] W0) and M116 Wait for Temps (v5+) (catalogue H08)"
+    codes = ("M116", *_WAITS)
+    dialects = ("hyrel-v4",)
+
+    def check(self, line: Line, cmd: Command) -> None:
+        if cmd.code == "M116":
+            self.report(
+                line,
+                "M116 (wait for W0 temperatures) is supported from v5 only; v4 firmware does not know it",
+                node=cmd,
+            )
+            return
+        w = cmd.params.get("W")
+        if w is not None and w.strip("+-0.") == "":
+            self.report(line, f"{cmd.code} W0 (set now, wait at M116) is supported from v5 only", node=cmd.param("W"))
+
+
+# -- HY035 ---------------------------------------------------------------------------------------------
+
+
+@register
+class WaitRIsATolerance(Rule):
+    code = "HY035"
+    name = "wait-r-is-a-tolerance"
+    severity = Severity.ERROR
+    summary = "M109/M190/M191 R is a tolerance around S, not a target temperature (Marlin)"
+    explanation = """
+        On Hyrel, "Rn if present, is how close the relative temperature needs to be to the set temp to
+        end the pause", and "Sn (optional) is the new set temperature in °C; if omitted, no new target
+        temperature is set".  Marlin and RepRapFirmware read `M109 R210` as "set 210 °C and wait, also
+        when cooling"; on Hyrel it sets nothing and waits until the head is within ±210 °C of its old
+        target, which is at once.  An R above 50 °C is such a Marlin target (error): write
+        `M109 S210 R5`.
+
+        A wait without S on a device that has no temperature set earlier in the job waits for whatever
+        target the machine holds (warning).
+    """
+    example_bad = "M109 T0 R210"
+    example_good = "M109 T0 S210 R5"
+    source = "Gcode page, M109 Wait for Temp (Head) (Sn, Rn; also M190, M191) (catalogue H07)"
+    codes = _WAITS
+    families = ("hyrel",)
+
+    def check(self, line: Line, cmd: Command) -> None:
+        r = cmd.get("R")
+        has_s = cmd.get("S") is not None
+        if r is not None and r > 50:
+            if has_s:
+                message = (
+                    f"{cmd.code} R{cmd.params['R']}: R is the tolerance around S (±{r:g} °C), so the wait "
+                    "ends at once; a tolerance of a few degrees (R5) is what the page shows"
+                )
+            else:
+                message = (
+                    f"{cmd.code} R{cmd.params['R']} is a Marlin-style target, but Hyrel's R is a tolerance and "
+                    f"sets nothing: write {cmd.code} S{cmd.params['R']} R5"
+                )
+            self.report(line, message, node=cmd.param("R"))
+            return
+        if not has_s and _device(self, cmd) not in self.state.targets:
+            self.report(
+                line,
+                f"{cmd.code} has no S and no {_WAITED[str(cmd.code)]} temperature was set earlier in the job: "
+                "it waits for whatever target the machine holds",
+                node=cmd,
+                severity=Severity.WARNING,
+            )
+
+
+# -- HY036 ---------------------------------------------------------------------------------------------
+
+
+@register
+class W0NeverWaited(Rule):
+    code = "HY036"
+    name = "w0-never-waited"
+    severity = Severity.WARNING
+    summary = "An M109/M190/M191 W0 is never followed by M116, so nothing waits for that temperature"
+    explanation = """
+        "W0 if present, will set the temp and advance to the next line without pause, but upon
+        executing M116, will pause until temp is reached."  Without a later M116 (or a plain wait on
+        the same device) before the job ends, the job never waits for that temperature and starts
+        printing while the head or bed is still heating.  An M116 with no W0 pending is reported as
+        info: it waits for nothing.
+    """
+    example_bad = """
+        M109 T0 S200 W0
+        G1 X10 E1 F600
+        M30
+    """
+    example_good = """
+        M109 T0 S200 W0
+        M190 T24 S60 W0
+        M116
+        G1 X10 E1 F600
+        M30
+    """
+    source = "Gcode page, M109 Wait for Temp (Head) ([v5+] W0) and M116 Wait for Temps (v5+) (catalogue H08)"
+    codes = ("M116", "M30")
+    dialects = ("hyrel",)
+
+    def __init__(self, ctx) -> None:
+        super().__init__(ctx)
+        self.reported: set[int] = set()
+
+    def check(self, line: Line, cmd: Command) -> None:
+        if cmd.code == "M116":
+            if not self.state.pending_w0:
+                self.report(
+                    line,
+                    "M116 waits for temperatures set with W0, and none is pending",
+                    node=cmd,
+                    severity=Severity.INFO,
+                )
+            return
+        self._unwaited(f"before M30 at line {line.number}")
+
+    def finish(self) -> None:
+        self._unwaited("before the end of the file")
+
+    def _unwaited(self, where: str) -> None:
+        for device, w0_line in sorted(self.state.pending_w0.items(), key=lambda kv: kv[1]):
+            if w0_line in self.reported:
+                continue
+            self.reported.add(w0_line)
+            what = f"T{device}" if device >= 0 else "the focused head"
+            self.report(
+                w0_line,
+                f"W0 sets {what} to heat without waiting, but no M116 (or plain wait) follows {where}: "
+                "nothing waits for that temperature",
+            )
+
+
+# -- HY046 ---------------------------------------------------------------------------------------------
+
+
+@register
+class WaitTargetKind(Rule):
+    code = "HY046"
+    name = "wait-target-kind"
+    severity = Severity.WARNING
+    summary = "M109 addressed to something other than a head, or M190/M191 to something other than a bed/chamber"
+    explanation = """
+        M109 waits for a head ("T# is the target head"), M190 for a bed and M191 for a chamber ("T# is
+        the target bed / chamber").  In v5, beds and chambers are T24 and T25 and heads T0-T19: `M190
+        T0` or `M109 T24` waits on the wrong kind of device, most often because the T was copied from
+        another line.  (Group addresses are HY003, unknown addresses HY047.)
+    """
+    example_bad = "M190 T0 S60"
+    example_good = "M190 T24 S60"
+    source = (
+        "Gcode page, M109 / M190 / M191 (T# is the target head / bed / chamber); T_v5, Chart of Addresses "
+        "(catalogue H06)"
+    )
+    codes = _WAITS
+    families = ("hyrel",)
+
+    def check(self, line: Line, cmd: Command) -> None:
+        if "T" not in cmd.params or reported_as_v4(self.ctx, cmd):
+            return
+        address = self.ctx.interpreter.address(cmd)
+        if address is None or address.kind in (VIRTUAL, GROUP, RESERVED):
+            return
+        expected = HEAD if cmd.code == "M109" else BED
+        if address.kind == expected:
+            return
+        hint = "M190 (bed) or M191 (chamber)" if address.kind == BED else "M109"
+        self.report(
+            line,
+            f"{cmd.code} waits for a {_WAITED[str(cmd.code)]}, but T{cmd.params['T']} is {address.label}; "
+            f"for that device use {hint}",
+            node=cmd.param("T"),
+        )
+
+
+# -- HY051 ---------------------------------------------------------------------------------------------
+
+
+@register
+class NegativeTemperature(ParamTableRule):
+    code = "HY051"
+    name = "negative-temperature"
+    severity = Severity.ERROR
+    summary = "A head temperature below 0 °C (M104/M109 S)"
+    explanation = """
+        "Sn is the new set temperature in °C" for the head (M104, M109).  Hyrel has heated and chilled
+        heads, but no head is set below 0 °C: a negative S is a typo or a value from another unit.  The
+        ranges are data in gclint/dialects/hyrel.py (`rule="HY051"`).
+    """
+    example_bad = "M104 T0 S-20"
+    example_good = "M104 T0 S20"
+    source = "Gcode page, M104 Set Temp (Head) and M109 Wait for Temp (Head) (catalogue H61)"
+    families = ("hyrel",)
+
+    def range_message(self, cmd: Command, p: Param, problem: str) -> str:
+        return f"{cmd.code}: {problem}: a head temperature below 0 °C"

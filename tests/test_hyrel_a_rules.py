@@ -1,0 +1,211 @@
+"""Hyrel rules, part A: temperature (HY002, HY003, HY027, HY035, HY036, HY046, HY051), offsets (HY004,
+HY005, HY025, HY034, HY038, HY055, HY061) and job flow (HY009, HY010, HY029, HY043, HY044, HY056,
+HY059): the cases the fixture pairs do not pin down, and the machine state these rules read."""
+
+from __future__ import annotations
+
+import textwrap
+
+import pytest
+
+from gclint.dialects import get as get_dialect
+from gclint.engine import Linter, Options
+from gclint.machine.interpreter import Interpreter
+from gclint.syntax.nodes import Line
+from gclint.syntax.parse import parse_line
+
+
+def lint(text: str, dialect: str = "hyrel", printer: str = "30m", codes: tuple[str, ...] = (), **options):
+    found = Linter(Options(dialect=dialect, printer=printer, **options)).check_text(textwrap.dedent(text)).findings
+    return [f for f in found if not codes or f.code in codes]
+
+
+def where(findings) -> list[tuple[int, str, str]]:
+    return [(f.line, f.code, f.severity.label) for f in findings]
+
+
+def run_state(text: str, dialect: str = "hyrel"):
+    interpreter = Interpreter(get_dialect(dialect))
+    for number, raw in enumerate(textwrap.dedent(text).splitlines(), 1):
+        line = Line(number, raw, "\n", parse_line(raw))
+        for cmd in line.commands:
+            interpreter.apply(cmd, line)
+    return interpreter.state
+
+
+# -- machine state used by these rules -----------------------------------------------------------------
+
+
+def test_state_first_move_and_prints_since_home_and_m30():
+    st = run_state("""\
+        G28 X0 Y0
+        G0 X10 Y10
+        G1 X20 E1 F600
+        G28 X0 Y0
+        G1 X30 E1
+        M30
+        G0 X0
+        """)
+    assert st.first_move_line == 2
+    assert st.first_print_line == 3
+    assert st.first_print_since_home_line == 5
+    assert st.first_print_since_m30_line is None
+
+
+def test_state_plain_wait_settles_w0_and_m703_needs_m702():
+    st = run_state("M109 T0 S200 W0\nM190 T24 S60 W0\nM109 T0 S200\nM703 T1 S31\nM702 T0 S30\nM703 T1 S30\n")
+    assert st.pending_w0 == {24: 2}
+    assert st.squads == {30: {1}}
+
+
+def test_state_applied_height_line_is_where_the_register_was_applied():
+    st = run_state("M660 H2 Z5\nG1 Z1 H2\nG1 X1 H2\nG1 X2 H3\n")
+    assert (st.applied_height_register, st.applied_height_line) == (3, 4)
+    st = run_state("M660 H2 Z5\nG1 Z1 H2\nG1 X1 H2\n")
+    assert (st.applied_height_register, st.applied_height_line) == (2, 2)
+
+
+# -- temperature ---------------------------------------------------------------------------------------
+
+
+def test_hy002_one_finding_per_line_at_the_second_group():
+    found = lint("M109 T0 S240 R5 H230\n", codes=("HY002",))
+    assert [(f.line, f.column) for f in found] == [(1, 17)]
+
+
+def test_hy003_reads_v4_group_numbers():
+    text = "M109 T100 S200\nM190 T90 S60\nM109 T0 S200\nM109 T11 S200\n"
+    assert where(lint(text, dialect="hyrel-v4", codes=("HY003",))) == [
+        (1, "HY003", "error"),
+        (2, "HY003", "error"),
+        (3, "HY003", "error"),
+    ]
+
+
+def test_hy027_m116_on_v4_is_one_finding():
+    found = lint("M116\n", dialect="hyrel-v4")
+    assert where(found) == [(1, "HY027", "error")]
+
+
+def test_hy035_targets_per_device():
+    text = """\
+        M104 T0 S200
+        M109 T0 R5
+        M109 T1 R5
+        M140 S60
+        M190 R2
+        T1
+        M109 R3
+        """
+    assert where(lint(text, codes=("HY035",))) == [(3, "HY035", "warning"), (7, "HY035", "warning")]
+
+
+def test_hy036_reports_at_the_w0_line_once():
+    text = "M109 T0 S200 W0\nG1 X1 E1 F600\nM30\n"
+    assert where(lint(text, codes=("HY036",))) == [(1, "HY036", "warning")]
+    assert lint("M109 T0 S200 W0\nM116\nM30\n", codes=("HY036",)) == []
+
+
+def test_hy051_beds_may_be_chilled():
+    assert lint("M140 T24 S-10\nM190 T24 S-10\n", codes=("HY051",)) == []
+
+
+# -- offsets -------------------------------------------------------------------------------------------
+
+
+def test_hy004_needs_the_register_set_and_applied():
+    assert where(lint("G1 Z5 F600 H1\nG81 T0 X1 Y1 I3 P1 Q-1 Z-2 F100\n", codes=("HY004",))) == [(2, "HY004", "error")]
+    assert lint("M660 H1 Z5\nG0 Z5 H1\nG81 T0 X1 Y1 I3 P1 Q-1 Z-2 F100\n", codes=("HY004",)) == []
+
+
+@pytest.mark.parametrize("printer", ["30m", "esr", "16a", "16a-dual"])
+def test_hy005_only_on_the_ehr(printer):
+    assert lint("M660 H2 Z28.2\n", printer=printer, codes=("HY005",)) == []
+
+
+def test_hy025_flags_are_not_values():
+    # "G28 X Y" (a Marlin habit) lists the axes: homed; no value to ignore
+    assert lint("G28 X Y\n", codes=("HY025",)) == []
+
+
+def test_hy034_mentions_m30_and_reports_each_register_once():
+    text = "M660 H2 Z5\nG1 Z1 H2\nM30\nG1 Z1 H2\nG1 Z2 H2\n"
+    found = lint(text, codes=("HY034",))
+    assert where(found) == [(4, "HY034", "warning")]
+    assert "M30 at line 3" in found[0].message
+
+
+def test_hy038_unsafe_fix_to_a_t_command():
+    found = lint("M6 T1\n", codes=("HY038",))
+    assert found[0].fix is not None and not found[0].fix.safe
+    assert [(e.start, e.end, e.text) for e in found[0].fix.edits] == [(1, 6, "T1")]
+    # v4: the T variable of M6 is a device address; v4 T12 is the tool T1
+    found = lint("M6 T12\n", dialect="hyrel-v4", codes=("HY038",))
+    assert found[0].fix.edits[0].text == "T1"
+
+
+def test_hy055_homing_at_the_end_is_fine():
+    text = "G92 X10 Y10\nG1 X10 E1 F600\nG28 X0 Y0\nM30\n"
+    assert lint(text, codes=("HY055",)) == []
+
+
+def test_hy061_o0_without_offsets_is_fine():
+    assert lint("M6 O0\nM6 T0 O0 X0 Y0\n", codes=("HY061",)) == []
+
+
+# -- job flow ------------------------------------------------------------------------------------------
+
+
+def test_hy009_once_per_m30_and_not_for_comments():
+    text = "G1 X1 E1 F600\nM30\n; done\n\n%\nG1 X2\nG1 X3\nM30\nG1 X4\n"
+    assert where(lint(text, codes=("HY009",))) == [(6, "HY009", "error"), (9, "HY009", "error")]
+
+
+def test_hy010_not_for_files_without_moves():
+    assert lint("M104 T0 S0\nM140 S0\n", codes=("HY010",)) == []
+
+
+@pytest.mark.parametrize(
+    "line,detail",
+    [
+        ("; " + "x" * 120, "the comment is cut"),
+        ("G1 X10 Y10 E1 F600 ; " + "x" * 100, "only comment text is lost"),
+        ("M0 ; SAY " + "x" * 100, "M0/M792 text"),
+        ("G1 " + "X10.000000000 " * 7 + "Y20 E1", "loses Y20 E1"),
+    ],
+)
+def test_hy029_says_what_is_lost(line, detail):
+    found = lint(line + "\n", codes=("HY029",))
+    assert len(found) == 1 and found[0].column == 101 and detail in found[0].message, found
+
+
+def test_hy029_counts_characters_not_bytes():
+    assert lint("; " + "é" * 98 + "\n", codes=("HY029",)) == []
+
+
+def test_hy043_follows_the_printer():
+    assert where(lint("M671 S100\n", printer="16a", codes=("HY043",))) == [(1, "HY043", "warning")]
+    assert lint("M671 S100\n", printer="esr", codes=("HY043",)) == []
+
+
+def test_hy044_missing_s_is_info_except_m7_m8():
+    assert where(lint("M7\nM8\nM676\n", printer="16a", codes=("HY044",))) == [(3, "HY044", "info")]
+
+
+def test_hy056_printing_after_m30_without_m229_and_t():
+    text = """\
+        M229 E1 D1
+        T2
+        G1 X1 E1 F600
+        M30
+        G1 X2 E2
+        M30
+        """
+    found = lint(text, codes=("HY056",))
+    assert where(found) == [(4, "HY056", "warning")]
+    assert "M229 E1" in found[0].message and "T2" in found[0].message
+
+
+def test_hy059_actions_any_case_and_directives():
+    text = "M792 ; say hello ; beep\nM0 ; SAY hi ; noqa: HY029\nM792 ;SHELL C:\\x.exe\nM792 ; SAYS hi\n"
+    assert where(lint(text, codes=("HY059",))) == [(4, "HY059", "info")]

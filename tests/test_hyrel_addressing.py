@@ -1,0 +1,292 @@
+"""Hyrel addressing rules (HY006, HY007, HY008, HY022, HY045, HY047, HY048) and the command line around
+them: --statistics, suppression comments, [tool.gclint] configuration (issue "Hyrel rules", done
+means 3).  CLI tests run the real command in a subprocess."""
+
+from __future__ import annotations
+
+import json
+import re
+import textwrap
+
+import pytest
+
+from gclint.engine import Linter, Options
+from gclint.rules.base import Severity
+
+from .conftest import run_cli
+
+
+def lint(text: str, dialect: str = "hyrel", printer: str = "30m", loaded=None, codes: tuple[str, ...] = ()):
+    options = Options(dialect=dialect, printer=printer, loaded=frozenset(loaded) if loaded is not None else None)
+    found = Linter(options).check_text(textwrap.dedent(text)).findings
+    return [f for f in found if not codes or f.code in codes]
+
+
+def where(findings) -> list[tuple[int, str, str]]:
+    return [(f.line, f.code, f.severity.label) for f in findings]
+
+
+# -- HY006 tool-not-loaded -----------------------------------------------------------------------------
+
+
+def test_hy006_loaded_heads_from_the_command_line_win_over_the_header():
+    text = """\
+        M6 T0 O1 X0 Y0 Z0
+        M6 T1 O2 X20 Y0 Z0
+        T1
+        T2
+        """
+    assert where(lint(text, codes=("HY006",))) == [(4, "HY006", "warning")]
+    assert where(lint(text, loaded={0, 2}, codes=("HY006",))) == [(3, "HY006", "warning")]
+
+
+def test_hy006_is_silent_when_nobody_says_which_heads_are_loaded():
+    assert lint("T1\nT2\nT3\n", codes=("HY006",)) == []
+
+
+def test_hy006_takes_the_whole_header_and_reports_each_position_once():
+    text = """\
+        T1
+        M6 T0 O1 X0 Y0 Z0
+        M6 T1 O2 X20 Y0 Z0
+        T3
+        T3
+        """
+    assert where(lint(text, codes=("HY006",))) == [(4, "HY006", "warning")]
+
+
+def test_hy006_reads_v4_header_addresses():
+    # v4: "M6 T12 O2" declares yoke 1 position 2, which the T command "T1" selects
+    text = "M6 T12 O2 X70 Y60\nT1\nT2\n"
+    assert where(lint(text, dialect="hyrel-v4", codes=("HY006",))) == [(3, "HY006", "warning")]
+
+
+def test_hy006_an_m6_without_o_declares_nothing():
+    # "M6 T1" is a CNC-style tool change (HY038), not Repetrel's "M6 T# O..." declaration
+    assert where(lint("M6 T0 O1 X0 Y0\nM6 T1\nT1\n", codes=("HY006",))) == [(3, "HY006", "warning")]
+
+
+# -- HY007 tool-beyond-model ---------------------------------------------------------------------------
+
+
+@pytest.mark.parametrize(
+    "printer,bad",
+    [
+        ("30m", ["T4", "M104 T5 S200"]),
+        ("esr", ["T4"]),
+        ("ehr", ["T5"]),
+        ("16a", ["T5"]),
+        ("16a-dual", ["M104 T19 S1", "T17"]),
+    ],
+)
+def test_hy007_positions_per_model(printer, bad):
+    for line in bad:
+        assert [f.code for f in lint(line + "\n", printer=printer, codes=("HY007",))] == ["HY007"], (printer, line)
+
+
+@pytest.mark.parametrize("printer,good", [("30m", "T3"), ("ehr", "T4"), ("16a", "M104 T4 S200"), ("16a-dual", "T9")])
+def test_hy007_allows_the_positions_the_model_has(printer, good):
+    assert lint(good + "\n", printer=printer, codes=("HY007",)) == []
+
+
+def test_hy007_v4_numbers_are_translated_first():
+    # v4 M104 T21 is yoke 2, position 1 = v5 T5: not on a 30M, fine on a dual-yoke 16A
+    assert [f.code for f in lint("M104 T21 S200\n", dialect="hyrel-v4", codes=("HY007",))] == ["HY007"]
+    assert lint("M104 T21 S200\n", dialect="hyrel-v4", printer="16a-dual", codes=("HY007",)) == []
+
+
+# -- HY008 v4-addressing-in-v5 -------------------------------------------------------------------------
+
+
+def test_hy008_only_in_v5_files():
+    assert lint("M109 T12 S200\n", dialect="hyrel-v4", codes=("HY008",)) == []
+    found = lint("M109 T12 S200\n", codes=("HY008",))
+    assert where(found) == [(1, "HY008", "warning")]
+    assert found[0].fix is not None and found[0].fix.edits[0].text == "T1"
+
+
+@pytest.mark.parametrize(
+    "line,v5",
+    [
+        ("M104 T100 S0", "T47"),  # v4 all heads -> v5 all non-bed devices
+        ("M140 T90 S0", "T46"),  # all beds
+        ("M140 T91 S60", "T24"),  # bed 1
+        ("M104 T16 S0", "T22"),  # aux
+        ("M3 T26 S50", "T20"),  # spindle
+        ("M104 T10 S0", "T41"),  # yoke 1, all heads
+        ("M104 T25 S200", "T9"),  # yoke 2, position 5
+    ],
+)
+def test_hy008_rewrites_with_the_certain_map(line, v5):
+    found = lint(line + "\n", printer="16a-dual", codes=("HY008",))
+    assert [f.fix.edits[0].text for f in found] == [v5]
+
+
+def test_hy008_leaves_addresses_that_mean_the_same_in_v5():
+    # Bed1, the CO2 laser and the spindle have these numbers in v5: no finding while nothing else is v4
+    text = "M190 T24 S60\nM140 T25 S60\nM620 T21 E1\nM620 T21 E0\nM6 T21 O5 X10\nM3 T20 S50\n"
+    assert lint(text, printer="16a-dual", codes=("HY008",)) == []
+
+
+def test_hy008_ambiguous_numbers_count_once_the_file_is_v4():
+    text = "M190 T24 S60\nM109 T12 S200\n"
+    assert where(lint(text, codes=("HY008",))) == [(1, "HY008", "warning"), (2, "HY008", "warning")]
+
+
+def test_hy008_takes_over_from_the_other_address_rules():
+    # T100 is no v5 address (HY047) and T12 is beyond a 30M (HY007); HY008 says why, once
+    found = lint("M104 T100 S0\nM109 T12 S200\nM109 T22 S200\n")
+    assert sorted({f.code for f in found if f.line <= 3} - {"HY035"}) == ["HY008"]
+    # with HY008 off, the other rules report them
+    options = Options(dialect="hyrel", ignore=["HY008"])
+    codes = {f.code for f in Linter(options).check_text("M104 T100 S0\nM109 T12 S200\nM109 T22 S200\n").findings}
+    assert {"HY007", "HY046", "HY047"} <= codes
+
+
+def test_hy008_offers_no_fix_in_a_file_that_does_not_parse():
+    found = lint("M109 T12 S200\nG1 X10 Y20 )\n", codes=("HY008",))
+    assert found and all(f.fix is None for f in found)
+
+
+# -- HY022 / HY048 clone squads ------------------------------------------------------------------------
+
+
+def test_hy022_v4_groups_are_50_to_57():
+    assert lint("M702 T11 S51\n", dialect="hyrel-v4", codes=("HY022",)) == []
+    assert [f.code for f in lint("M702 T11 S30\n", dialect="hyrel-v4", codes=("HY022",))] == ["HY022"]
+    # v4 M703 gives aliases: "M703 T14 S12" (corpus) is fine there
+    assert lint("M703 T14 S12\n", dialect="hyrel-v4", codes=("HY022", "HY048")) == []
+
+
+def test_hy048_squad_dissolved_by_m30_is_an_error():
+    text = "M702 T0 S30\nM703 T1 S30\nT30\nM30\nT30\nT30\n"
+    assert where(lint(text, codes=("HY048",))) == [(5, "HY048", "error")]
+
+
+# -- HY045 focus ---------------------------------------------------------------------------------------
+
+
+def test_hy045_single_head_jobs_need_no_t():
+    assert lint("M6 T0 O1 X0 Y0 Z0\nG1 X10 E1 F600\nM30\n", codes=("HY045",)) == []
+
+
+def test_hy045_loaded_heads_make_a_job_multi_head():
+    text = "G1 X10 E1 F600\nM30\n"
+    assert lint(text, codes=("HY045",)) == []
+    assert where(lint(text, loaded={0, 1}, codes=("HY045",))) == [(1, "HY045", "error")]
+
+
+def test_hy045_t_after_the_first_move_is_a_warning():
+    text = "M6 T0 O1 X0 Y0 Z0\nM6 T1 O2 X0 Y0 Z0\nG28 X0 Y0\nG0 X10 Y10\nT1\nG1 X20 E1 F600\nM30\n"
+    assert where(lint(text, codes=("HY045",))) == [(4, "HY045", "warning")]
+
+
+# -- HY047 ---------------------------------------------------------------------------------------------
+
+
+def test_hy047_v4_tool_numbers():
+    # v4 T commands are 0-9 and 10-14 (aux, laser, spindle, beds); 4.1+ firmware drops other T lines
+    found = lint("T3\nT11\nT15\nT21\n", dialect="hyrel-v4", printer="16a-dual", codes=("HY047",))
+    assert where(found) == [(3, "HY047", "error"), (4, "HY047", "error")]
+
+
+def test_hy047_rrf_deselect():
+    assert where(lint("T-1\n", codes=("HY047",))) == [(1, "HY047", "error")]
+
+
+# -- the command line ----------------------------------------------------------------------------------
+
+JOB = """\
+; gclint: dialect=hyrel
+M104 T27 S200
+M104 T28 S200
+; gclint: disable=HY047
+M104 T29 S200
+M104 T49 S200
+; gclint: enable=HY047
+M104 T50 S200 ; noqa: HY047
+M104 T51 S200
+M109 T40 S200
+M30
+"""
+
+
+def write(tmp_path, name: str, text: str):
+    path = tmp_path / name
+    path.write_text(text, encoding="utf-8")
+    return path
+
+
+def test_cli_disable_enable_and_noqa(tmp_path):
+    path = write(tmp_path, "job.gcode", JOB)
+    proc = run_cli("check", "--format", "json", str(path))
+    assert proc.returncode == 1, proc.stderr
+    report = json.loads(proc.stdout)
+    assert sorted((f["line"], f["code"]) for f in report if f["code"] == "HY047") == [
+        (2, "HY047"),
+        (3, "HY047"),
+        (9, "HY047"),
+    ]
+    hy003 = [f for f in report if f["code"] == "HY003"]
+    assert [(f["line"], f["severity"], f["column"]) for f in hy003] == [(10, "error", 6)]
+
+
+def test_cli_statistics(tmp_path):
+    path = write(tmp_path, "job.gcode", JOB)
+    proc = run_cli("check", "--statistics", str(path))
+    assert proc.returncode == 1
+    out = proc.stdout.decode()
+    rows = {
+        m.group(2): (int(m.group(1)), m.group(3), m.group(4))
+        for m in re.finditer(r"^\s*(\d+)\s+(HY\d{3})\s+(\S+)\s+\[(\w+)\]", out, re.MULTILINE)
+    }
+    assert rows["HY047"] == (3, "address-out-of-table", "error")
+    assert rows["HY003"] == (1, "wait-on-group-address", "error")
+
+
+def test_cli_config_printer_and_loaded_heads(tmp_path):
+    job = "; gclint: dialect=hyrel\nM6 T0 O1 X0 Y0 Z0\nT0\nG1 X10 E1 F600\nT4\nG1 X20 E1\nM30\n"
+    path = write(tmp_path, "job.gcode", job)
+
+    def codes(proc):
+        return sorted((f["line"], f["code"]) for f in json.loads(proc.stdout) if f["code"] in ("HY006", "HY007"))
+
+    # default printer (30m): T4 does not exist there
+    plain = run_cli("check", "--format", "json", str(path), cwd=tmp_path)
+    assert codes(plain) == [(5, "HY007")]
+    # an EHR has T4; the configuration says only T0 and T1 are loaded
+    write(tmp_path, "pyproject.toml", '[tool.gclint]\nprinter = "ehr"\nloaded = ["T0", "T1"]\n')
+    configured = run_cli("check", "--format", "json", str(path), cwd=tmp_path)
+    assert codes(configured) == [(5, "HY006")]
+    finding = [f for f in json.loads(configured.stdout) if f["code"] == "HY006"][0]
+    assert finding["severity"] == "warning" and "T0, T1" in finding["message"]
+    # the command line wins over the configuration
+    override = run_cli("check", "--format", "json", "--loaded", "T0,T4", str(path), cwd=tmp_path)
+    assert codes(override) == []
+
+
+def test_cli_fix_rewrites_v4_numbers(tmp_path):
+    path = write(
+        tmp_path, "job.gcode", "; gclint: dialect=hyrel\nM6 T21 O6 X0 Y0\nM104 T21 S200\nM109 T21 S200\nT5\nM30\n"
+    )
+    run_cli("check", "--fix", "--printer", "16a-dual", str(path))
+    assert (
+        path.read_text(encoding="utf-8")
+        == "; gclint: dialect=hyrel\nM6 T5 O6 X0 Y0\nM104 T5 S200\nM109 T5 S200\nT5\nM30\n"
+    )
+
+
+def test_severities_are_the_documented_ones():
+    from gclint.rules.base import all_rules
+
+    rules = all_rules()
+    expected = {
+        "HY006": Severity.WARNING,
+        "HY007": Severity.ERROR,
+        "HY008": Severity.WARNING,
+        "HY022": Severity.ERROR,
+        "HY045": Severity.ERROR,
+        "HY047": Severity.ERROR,
+        "HY048": Severity.WARNING,
+    }
+    assert {code: rules[code].severity for code in expected} == expected

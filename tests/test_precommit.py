@@ -1,0 +1,124 @@
+"""The pre-commit hook, run by the real pre-commit in a throw-away git repository of G-code jobs.
+
+The hook source is a temporary clone of this repository with the current working files committed on
+top (pre-commit needs a committed revision), so the test checks the .pre-commit-hooks.yaml and the
+code being worked on.  pre-commit builds the hook's environment with pip, like on a user's machine,
+so the test needs the package index (PyPI) the first time; the environments are cached for the session.
+"""
+
+from __future__ import annotations
+
+import os
+import shutil
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+
+from tests.conftest import ROOT
+
+GOOD = "; gclint: dialect=hyrel\nM6 T0 O1 X0 Y0 Z0\nG28 X0 Y0\nT0\nM109 T0 S200\nG1 X10 Y10 E1 F1200\nM30\n"
+BAD = "; gclint: dialect=hyrel\nG28 X0 Y0\nG1 X10 X20 Y10 E1 F1200\nM9999\n"
+
+
+def _pre_commit() -> list[str]:
+    try:
+        import pre_commit  # noqa: F401
+    except ImportError:
+        if os.environ.get("CI"):
+            pytest.fail("pre-commit is not installed; it belongs in the test extras")
+        pytest.skip("pre-commit is not installed (pip install pre-commit)")
+    return [sys.executable, "-m", "pre_commit"]
+
+
+def _git(*args: str, cwd: Path) -> str:
+    env = dict(os.environ, GIT_AUTHOR_NAME="gclint test", GIT_AUTHOR_EMAIL="test@example.invalid",
+               GIT_COMMITTER_NAME="gclint test", GIT_COMMITTER_EMAIL="test@example.invalid")
+    proc = subprocess.run(["git", *args], cwd=cwd, capture_output=True, env=env, timeout=120)
+    assert proc.returncode == 0, proc.stderr.decode()
+    return proc.stdout.decode().strip()
+
+
+@pytest.fixture(scope="module")
+def hook_repo(tmp_path_factory) -> tuple[Path, str]:
+    """A clone of this repository with the working files (tracked and new) committed; returns (path, rev)."""
+    if shutil.which("git") is None:
+        pytest.skip("git is not installed")
+    src = tmp_path_factory.mktemp("hook-source") / "gclint"
+    _git("clone", "--quiet", "--no-hardlinks", str(ROOT), str(src), cwd=src.parent)
+    listed = _git("ls-files", "-z", "--cached", "--others", "--exclude-standard", cwd=ROOT)
+    for name in filter(None, listed.split("\0")):
+        origin = ROOT / name
+        if origin.is_file():
+            target = src / name
+            target.parent.mkdir(parents=True, exist_ok=True)
+            shutil.copy2(origin, target)
+        elif not origin.exists() and (src / name).exists():
+            (src / name).unlink()  # deleted in the working tree
+    _git("add", "-A", cwd=src)
+    if _git("status", "--porcelain", cwd=src):
+        _git("commit", "--quiet", "--no-verify", "-m", "working tree under test", cwd=src)
+    return src, _git("rev-parse", "HEAD", cwd=src)
+
+
+@pytest.fixture(scope="module")
+def pre_commit_home(tmp_path_factory) -> Path:
+    return tmp_path_factory.mktemp("pre-commit-home")
+
+
+def _jobs_repo(tmp_path: Path, hook_repo: tuple[Path, str]) -> Path:
+    repo = tmp_path / "jobs"
+    repo.mkdir()
+    _git("init", "--quiet", cwd=repo)
+    src, rev = hook_repo
+    (repo / ".pre-commit-config.yaml").write_text(
+        f"repos:\n  - repo: {src.as_posix()}\n    rev: {rev}\n    hooks:\n      - id: gclint\n"
+    )
+    return repo
+
+
+def _run(repo: Path, home: Path) -> subprocess.CompletedProcess:
+    env = dict(os.environ, PRE_COMMIT_HOME=str(home), PRE_COMMIT_COLOR="never")
+    env.pop("GCLINT_CACHE_DIR", None)
+    return subprocess.run([*_pre_commit(), "run", "--all-files"], cwd=repo, capture_output=True, env=env, timeout=900)
+
+
+def test_hook_passes_good_jobs_and_fails_bad_ones(tmp_path, hook_repo, pre_commit_home):
+    _pre_commit()
+    repo = _jobs_repo(tmp_path, hook_repo)
+    (repo / "part.gcode").write_text(GOOD)
+    (repo / "notes.txt").write_text(BAD)  # not G-code by name: never passed to gclint
+    (repo / "cnc").mkdir()
+    (repo / "cnc" / "PLATE.NGC").write_text("G21\nG0 X0 Y0\nG1 X10 F100\nM2\n")
+    _git("add", "-A", cwd=repo)
+    passed = _run(repo, pre_commit_home)
+    output = passed.stdout.decode() + passed.stderr.decode()
+    assert passed.returncode == 0, output
+    assert "gclint (G-code linter)" in output and "Passed" in output
+
+    (repo / "jobs").mkdir()
+    (repo / "jobs" / "broken job.GCODE").write_text(BAD)
+    _git("add", "-A", cwd=repo)
+    failed = _run(repo, pre_commit_home)
+    output = failed.stdout.decode() + failed.stderr.decode()
+    assert failed.returncode == 1, output
+    assert "Failed" in output
+    assert "jobs/broken job.GCODE:3:" in output and "SX002" in output
+    assert "notes.txt" not in output
+
+
+def test_hook_definition_matches_gcode_names():
+    import re
+
+    _pre_commit()
+    import yaml  # pre-commit's own dependency
+
+    hooks = {h["id"]: h for h in yaml.safe_load((ROOT / ".pre-commit-hooks.yaml").read_text())}
+    hook = hooks["gclint"]
+    assert hook["entry"] == "gclint check" and hook["language"] == "python" and "types" not in hook
+    pattern = re.compile(hook["files"])
+    for name in ("a.gcode", "b.GCO", "c.g", "d.nc", "e.ngc", "f.cnc", "g.TAP"):
+        assert pattern.search(name), name
+    for name in ("a.gcode.bak", "notes.txt", "g.py"):
+        assert not pattern.search(name), name

@@ -1,0 +1,299 @@
+"""The report formats, all fed the same findings: SARIF (validated against the official 2.1.0 schema),
+GitHub workflow commands, JUnit XML (read back by junitparser, the library CI result publishers use),
+full and grouped text, HTML structure and escaping, the toolpath sampler, the progress bar on a real
+pseudo-terminal, and docs/rules.md being up to date."""
+
+from __future__ import annotations
+
+import json
+import os
+import pty
+import subprocess
+import sys
+import xml.etree.ElementTree as ET
+from pathlib import Path
+
+import pytest
+
+from gclint.engine import FileResult
+from gclint.reports import ReportContext, github
+from gclint.reports.toolpath import read_toolpath
+from gclint.rules.base import Finding, Severity
+from tests.conftest import CORPUS, FIXTURES, ROOT, needs_corpus, run_cli
+
+SECRET = "0123456789abcdef"
+BAD = (
+    "; gclint: dialect=marlin\n"
+    f"; printhost_apikey = {SECRET}\n"
+    "G28\n"
+    "G1 X10 Y10 E1 F1200\n"
+    'G1 X1 <b>&amp;"%,:\n'  # SX001: a message that quotes file text with markup and command characters
+    "G1 X20 X30 Y20 E2 ; <img src=x onerror=alert(1)>\n"  # SX002
+    "M9999 ; \x1b[31mred\n"  # DL001 (warning) with a terminal escape in the line
+    "G1 X5 Y5 E3\n"
+)
+GOOD = "; gclint: dialect=marlin\nG28\nG1 X10 Y10 E1 F1200\nG1 X20 Y20 E2\n"
+
+
+@pytest.fixture
+def jobs(tmp_path: Path) -> dict[str, Path]:
+    bad = tmp_path / "bad job.gcode"
+    bad.write_bytes(BAD.encode() + b"; latin-1 \xe9\xff\n")
+    good = tmp_path / "good.gcode"
+    good.write_text(GOOD)
+    return {"bad": bad, "good": good, "missing": tmp_path / "missing.gcode", "dir": tmp_path}
+
+
+def check(*args: str, cwd: Path | None = None) -> subprocess.CompletedProcess:
+    return run_cli("check", "--no-cache", *args, cwd=cwd)
+
+
+# -- SARIF ---------------------------------------------------------------------------------------------
+
+
+def need(module: str):
+    """Import a test dependency: skip without it on a developer machine, fail in CI (.ci/run installs it)."""
+    try:
+        return __import__(module)
+    except ImportError:
+        if os.environ.get("CI"):
+            pytest.fail(f"{module} is not installed; it belongs in the test extras")
+        pytest.skip(f"{module} is not installed")
+
+
+def sarif_validator():
+    jsonschema = need("jsonschema")
+    schema = json.loads((FIXTURES / "sarif-schema-2.1.0.json").read_text(encoding="utf-8"))
+    return jsonschema.Draft4Validator(schema)
+
+
+def test_sarif_validates_against_the_official_schema(jobs):
+    proc = check("bad job.gcode", "good.gcode", "missing.gcode", "--format", "sarif", cwd=jobs["dir"])
+    assert proc.returncode == 2, proc.stderr  # the missing file
+    log = json.loads(proc.stdout)
+    errors = sorted(sarif_validator().iter_errors(log), key=str)
+    assert not errors, "\n".join(str(e) for e in errors[:3])
+    run = log["runs"][0]
+    rules = {r["id"]: r for r in run["tool"]["driver"]["rules"]}
+    assert {"SX001", "SX002", "DL001"} <= set(rules)
+    for rule in rules.values():
+        assert rule["helpUri"].endswith(rule["id"])
+        assert rule["help"]["text"] and rule["shortDescription"]["text"]
+    results = run["results"]
+    by_rule = {r["ruleId"]: r for r in results}
+    sx002 = by_rule["SX002"]
+    assert sx002["level"] == "error" and by_rule["DL001"]["level"] == "warning"
+    region = sx002["locations"][0]["physicalLocation"]["region"]
+    assert region["startLine"] == 6 and region["startColumn"] >= 1
+    assert sx002["locations"][0]["physicalLocation"]["artifactLocation"]["uri"] == "bad%20job.gcode"
+    assert rules[sx002["ruleId"]] is run["tool"]["driver"]["rules"][sx002["ruleIndex"]]
+    text = json.dumps(log)
+    assert SECRET not in text  # snippets and messages are masked
+    assert not run["invocations"][0]["executionSuccessful"]
+    assert "missing.gcode" in run["invocations"][0]["toolExecutionNotifications"][0]["message"]["text"]
+
+
+def test_sarif_of_a_clean_run_is_valid_and_empty(jobs):
+    proc = check(str(jobs["good"]), "--format", "sarif")
+    assert proc.returncode == 0, proc.stderr
+    log = json.loads(proc.stdout)
+    assert not list(sarif_validator().iter_errors(log))
+    assert log["runs"][0]["results"] == [] and log["runs"][0]["invocations"][0]["executionSuccessful"]
+
+
+@needs_corpus
+def test_sarif_on_corpus_files_is_valid():
+    files = [CORPUS / "hyrel" / "unidentified_idx23519466326__shape1_v4.gcode", CORPUS / "other"]
+    proc = check(*map(str, files), "--format", "sarif", "--exit-zero")
+    log = json.loads(proc.stdout)
+    assert not list(sarif_validator().iter_errors(log))
+
+
+# -- GitHub --------------------------------------------------------------------------------------------
+
+
+def test_github_escaping_follows_the_actions_toolkit():
+    assert github.escape_data("50% done\r\nnext") == "50%25 done%0D%0Anext"
+    assert github.escape_property("a:b,c%\n") == "a%3Ab%2Cc%25%0A"
+    finding = Finding("dir,1/a:b.gcode", 3, 4, "HY003", Severity.ERROR, "line one\n::error::injected 100%", "name", end_column=9)
+    out = _render(github.write, [FileResult("dir,1/a:b.gcode", [finding])])
+    assert out == (
+        "::error file=dir%2C1/a%3Ab.gcode,line=3,col=4,endColumn=9,title=HY003::line one%0A::error::injected 100%25 (name)\n"
+    )
+    assert out.count("\n") == 1  # file text can never start a second command
+
+
+def test_github_format_from_the_cli(jobs):
+    proc = check("bad job.gcode", "--format", "github", cwd=jobs["dir"])
+    assert proc.returncode == 1
+    lines = proc.stdout.decode().splitlines()
+    assert all(line.startswith(("::error ", "::warning ", "::notice ")) for line in lines)
+    assert any(line.startswith("::error file=bad job.gcode,line=6,col=") and "title=SX002::" in line for line in lines)
+    assert any(line.startswith("::warning file=bad job.gcode,line=7,") for line in lines)
+    sx001 = next(line for line in lines if "title=SX001" in line)
+    assert "%25" in sx001 and "\x1b" not in proc.stdout.decode()
+
+
+# -- JUnit ---------------------------------------------------------------------------------------------
+
+
+def test_junit_structure_and_escaping(jobs):
+    proc = check("bad job.gcode", "good.gcode", "missing.gcode", "--format", "junit", cwd=jobs["dir"])
+    assert proc.returncode == 2
+    root = ET.fromstring(proc.stdout)  # well-formed XML despite <, &, quotes, ESC and latin-1 bytes
+    assert root.tag == "testsuites"
+    suites = {s.get("name"): s for s in root.findall("testsuite")}
+    assert set(suites) == {"bad job.gcode", "good.gcode", "missing.gcode"}
+    bad = suites["bad job.gcode"]
+    failures = bad.findall("testcase/failure")
+    assert int(bad.get("failures")) == len(failures) == int(bad.get("tests")) >= 3
+    assert {f.get("type") for f in failures} >= {"SX001", "SX002", "DL001"}
+    sx001 = next(f for f in failures if f.get("type") == "SX001")
+    assert '<b>&amp;"%' in sx001.get("message")  # round-trips as text, not markup
+    assert SECRET not in proc.stdout.decode()
+    good = suites["good.gcode"]
+    assert good.get("failures") == "0" and len(good.findall("testcase")) == 1
+    assert suites["missing.gcode"].find("testcase/error") is not None
+    total = sum(int(s.get("tests")) for s in suites.values())
+    assert root.get("tests") == str(total)
+
+
+def test_junit_is_read_by_junitparser(jobs, tmp_path):
+    junitparser = need("junitparser")
+    out = tmp_path / "report.xml"
+    check(str(jobs["bad"]), str(jobs["good"]), "--format", "junit", "--output", str(out))
+    xml = junitparser.JUnitXml.fromfile(str(out))
+    suites = list(xml)
+    assert len(suites) == 2
+    bad = suites[0]
+    cases = list(bad)
+    assert bad.failures == len(cases) >= 3
+    assert all(not case.is_passed for case in cases)
+    assert any(r.type == "SX002" for case in cases for r in case.result)
+    assert list(suites[1])[0].is_passed
+
+
+# -- text: full and grouped ----------------------------------------------------------------------------
+
+
+def test_full_format_shows_the_line_and_a_caret(jobs):
+    proc = check("bad job.gcode", "--format", "full", cwd=jobs["dir"])
+    text = proc.stdout.decode()
+    block = text.split("bad job.gcode:6:")[1]
+    source_line, caret_line = block.splitlines()[2:4]
+    assert source_line.startswith(" 6 | G1 X20 X30")
+    column = source_line.index("G1 X20 X30") + len("G1 X20 ")
+    assert caret_line.index("^") == column
+    unknown = text.split("bad job.gcode:7:1:")[1].splitlines()
+    assert unknown[2].startswith(" 7 | M9999") and unknown[3].endswith("| ^^^^^")  # the whole code word
+    assert SECRET not in text and "\x1b" not in text and "\\x1b[31m" in text
+    assert text.rstrip().splitlines()[-1].startswith("Found ")
+
+
+def test_grouped_format_groups_by_file(jobs):
+    proc = check("bad job.gcode", "good.gcode", "--format", "grouped", cwd=jobs["dir"])
+    lines = proc.stdout.decode().splitlines()
+    assert lines[0] == "bad job.gcode:"
+    assert any(line.startswith("  6:") and "SX002" in line for line in lines)
+    assert "good.gcode:" not in lines  # files without findings are not listed
+
+
+# -- HTML (structure; the browser test is test_html_chromium.py) ----------------------------------------
+
+
+def test_html_escapes_file_text_and_plots_the_toolpath(jobs):
+    proc = check("bad job.gcode", "good.gcode", "--format", "html", cwd=jobs["dir"])
+    page = proc.stdout.decode()
+    assert page.startswith("<!DOCTYPE html>")
+    assert "<img src=x" not in page and "&lt;img src=x onerror=alert(1)&gt;" in page
+    assert "<b>&amp;amp;" not in page and "&lt;b&gt;&amp;amp;&#34;" in page
+    assert SECRET not in page
+    assert page.count('<svg class="plot"') == 2
+    assert 'class="work"' in page and 'class="marker m-error" data-line="6"' in page
+    assert page.count("<script") == 1  # only the report's own script, with its nonce
+
+
+def test_toolpath_sampling_is_bounded(tmp_path):
+    path = tmp_path / "big.gcode"
+    with path.open("w") as fh:
+        fh.write("; gclint: dialect=marlin\nT0\nG28\n")
+        for i in range(60000):
+            fh.write(f"G1 X{i % 200} Y{(i // 200) % 200} E{i}\n")
+            if i == 30000:
+                fh.write("T1\n")
+    toolpath = read_toolpath(str(path), "marlin", {10, 30005}, budget=500)
+    assert set(toolpath.heads) == {0, 1}
+    for head in toolpath.heads.values():
+        assert len(head.points) <= 2 * 500 + 1
+        assert head.stride > 1
+    assert sum(h.moves for h in toolpath.heads.values()) == 60001  # with the G28
+    assert [m.line for m in toolpath.markers] == [10, 30005]
+    assert toolpath.markers[1].head == 1
+
+
+def test_toolpath_of_stdin_is_not_plotted():
+    assert read_toolpath("-", "hyrel").error
+
+
+# -- progress bar ----------------------------------------------------------------------------------------
+
+
+def _check_on_a_terminal(args: list[str]) -> tuple[int, str, bytes]:
+    master, slave = pty.openpty()
+    env = dict(os.environ, TERM="xterm")
+    env.pop("GCLINT_CACHE_DIR", None)
+    with open(os.devnull, "wb") as devnull:
+        proc = subprocess.Popen([sys.executable, "-m", "gclint", "check", "--no-cache", *args], stdout=subprocess.PIPE,
+                                stderr=slave, stdin=devnull, env=env)
+    os.close(slave)
+    chunks = []
+    while True:
+        try:
+            data = os.read(master, 65536)
+        except OSError:
+            break
+        if not data:
+            break
+        chunks.append(data)
+    out = proc.stdout.read()
+    code = proc.wait()
+    os.close(master)
+    return code, b"".join(chunks).decode("utf-8", "replace"), out
+
+
+def _many_files(folder: Path, n: int = 25) -> list[str]:
+    for i in range(n):
+        (folder / f"job{i:02}.gcode").write_text(GOOD)
+    return [str(folder)]
+
+
+def test_progress_bar_on_a_terminal(tmp_path):
+    code, err, out = _check_on_a_terminal(_many_files(tmp_path) + ["--jobs", "1"])
+    assert code == 0
+    assert "checking [" in err and "25/25 files" in err
+    assert err.endswith("\r")  # erased before the report
+    assert b"All checks passed." in out and b"checking" not in out
+
+
+def test_no_progress_bar_for_machine_formats_or_pipes(tmp_path):
+    paths = _many_files(tmp_path)
+    code, err, out = _check_on_a_terminal([*paths, "--format", "json"])
+    assert "checking" not in err and json.loads(out) == []
+    proc = check(*paths, "--progress")  # stderr is a pipe here: never a bar
+    assert b"checking" not in proc.stderr
+
+
+# -- docs/rules.md ----------------------------------------------------------------------------------------
+
+
+def test_rules_reference_is_up_to_date():
+    proc = subprocess.run([sys.executable, str(ROOT / "scripts" / "gen_rules_doc.py"), "--check"], capture_output=True)
+    assert proc.returncode == 0, proc.stderr.decode() + " (run: python scripts/gen_rules_doc.py)"
+
+
+def _render(writer, results) -> str:
+    import io
+
+    out = io.StringIO()
+    writer(results, out, ReportContext(tool_version="test"))
+    return out.getvalue()

@@ -1,0 +1,273 @@
+"""Security: the SC rules on hostile G-code of every dialect, secrets masked in every output, the HTML report
+escapes file text, and the configuration is data (it cannot run code; a bad one is one line and exit 2)."""
+
+from __future__ import annotations
+
+import json
+import os
+from pathlib import Path
+
+import pytest
+
+from gclint import secrets
+from gclint.engine import Linter, Options
+from gclint.reports import formats
+
+from .conftest import run_cli
+from .strategies import DIALECTS
+
+# -- the rules, line by line ------------------------------------------------------------------------------------
+
+HOSTILE = [
+    # (line, expected SC codes)
+    ("M792 ; SHELL C:\\program.exe", {"SC001"}),
+    ("M0 ; SAY Hello Wilbur ; SHELL C:\\Windows\\System32\\cmd.exe /c del *.*", {"SC001"}),
+    ("M0 SHELL C:\\program.exe", {"SC001"}),  # no ";": the grammar refuses the line, the rule still reads it
+    ("N10 M792 ; shell calc.exe", {"SC001"}),
+    ("M0 (SHELL evil.exe)", {"SC001"}),
+    ("RUN_SHELL_COMMAND CMD=backup_cfg PARAMS=now", {"SC001"}),
+    ("M0 ; PIC C:\\mr_ed.png", {"SC002"}),
+    ("M792 ; VID C:\\sample.mp4 ; BEEP", {"SC002"}),
+    ("M792 ; PIC a.png ; SHELL b.exe", {"SC001", "SC002"}),
+    ("M1000 rm /sd/config.txt", {"SC003"}),
+    ("M1000 config-set sd spindle.max_rpm 30000", {"SC003"}),
+    ('M98 P"0:/macros/prime.g"', {"SC004"}),
+    ("M98 Phomez.g", {"SC004"}),
+    ("M98.1 L2 {gcodes/test.cnc}", {"SC004"}),
+    ("M32 !/models/part.gco#", {"SC004"}),
+    ("M23 part2.gco", {"SC004"}),
+    ("M30 old_job.gco", {"SC005"}),
+    ('M30 "0:/sys/config.g"', {"SC005"}),
+    ("M28 /sys/config.g", {"SC005"}),
+    ('M471 S"/sys/config.g" T"/sys/config.bak"', {"SC005"}),
+    ("; printhost_apikey = 4F1C2B7A9D8E4C3B8A7F6E5D4C3B2A19", {"SC006"}),
+    ("; printhost_password = hunter2hunter2", {"SC006"}),
+    ("; octoprint_apikey = s3cr3t-key-value", {"SC006"}),
+    ("; upload http://pi:raspberry@octopi.local/api/files", {"SC006"}),
+    ("; Authorization: Bearer abcdEFGH1234ijkl5678", {"SC006"}),
+    ('M587 S"workshop" P"wifi-pass-123"', {"SC006"}),
+    ("M117 token=abcdef123456", {"SC006"}),
+    ("G1 X1 )( ; password=abc123xyz", {"SC006"}),  # a line the grammar refuses: its comment is still read
+    ("; ghp_" + "a1B2" * 9, {"SC006"}),
+    ("; AKIAABCDEFGHIJKLMNOP", {"SC006"}),
+]
+
+HARMLESS = [
+    "M0",
+    "M0 ; Load the blue filament",
+    "M792 ; SAY done ; BEEP ; SEND layer",
+    "M1000",
+    "M98 P100 L2",
+    "M98 P1001",
+    "M24",
+    "M30",
+    "M30 ; end",
+    "M30 (done)",
+    "; printhost_apikey = ",
+    "; printhost_password = ",
+    "; printhost_authorization_type = key",
+    "; print_host = http://octopi.local",
+    'M587 S"net" P""',
+    "; password: ****",
+    ";TYPE:WALL-OUTER",
+    "; thumbnail begin 16x16 1234",
+    "; iVBORw0KGgoAAAANSUhEUgAAABAAAAAQCAYAAAAf8/9hAAAAAXNSR0IArs4c6QAAAARnQU1BAACxjwv8YQUAAAAJcEhZcwAADsMAAA7D",
+    "; bbl_use_printhost = 0",
+    "(The percent sign (%) after M30 is a special stop code.)",
+    "G1 X10 Y10 F3000",
+    "; md5 5d41402abc4b2a76b9719d911017c592",
+]
+
+
+def _sc(text: str, dialect: str = "auto") -> list:
+    return [f for f in Linter(Options(dialect=dialect, select=["SC"])).check_text(text, "job.gcode").findings]
+
+
+@pytest.mark.parametrize("line,codes", HOSTILE, ids=[h[0][:40] for h in HOSTILE])
+def test_hostile_lines(line: str, codes: set[str]) -> None:
+    found = _sc(line + "\n")
+    assert {f.code for f in found} == codes, [(f.code, f.message) for f in found]
+
+
+@pytest.mark.parametrize("line", HARMLESS)
+def test_harmless_lines(line: str) -> None:
+    assert _sc(line + "\n") == []
+
+
+@pytest.mark.parametrize("dialect", DIALECTS)
+def test_every_dialect_is_checked(dialect: str) -> None:
+    text = "M792 ; SHELL evil.exe\nM1000 rm x\nM30 old.gco\n; printhost_apikey = 4F1C2B7A9D8E4C3B8A7F6E5D4C3B2A19\n"
+    assert sorted(f.code for f in _sc(text, dialect)) == ["SC001", "SC003", "SC005", "SC006"]
+
+
+def test_findings_point_at_the_action() -> None:
+    [f] = _sc("M0 ; SAY hi ; SHELL C:\\x.exe\n")
+    assert f.line == 1 and f.column == len("M0 ; SAY hi ; ") + 1
+    assert '"C:\\x.exe"' in f.message
+
+
+def test_noqa_silences_a_security_finding() -> None:
+    assert _sc('M98 P"homeall.g" ; noqa: SC004\n') == []
+
+
+# -- secrets -----------------------------------------------------------------------------------------------------
+
+SECRET_VALUES = [
+    "4F1C2B7A9D8E4C3B8A7F6E5D4C3B2A19",
+    "hunter2hunter2",
+    "raspberry",
+    "abcdEFGH1234ijkl5678",
+    "wifi-pass-123",
+]
+SECRET_JOB = (
+    "; gclint: dialect=marlin\n"
+    "; printhost_apikey = 4F1C2B7A9D8E4C3B8A7F6E5D4C3B2A19\n"
+    "; printhost_password = hunter2hunter2\n"
+    "M117 http://pi:raspberry@octopi.local/\n"
+    "; Authorization: Bearer abcdEFGH1234ijkl5678\n"
+    'M587 S"workshop" P"wifi-pass-123"\n'
+    # A finding of another rule on a line that holds a secret: its source line must be masked too.
+    "M104 S200 S210 ; password=hunter2hunter2\n"
+    "G1 X1 )( ; printhost_apikey = 4F1C2B7A9D8E4C3B8A7F6E5D4C3B2A19\n"
+)
+
+
+def test_sc_findings_are_masked_in_message_and_source() -> None:
+    findings = Linter(Options(dialect="marlin")).check_text(SECRET_JOB, "job.gcode").findings
+    sc = [f for f in findings if f.code == "SC006"]
+    assert len(sc) == 7, [(f.line, f.message) for f in sc]
+    for f in sc:
+        for value in SECRET_VALUES:
+            assert value not in f.message and value not in (f.source or ""), f
+        assert "*" in f.source
+
+
+def test_mask_keeps_the_key_and_the_length() -> None:
+    line = "; printhost_apikey = 4F1C2B7A9D8E4C3B8A7F6E5D4C3B2A19"
+    assert secrets.mask(line) == "; printhost_apikey = " + "*" * 32
+    assert secrets.mask("G1 X10 Y10") == "G1 X10 Y10"
+    assert secrets.mask("http://user:pw1234@host/x") == "http://user:******@host/x"
+
+
+@pytest.mark.parametrize("fmt", sorted(formats()))
+def test_no_output_format_shows_a_secret(tmp_path: Path, fmt: str) -> None:
+    job = tmp_path / "job.gcode"
+    job.write_text(SECRET_JOB)
+    out = tmp_path / f"report.{fmt}"
+    proc = run_cli("check", "--format", fmt, "--output", str(out), str(job))
+    assert proc.returncode == 1, proc.stderr
+    text = out.read_text(encoding="utf-8", errors="replace") + proc.stderr.decode("utf-8", "replace")
+    for value in SECRET_VALUES:
+        assert value not in text, f"{fmt}: {value} shown"
+
+
+def test_postprocess_report_shows_no_secret(tmp_path: Path) -> None:
+    job = tmp_path / "job.gcode"
+    job.write_text(SECRET_JOB)
+    report = tmp_path / "job.gcode.gclint.txt"
+    proc = run_cli("postprocess", "--fail-on", "never", "--report", str(report), str(job))
+    assert proc.returncode == 0, proc.stderr
+    text = proc.stderr.decode() + report.read_text()
+    for value in SECRET_VALUES:
+        assert value not in text
+
+
+# -- the HTML report escapes file text ----------------------------------------------------------------------------
+
+needs_html = pytest.mark.skipif("html" not in formats(), reason="the html report format does not exist yet")
+
+SCRIPT_JOB = (
+    "; <script>alert('comment')</script>\n"
+    "M117 <img src=x onerror=alert('m117')>\n"
+    "G1 X1 Y1 </pre><script>alert('parse')</script>\n"
+    "M104 S200 S210 ; \"><svg onload=alert('attr')>\n"
+    "M0 ; SHELL <script>alert('sc')</script>\n"
+)
+
+
+@needs_html
+def test_html_report_escapes_file_text(tmp_path: Path) -> None:
+    job = tmp_path / "x<b>y.gcode"  # file names are file text too
+    job.write_text(SCRIPT_JOB)
+    out = tmp_path / "report.html"
+    proc = run_cli("check", "--format", "html", "--output", str(out), str(job))
+    assert proc.returncode == 1, proc.stderr
+    html = out.read_text(encoding="utf-8")
+    for raw in ("<script>alert", "<img src=x", "<svg onload", "x<b>y", "onerror=alert('m117')>"):
+        assert raw not in html, f"unescaped file text: {raw}"
+    assert "&lt;script&gt;alert" in html or "&#60;script&#62;alert" in html, "the comment should be shown, escaped"
+
+
+# -- configuration is data ---------------------------------------------------------------------------------------
+
+BAD_CONFIGS = {
+    "code in a string": ("dialect = \"__import__('os').system('touch PWNED')\"\n", "unknown dialect"),
+    "python file content": ("import os\nos.system('touch PWNED')\n", "invalid TOML"),
+    "plugins key": ('plugins = ["os:system"]\n', "unknown option 'plugins'"),
+    "wrong type": ("select = 5\n", "'select'"),
+    "bad printer": ('printer = "zz"\n', "unknown printer"),
+    "bad heads": ("loaded = {a = 1}\n", "'loaded'"),
+    "bad rpm": ('spindle-max-rpm = "fast"\n', "'spindle-max-rpm'"),
+    "invalid TOML": ("ignore = [\n", "invalid TOML"),
+    "deeply nested": ("dialect = " + "[" * 50_000 + "]" * 50_000 + "\n", "invalid TOML"),
+    "binary": (bytes(range(256)), "invalid TOML"),
+}
+
+
+@pytest.mark.parametrize("name", BAD_CONFIGS)
+def test_bad_configuration_is_one_line_exit_2_and_runs_nothing(tmp_path: Path, name: str) -> None:
+    content, message = BAD_CONFIGS[name]
+    config = tmp_path / "gclint.toml"
+    config.write_bytes(content if isinstance(content, bytes) else content.encode())
+    job = tmp_path / "job.gcode"
+    job.write_text("G28\n")
+    proc = run_cli("check", str(job), cwd=tmp_path)
+    stderr = proc.stderr.decode()
+    assert proc.returncode == 2 and "Traceback" not in stderr, stderr
+    lines = [line for line in stderr.splitlines() if line.strip()]
+    assert len(lines) == 1 and "gclint.toml" in lines[0] and message in lines[0], lines
+    assert not (tmp_path / "PWNED").exists() and not Path("PWNED").exists()
+
+
+def test_pyproject_section_is_data_too(tmp_path: Path) -> None:
+    (tmp_path / "pyproject.toml").write_text(
+        '[tool.gclint]\nselect = ["SC"]\n[tool.gclint.hooks]\nbefore = "rm -rf /"\n'
+    )
+    job = tmp_path / "job.gcode"
+    job.write_text("G28\n")
+    proc = run_cli("check", str(job), cwd=tmp_path)
+    assert proc.returncode == 2 and "unknown option 'hooks'" in proc.stderr.decode()
+
+
+@pytest.mark.xfail(
+    strict=True,
+    reason="translate reads spindle-max-rpm with float() unchecked (translate/options.py); "
+    "the message does not name the configuration file",
+)
+def test_bad_configuration_for_translate_names_the_file(tmp_path: Path) -> None:
+    (tmp_path / "gclint.toml").write_text('spindle-max-rpm = "fast"\n')
+    job = tmp_path / "job.gcode"
+    job.write_text("G28\n")
+    proc = run_cli("translate", "--from", "marlin", "--to", "hyrel", str(job), cwd=tmp_path)
+    assert proc.returncode == 2 and "gclint.toml" in proc.stderr.decode()
+
+
+def test_configuration_is_read_with_tomllib_only() -> None:
+    import inspect
+
+    import gclint.config as config
+
+    source = inspect.getsource(config)
+    for forbidden in ("eval(", "exec(", "import_module", "__import__", "yaml", "pickle", "runpy"):
+        assert forbidden not in source, forbidden
+    assert "tomllib" in source
+
+
+def test_json_report_of_security_findings(tmp_path: Path) -> None:
+    job = tmp_path / "job.gcode"
+    job.write_text("M792 ; SHELL C:\\evil.exe\n")
+    proc = run_cli("check", "--format", "json", str(job))
+    [finding] = [f for f in json.loads(proc.stdout) if f["code"].startswith("SC")]
+    assert finding["code"] == "SC001" and finding["severity"] == "error" and finding["name"] == "host-runs-program"
+    assert proc.returncode == 1
+    assert os.path.basename(finding["path"]) == "job.gcode"
