@@ -244,7 +244,11 @@ class Linter:
         by_code: dict[str, list[Callable[[Line, Command], None]]] = {}
         any_t: list[Callable[[Line, Command], None]] = []
         unknown: list[Callable[[Line, Command], None]] = []
+        interpreter = ctx.interpreter
         line_hooks = tuple(r.check_line for r in rules if r.on_line)
+        long_hooks = tuple((r.on_line_longer_than, r.check_line) for r in rules if r.on_line_longer_than is not None)
+        shortest_long = min((n for n, _ in long_hooks), default=None)
+        after_end_hooks = tuple(r.check_line for r in rules if r.on_line_after_m30)
         numbered_hooks = tuple(r.check_line for r in rules if r.on_numbered)
         issue_hooks = tuple(r.check_issues for r in rules if r.on_issue)
         comment_hooks = tuple(r.check_comment for r in rules if r.on_comment)
@@ -257,13 +261,15 @@ class Linter:
             if r.on_unknown_code:
                 unknown.append(r.check)
 
-        dispatch: dict[str | None, tuple[Callable[[Line, Command], None], ...]] = {}
+        # code -> (handlers always called, (handler, letters) called when a letter is present, the
+        # interpreter's function for the code)
+        dispatch: dict[str | None, tuple[tuple, tuple, Callable[[Command, Line], None]]] = {}
 
         def disable(hook: Callable, exc: Exception, line_number: int | None) -> None:
             # A rule raised: say so once (naming the rule, the file and the line), drop the rule for the
             # rest of this file and go on.  The loops below iterate over tuples, so replacing them here
             # does not skip the other rules' hooks on the current line.
-            nonlocal line_hooks, numbered_hooks, issue_hooks, comment_hooks
+            nonlocal line_hooks, numbered_hooks, issue_hooks, comment_hooks, long_hooks, after_end_hooks
             rule = getattr(hook, "__self__", None)
             if rule is None or rule not in rules:  # pragma: no cover - hooks are bound rule methods
                 raise exc
@@ -275,25 +281,33 @@ class Linter:
 
             line_hooks, numbered_hooks = keep(line_hooks), keep(numbered_hooks)
             issue_hooks, comment_hooks = keep(issue_hooks), keep(comment_hooks)
+            after_end_hooks = keep(after_end_hooks)
+            long_hooks = tuple((n, h) for n, h in long_hooks if getattr(h, "__self__", None) is not rule)
             for code, handlers in list(by_code.items()):
                 by_code[code] = list(keep(handlers))
             any_t[:] = keep(any_t)
             unknown[:] = keep(unknown)
             dispatch.clear()
 
-        def build(cmd: Command) -> tuple[Callable[[Line, Command], None], ...]:
+        def build(cmd: Command) -> tuple[tuple, tuple, Callable[[Command, Line], None]]:
             code = cmd.code
             handlers = list(by_code.get(code, ())) if code is not None else []
             if code is not None and cmd.kind == GCODE and code[0] == "T":
                 handlers.extend(any_t)
             if not dialect.accepts(cmd.kind, code):
                 handlers.extend(unknown)
-            out = tuple(handlers)
+            always, filtered = [], []
+            for handler in handlers:
+                letters = handler.__self__.trigger_letters(code) if code is not None else None
+                if letters is None:
+                    always.append(handler)
+                elif letters:
+                    filtered.append((handler, letters))
+            out = (tuple(always), tuple(filtered), interpreter.handler_for(cmd))
             dispatch[code] = out
             return out
 
         state = ctx.state
-        apply = ctx.interpreter.apply
         read_directives = ctx.read_directives
         parse = parse_line
         number = 0
@@ -303,24 +317,37 @@ class Linter:
                 number += 1
                 parsed = parse(raw)
                 line = Line(number, raw, ending, parsed)
-                state.line_number = number
                 # Every rule call is guarded (a "try" costs nothing until something raises, Python 3.11+).
-                if parsed.comments:
-                    read_directives(line)
-                    for hook in comment_hooks:
-                        try:
-                            for comment in parsed.comments:
-                                hook(line, comment)
-                        except Exception as exc:
-                            disable(hook, exc, number)
-                if parsed.issues:
-                    for hook in issue_hooks:
-                        try:
-                            hook(line)
-                        except Exception as exc:
-                            disable(hook, exc, number)
-                if parsed.line_number is not None or parsed.checksum is not None:
-                    for hook in numbered_hooks:
+                if parsed.special:
+                    if parsed.comments:
+                        read_directives(line)
+                        for hook in comment_hooks:
+                            try:
+                                for comment in parsed.comments:
+                                    hook(line, comment)
+                            except Exception as exc:
+                                disable(hook, exc, number)
+                    if parsed.issues:
+                        for hook in issue_hooks:
+                            try:
+                                hook(line)
+                            except Exception as exc:
+                                disable(hook, exc, number)
+                    if parsed.line_number is not None or parsed.checksum is not None:
+                        for hook in numbered_hooks:
+                            try:
+                                hook(line)
+                            except Exception as exc:
+                                disable(hook, exc, number)
+                if shortest_long is not None and len(raw) > shortest_long:
+                    for limit, hook in long_hooks:
+                        if len(raw) > limit:
+                            try:
+                                hook(line)
+                            except Exception as exc:
+                                disable(hook, exc, number)
+                if after_end_hooks and state.after_m30:
+                    for hook in after_end_hooks:
                         try:
                             hook(line)
                         except Exception as exc:
@@ -331,16 +358,26 @@ class Linter:
                     except Exception as exc:
                         disable(hook, exc, number)
                 for cmd in parsed.commands:
-                    handlers = get(cmd.code)
-                    if handlers is None:
-                        handlers = build(cmd)
-                    for handler in handlers:
+                    entry = get(cmd.code)
+                    if entry is None:
+                        entry = build(cmd)
+                    always, filtered, apply = entry
+                    for handler in always:
                         try:
                             handler(line, cmd)
                         except Exception as exc:
                             disable(handler, exc, number)
+                    if filtered:
+                        params = cmd.params
+                        for handler, letters in filtered:
+                            if not letters.isdisjoint(params):
+                                try:
+                                    handler(line, cmd)
+                                except Exception as exc:
+                                    disable(handler, exc, number)
                     apply(cmd, line)
         result.lines = number
+        state.line_number = number
         for r in list(rules):
             try:
                 r.finish()

@@ -239,11 +239,6 @@ def test_pyproject_section_is_data_too(tmp_path: Path) -> None:
     assert proc.returncode == 2 and "unknown option 'hooks'" in proc.stderr.decode()
 
 
-@pytest.mark.xfail(
-    strict=True,
-    reason="translate reads spindle-max-rpm with float() unchecked (translate/options.py); "
-    "the message does not name the configuration file",
-)
 def test_bad_configuration_for_translate_names_the_file(tmp_path: Path) -> None:
     (tmp_path / "gclint.toml").write_text('spindle-max-rpm = "fast"\n')
     job = tmp_path / "job.gcode"

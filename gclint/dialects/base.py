@@ -31,6 +31,18 @@ class Param:
     source: str = ""
     forbidden: bool = False  # the letter must not appear at all (the meaning says why)
 
+    @property
+    def constrained(self) -> bool:
+        """Whether anything about this parameter can be wrong (a bound, choices, required, forbidden)."""
+        return (
+            self.forbidden
+            or self.required
+            or self.integer
+            or self.choices is not None
+            or self.minimum is not None
+            or self.maximum is not None
+        )
+
     def problem(self, value: float | None) -> str | None:
         """Why ``value`` is not allowed, or None.  ``value`` is None for a letter with no number."""
         if self.forbidden:

@@ -7,6 +7,7 @@ job but deletes a file on Marlin; G90 resets the E mode on Marlin only).  Facts 
 
 from __future__ import annotations
 
+from functools import partial
 from typing import Callable
 
 from gclint.dialects.addressing import Address, resolve_v5
@@ -37,6 +38,8 @@ class Interpreter:
         self.family = dialect.family
         self.resolve_variable: Callable[[int], Address] = dialect.extras.get("resolve_variable", resolve_v5)  # type: ignore[assignment]
         self.resolve_command: Callable[[int], Address] = dialect.extras.get("resolve_command", resolve_v5)  # type: ignore[assignment]
+        self.is_hyrel = self.family == "hyrel"
+        self.g0_feed_one_shot = self.family in ("hyrel", "smoothie")  # Hyrel/Carvera: G0 F is one-shot
         self.handlers: dict[str, Handler] = self._handlers()
 
     # -- addressing ----------------------------------------------------------------------------------
@@ -64,6 +67,11 @@ class Interpreter:
 
     # -- dispatch ------------------------------------------------------------------------------------
 
+    def handler_for(self, cmd: Command) -> Handler:
+        """The function that applies commands with ``cmd``'s code (the engine caches it per code)."""
+        handler = self.handlers.get(cmd.code)  # type: ignore[arg-type]
+        return handler if handler is not None else self.apply
+
     def apply(self, cmd: Command, line: Line) -> None:
         handler = self.handlers.get(cmd.code)  # type: ignore[arg-type]
         if handler is not None:
@@ -83,8 +91,8 @@ class Interpreter:
 
     def _handlers(self) -> dict[str, Handler]:
         h: dict[str, Handler] = {
-            "G0": self._g0,
-            "G1": self._g1,
+            "G0": partial(self._motion, mode="G0"),
+            "G1": partial(self._motion, mode="G1"),
             "G2": self._arc,
             "G3": self._arc,
             "G4": _ignore,
@@ -159,12 +167,6 @@ class Interpreter:
 
     # -- motion --------------------------------------------------------------------------------------
 
-    def _g0(self, cmd: Command, line: Line) -> None:
-        self._motion(cmd, line, "G0")
-
-    def _g1(self, cmd: Command, line: Line) -> None:
-        self._motion(cmd, line, "G1")
-
     def _arc(self, cmd: Command, line: Line) -> None:
         self._motion(cmd, line, cmd.code)  # type: ignore[arg-type]
 
@@ -173,40 +175,61 @@ class Interpreter:
         self._motion(cmd, line, cmd.code, xy=False)  # type: ignore[arg-type]
 
     def _motion(self, cmd: Command, line: Line, mode: str, xy: bool = True) -> None:
+        # The hot path: one call per G0/G1 line of a multi-million-line job.
         st = self.state
         p = cmd.params
-        pos = st.position
-        if st.absolute:
-            for axis in _AXES:
-                v = p.get(axis)
-                if v is not None and (xy or axis not in "XY"):
-                    pos.set_raw(axis, v)
+        if st.absolute and xy:
+            st.position.values.update(p)  # axis texts, converted only if read (see Position)
         else:
+            pos = st.position
             for axis in _AXES:
-                v = p.get(axis)
-                if v is not None and (xy or axis not in "XY"):
+                if axis in p and (xy or axis not in "XY"):
+                    v = p[axis]
+                    if st.absolute:
+                        pos.set_raw(axis, v)
+                        continue
                     try:
-                        pos.add(axis, float(v))
-                    except ValueError:
+                        pos.add(axis, float(v))  # type: ignore[arg-type]
+                    except (TypeError, ValueError):
                         pos.forget(axis)
-        feed = p.get("F")
-        if feed is not None:
-            one_shot = mode == "G0" and self.family in ("hyrel", "smoothie")  # Hyrel/Carvera: G0 F one-shot
-            if not one_shot:
-                try:
-                    st.feed = float(feed)
-                except ValueError:
-                    st.feed = None
-                if mode != "G0":
-                    st.working_feed_set = True
+        if "F" in p and not (mode == "G0" and self.g0_feed_one_shot):
+            try:
+                st.feed = float(p["F"])  # type: ignore[arg-type]
+            except (TypeError, ValueError):
+                st.feed = None
+            if mode != "G0":
+                st.working_feed_set = True
         st.moved = True
         if st.first_move_line is None:
             st.first_move_line = line.number
         if mode in _MOTION:
             st.motion_mode = mode
-        e = p.get("E")
         if "E" in p:
-            if mode != "G0" and self._is_printing(e):
+            self._extrude(p["E"], mode, line)
+        if self.is_hyrel and "H" in p:
+            register = _int(p["H"])
+            if register != st.applied_height_register or st.applied_height_line is None:
+                st.applied_height_line = line.number
+            st.applied_height_register = register
+
+    def _extrude(self, e: str | None, mode: str, line: Line) -> None:
+        st = self.state
+        try:
+            value = float(e) if e is not None else None
+        except ValueError:
+            value = None
+        if mode != "G0":
+            # Hyrel native flow: "E will trigger a working or printing move" whatever its value (G1
+            # section); elsewhere a move extrudes when E advances.
+            if self.is_hyrel and st.flow_mode == NATIVE:
+                printing = True
+            elif value is None:
+                printing = False
+            elif st.e_absolute:
+                printing = st.e_position is None or value > st.e_position
+            else:
+                printing = value > 0
+            if printing:
                 if not st.printed:
                     st.printed = True
                     st.first_print_line = line.number
@@ -214,36 +237,6 @@ class Interpreter:
                     st.first_print_since_home_line = line.number
                 if st.first_print_since_m30_line is None:
                     st.first_print_since_m30_line = line.number
-            self._advance_e(e)
-        if self.family == "hyrel":
-            h = p.get("H")
-            if h is not None:
-                register = _int(h)
-                if register != st.applied_height_register or st.applied_height_line is None:
-                    st.applied_height_line = line.number
-                st.applied_height_register = register
-
-    def _is_printing(self, e: str | None) -> bool:
-        # Hyrel native flow: "E will trigger a working or printing move" whatever its value (G1 section);
-        # elsewhere a move extrudes when E advances.
-        if self.family == "hyrel" and self.state.flow_mode == NATIVE:
-            return True
-        if e is None:
-            return False
-        try:
-            value = float(e)
-        except ValueError:
-            return False
-        if self.state.e_absolute:
-            return self.state.e_position is None or value > self.state.e_position
-        return value > 0
-
-    def _advance_e(self, e: str | None) -> None:
-        st = self.state
-        try:
-            value = float(e) if e is not None else None
-        except ValueError:
-            value = None
         if value is None:
             st.e_position = None
         elif st.e_absolute:

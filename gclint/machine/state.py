@@ -17,43 +17,38 @@ EVALUES = "evalues"  # Hyrel M229 E1: E amounts drive the flow
 class Position:
     """The last commanded position.  Axes are None until known.
 
-    Absolute moves keep the value's source text and convert it only when read (most jobs never ask),
-    relative moves accumulate numbers.
+    Absolute moves store the value's source text and convert it only when read (most jobs never ask):
+    ``values`` maps an axis to its text, a number, or None (unknown).  Other letters a move carries may
+    sit in ``values`` too; only X Y Z A B are ever read.
     """
 
-    _raw: dict = field(default_factory=dict)  # axis -> source text of an absolute value
-    _num: dict = field(default_factory=dict)  # axis -> float
+    values: dict = field(default_factory=dict)
 
-    def set_raw(self, axis: str, text: str) -> None:
-        self._raw[axis] = text
-        self._num.pop(axis, None)
+    def set_raw(self, axis: str, text: str | None) -> None:
+        self.values[axis] = text
 
     def set(self, axis: str, value: float | None) -> None:
-        self._raw.pop(axis, None)
-        self._num[axis] = value
+        self.values[axis] = value
 
     def get(self, axis: str) -> float | None:
-        text = self._raw.get(axis)
-        if text is not None:
+        value = self.values.get(axis)
+        if type(value) is str:
             try:
-                value: float | None = float(text)
+                value = float(value)
             except ValueError:
                 value = None
-            self._num[axis] = value
-            del self._raw[axis]
-            return value
-        return self._num.get(axis)
+            self.values[axis] = value
+        return value
 
     def add(self, axis: str, delta: float) -> None:
         current = self.get(axis)
-        self._num[axis] = None if current is None else current + delta
+        self.values[axis] = None if current is None else current + delta
 
     def forget(self, axis: str) -> None:
-        self._raw.pop(axis, None)
-        self._num.pop(axis, None)
+        self.values.pop(axis, None)
 
     def snapshot(self) -> dict[str, float | None]:
-        return {axis: self.get(axis) for axis in sorted(set(self._raw) | set(self._num))}
+        return {axis: self.get(axis) for axis in "XYZAB" if axis in self.values}
 
 
 @dataclass(slots=True)

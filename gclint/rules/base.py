@@ -119,6 +119,8 @@ class Rule:
     families: ClassVar[tuple[str, ...] | None] = None  # dialect families it applies to; None = all
     dialects: ClassVar[tuple[str, ...] | None] = None  # or exact dialect names
     on_line: ClassVar[bool] = False  # call check_line for every line (use sparingly)
+    on_line_longer_than: ClassVar[int | None] = None  # call check_line for lines longer than this
+    on_line_after_m30: ClassVar[bool] = False  # call check_line for every line once the job has ended
     on_comment: ClassVar[bool] = False  # call check_comment for every comment
     on_unknown_code: ClassVar[bool] = False  # call check for codes the dialect does not have
     on_numbered: ClassVar[bool] = False  # call check_line for lines with an N number or a checksum
@@ -135,8 +137,14 @@ class Rule:
     def check(self, line: Line, cmd: Command) -> None:
         """Called for each command the rule listens to, before the command changes the state."""
 
+    def trigger_letters(self, code: str) -> frozenset[str] | None:
+        """Letters that make ``check`` worth calling for ``code``: the engine skips commands with none of
+        them.  None (the default) means every command with the code."""
+        return None
+
     def check_line(self, line: Line) -> None:
-        """Called for every line (``on_line``) or numbered lines (``on_numbered``)."""
+        """Called for every line (``on_line``), numbered lines (``on_numbered``), long lines
+        (``on_line_longer_than``) or lines after the end of the job (``on_line_after_m30``)."""
 
     def check_comment(self, line: Line, comment: Comment) -> None:
         """Called for every comment (``on_comment``)."""

@@ -62,10 +62,19 @@ class ParamTableRule(Rule):
         self.table: dict[str, list[Param]] = {}
         for spec in ctx.dialect.codes.values():
             if spec.params:
-                mine = [p for p in spec.params.values() if p.rule == self.code]
+                mine = [p for p in spec.params.values() if p.rule == self.code and p.constrained]
                 if mine:
                     self.table[spec.code] = mine
         self.codes = tuple(self.table)
+
+    def trigger_letters(self, code: str) -> frozenset[str] | None:
+        """The engine calls ``check`` only for commands with one of these letters (None: always)."""
+        if type(self).check is not ParamTableRule.check:
+            return None  # a subclass that checks more than the table must see every command
+        params = self.table.get(code, ())
+        if any(p.required for p in params):
+            return None
+        return frozenset(p.letter for p in params)
 
     def check(self, line: Line, cmd: Command) -> None:
         params = cmd.params
@@ -167,6 +176,8 @@ class UnknownParameter(Rule):
         self._seen: dict[tuple, tuple[str, ...]] = {}
 
     def check(self, line: Line, cmd: Command) -> None:
+        if cmd.params.keys() <= self.allowed[cmd.code]:  # type: ignore[index]
+            return
         key = (cmd.code, *cmd.params)
         unknown = self._seen.get(key)
         if unknown is None:

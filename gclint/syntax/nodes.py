@@ -350,6 +350,7 @@ class ParsedLine:
         "issues",
         "extra",
         "kind",
+        "special",
     )
 
     def __init__(
@@ -371,6 +372,8 @@ class ParsedLine:
         self.issues = issues
         self.extra = extra  # stray values, unparsed text, oword arguments: nodes outside commands
         self.kind = kind  # "blank", "comment", "code", "percent", "error"
+        # True when the line has anything besides commands (the engine skips a few checks otherwise)
+        self.special = bool(comments) or bool(issues) or line_number is not None or checksum is not None
 
     def nodes(self) -> list[Node]:
         """All non-whitespace nodes, in column order."""

@@ -6,6 +6,6 @@ Untouched lines are rendered from their lossless tree, so they come out byte for
 
 from __future__ import annotations
 
-from gclint.translate.engine import TranslationResult, Translator, translate_source, translator_for, UnsupportedPair
+from gclint.translate.engine import TranslationResult, Translator, UnsupportedPair, translate_source, translator_for
 
 __all__ = ["TranslationResult", "Translator", "translate_source", "translator_for", "UnsupportedPair"]

@@ -24,13 +24,16 @@ def run_translate(
     printer: str | None = None,
     tool_map: dict[int, int] | None = None,
     config_file: str | None = None,
+    flow: str | None = None,
+    settings: dict[str, str] | None = None,
 ) -> int:
     """Translate one file; returns the exit code."""
     from gclint.translate.options import TranslateOptions
 
     try:
         options = TranslateOptions.build(input_path, printer=printer, tool_map=tool_map, annotate=annotate,
-                                         unsupported=unsupported, config_file=config_file)
+                                         unsupported=unsupported, config_file=config_file, flow=flow,
+                                         settings=settings)
         translator = translator_for(source, target, options)
     except UnsupportedPair as exc:
         click.echo(f"gclint: {exc}", err=True)
@@ -87,7 +90,10 @@ def _refused(result: TranslationResult, unsupported: str) -> bool:
 def _report(result: TranslationResult, unsupported: str) -> None:
     if unsupported == "ignore":
         return
+    from gclint.reports.common import message  # masks secrets quoted from the file
+
     for f in result.findings:
-        click.echo(f"{f.path}:{f.line}:{f.column}: {f.code} {f.message}", err=True)
+        click.echo(f"{f.path}:{f.line}:{f.column}: {f.code} {message(f)}", err=True)
     if unsupported == "error" and _refused(result, unsupported):
-        click.echo(f"gclint: {result.path}: not translated: {len(result.findings)} construct(s) cannot be translated exactly (--unsupported error)", err=True)
+        click.echo(f"gclint: {result.path}: not translated: {len(result.findings)} construct(s) cannot be translated "
+                   "exactly (--unsupported error)", err=True)

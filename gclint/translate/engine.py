@@ -3,8 +3,8 @@ output lines; the identity translator (same dialect on both sides) keeps every l
 
 from __future__ import annotations
 
+from collections.abc import Iterator
 from dataclasses import dataclass, field
-from typing import Iterator
 
 from gclint.dialects.base import Dialect
 from gclint.rules.base import Finding
@@ -62,13 +62,18 @@ def translator_for(source: Dialect, target: Dialect, options=None) -> Translator
 
 
 def translate_source(source: Source, translator: Translator, result: TranslationResult) -> Iterator[str]:
-    """Yield the translated text of ``source``, line by line (line endings included)."""
+    """Yield the translated text of ``source`` (line endings included), one piece per chunk of source
+    lines, so that writers encode and write a few large strings instead of one per line."""
     yield from translator.start(result)
     number = 0
+    translate = translator.translate_line
     for chunk in source.chunks():
+        parts: list[str] = []
+        extend = parts.extend
         for raw, ending in chunk:
             number += 1
-            line = Line(number, raw, ending, parse_line(raw))
-            yield from translator.translate_line(line, result)
+            extend(translate(Line(number, raw, ending, parse_line(raw)), result))
+        if parts:
+            yield "".join(parts)
     result.lines_in = number
     yield from translator.finish(result)

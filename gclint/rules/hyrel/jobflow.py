@@ -44,7 +44,7 @@ class CodeAfterM30(Rule):
     """
     source = "Gcode page, M30 End of Program (catalogue H35)"
     families = ("hyrel",)
-    on_line = True
+    on_line_after_m30 = True
 
     def __init__(self, ctx) -> None:
         super().__init__(ctx)
@@ -127,7 +127,7 @@ class LineOver100Characters(Rule):
         "research/dialects.md 3.3 (catalogue H47)"
     )
     families = ("hyrel",)
-    on_line = True
+    on_line_longer_than = _LIMIT
 
     def check_line(self, line: Line) -> None:
         raw = line.raw

@@ -1,0 +1,269 @@
+"""Carvera (Smoothieware community firmware, grbl mode) -> Hyrel v5 (research/dialects.md section 2.3).
+
+M3 S is rpm (Hyrel: percent of the spindle's maximum, configuration ``spindle-max-rpm``); an S word on a
+line of its own sets the speed for the next M3; M6 T is an automatic tool change (Hyrel: focus a head
+through the tool map, else a manual change: spindle off and a pause); G4 P is seconds; M7/M9 are air
+(a configured aux port); M321/M322 enter and leave laser mode, where S on a move is the laser power
+(0-1) and firing moves get Hyrel's E1.  ATC, probing, macros and variables cannot be translated.
+"""
+
+from __future__ import annotations
+
+from typing import ClassVar
+
+from gclint.syntax.nodes import Command
+from gclint.translate.base import (
+    TR_APPROX,
+    TR_DROPPED,
+    TR_LOST,
+    TR_NOTE,
+    TR_UNTRANSLATABLE,
+    HyrelTranslator,
+    num,
+)
+from gclint.translate.marlin import _codes
+from gclint.translate.output import fmt
+
+_WCS = {f"G{n}": "workspace" for n in range(54, 60)}
+
+
+class CarveraToHyrel(HyrelTranslator):
+    CHECK_EXPRESSIONS = True
+    END_CODES: ClassVar[frozenset[str]] = frozenset({"M2", "M30"})
+    MAX_RPM = 15000.0  # Carvera C1 (research/dialects.md 2.3; gclint/dialects/carvera.py extras)
+    EXTRA_LETTERS: ClassVar[frozenset[str]] = frozenset("SABE")
+
+    HANDLERS: ClassVar[dict[str, str]] = {
+        "G0": "move", "G1": "move", "G2": "arc", "G3": "arc", "G4": "dwell_seconds",
+        "G17": "keep", "G18": "keep", "G19": "keep", "G20": "units", "G21": "units", "G28": "clearance",
+        "G53": "g53", "G90": "positioning", "G91": "positioning", "G92": "set_position", "G92.1": "clear_g92",
+        **_WCS, "M0": "keep", "M2": "end_program", "M30": "end_program", "M3": "spindle", "M4": "spindle",
+        "M5": "spindle_stop", "M6": "tool_change", "M7": "air", "M9": "air_off", "M17": "motors_on",
+        "M18": "disengage", "M84": "disengage", "M600": "pause", "M321": "laser_mode", "M322": "laser_mode_off",
+        "M801": "vacuum", "M802": "vacuum_off", "M821": "light", "M822": "light_off",
+    }
+    DROPPED: ClassVar[dict[str, tuple[str, str]]] = {
+        **_codes("M1", TR_DROPPED, "optional stop (off unless M334 enables it)"),
+        **_codes("M105 M114 M115 M119 M27 M957 M117 M118 M118.1 M20 M21 M23 M24 M25 M26 M503 M500 M501 M502 M504 "
+                 "M498 M498.1 M499 M499.1 M499.2 M493.4 M601", TR_DROPPED, "report, message or file operation"),
+        **_codes("M331 M332 M333 M334 M335 M336 M811 M812 M831 M832 M841 M842 M881 M882 M885 M886 M887 M888 M1000",
+                 TR_DROPPED, "Carvera machine feature with no effect on the toolpath"),
+        **_codes("M221", TR_DROPPED, "soft endstops on/off (Carvera's M221 is not a flow command)"),
+        **_codes("M82 M83", TR_DROPPED, "extruder mode (no extrusion here)"),
+        **_codes("M400 G29", TR_DROPPED, "wait for the move queue"),
+        **_codes("G40 G80 G94", TR_DROPPED, "interpreter mode with no effect on a Hyrel job"),
+        **_codes("M203 M203.1 M204 M205", TR_LOST, "feed and acceleration limits have no Hyrel counterpart"),
+        **_codes("M220 M223 M325", TR_LOST, "feed, spindle or laser override"),
+        **_codes("M323 M324 M321.2 M322.2", TR_LOST, "laser test mode"),
+        **_codes("M370 M374 M374.1 M375 M375.1 M561 M565 M670", TR_LOST, "levelling or probe settings "
+                 "(Hyrel's M670 is the Y-arm light)"),
+        **_codes("M851 M852", TR_LOST, "extended port power (map it to an aux port by hand)"),
+        **_codes("M92 M206 M306 M120 M121 M665 M958 G28.1", TR_LOST, "machine configuration"),
+        **_codes("G30 G31 G32 G33 G38.2 G38.3 G38.4 G38.5 G92.4 G93", TR_UNTRANSLATABLE,
+                 "probing, machine-coordinate setting or inverse-time feed Hyrel has no command for"),
+        **_codes("M97 M98 M98.1 M99 M32", TR_UNTRANSLATABLE, "jump, subprogram or file call"),
+        **_codes("M112", TR_UNTRANSLATABLE, "emergency stop: Hyrel documents no e-stop code"),
+        **_codes("G10", TR_UNTRANSLATABLE, "workspace origin setting (G10 L2/L20); use Repetrel fixture offsets"),
+    }
+
+    def __init__(self, source, target, options=None) -> None:
+        super().__init__(source, target, options)
+        self.prepared: int | None = None
+        self.laser = False  # M321 laser mode
+        self.laser_fire = False  # M3 in laser mode
+        self.laser_power = 0.0  # percent, modal (S on moves)
+        self.laser_power_written: float | None = None
+
+    def focus_address(self) -> int | None:
+        return self.opts.spindle_address()
+
+    # -- motion -------------------------------------------------------------------------------------------
+
+    def move_extra(self, cmd: Command, rapid: bool) -> tuple[str, tuple[str, ...]] | None:
+        params = cmd.params
+        drop = ""
+        add: tuple[str, ...] = ()
+        if "S" in params:
+            drop += "S"
+            self.speed_word(cmd)
+        if ("A" in params or "B" in params) and "A" not in self.opts.printer.axes:
+            drop += "AB"
+            self.report(TR_UNTRANSLATABLE, f"rotary axis words dropped: the {self.opts.printer.name} has no "
+                        "A/B axis (use --printer ehr or 16a)", key="A", cmd=cmd)
+        if "E" in params:
+            drop += "E"
+        if self.laser and self.laser_fire and not rapid and self.laser_power > 0:
+            if self.laser_power_written != self.laser_power:
+                self.before(f"M621 P{fmt(self.laser_power, 1)}", note="laser power")
+                self.laser_power_written = self.laser_power
+            add = ("E1",)  # a firing move: Hyrel lasers fire on printing moves
+        return (drop, add) if drop or add else None
+
+    def speed_word(self, cmd: Command) -> None:
+        s = num(cmd.params.get("S"))
+        if s is None:
+            return
+        if self.laser:
+            if s > 1:
+                self.report(TR_APPROX, "laser power above 1 taken as percent (Carvera's laser S is 0-1)",
+                            key="laser-S", cmd=cmd)
+                self.laser_power = min(100.0, s)
+            else:
+                self.laser_power = s * 100
+            return
+        super().speed_word(cmd)
+
+    def clearance(self, cmd: Command) -> None:
+        self.remove(cmd, TR_LOST, "Carvera's G28 goes to the clearance position; Hyrel's G28 homes and clears "
+                    "offsets, so it is dropped: add a safe retract", key="G28")
+
+    def g53(self, cmd: Command) -> None:
+        self.untranslatable(cmd, "machine-coordinate move (G53): the Carvera's machine coordinates mean nothing on "
+                            "the Hyrel", key="G53")
+
+    def workspace(self, cmd: Command) -> None:
+        if cmd.params:
+            self.replace(cmd, cmd.code or "G54")
+        self.report(TR_NOTE, f"{cmd.code} selects Hyrel's stored fixture offsets (Repetrel Settings)", key="wcs",
+                    cmd=cmd)
+
+    def clear_g92(self, cmd: Command) -> None:
+        self.replace(cmd, "G93")
+        self.report(TR_NOTE, "G92.1 (clear G92 offsets) written as Hyrel's G93", key="G92.1", cmd=cmd)
+
+    def motors_on(self, cmd: Command) -> None:
+        if cmd.params:
+            self.replace(cmd, "M17")
+
+    def disengage(self, cmd: Command) -> None:
+        self.motors_off = True
+        if cmd.params:
+            self.replace(cmd, cmd.code or "M84")
+            self.report(TR_APPROX, f"{cmd.code} with axes: Hyrel cuts every motor", key="M18", cmd=cmd)
+
+    def pause(self, cmd: Command) -> None:
+        self.replace(cmd, "M0 ; pause")
+
+    # -- spindle, tools, laser ----------------------------------------------------------------------------
+
+    def spindle(self, cmd: Command) -> None:
+        s = num(cmd.params.get("S"))
+        if self.laser:
+            if s is not None:
+                self.speed_word(cmd)
+            self.laser_fire = True
+            self.consume(cmd, "laser mode: firing follows the moves' power (E1 on firing moves)")
+            return
+        if cmd.code == "M4":
+            self.report(TR_APPROX, "M4 is not documented on the Carvera; written as Hyrel's M4", key="M4", cmd=cmd)
+        if s is not None:
+            self.rpm = s
+        rpm = self.rpm
+        self.spindle_on(cmd, self.rpm_percent(rpm, self.MAX_RPM) if rpm is not None else None)
+
+    def spindle_stop(self, cmd: Command) -> None:
+        if self.laser:
+            self.laser_fire = False
+            self.consume(cmd)
+            return
+        self.spindle_off(cmd)
+
+    def tool_command(self, cmd: Command) -> None:
+        number = (cmd.code or "T")[1:]
+        if not number.lstrip("-").isdigit() or len(number) > 6:
+            self.untranslatable(cmd, "a tool given by an expression cannot be translated", key="T?")
+            return
+        self.prepared = int(number)  # T prepares, M6 changes (T6M6)
+        self.consume(cmd)
+
+    def tool_change(self, cmd: Command) -> None:
+        index = num(cmd.params.get("T"))
+        tool = int(index) if index is not None else self.prepared
+        if tool is None:
+            self.remove(cmd, TR_LOST, "tool change with no tool", key="M6")
+            return
+        if tool <= 0:
+            what = "the wireless probe (T0)" if tool == 0 else "no tool (T-1)"
+            self.remove(cmd, TR_LOST, f"tool change to {what} has no Hyrel counterpart; dropped", key=("M6", tool))
+            return
+        if tool in self.opts.tool_map:
+            self.select_tool(cmd, tool)
+            return
+        # one Hyrel spindle: a manual tool change
+        address = self.opts.spindle_address()
+        lines = []
+        if address in self.spindles_on:
+            lines.append(f"M5 T{address}")
+            self.spindles_on.pop(address, None)
+        lines.append(f"M0 ; change to tool {tool}")
+        *first, last = lines
+        if first:
+            self.before(*first)
+        self.replace(cmd, last)
+        self.report(TR_APPROX, "automatic tool change written as a manual change (spindle off, pause); map tools "
+                    "to Hyrel heads with --tool-map to switch heads instead", key="M6-manual", cmd=cmd)
+
+    def laser_mode(self, cmd: Command) -> None:
+        self.laser = True
+        self.extra_always = True  # every move: firing moves get E1 and the power
+        address = self.opts.laser_address()
+        self.emitters_on.add(address)
+        self.replace(cmd, f"M620 T{address} E1")
+        self.report(TR_APPROX, f"laser mode: the laser is Hyrel device T{address} (set laser=T#); firing moves "
+                    "get E1 and the power M621 P", key="M321", cmd=cmd)
+
+    def laser_mode_off(self, cmd: Command) -> None:
+        self.laser = False
+        self.laser_fire = False
+        self.extra_always = False
+        address = self.opts.laser_address()
+        self.emitters_on.discard(address)
+        self.replace(cmd, f"M620 T{address} E0")
+
+    # -- aux devices --------------------------------------------------------------------------------------
+
+    def air(self, cmd: Command) -> None:
+        port = self.opts.air
+        self.air_on = True
+        text = {"M7": "M7", "M8": "M8"}.get(port, f"{port} S100")
+        if text != (cmd.code or "") or cmd.params:
+            self.replace(cmd, text)
+
+    def air_off(self, cmd: Command) -> None:
+        port = self.opts.air
+        self.air_on = False
+        text = "M9" if port in ("M7", "M8") else f"{port} S0"
+        if text != (cmd.code or "") or cmd.params:
+            self.replace(cmd, text)
+
+    def footer(self) -> list[str]:
+        lines = super().footer()
+        if self.air_on and self.opts.air not in ("M7", "M8"):
+            lines = [f"{self.opts.air} S0" if t == "M9" else t for t in lines]
+        return lines
+
+    def vacuum(self, cmd: Command) -> None:
+        s = cmd.params.get("S") or "100"
+        self.replace(cmd, f"M679 S{s}")
+        self.report(TR_APPROX, "vacuum written as Hyrel's M679 (30M and ESR only)", key="M801", cmd=cmd)
+
+    def vacuum_off(self, cmd: Command) -> None:
+        self.replace(cmd, "M679 S0")
+
+    def light(self, cmd: Command) -> None:
+        self.replace(cmd, "M670 S100")
+        self.report(TR_NOTE, "light written as Hyrel's Y-arm light M670", key="M821", cmd=cmd)
+
+    def light_off(self, cmd: Command) -> None:
+        self.replace(cmd, "M670 S0")
+
+    def fallback(self, cmd: Command) -> None:
+        code = cmd.code or ""
+        if cmd.kind == "gcode" and code[:1] == "M" and code[1:4].isdigit() and 460 <= int(code[1:4]) <= 499 \
+                and (len(code) == 4 or not code[4].isdigit()):
+            self.untranslatable(cmd, "probing, tool changer or tool-length routine of the Carvera", key="M46x-M49x")
+            return
+        if cmd.kind == "meta" and code == "echo":
+            self.remove(cmd, TR_DROPPED, "console echo", key="echo")
+            return
+        super().fallback(cmd)

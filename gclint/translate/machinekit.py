@@ -1,0 +1,286 @@
+"""Machinekit FDM (LinuxCNC with the FDM remaps) -> Hyrel v5 (research/dialects.md section 2.2).
+
+Two flavours of the temperature and fan codes, told apart per command: the seed README's
+``M104 P<index> S<temp>`` (S present: P is an index) and the final remap's ``M104 P<temp> T<index>``
+(no S: P is the value).  The extruder is the A axis (A follows G90/G91), G22/G23 retract, G4 P is
+seconds, M2 ends the program.  O-words, # parameters, [expressions], HAL I/O (M62-M68) and user
+M-codes (M100-M199) cannot be translated.
+"""
+
+from __future__ import annotations
+
+from typing import ClassVar
+
+from gclint.syntax.nodes import Command
+from gclint.translate.base import (
+    TR_APPROX,
+    TR_DROPPED,
+    TR_LOST,
+    TR_NOTE,
+    TR_UNTRANSLATABLE,
+    HyrelTranslator,
+    num,
+)
+from gclint.translate.marlin import _codes
+from gclint.translate.output import fmt
+
+_WCS = {f"G{n}": "workspace" for n in range(54, 60)}
+
+
+class MachinekitToHyrel(HyrelTranslator):
+    EXTRUDER = "A"
+    CHECK_EXPRESSIONS = True
+    END_CODES: ClassVar[frozenset[str]] = frozenset({"M2", "M30"})
+    FAN_MAX = 255.0
+    EXTRA_LETTERS: ClassVar[frozenset[str]] = frozenset("FEBCUVW")
+
+    HANDLERS: ClassVar[dict[str, str]] = {
+        "G0": "move", "G1": "move", "G2": "arc", "G3": "arc", "G4": "dwell_seconds",
+        "G17": "keep", "G18": "keep", "G19": "keep", "G20": "units", "G21": "units",
+        "G22": "retract", "G23": "unretract", "G28": "mk_home", "G90": "g90", "G91": "g91",
+        "G92": "set_position", "G92.1": "clear_g92", **_WCS,
+        "M0": "keep", "M2": "end_program", "M30": "end_program", "M3": "spindle", "M4": "spindle",
+        "M5": "spindle_stop", "M6": "tool_change", "M7": "keep", "M8": "keep", "M9": "keep",
+        "M104": "m104", "M109": "m109", "M140": "m140", "M141": "m141", "M190": "m190", "M191": "m191",
+        "M106": "m106", "M107": "m107", "M221": "m221", "M226": "m226", "M300": "beep",
+        "M701": "m701", "M702": "m702", "G53": "g53",
+    }
+    DROPPED: ClassVar[dict[str, tuple[str, str]]] = {
+        **_codes("M1", TR_DROPPED, "optional stop (off unless the operator enables it)"),
+        **_codes("M400", TR_DROPPED, "wait for the move queue"),
+        **_codes("M420", TR_DROPPED, "RGBW light"),
+        **_codes("G40 G61 G61.1 G64 G80 G94 G17.1 G18.1 G19.1 G90.1 G91.1 G97 G98 G99 M48 M49 M50 M51 M52 M53",
+                 TR_DROPPED, "interpreter mode with no effect on a Hyrel job"),
+        **_codes("M200", TR_DROPPED, "filament diameter (velocity extrusion)"),
+        **_codes("M207", TR_LOST, "retraction settings (Hyrel heads carry their own unprime/prime settings)"),
+        **_codes("M280", TR_LOST, "servo position"),
+        **_codes("M700", TR_LOST, "velocity-extrusion cross-section (needs the layer height; set M221 W by hand)"),
+        **_codes("M710", TR_LOST, "manual filament jog"),
+        **_codes("M600 M601 M306", TR_LOST, "Z calibration or probing remap"),
+        **_codes("G29 G29.1 G29.2 G30 G30.1 G28.1", TR_LOST, "probing and bed calibration"),
+        **_codes("G43 G43.1 G43.2 G49", TR_LOST, "tool length offsets (Hyrel: M660 registers applied with H on G1; "
+                 "set them up by hand)"),
+        **_codes("G92.2 G92.3", TR_LOST, "suspend/restore G92 offsets"),
+        **_codes("M19 M70 M71 M72 M73 M60 M61", TR_LOST, "spindle orientation, modal state save/restore, pallet"),
+        **_codes("G41 G41.1 G42 G42.1", TR_UNTRANSLATABLE, "cutter radius compensation"),
+        **_codes("G5 G5.1 G5.2 G5.3 G7 G8 G33 G33.1 G38.2 G38.3 G38.4 G38.5 G52 G70 G71 G71.1 G71.2 G72 G72.1 G72.2 "
+                 "G73 G74 G76 G81 G82 G83 G84 G85 G86 G87 G88 G89 G93 G95 G96",
+                 TR_UNTRANSLATABLE, "canned cycle, spline, threading, probing or feed mode Hyrel has no command for"),
+        **_codes("M62 M63 M64 M65 M66 M67 M68", TR_UNTRANSLATABLE, "HAL digital/analog I/O"),
+        **_codes("M98 M99", TR_UNTRANSLATABLE, "subprogram call"),
+        **_codes("G59.1 G59.2 G59.3", TR_UNTRANSLATABLE, "Hyrel has no G59.1-G59.3 workspaces"),
+        **_codes("G10", TR_LOST, "tool table or coordinate system setting (G10 L..)"),
+    }
+
+    def __init__(self, source, target, options=None) -> None:
+        super().__init__(source, target, options)
+        self.prepared: int | None = None
+
+    def e_absolute(self) -> bool:
+        return self.state.absolute  # A follows G90/G91
+
+    def e_delta(self, cmd: Command) -> float | None:
+        value = num(cmd.params.get("A"))
+        if value is None:
+            return None
+        if not self.state.absolute:
+            return value
+        current = self.state.position.get("A")
+        if current is None:
+            return value
+        return value - current
+
+    def move_extra(self, cmd: Command, rapid: bool) -> tuple[str, tuple[str, ...]] | None:
+        params = cmd.params
+        drop = ""
+        if rapid and "F" in params:
+            drop += "F"  # LinuxCNC's G0 ignores F (the F still sets the feed of later G1s)
+        if "E" in params:
+            drop += "E"
+        for letter in "BCUVW":
+            if letter in params:
+                drop += letter
+        return (drop, ()) if drop else None
+
+    def g90(self, cmd: Command) -> None:
+        self.positioning_seen = True
+        self._e_follows(True)
+
+    def g91(self, cmd: Command) -> None:
+        self.positioning_seen = True
+        self._e_follows(False)
+
+    def _e_follows(self, absolute: bool) -> None:
+        if self.evalues and self.m229_written and self.e_mode_written != absolute:
+            self.after("M82" if absolute else "M83", note="the extruder (A) follows G90/G91 in Machinekit")
+            self.e_mode_written = absolute
+
+    def retract(self, cmd: Command) -> None:
+        self._firmware_retract(cmd, "M721")
+
+    def unretract(self, cmd: Command) -> None:
+        self._firmware_retract(cmd, "M722")
+
+    def _firmware_retract(self, cmd: Command, code: str) -> None:
+        if self.opts.retract == "explicit":
+            address = self.head(None)
+            if address is not None:
+                self.replace(cmd, f"{code} T{address} I1", note=f"TR004 {cmd.code} -> {code} I1")
+                return
+        self.remove(cmd, TR_NOTE, f"{cmd.code} retraction left to the head's automatic unprime/prime "
+                    "(set retract=explicit for M721/M722 I1)", key="G22")
+
+    def mk_home(self, cmd: Command) -> None:
+        """Machinekit's g28.ngc does not home: it rapids the listed axes (all if none) to 0 and resets A."""
+        if not self.started_motion:
+            self.before_motion()
+        params = cmd.params
+        axes = [a for a in "XYZ" if a in params] or (["X", "Y", "Z"] if "A" not in params else [])
+        lines = []
+        if axes:
+            lines.append("G0 " + " ".join(f"{a}0" for a in axes))
+        if "A" in params or not any(a in params for a in "XYZ"):
+            lines.append("G92 E0")
+        self.replace(cmd, lines[0])
+        if len(lines) > 1:
+            self.after(*lines[1:])
+        self.report(TR_APPROX, "Machinekit's G28 moves to 0 without homing; written as a G0 to 0 (and G92 E0). "
+                    "Hyrel homing belongs in the header", key="G28", cmd=cmd)
+
+    def g53(self, cmd: Command) -> None:
+        self.untranslatable(cmd, "machine-coordinate move (G53): the source machine's coordinates mean nothing "
+                            "on the Hyrel")
+
+    def workspace(self, cmd: Command) -> None:
+        if cmd.params:
+            self.replace(cmd, cmd.code or "G54")
+        self.report(TR_NOTE, f"{cmd.code} selects Hyrel's stored fixture offsets (Repetrel Settings)", key="wcs",
+                    cmd=cmd)
+
+    def clear_g92(self, cmd: Command) -> None:
+        self.replace(cmd, "G93")
+        self.report(TR_NOTE, "G92.1 (clear G92 offsets) written as Hyrel's G93", key="G92.1", cmd=cmd)
+
+    def spindle(self, cmd: Command) -> None:
+        s = num(cmd.params.get("S"))
+        if s is not None:
+            self.rpm = s
+        self.spindle_on(cmd, self.rpm_percent(self.rpm) if self.rpm is not None else None)
+
+    def spindle_stop(self, cmd: Command) -> None:
+        self.spindle_off(cmd)
+
+    def tool_command(self, cmd: Command) -> None:
+        number = (cmd.code or "T")[1:]
+        if not number.lstrip("-").isdigit() or len(number) > 6:
+            self.untranslatable(cmd, "a tool given by an expression cannot be translated", key="T?")
+            return
+        # LinuxCNC: T prepares the tool, M6 changes to it
+        self.prepared = int(number)
+        self.consume(cmd)
+
+    def tool_change(self, cmd: Command) -> None:
+        index = num(cmd.params.get("T"))
+        tool = int(index) if index is not None else self.prepared
+        if tool is None or tool < 0:
+            self.remove(cmd, TR_LOST, "tool change with no tool prepared", key="M6")
+            return
+        self.select_tool(cmd, tool)
+
+    # -- temperatures and fans: seed (S present: P = index) or final (P = value, T = index) ----------------
+
+    def _flavour(self, cmd: Command) -> tuple[str | None, int | None]:
+        params = cmd.params
+        if "S" in params:
+            index = num(params.get("P"))
+            return params["S"], int(index) if index is not None else None
+        index = num(params.get("T"))
+        return params.get("P"), int(index) if index is not None else None
+
+    def _temp(self, cmd: Command, code: str, address: int | None, temp: str | None, wait: bool) -> None:
+        if temp is None:
+            self.remove(cmd, TR_DROPPED, f"{cmd.code} without a temperature sets nothing", key=f"{cmd.code}-none")
+            return
+        self.temperature(cmd, code, address, temp, window=wait)
+        if wait:
+            self.report(TR_NOTE, "Machinekit waits until the temperature is in range (heating or cooling): written "
+                        f"with Hyrel's tolerance window R{fmt(self.opts.temp_window)}", key="mk-wait", cmd=cmd)
+
+    def m104(self, cmd: Command) -> None:
+        temp, index = self._flavour(cmd)
+        self._temp(cmd, "M104", self.head(index), temp, False)
+
+    def m109(self, cmd: Command) -> None:
+        temp, index = self._flavour(cmd)
+        self._temp(cmd, "M109", self.head(index), temp, True)
+
+    def m140(self, cmd: Command) -> None:
+        temp = cmd.params.get("S", cmd.params.get("P"))
+        self._temp(cmd, "M140", self.opts.bed, temp, False)
+
+    def m141(self, cmd: Command) -> None:
+        temp = cmd.params.get("S", cmd.params.get("P"))
+        self._temp(cmd, "M141", self.opts.chamber, temp, False)
+
+    def m190(self, cmd: Command) -> None:
+        temp = cmd.params.get("S", cmd.params.get("P"))
+        self._temp(cmd, "M190", self.opts.bed, temp, True)
+
+    def m191(self, cmd: Command) -> None:
+        temp = cmd.params.get("S", cmd.params.get("P"))
+        self._temp(cmd, "M191", self.opts.chamber, temp, True)
+
+    def m106(self, cmd: Command) -> None:
+        value, index = self._flavour(cmd)
+        if "I" in cmd.params:
+            self.report(TR_NOTE, "M106 I (execute at once) dropped: Hyrel executes M106 in order", key="M106-I",
+                        cmd=cmd)
+        self.fan(cmd, self.head(index if index is not None else 0, "fan"), num(value))
+
+    def m107(self, cmd: Command) -> None:
+        index = num(cmd.params.get("T", cmd.params.get("P")))
+        self.fan_off(cmd, self.head(int(index) if index is not None else 0, "fan"))
+
+    def m221(self, cmd: Command) -> None:
+        factor = num(cmd.params.get("P"))
+        address = self.head(None)
+        if factor is None or address is None:
+            self.remove(cmd, TR_DROPPED, "M221 without a factor sets nothing", key="M221")
+            return
+        self.replace(cmd, f"M221 T{address} S{fmt(factor, 4)}")
+
+    def m226(self, cmd: Command) -> None:
+        self.replace(cmd, "M0")
+
+    def beep(self, cmd: Command) -> None:
+        self.before("M792 ; BEEP")
+        self.consume(cmd)
+        self.report(TR_NOTE, "tone written as Hyrel's BEEP action: frequency and duration are lost", key="M300",
+                    cmd=cmd)
+
+    def m701(self, cmd: Command) -> None:
+        width = cmd.params.get("P")
+        address = self.head(None)
+        if width is None or address is None:
+            self.remove(cmd, TR_DROPPED, "M701 without a width sets nothing", key="M701")
+            return
+        self.replace(cmd, f"M221 T{address} W{width}")
+        self.report(TR_NOTE, "velocity-extrusion line width written as Hyrel's M221 W (native flow)", key="M701",
+                    cmd=cmd)
+
+    def m702(self, cmd: Command) -> None:
+        height = cmd.params.get("P")
+        if height is None:
+            self.remove(cmd, TR_DROPPED, "M702 without a height sets nothing", key="M702")
+            return
+        self.replace(cmd, f"M756 S{height}")
+        self.report(TR_NOTE, "velocity-extrusion line height written as Hyrel's M756 (native flow)", key="M702",
+                    cmd=cmd)
+
+    def fallback(self, cmd: Command) -> None:
+        code = cmd.code or ""
+        user_code = code[:1] == "M" and len(code) == 4 and code[1:].isdigit() and 100 <= int(code[1:]) <= 199
+        if cmd.kind == "gcode" and user_code and code not in self.handlers:
+            self.untranslatable(cmd, "user M-code (runs an external program)", key="M1xx")
+            return
+        super().fallback(cmd)

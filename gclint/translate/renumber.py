@@ -1,0 +1,203 @@
+"""Hyrel v4 <-> v5: renumber T variables (and the few T commands that differ); nothing else changes.
+
+v4 T variables are CAN device addresses, v5 has one address table (research/hyrel_v4.md sections 1-3,
+gclint/dialects/addressing.py).  Only the certain part of the map is used (V4_TO_V5_VARIABLE and its
+inverse): 11-15 -> 0-4, 21-25 -> 5-9, 16 -> 22, 41 -> 21, 26 -> 20, 91/92 -> 24/25, and the wildcards
+0 -> 40, 10/20 -> 41/42, 100 -> 47, 90 -> 46.  T commands (tool numbers) are 0-9 in both; v4's special
+tool numbers 10-14 (aux, laser, spindle, beds) become 22, 21, 20, 24, 25.  A number with no certain
+counterpart stays as it is and is reported (TR006).  Edits touch the T value only, so spacing,
+comments and everything else stay byte for byte and v4 -> v5 -> v4 gives the file back.
+"""
+
+from __future__ import annotations
+
+import re
+from collections.abc import Iterator
+
+from gclint.dialects.addressing import (
+    V4_TO_V5_COMMAND,
+    V4_TO_V5_VARIABLE,
+    V5_TO_V4_COMMAND,
+    V5_TO_V4_VARIABLE,
+    resolve_v4_variable,
+    resolve_v5,
+)
+from gclint.dialects.base import Dialect
+from gclint.rules.base import Finding
+from gclint.rules.translation import TR_NAME, TR_SEVERITY
+from gclint.syntax.nodes import GCODE, Command, Line, Word, is_number
+from gclint.syntax.parse import parse_line
+from gclint.translate.engine import TranslationResult, Translator
+from gclint.translate.output import LineEdit
+
+_SQUAD_CODES = frozenset({"M702", "M703", "M704"})
+
+
+class Renumber(Translator):
+    """hyrel-v4 -> hyrel (``to_v5``) or hyrel -> hyrel-v4."""
+
+    def __init__(self, source: Dialect, target: Dialect, options=None, *, count: bool = True) -> None:
+        super().__init__(source, target, options)
+        self.to_v5 = target.extras.get("firmware") == 5
+        self.variables = V4_TO_V5_VARIABLE if self.to_v5 else V5_TO_V4_VARIABLE
+        self.commands = V4_TO_V5_COMMAND if self.to_v5 else V5_TO_V4_COMMAND
+        self.annotate = bool(getattr(options, "annotate", False))
+        self.count = count
+        self.default_ending = "\n"
+        self._reported: dict[tuple, list] = {}
+
+    def translate_line(self, line: Line, result: TranslationResult) -> Iterator[str]:  # type: ignore[override]
+        if line.ending and self.default_ending != line.ending:
+            self.default_ending = line.ending
+        commands = line.parsed.commands
+        if not commands:
+            return (line.raw + line.ending,)  # type: ignore[return-value]
+        edit: LineEdit | None = None
+        for index, cmd in enumerate(commands):
+            if cmd.kind != GCODE or not cmd.code:
+                continue
+            new = self._command(cmd, line, result)
+            if new is not None:
+                if edit is None:
+                    edit = LineEdit(line)
+                edit.replaced[index] = new
+                edit.changed = True
+        if edit is None:
+            return (line.raw + line.ending,)  # type: ignore[return-value]
+        if self.count:
+            result.lines_changed += 1
+        if self.annotate:
+            edit.notes.append(f"{'v4 -> v5' if self.to_v5 else 'v5 -> v4'} addresses, was '{line.raw.strip()}'")
+        return iter(edit.render(self.annotate, self.default_ending))
+
+    def finish(self, result: TranslationResult) -> Iterator[str]:
+        for finding, count in self._reported.values():
+            if count > 1:
+                finding.message += f" ({count} lines like this; the first is shown)"
+        return iter(())
+
+    # -- one command -------------------------------------------------------------------------------------
+
+    def _command(self, cmd: Command, line: Line, result: TranslationResult) -> str | None:
+        code = cmd.code or ""
+        if code[0] == "T":
+            number = _integer(code[1:])
+            if number is None:
+                return None
+            new = self.commands.get(number)
+            if new is None:
+                self._report(line, cmd, result, f"T{number} (tool number) has no certain "
+                             f"{'v5' if self.to_v5 else 'v4'} counterpart; left unchanged", ("cmd", number))
+                return None
+            if new == number:
+                return None
+            word = cmd.word
+            assert word is not None
+            return _splice(line, cmd, {word: _renumbered(word.text, code[1:], new)})
+        changes: dict = {}
+        if code in _SQUAD_CODES and "S" not in cmd.params:
+            self._report(line, cmd, result, f"{code} without S has no certain {'v5' if self.to_v5 else 'v4'} form "
+                         "(v5 needs a squad or a head in S); T renumbered, the rest left as it is", (code, "noS"))
+        for w in cmd.words:
+            letter = w.letter
+            if letter == "T" or (letter == "S" and code in _SQUAD_CODES):
+                if w.value is None:
+                    continue
+                number = _integer(w.value)
+                if number is None:
+                    continue
+                new = self._variable(number, letter == "S")
+                if new is None:
+                    what = "alias/squad" if letter == "S" else "address"
+                    self._report(line, cmd, result, f"{code} {letter}{number}: this {what} has no certain "
+                                 f"{'v5' if self.to_v5 else 'v4'} counterpart; left unchanged",
+                                 (code, letter, number))
+                    continue
+                if new != number:
+                    changes[w] = _renumbered(w.text, w.value, new)
+        if not changes:
+            return None
+        return _splice(line, cmd, changes)
+
+    def _variable(self, number: int, heads_only: bool) -> int | None:
+        new = self.variables.get(number)
+        if new is None or not heads_only:
+            return new
+        # M702-M704 S: a squad (v5 30-39 / v4 groups 50-57, correspondence uncertain) or a head to copy
+        kind = resolve_v4_variable(number).kind if self.to_v5 else resolve_v5(number).kind
+        return new if kind == "head" else None
+
+    def _report(self, line: Line, cmd: Command, result: TranslationResult, message: str, key: tuple) -> None:
+        entry = self._reported.get(key)
+        if entry is not None:
+            entry[1] += 1
+            return
+        finding = Finding(path=result.path, line=line.number, column=cmd.column, code="TR006",
+                          severity=TR_SEVERITY["TR006"], message=message, name=TR_NAME["TR006"], source=line.raw)
+        result.findings.append(finding)
+        self._reported[key] = [finding, 1]
+
+
+def _integer(text: str) -> int | None:
+    if not text or not is_number(text) or len(text) > 12:
+        return None
+    value = float(text)
+    return int(value) if value == int(value) and value >= 0 else None
+
+
+def _renumbered(text: str, value: str, new: int) -> str:
+    """A word's text with its value replaced (``T12`` -> ``T1``; spaces inside the word kept)."""
+    if text.endswith(value):
+        return text[: len(text) - len(value)] + str(new)
+    return text[:1] + str(new)
+
+
+def _splice(line: Line, cmd: Command, changes: dict) -> str:
+    """The command's source text with some of its words (or its code word) replaced, all else as it was."""
+    nodes = [n for n in cmd.nodes()]
+    start = cmd.column
+    end = max(n.end_column for n in nodes) if nodes else start
+    text = line.raw[start - 1 : end - 1]
+    for node in sorted(changes, key=lambda n: n.column, reverse=True):
+        a = node.column - start
+        b = node.end_column - start
+        text = text[:a] + changes[node] + text[b:]
+    return text
+
+
+class Chain(Translator):
+    """Two translators in a row (Marlin -> v5, then v5 -> v4): the first one's output lines are parsed
+    again and handed to the second, findings are kept with the source line numbers."""
+
+    def __init__(self, first: Translator, second: Translator) -> None:
+        super().__init__(first.source, second.target, first.options)
+        self.first = first
+        self.second = second
+        self._number = 0
+
+    def start(self, result: TranslationResult) -> Iterator[str]:
+        yield from self._pipe(self.first.start(result), result)
+        yield from self.second.start(result)
+
+    def translate_line(self, line: Line, result: TranslationResult) -> Iterator[str]:  # type: ignore[override]
+        self._number = line.number
+        return self._pipe(self.first.translate_line(line, result), result)
+
+    def finish(self, result: TranslationResult) -> Iterator[str]:
+        yield from self._pipe(self.first.finish(result), result)
+        yield from self.second.finish(result)
+
+    def _pipe(self, texts, result: TranslationResult) -> Iterator[str]:
+        second = self.second
+        number = self._number
+        for text in texts:
+            for m in _LINE.finditer(text):
+                raw, ending = m.group(1), m.group(2)
+                if not raw and not ending:
+                    continue
+                yield from second.translate_line(Line(number, raw, ending, parse_line(raw)), result)
+
+
+_LINE = re.compile(r"([^\r\n]*)(\r\n|\r|\n|$)")
+
+_ = Word
