@@ -5,6 +5,9 @@
 Each task runs in a fresh process, ROUNDS times, interleaved, and the fastest round counts (the machine
 is shared and noisy: compare ratios measured in the same run, not absolute speeds across runs).  Prints
 lines/s, the ratio to the regex baseline, and peak memory.  Not a test.
+
+``BENCH_COMPILED_PYTHON=/path/to/python`` adds the same checks run by another interpreter that has the
+mypyc-compiled build installed (``GCLINT_USE_MYPYC=1 pip install --no-build-isolation .``, see setup.py).
 """
 
 from __future__ import annotations
@@ -21,9 +24,15 @@ ROUNDS = int(os.environ.get("BENCH_ROUNDS", "3"))
 TASKS = ["regex", "gcodeparser", "check", "check-hyrel"]
 
 
+COMPILED = os.environ.get("BENCH_COMPILED_PYTHON")
+
+
 def measure(task: str, paths: list[str]) -> dict:
+    python = sys.executable
+    if task.endswith(" (mypyc)"):
+        python, task = COMPILED, task[: -len(" (mypyc)")]
     out = subprocess.run(
-        [sys.executable, str(HERE / "_measure.py"), task, *paths], check=True, capture_output=True, text=True
+        [python, str(HERE / "_measure.py"), task, *paths], check=True, capture_output=True, text=True
     )
     return json.loads(out.stdout.strip().splitlines()[-1])
 
@@ -36,6 +45,8 @@ def main() -> None:
     except ImportError:
         tasks.remove("gcodeparser")
         print("(gcodeparser not installed: pip install gcodeparser, or pip install -e '.[bench]')")
+    if COMPILED:
+        tasks += ["check (mypyc)", "check-hyrel (mypyc)"]
     best: dict[str, dict] = {}
     for _ in range(ROUNDS):
         for task in tasks:
@@ -43,16 +54,16 @@ def main() -> None:
             if task not in best or r["seconds"] < best[task]["seconds"]:
                 best[task] = r
     base = best["regex"]["lines"] / best["regex"]["seconds"]
-    print(f"{'task':<14}{'lines':>12}{'seconds':>10}{'lines/s':>12}{'vs regex':>10}{'peak MB':>10}")
+    print(f"{'task':<22}{'lines':>12}{'seconds':>10}{'lines/s':>12}{'vs regex':>10}{'peak MB':>10}")
     for task in tasks:
         r = best[task]
         speed = r["lines"] / r["seconds"]
-        print(f"{task:<14}{r['lines']:>12,}{r['seconds']:>10.2f}{speed:>12,.0f}{speed / base:>9.2f}x{r['peak_mb']:>10.0f}")
+        print(f"{task:<22}{r['lines']:>12,}{r['seconds']:>10.2f}{speed:>12,.0f}{speed / base:>9.2f}x{r['peak_mb']:>10.0f}")
     if "gcodeparser" in best:
         gp = best["gcodeparser"]["lines"] / best["gcodeparser"]["seconds"]
-        for task in ("check", "check-hyrel"):
+        for task in [t for t in tasks if t.startswith("check")]:
             speed = best[task]["lines"] / best[task]["seconds"]
-            print(f"{task} vs gcodeparser: {speed / gp:.2f}x")
+            print(f"{task:<22} vs gcodeparser: {speed / gp:.2f}x")
 
 
 if __name__ == "__main__":

@@ -20,7 +20,6 @@ import os
 import re
 import tomllib
 from dataclasses import replace
-from functools import lru_cache
 from pathlib import Path
 
 from gclint.engine import Options
@@ -169,7 +168,6 @@ def apply(options: Options, table: dict, path: Path) -> Options:
     return replace(options, **changes)
 
 
-@lru_cache(maxsize=256)
 def find_config(directory: str) -> Path | None:
     """The nearest configuration file at or above ``directory`` (a pyproject.toml counts only with
     a [tool.gclint] table)."""

@@ -99,6 +99,7 @@ class FileContext:
         self.findings: list[Finding] = []
         self._current: Line | None = None
         self.enabled_codes: frozenset[str] = frozenset()
+        self.shared: dict[str, object] = {}  # objects several rules of this file share (by name)
         self.noqa: dict[int, tuple[str, ...]] = {}
         self.directives: list[tuple[int, str, tuple[str, ...]]] = []
 
@@ -298,7 +299,7 @@ class Linter:
                 handlers.extend(unknown)
             always, filtered = [], []
             for handler in handlers:
-                letters = handler.__self__.trigger_letters(code) if code is not None else None
+                letters = getattr(handler, "__self__").trigger_letters(code) if code is not None else None
                 if letters is None:
                     always.append(handler)
                 elif letters:
@@ -321,12 +322,12 @@ class Linter:
                 if parsed.special:
                     if parsed.comments:
                         read_directives(line)
-                        for hook in comment_hooks:
+                        for comment_hook in comment_hooks:
                             try:
                                 for comment in parsed.comments:
-                                    hook(line, comment)
+                                    comment_hook(line, comment)
                             except Exception as exc:
-                                disable(hook, exc, number)
+                                disable(comment_hook, exc, number)
                     if parsed.issues:
                         for hook in issue_hooks:
                             try:

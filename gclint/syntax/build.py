@@ -163,7 +163,7 @@ def assemble(
         elif isinstance(piece, TextCommand):
             close()
             words = _text_words(piece.text)
-            params = {}
+            params: dict[str, str | None] = {}
             for w in words:
                 params.setdefault(w.letter, w.value)
             commands.append(

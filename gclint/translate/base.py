@@ -70,6 +70,9 @@ def has_expression(cmd: Command) -> bool:
     return any(value and value[0] in "{[#" for value in cmd.params.values())
 
 
+WORKSPACES = {f"G{n}": "workspace" for n in range(54, 60)}  # G54-G59: the same codes on Hyrel
+
+
 class HyrelTranslator(Translator):
     """Translate one source dialect into Hyrel v5 (hyrel-v4 output renumbers this translator's lines)."""
 
@@ -815,8 +818,20 @@ class HyrelTranslator(Translator):
             self.report(TR_NOTE, "inches: Hyrel's G20 is unsupported; written as G21 and every length converted "
                         "to mm", key="G20", cmd=cmd)
 
+    # The note written with M82/M83 when the source's G90/G91 also switch the E mode (Marlin: G90/G91
+    # set E absolute/relative; Machinekit: the extruder axis A follows them; Hyrel's do not, dialects.md
+    # 1.4 M82/M83 and 2.1 G90 row); None where the E mode is independent (RepRapFirmware, Carvera).
+    E_MODE_FOLLOWS_POSITIONING: str | None = None
+
     def positioning(self, cmd: Command) -> None:
+        """G90/G91: same meaning for X Y Z; the E mode follows where the source couples them."""
         self.positioning_seen = True
+        absolute = cmd.code == "G90"
+        note = self.E_MODE_FOLLOWS_POSITIONING
+        if note is None or not self.evalues or not self.m229_written or self.e_mode_written == absolute:
+            return
+        self.after("M82" if absolute else "M83", note=note)
+        self.e_mode_written = absolute
 
     def set_position(self, cmd: Command) -> None:
         """G92: same meaning (X Y Z A B E); Machinekit's extruder A becomes E; inches converted."""

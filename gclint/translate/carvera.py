@@ -18,13 +18,12 @@ from gclint.translate.base import (
     TR_LOST,
     TR_NOTE,
     TR_UNTRANSLATABLE,
+    WORKSPACES,
     HyrelTranslator,
     num,
 )
 from gclint.translate.marlin import _codes
 from gclint.translate.output import fmt
-
-_WCS = {f"G{n}": "workspace" for n in range(54, 60)}
 
 
 class CarveraToHyrel(HyrelTranslator):
@@ -37,7 +36,7 @@ class CarveraToHyrel(HyrelTranslator):
         "G0": "move", "G1": "move", "G2": "arc", "G3": "arc", "G4": "dwell_seconds",
         "G17": "keep", "G18": "keep", "G19": "keep", "G20": "units", "G21": "units", "G28": "clearance",
         "G53": "g53", "G90": "positioning", "G91": "positioning", "G92": "set_position", "G92.1": "clear_g92",
-        **_WCS, "M0": "keep", "M2": "end_program", "M30": "end_program", "M3": "spindle", "M4": "spindle",
+        **WORKSPACES, "M0": "keep", "M2": "end_program", "M30": "end_program", "M3": "spindle", "M4": "spindle",
         "M5": "spindle_stop", "M6": "tool_change", "M7": "air", "M9": "air_off", "M17": "motors_on",
         "M18": "disengage", "M84": "disengage", "M600": "pause", "M321": "laser_mode", "M322": "laser_mode_off",
         "M801": "vacuum", "M802": "vacuum_off", "M821": "light", "M822": "light_off",

@@ -18,17 +18,17 @@ from gclint.translate.base import (
     TR_LOST,
     TR_NOTE,
     TR_UNTRANSLATABLE,
+    WORKSPACES,
     HyrelTranslator,
     num,
 )
 from gclint.translate.marlin import _codes
 from gclint.translate.output import fmt
 
-_WCS = {f"G{n}": "workspace" for n in range(54, 60)}
-
 
 class MachinekitToHyrel(HyrelTranslator):
     EXTRUDER = "A"
+    E_MODE_FOLLOWS_POSITIONING: str | None = "the extruder (A) follows G90/G91 in Machinekit"
     CHECK_EXPRESSIONS = True
     END_CODES: ClassVar[frozenset[str]] = frozenset({"M2", "M30"})
     FAN_MAX = 255.0
@@ -37,8 +37,8 @@ class MachinekitToHyrel(HyrelTranslator):
     HANDLERS: ClassVar[dict[str, str]] = {
         "G0": "move", "G1": "move", "G2": "arc", "G3": "arc", "G4": "dwell_seconds",
         "G17": "keep", "G18": "keep", "G19": "keep", "G20": "units", "G21": "units",
-        "G22": "retract", "G23": "unretract", "G28": "mk_home", "G90": "g90", "G91": "g91",
-        "G92": "set_position", "G92.1": "clear_g92", **_WCS,
+        "G22": "retract", "G23": "unretract", "G28": "mk_home", "G90": "positioning", "G91": "positioning",
+        "G92": "set_position", "G92.1": "clear_g92", **WORKSPACES,
         "M0": "keep", "M2": "end_program", "M30": "end_program", "M3": "spindle", "M4": "spindle",
         "M5": "spindle_stop", "M6": "tool_change", "M7": "keep", "M8": "keep", "M9": "keep",
         "M104": "m104", "M109": "m109", "M140": "m140", "M141": "m141", "M190": "m190", "M191": "m191",
@@ -101,19 +101,6 @@ class MachinekitToHyrel(HyrelTranslator):
             if letter in params:
                 drop += letter
         return (drop, ()) if drop else None
-
-    def g90(self, cmd: Command) -> None:
-        self.positioning_seen = True
-        self._e_follows(True)
-
-    def g91(self, cmd: Command) -> None:
-        self.positioning_seen = True
-        self._e_follows(False)
-
-    def _e_follows(self, absolute: bool) -> None:
-        if self.evalues and self.m229_written and self.e_mode_written != absolute:
-            self.after("M82" if absolute else "M83", note="the extruder (A) follows G90/G91 in Machinekit")
-            self.e_mode_written = absolute
 
     def retract(self, cmd: Command) -> None:
         self._firmware_retract(cmd, "M721")

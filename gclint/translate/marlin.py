@@ -18,6 +18,7 @@ from gclint.translate.base import (
     TR_LOST,
     TR_NOTE,
     TR_UNTRANSLATABLE,
+    WORKSPACES,
     HyrelTranslator,
     num,
 )
@@ -90,8 +91,6 @@ _UNTRANSLATABLE = {
              "vendor filament-change sequence (the number is a Hyrel laser/UV code)"),
 }
 
-_WCS = {f"G{n}": "workspace" for n in range(54, 60)}
-
 _HOST_NO_EFFECT = frozenset({
     "EXCLUDE_OBJECT_DEFINE", "EXCLUDE_OBJECT_START", "EXCLUDE_OBJECT_END", "EXCLUDE_OBJECT", "SET_PRINT_STATS_INFO",
     "RESPOND", "SET_DISPLAY_TEXT", "UPDATE_DELAYED_GCODE", "SAVE_VARIABLE", "M117",
@@ -110,8 +109,8 @@ class MarlinToHyrel(HyrelTranslator):
     HANDLERS: ClassVar[dict[str, str]] = {
         "G0": "move", "G1": "move", "G2": "arc", "G3": "arc", "G4": "dwell",
         "G10": "g10", "G11": "g11", "G17": "keep", "G18": "keep", "G19": "keep", "G20": "units", "G21": "units",
-        "G28": "home", "G53": "machine_coordinates", **_WCS, "G59.1": "workspace_extra", "G59.2": "workspace_extra",
-        "G59.3": "workspace_extra", "G90": "g90", "G91": "g91", "G92": "set_position", "G92.1": "clear_g92",
+        "G28": "home", "G53": "machine_coordinates", **WORKSPACES, "G59.1": "workspace_extra", "G59.2": "workspace_extra",
+        "G59.3": "workspace_extra", "G90": "positioning", "G91": "positioning", "G92": "set_position", "G92.1": "clear_g92",
         "M0": "pause", "M1": "pause", "M3": "spindle", "M4": "spindle", "M5": "spindle_stop",
         "M6": "m6", "M7": "keep", "M8": "keep", "M9": "keep", "M17": "motors_on", "M18": "disengage",
         "M84": "disengage", "M82": "e_mode", "M83": "e_mode", "M104": "m104", "M106": "m106", "M107": "m107",
@@ -122,6 +121,7 @@ class MarlinToHyrel(HyrelTranslator):
     DROPPED: ClassVar[dict[str, tuple[str, str]]] = {**_NO_EFFECT, **_LOST, **_UNTRANSLATABLE}
     FAN_MAX = 255.0
     RRF = False
+    E_MODE_FOLLOWS_POSITIONING: str | None = "Marlin's G90/G91 also set the E mode"
     EXTRA_LETTERS: ClassVar[frozenset[str]] = frozenset("SABUVWCHK")
 
     def __init__(self, source, target, options=None) -> None:
@@ -154,22 +154,6 @@ class MarlinToHyrel(HyrelTranslator):
             self.replace(cmd, rewrite(cmd, drop="P"))
             self.report(TR_NOTE, "G4 with S and P: Marlin uses S alone, Hyrel would add them; P dropped",
                         key="G4SP", cmd=cmd)
-
-    def g90(self, cmd: Command) -> None:
-        self.positioning_seen = True
-        self._e_mode_follows(True)
-
-    def g91(self, cmd: Command) -> None:
-        self.positioning_seen = True
-        self._e_mode_follows(False)
-
-    def _e_mode_follows(self, absolute: bool) -> None:
-        # Marlin: G90/G91 also set the E mode; Hyrel's do not (dialects.md 1.4 M82/M83, 2.1 G90 row)
-        if self.RRF or not self.evalues or not self.m229_written:
-            return
-        if self.e_mode_written != absolute:
-            self.after("M82" if absolute else "M83", note="Marlin's G90/G91 also set the E mode")
-            self.e_mode_written = absolute
 
     def e_mode(self, cmd: Command) -> None:
         absolute = cmd.code == "M82"
@@ -504,6 +488,7 @@ class RepRapToHyrel(MarlinToHyrel):
     }
     FAN_MAX = 255.0
     RRF = True
+    E_MODE_FOLLOWS_POSITIONING = None  # RepRapFirmware: G90/G91 leave the E mode alone
     CHECK_EXPRESSIONS = True
     END_CODES = frozenset({"M2"})
 

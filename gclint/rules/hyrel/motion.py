@@ -11,7 +11,6 @@ costs a few dict lookups in total.  Rules in other modules (flow.py) join the sa
 
 from __future__ import annotations
 
-import weakref
 from types import MethodType
 from typing import ClassVar, Protocol
 
@@ -40,7 +39,6 @@ class MoveChecks:
     the leader, so the engine still sees a rule's method (and drops the leader if a check fails).
     """
 
-    _by_context: ClassVar[weakref.WeakKeyDictionary] = weakref.WeakKeyDictionary()
 
     def __init__(self, ctx) -> None:
         self.state = ctx.state
@@ -58,9 +56,9 @@ class MoveChecks:
 
     @classmethod
     def of(cls, ctx) -> "MoveChecks":
-        checks = cls._by_context.get(ctx)
+        checks = ctx.shared.get("move_checks")
         if checks is None:
-            checks = cls._by_context[ctx] = cls(ctx)
+            checks = ctx.shared["move_checks"] = cls(ctx)
         return checks
 
     @classmethod
