@@ -56,6 +56,11 @@ def parse_fast(raw: str) -> ParsedLine | None:
         return ParsedLine(comments=(Comment(raw, 1, ";"),), kind="comment")
     semi = raw.find(";")
     body = raw if semi < 0 else raw[:semi]
+    # Tier 2 first: the canonical shape is most lines of a job (and excludes blanks, "(", "0x").
+    if _CANON.fullmatch(body):
+        parsed = _canonical(raw, body, (Comment(raw[semi:], semi + 1, ";"),) if semi >= 0 else ())
+        if parsed is not None:
+            return parsed
     # Tier 1: blank and comment-only lines.
     stripped = body.strip(" \t")
     if not stripped:
@@ -71,11 +76,6 @@ def parse_fast(raw: str) -> ParsedLine | None:
     if "0x" in body:
         return None  # maybe a hex value (M708 A0x0b), which only the grammar reads
     comments = (Comment(raw[semi:], semi + 1, ";"),) if semi >= 0 else ()
-    # Tier 2: the canonical shape.
-    if _CANON.fullmatch(body):
-        parsed = _canonical(raw, body, comments)
-        if parsed is not None:
-            return parsed
     # Tier 3: any run of letter-and-number words.
     if _GENERAL.fullmatch(body):
         return _general(raw, body, comments)
