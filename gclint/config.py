@@ -19,6 +19,7 @@ from __future__ import annotations
 import os
 import re
 import tomllib
+from functools import lru_cache
 from dataclasses import replace
 from pathlib import Path
 
@@ -168,9 +169,11 @@ def apply(options: Options, table: dict, path: Path) -> Options:
     return replace(options, **changes)
 
 
+@lru_cache(maxsize=1024)
 def find_config(directory: str) -> Path | None:
     """The nearest configuration file at or above ``directory`` (a pyproject.toml counts only with
-    a [tool.gclint] table)."""
+    a [tool.gclint] table).  Cached: ``runner.run`` clears the cache at the start of every run, so
+    files are looked up once per folder per run and a configuration written between runs is seen."""
     current = Path(directory).resolve()
     for folder in (current, *current.parents):
         for name in CONFIG_NAMES:

@@ -9,7 +9,7 @@ from dataclasses import replace
 from pathlib import Path
 from typing import TYPE_CHECKING, Callable, Iterable, Iterator
 
-from gclint.config import ConfigError, apply, config_for
+from gclint.config import ConfigError, apply, config_for, find_config
 from gclint.engine import FileResult, Linter, Options
 from gclint.syntax.source import Source, SourceError
 
@@ -114,6 +114,7 @@ def run(
     With a ``cache``, files whose content, configuration and rule set are unchanged since the last run
     are not checked again.
     """
+    find_config.cache_clear()
     tasks: list[tuple[str, Options]] = []
     keys: dict[int, str] = {}
     results: dict[int, FileResult] = {}
