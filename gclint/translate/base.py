@@ -823,6 +823,30 @@ class HyrelTranslator(Translator):
     # 1.4 M82/M83 and 2.1 G90 row); None where the E mode is independent (RepRapFirmware, Carvera).
     E_MODE_FOLLOWS_POSITIONING: str | None = None
 
+    def workspace(self, cmd: Command) -> None:
+        """G54-G59 select a workspace elsewhere; on Hyrel they (re)apply the stored fixture offsets, and
+        with values they would store new ones (Gcode page, G54 - G59), so values are dropped."""
+        if cmd.params:
+            self.replace(cmd, cmd.code or "G54")
+        self.report(TR_NOTE, f"{cmd.code} selects Hyrel's stored fixture offsets (Repetrel Settings > Fixture "
+                    "Offsets); G54 with values would store new ones", key="wcs", cmd=cmd)
+
+    def clear_g92(self, cmd: Command) -> None:
+        """G92.1 (clear the G92 offsets) is Hyrel's G93 ("G93 clears ALL offsets implemented via G92")."""
+        self.replace(cmd, "G93")
+        self.report(TR_NOTE, "G92.1 (clear G92 offsets) written as Hyrel's G93", key="G92.1", cmd=cmd)
+
+    def firmware_retract(self, cmd: Command, code: str, what: str, key: str) -> None:
+        """A source retract/unretract: left to the head's automatic unprime/prime, or with
+        ``retract=explicit`` written as ``M721/M722 T# I1`` (Gcode page, M721/M722: "I1 ... now")."""
+        if self.opts.retract == "explicit":
+            address = self.head(None)
+            if address is not None:
+                self.replace(cmd, f"{code} T{address} I1", note=f"TR004 {what} -> {code} I1")
+                return
+        self.remove(cmd, TR_NOTE, f"{what} left to the head's automatic unprime/prime (set retract=explicit for "
+                    "M721/M722 I1)", key=key)
+
     def positioning(self, cmd: Command) -> None:
         """G90/G91: same meaning for X Y Z; the E mode follows where the source couples them."""
         self.positioning_seen = True

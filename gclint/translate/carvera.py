@@ -120,16 +120,6 @@ class CarveraToHyrel(HyrelTranslator):
         self.untranslatable(cmd, "machine-coordinate move (G53): the Carvera's machine coordinates mean nothing on "
                             "the Hyrel", key="G53")
 
-    def workspace(self, cmd: Command) -> None:
-        if cmd.params:
-            self.replace(cmd, cmd.code or "G54")
-        self.report(TR_NOTE, f"{cmd.code} selects Hyrel's stored fixture offsets (Repetrel Settings)", key="wcs",
-                    cmd=cmd)
-
-    def clear_g92(self, cmd: Command) -> None:
-        self.replace(cmd, "G93")
-        self.report(TR_NOTE, "G92.1 (clear G92 offsets) written as Hyrel's G93", key="G92.1", cmd=cmd)
-
     def motors_on(self, cmd: Command) -> None:
         if cmd.params:
             self.replace(cmd, "M17")

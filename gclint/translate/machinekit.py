@@ -103,19 +103,10 @@ class MachinekitToHyrel(HyrelTranslator):
         return (drop, ()) if drop else None
 
     def retract(self, cmd: Command) -> None:
-        self._firmware_retract(cmd, "M721")
+        self.firmware_retract(cmd, "M721", f"{cmd.code} retraction", "G22")
 
     def unretract(self, cmd: Command) -> None:
-        self._firmware_retract(cmd, "M722")
-
-    def _firmware_retract(self, cmd: Command, code: str) -> None:
-        if self.opts.retract == "explicit":
-            address = self.head(None)
-            if address is not None:
-                self.replace(cmd, f"{code} T{address} I1", note=f"TR004 {cmd.code} -> {code} I1")
-                return
-        self.remove(cmd, TR_NOTE, f"{cmd.code} retraction left to the head's automatic unprime/prime "
-                    "(set retract=explicit for M721/M722 I1)", key="G22")
+        self.firmware_retract(cmd, "M722", f"{cmd.code} retraction", "G22")
 
     def mk_home(self, cmd: Command) -> None:
         """Machinekit's g28.ngc does not home: it rapids the listed axes (all if none) to 0 and resets A."""
@@ -137,16 +128,6 @@ class MachinekitToHyrel(HyrelTranslator):
     def g53(self, cmd: Command) -> None:
         self.untranslatable(cmd, "machine-coordinate move (G53): the source machine's coordinates mean nothing "
                             "on the Hyrel")
-
-    def workspace(self, cmd: Command) -> None:
-        if cmd.params:
-            self.replace(cmd, cmd.code or "G54")
-        self.report(TR_NOTE, f"{cmd.code} selects Hyrel's stored fixture offsets (Repetrel Settings)", key="wcs",
-                    cmd=cmd)
-
-    def clear_g92(self, cmd: Command) -> None:
-        self.replace(cmd, "G93")
-        self.report(TR_NOTE, "G92.1 (clear G92 offsets) written as Hyrel's G93", key="G92.1", cmd=cmd)
 
     def spindle(self, cmd: Command) -> None:
         s = num(cmd.params.get("S"))

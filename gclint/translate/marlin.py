@@ -204,10 +204,7 @@ class MarlinToHyrel(HyrelTranslator):
 
     def workspace(self, cmd: Command) -> None:
         self.wcs = cmd.code or "G54"
-        if cmd.params:
-            self.replace(cmd, cmd.code or "G54")
-        self.report(TR_NOTE, f"{cmd.code} selects Hyrel's stored fixture offsets (Repetrel Settings > Fixture "
-                    "Offsets); G54 with values would store new ones", key="wcs", cmd=cmd)
+        super().workspace(cmd)
 
     def workspace_extra(self, cmd: Command) -> None:
         self.untranslatable(cmd, "Hyrel has no G59.1-G59.3 workspaces")
@@ -217,22 +214,10 @@ class MarlinToHyrel(HyrelTranslator):
         self.report(TR_NOTE, "G92.1 (reset workspace offsets) written as G93 (clear G92 offsets)", key="G92.1", cmd=cmd)
 
     def g10(self, cmd: Command) -> None:
-        self.firmware_retract(cmd, "M721")
+        self.firmware_retract(cmd, "M721", "firmware retract", "fw-retract")
 
     def g11(self, cmd: Command) -> None:
-        self.firmware_retract(cmd, "M722")
-
-    def firmware_retract(self, cmd: Command, code: str) -> None:
-        what = "retract" if code == "M721" else "recover"
-        if self.opts.retract == "explicit":
-            address = self.head(None)
-            if address is not None:
-                self.replace(cmd, f"{code} T{address} I1", note=f"TR004 firmware {what} -> {code} I1")
-                return
-        self.remove(cmd, TR_NOTE, f"firmware {what} left to the head's automatic unprime/prime (Hyrel does not "
-                    "recognise G10/G11; set retract=explicit for M721/M722 I1)", key="fw-retract")
-
-    # -- program flow -----------------------------------------------------------------------------------
+        self.firmware_retract(cmd, "M722", "firmware recover", "fw-retract")
 
     def pause(self, cmd: Command) -> None:
         if cmd.params or cmd.code != "M0":
@@ -543,7 +528,7 @@ class RepRapToHyrel(MarlinToHyrel):
                 self.remove(cmd, TR_LOST, "tool offsets: Repetrel declares head offsets itself (M6)", key="G10-offset")
             return
         if "P" not in params:
-            self.firmware_retract(cmd, "M721")
+            self.firmware_retract(cmd, "M721", "firmware retract", "fw-retract")
             return
         index = self._tool_index(cmd, "P")
         if any(a in params for a in "XYZ"):
