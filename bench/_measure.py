@@ -21,7 +21,9 @@ def files_of(paths: list[str]) -> list[str]:
     for p in paths:
         if os.path.isdir(p):
             for d, _, fs in os.walk(p):
-                out.extend(os.path.join(d, f) for f in sorted(fs) if f.lower().endswith((".gcode", ".gco", ".g", ".nc")))
+                out.extend(
+                    os.path.join(d, f) for f in sorted(fs) if f.lower().endswith((".gcode", ".gco", ".g", ".nc"))
+                )
         else:
             out.append(p)
     return sorted(out)

@@ -31,9 +31,7 @@ def measure(task: str, paths: list[str]) -> dict:
     python = sys.executable
     if task.endswith(" (mypyc)"):
         python, task = COMPILED, task[: -len(" (mypyc)")]
-    out = subprocess.run(
-        [python, str(HERE / "_measure.py"), task, *paths], check=True, capture_output=True, text=True
-    )
+    out = subprocess.run([python, str(HERE / "_measure.py"), task, *paths], check=True, capture_output=True, text=True)
     return json.loads(out.stdout.strip().splitlines()[-1])
 
 
@@ -58,7 +56,9 @@ def main() -> None:
     for task in tasks:
         r = best[task]
         speed = r["lines"] / r["seconds"]
-        print(f"{task:<22}{r['lines']:>12,}{r['seconds']:>10.2f}{speed:>12,.0f}{speed / base:>9.2f}x{r['peak_mb']:>10.0f}")
+        print(
+            f"{task:<22}{r['lines']:>12,}{r['seconds']:>10.2f}{speed:>12,.0f}{speed / base:>9.2f}x{r['peak_mb']:>10.0f}"
+        )
     if "gcodeparser" in best:
         gp = best["gcodeparser"]["lines"] / best["gcodeparser"]["seconds"]
         for task in [t for t in tasks if t.startswith("check")]:

@@ -18,7 +18,9 @@ from gclint.syntax import parse as parse_mod
 from gclint.syntax.fastpath import parse_fast
 from gclint.syntax.larkparse import GRAMMAR_PATH, parse_with_lark
 
-DEFAULT = Path(__file__).resolve().parent.parent.parent / "shared" / "corpus" / "marlin" / "prusaslicer-2.6.1_benchy.gcode"
+DEFAULT = (
+    Path(__file__).resolve().parent.parent.parent / "shared" / "corpus" / "marlin" / "prusaslicer-2.6.1_benchy.gcode"
+)
 _WORD = re.compile(r"([A-Za-z])\s*([-+]?(?:\d+\.?\d*|\.\d+))")
 
 
@@ -48,7 +50,9 @@ def main() -> None:
     try:
         import lark_cython
 
-        fast_lark = Lark(grammar, parser="lalr", lexer="contextual", maybe_placeholders=False, _plugins=lark_cython.plugins)
+        fast_lark = Lark(
+            grammar, parser="lalr", lexer="contextual", maybe_placeholders=False, _plugins=lark_cython.plugins
+        )
         timed("lark LALR + lark-cython, tree", lambda ls: [fast_lark.parse(x) for x in ls], lines[:10000], base)
     except ImportError:
         print("lark-cython not installed")

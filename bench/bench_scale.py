@@ -55,7 +55,9 @@ def main() -> None:
             total = 0.0
             with tempfile.TemporaryDirectory() as out:
                 for i, f in enumerate(files):
-                    total += gclint("translate", "--from", "marlin", "--to", "hyrel", str(f), "-o", os.path.join(out, f"{i}.gcode"))
+                    total += gclint(
+                        "translate", "--from", "marlin", "--to", "hyrel", str(f), "-o", os.path.join(out, f"{i}.gcode")
+                    )
             return total
 
         def check_all() -> float:

@@ -85,8 +85,10 @@ def main() -> int:
         best_translate = min(best_translate, translate_time)
     print(f"{len(paths)} files, {lines:,} lines ({args.folder})")
     print(f"check     --dialect {args.dialect}: {best_check:7.2f} s  ({lines / best_check:,.0f} lines/s)")
-    print(f"translate --from {args.dialect} --to hyrel --flow {args.flow}: {best_translate:7.2f} s  "
-          f"({lines / best_translate:,.0f} lines/s; {changed:,} lines changed, {out_bytes:,} bytes out)")
+    print(
+        f"translate --from {args.dialect} --to hyrel --flow {args.flow}: {best_translate:7.2f} s  "
+        f"({lines / best_translate:,.0f} lines/s; {changed:,} lines changed, {out_bytes:,} bytes out)"
+    )
     print(f"ratio translate / check: {best_translate / best_check:.2f}")
     return 0
 

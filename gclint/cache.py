@@ -150,7 +150,11 @@ def _dump(result: FileResult) -> dict:
                 "source": f.source,
                 "fix": None
                 if f.fix is None
-                else {"message": f.fix.message, "safe": f.fix.safe, "edits": [[e.line, e.start, e.end, e.text] for e in f.fix.edits]},
+                else {
+                    "message": f.fix.message,
+                    "safe": f.fix.safe,
+                    "edits": [[e.line, e.start, e.end, e.text] for e in f.fix.edits],
+                },
             }
             for f in result.findings
         ],

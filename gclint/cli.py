@@ -41,7 +41,9 @@ class _Main(click.Group):
             if os.environ.get("GCLINT_DEBUG"):
                 raise
             detail = f"{type(exc).__name__}: {exc}".splitlines()[0][:200]
-            raise UsageFailure(f"internal error: {detail} (please report it; GCLINT_DEBUG=1 shows the traceback)") from None
+            raise UsageFailure(
+                f"internal error: {detail} (please report it; GCLINT_DEBUG=1 shows the traceback)"
+            ) from None
 
 
 def _abandon_stdout() -> None:
@@ -109,25 +111,45 @@ def main() -> None:
 
 @main.command()
 @click.argument("paths", nargs=-1, type=click.Path(allow_dash=True))
-@click.option("--dialect", "-d", metavar="D", help="hyrel, hyrel-v4, marlin, reprap, machinekit, carvera or auto (default).")
+@click.option(
+    "--dialect", "-d", metavar="D", help="hyrel, hyrel-v4, marlin, reprap, machinekit, carvera or auto (default)."
+)
 @click.option("--printer", "-p", metavar="MODEL", help=f"Hyrel model: {', '.join(PROFILES)} (default 30m).")
 @click.option("--loaded", metavar="T0,T2", help="Head positions loaded on the yoke (else from the job header).")
 @click.option("--select", multiple=True, metavar="CODES", help="Only these rule codes or prefixes (comma separated).")
 @click.option("--ignore", multiple=True, metavar="CODES", help="Skip these rule codes or prefixes.")
 @click.option("--extend-select", multiple=True, metavar="CODES", help="Add these to the selected rules.")
-@click.option("--format", "-f", "fmt", default="text", show_default=True, metavar="F",
-              help="text, json, sarif, github, junit, html, full, grouped.")
-@click.option("--output", "-o", type=click.Path(dir_okay=False, writable=True, allow_dash=True), help="Write the report here.")
+@click.option(
+    "--format",
+    "-f",
+    "fmt",
+    default="text",
+    show_default=True,
+    metavar="F",
+    help="text, json, sarif, github, junit, html, full, grouped.",
+)
+@click.option(
+    "--output", "-o", type=click.Path(dir_okay=False, writable=True, allow_dash=True), help="Write the report here."
+)
 @click.option("--exit-zero", is_flag=True, help="Exit 0 even when findings exist.")
 @click.option("--statistics", is_flag=True, help="Show the number of findings per code.")
 @click.option("--jobs", "-j", type=click.IntRange(min=1), default=None, help="Parallel processes (default: CPU count).")
-@click.option("--config", "config_file", type=click.Path(dir_okay=False), help="Configuration file (else found upward).")
+@click.option(
+    "--config", "config_file", type=click.Path(dir_okay=False), help="Configuration file (else found upward)."
+)
 @click.option("--fix", is_flag=True, help="Apply the safe fixes in place.")
 @click.option("--unsafe-fixes", is_flag=True, help="With --fix, apply unsafe fixes too.")
 @click.option("--stdin-filename", metavar="NAME", help="Name to use for the file read from '-'.")
 @click.option("--no-cache", is_flag=True, help="Do not read or write the result cache.")
-@click.option("--cache-dir", type=click.Path(file_okay=False), envvar="GCLINT_CACHE_DIR", help="Cache folder (default .gclint_cache).")
-@click.option("--progress/--no-progress", default=None, help="Progress bar on stderr (default: on a terminal, for many files).")
+@click.option(
+    "--cache-dir",
+    type=click.Path(file_okay=False),
+    envvar="GCLINT_CACHE_DIR",
+    help="Cache folder (default .gclint_cache).",
+)
+@click.option(
+    "--progress/--no-progress", default=None, help="Progress bar on stderr (default: on a terminal, for many files)."
+)
 def check(
     paths: tuple[str, ...],
     dialect: str | None,
@@ -244,19 +266,41 @@ def _write_report(writer, results: list[FileResult], ctx, output: str | None) ->
 @click.argument("input_path", metavar="INPUT", type=click.Path(allow_dash=True), default="-")
 @click.option("--from", "source", required=True, metavar="D", help="Dialect of the input.")
 @click.option("--to", "target", required=True, metavar="D", help="Dialect to write.")
-@click.option("--output", "-o", metavar="OUT", type=click.Path(dir_okay=False, allow_dash=True), help="Output file (default: stdout).")
+@click.option(
+    "--output",
+    "-o",
+    metavar="OUT",
+    type=click.Path(dir_okay=False, allow_dash=True),
+    help="Output file (default: stdout).",
+)
 @click.option("--in-place", is_flag=True, help="Replace INPUT (atomically).")
-@click.option("--unsupported", type=click.Choice(["ignore", "warn", "error"]), default="warn", show_default=True,
-              help="What to do with constructs that cannot be translated exactly.")
+@click.option(
+    "--unsupported",
+    type=click.Choice(["ignore", "warn", "error"]),
+    default="warn",
+    show_default=True,
+    help="What to do with constructs that cannot be translated exactly.",
+)
 @click.option("--annotate", is_flag=True, help="Add a '; gclint: ...' comment on each changed or dropped line.")
 @click.option("--printer", "-p", metavar="MODEL", help="Hyrel model of the target.")
 @click.option("--tool-map", metavar="0=T2,...", help="Source tool index -> Hyrel head address.")
-@click.option("--flow", type=click.Choice(["evalues", "native"]), default=None,
-              help="Hyrel flow: keep the E amounts with M229 E1 D1 (evalues, default) or native flow (E1 markers).")
-@click.option("--set", "settings", multiple=True, metavar="KEY=VALUE",
-              help="Translation setting (repeatable): retract, fan-map, bed, chamber, temp-window, spindle, laser, "
-                   "air, max-feed, home-z, spindle-max-rpm.  See docs/translation.md.")
-@click.option("--config", "config_file", type=click.Path(dir_okay=False), help="Configuration file (else found upward).")
+@click.option(
+    "--flow",
+    type=click.Choice(["evalues", "native"]),
+    default=None,
+    help="Hyrel flow: keep the E amounts with M229 E1 D1 (evalues, default) or native flow (E1 markers).",
+)
+@click.option(
+    "--set",
+    "settings",
+    multiple=True,
+    metavar="KEY=VALUE",
+    help="Translation setting (repeatable): retract, fan-map, bed, chamber, temp-window, spindle, laser, "
+    "air, max-feed, home-z, spindle-max-rpm.  See docs/translation.md.",
+)
+@click.option(
+    "--config", "config_file", type=click.Path(dir_okay=False), help="Configuration file (else found upward)."
+)
 def translate(
     input_path: str,
     source: str,
@@ -358,14 +402,19 @@ def list_dialects() -> None:
     click.echo(f"{'auto':<11} detect from the file (directive, slicer header, codes); default {dialects.DEFAULT.name}")
 
 
-
 # -- explain ---------------------------------------------------------------------------------------------
 
 
 @main.command()
 @click.argument("file", required=False, type=click.Path(allow_dash=True))
-@click.option("--expression", "-e", "expressions", multiple=True, metavar="LINE",
-              help='G-code to explain, e.g. -e "M109 T0 S240 L10 U5" (repeatable; lines may be separated by \\n).')
+@click.option(
+    "--expression",
+    "-e",
+    "expressions",
+    multiple=True,
+    metavar="LINE",
+    help='G-code to explain, e.g. -e "M109 T0 S240 L10 U5" (repeatable; lines may be separated by \\n).',
+)
 @click.option("--dialect", "-d", metavar="D", help="Dialect (default: detected from FILE; hyrel for -e).")
 @click.option("--format", "-f", "fmt", type=click.Choice(["text", "json"]), default="text", show_default=True)
 @click.option("--all-lines", is_flag=True, help="Also list lines with no command (comments, blank lines).")
@@ -383,7 +432,9 @@ def explain(file: str | None, expressions: tuple[str, ...], dialect: str | None,
     chosen = dialects.get(_check_dialect(dialect, allow_auto=True)) if dialect and dialect.lower() != "auto" else None  # type: ignore[arg-type]
     if expressions:
         text = "\n".join(e.replace("\\n", "\n") for e in expressions)
-        found = chosen or dialects.detect(text)[0] if dialect and dialect.lower() == "auto" else chosen or dialects.DEFAULT
+        found = (
+            chosen or dialects.detect(text)[0] if dialect and dialect.lower() == "auto" else chosen or dialects.DEFAULT
+        )
         items = explain_text(text, found)
         source_name = "-e"
     else:
@@ -397,8 +448,13 @@ def explain(file: str | None, expressions: tuple[str, ...], dialect: str | None,
         source_name = file or "-"
     try:
         if fmt == "json":
-            click.echo(json.dumps({"dialect": found.name, "source": source_name,
-                                   "commands": [e.to_dict() for e in items]}, indent=2, ensure_ascii=False))
+            click.echo(
+                json.dumps(
+                    {"dialect": found.name, "source": source_name, "commands": [e.to_dict() for e in items]},
+                    indent=2,
+                    ensure_ascii=False,
+                )
+            )
             return
         click.echo(f"; dialect: {found.name} ({found.title})")
         last = None
@@ -416,16 +472,38 @@ def explain(file: str | None, expressions: tuple[str, ...], dialect: str | None,
 
 @main.command()
 @click.argument("path", type=click.Path(dir_okay=False))
-@click.option("--to", "target", metavar="D", help="Translate to this dialect first (e.g. hyrel); default: no translation.")
-@click.option("--from", "source", metavar="D", help="Dialect of the slicer's output (default: SLIC3R_GCODE_FLAVOR, else the header).")
-@click.option("--fail-on", type=click.Choice(["error", "warning", "never"]), default="error", show_default=True,
-              help="Exit 1 (the slicer stops the export) when a finding reaches this level.")
+@click.option(
+    "--to", "target", metavar="D", help="Translate to this dialect first (e.g. hyrel); default: no translation."
+)
+@click.option(
+    "--from",
+    "source",
+    metavar="D",
+    help="Dialect of the slicer's output (default: SLIC3R_GCODE_FLAVOR, else the header).",
+)
+@click.option(
+    "--fail-on",
+    type=click.Choice(["error", "warning", "never"]),
+    default="error",
+    show_default=True,
+    help="Exit 1 (the slicer stops the export) when a finding reaches this level.",
+)
 @click.option("--printer", "-p", metavar="MODEL", help="Hyrel model of the target.")
 @click.option("--loaded", metavar="T0,T2", help="Head positions loaded on the yoke.")
-@click.option("--report", "report_path", type=click.Path(dir_okay=False), help="Report file (default: <output>.gclint.txt).")
+@click.option(
+    "--report", "report_path", type=click.Path(dir_okay=False), help="Report file (default: <output>.gclint.txt)."
+)
 @click.option("--no-report", is_flag=True, help="Do not write a report file.")
-def postprocess(path: str, target: str | None, source: str | None, fail_on: str, printer: str | None, loaded: str | None,
-                report_path: str | None, no_report: bool) -> None:
+def postprocess(
+    path: str,
+    target: str | None,
+    source: str | None,
+    fail_on: str,
+    printer: str | None,
+    loaded: str | None,
+    report_path: str | None,
+    no_report: bool,
+) -> None:
     """Slicer post-processing step: translate and check PATH in place (the path comes last)."""
     from gclint import postprocess as pp
 
@@ -438,8 +516,16 @@ def postprocess(path: str, target: str | None, source: str | None, fail_on: str,
         except ConfigError as exc:
             _fail(str(exc))
     try:
-        code = pp.main(path, to=target_name, fail_on=fail_on, source=source_name, printer=_check_printer(printer),
-                       loaded=heads, report=report_path, no_report=no_report)
+        code = pp.main(
+            path,
+            to=target_name,
+            fail_on=fail_on,
+            source=source_name,
+            printer=_check_printer(printer),
+            loaded=heads,
+            report=report_path,
+            no_report=no_report,
+        )
     except RuleError as exc:
         _fail(str(exc))
         return
@@ -447,8 +533,14 @@ def postprocess(path: str, target: str | None, source: str | None, fail_on: str,
 
 
 @main.command(name="cura-script")
-@click.option("--output", "-o", "folder", type=click.Path(file_okay=False), default=None,
-              help="Folder to write Gclint.py into (default: the current folder).")
+@click.option(
+    "--output",
+    "-o",
+    "folder",
+    type=click.Path(file_okay=False),
+    default=None,
+    help="Folder to write Gclint.py into (default: the current folder).",
+)
 @click.option("--print", "to_stdout", is_flag=True, help="Print the script instead of writing it.")
 def cura_script(folder: str | None, to_stdout: bool) -> None:
     """Write Gclint.py, a script for Cura's post-processing plugin."""
@@ -468,9 +560,12 @@ def cura_script(folder: str | None, to_stdout: bool) -> None:
         if folders:
             click.echo("Copy it into Cura's scripts folder, e.g.: " + str(folders[0]))
         else:
-            click.echo("Copy it into the 'scripts' folder of Cura's configuration folder (Help > Show Configuration Folder).")
+            click.echo(
+                "Copy it into the 'scripts' folder of Cura's configuration folder (Help > Show Configuration Folder)."
+            )
     click.echo("Then restart Cura: Extensions > Post Processing > Modify G-Code > Add a script > gclint.")
     click.echo("Note: Cura cannot stop an export; the script shows the findings and writes them into the G-code.")
+
 
 if __name__ == "__main__":  # pragma: no cover
     main()

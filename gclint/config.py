@@ -19,8 +19,8 @@ from __future__ import annotations
 import os
 import re
 import tomllib
-from functools import lru_cache
 from dataclasses import replace
+from functools import lru_cache
 from pathlib import Path
 
 from gclint.engine import Options

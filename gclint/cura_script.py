@@ -33,7 +33,9 @@ def default_command() -> list[str]:
 
 def render(command: list[str] | None = None) -> str:
     text = template()
-    return text.replace("@GCLINT_VERSION@", __version__).replace("@GCLINT_COMMAND@", repr(list(command or default_command())))
+    return text.replace("@GCLINT_VERSION@", __version__).replace(
+        "@GCLINT_COMMAND@", repr(list(command or default_command()))
+    )
 
 
 def cura_script_folders() -> list[Path]:

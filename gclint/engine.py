@@ -10,8 +10,8 @@ from __future__ import annotations
 import fnmatch
 import os
 import re
+from collections.abc import Callable, Iterable
 from dataclasses import dataclass, field
-from typing import Callable, Iterable
 
 from gclint import dialects
 from gclint.dialects.base import Dialect
@@ -77,7 +77,9 @@ class FileResult:
 
 
 _NOQA = re.compile(r"(?i)\bnoqa\b(?:\s*:\s*([A-Za-z]{2}\d{0,3}(?:\s*[,\s]\s*[A-Za-z]{2}\d{0,3})*))?")
-_DIRECTIVE = re.compile(r"(?i)\bgclint:\s*(disable|enable)\b(?:\s*=\s*([A-Za-z]{2}\d{0,3}(?:\s*,\s*[A-Za-z]{2}\d{0,3})*))?")
+_DIRECTIVE = re.compile(
+    r"(?i)\bgclint:\s*(disable|enable)\b(?:\s*=\s*([A-Za-z]{2}\d{0,3}(?:\s*,\s*[A-Za-z]{2}\d{0,3})*))?"
+)
 
 
 def _codes(text: str | None) -> tuple[str, ...]:
@@ -226,7 +228,11 @@ class Linter:
         out: list[str] = []
         norm = path.replace(os.sep, "/")
         for pattern, codes in self.options.per_file_ignores.items():
-            if fnmatch.fnmatch(norm, pattern) or fnmatch.fnmatch(os.path.basename(norm), pattern) or fnmatch.fnmatch(norm, "*/" + pattern):
+            if (
+                fnmatch.fnmatch(norm, pattern)
+                or fnmatch.fnmatch(os.path.basename(norm), pattern)
+                or fnmatch.fnmatch(norm, "*/" + pattern)
+            ):
                 out.extend(c.upper() for c in codes)
         return tuple(out)
 
@@ -299,7 +305,7 @@ class Linter:
                 handlers.extend(unknown)
             always, filtered = [], []
             for handler in handlers:
-                letters = getattr(handler, "__self__").trigger_letters(code) if code is not None else None
+                letters = getattr(handler, "__self__").trigger_letters(code)  # noqa: B009 (typed as a plain callable) if code is not None else None
                 if letters is None:
                     always.append(handler)
                 elif letters:

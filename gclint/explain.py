@@ -102,9 +102,25 @@ def _fmt(value: float) -> str:
 
 # Letter meanings used when a code's table says nothing about a letter.
 _GENERIC = {
-    "X": "X", "Y": "Y", "Z": "Z", "A": "A axis", "B": "B axis", "C": "C axis", "E": "extruder",
-    "F": "feed rate, mm/min", "S": "S value", "P": "P value", "T": "tool", "I": "I value", "J": "J value",
-    "K": "K value", "R": "R value", "H": "H value", "D": "D value", "L": "L value", "Q": "Q value",
+    "X": "X",
+    "Y": "Y",
+    "Z": "Z",
+    "A": "A axis",
+    "B": "B axis",
+    "C": "C axis",
+    "E": "extruder",
+    "F": "feed rate, mm/min",
+    "S": "S value",
+    "P": "P value",
+    "T": "tool",
+    "I": "I value",
+    "J": "J value",
+    "K": "K value",
+    "R": "R value",
+    "H": "H value",
+    "D": "D value",
+    "L": "L value",
+    "Q": "Q value",
 }
 
 
@@ -171,7 +187,9 @@ class Explainer:
             meaning = self._meaning(spec, word.letter)
             text = word.text.strip()
             if spec is not None and spec.params is not None and spec.param(word.letter) is None:
-                exp.items.append(Item(text, f"{cmd.code} takes no {word.letter} in {self.dialect.name}: ignored or rejected", True))
+                exp.items.append(
+                    Item(text, f"{cmd.code} takes no {word.letter} in {self.dialect.name}: ignored or rejected", True)
+                )
                 continue
             param = spec.param(word.letter) if spec is not None else None
             if param is not None and param.forbidden:
@@ -189,12 +207,16 @@ class Explainer:
     def _unknown(self, exp: Explanation, cmd: Command) -> None:
         if self.dialect.unknown_severity == "error":
             if self.hyrel:
-                exp.warn(f"Repetrel does not list {cmd.code}; Hyrel reuses many numbers for other things, so it is "
-                         "rejected or does something else")
+                exp.warn(
+                    f"Repetrel does not list {cmd.code}; Hyrel reuses many numbers for other things, so it is "
+                    "rejected or does something else"
+                )
             else:
                 exp.warn(f"the {self.dialect.name} interpreter stops on an unknown code")
         else:
-            exp.warn(f"{self.dialect.title} does not list {cmd.code}: the firmware skips it (or runs a macro of that name)")
+            exp.warn(
+                f"{self.dialect.title} does not list {cmd.code}: the firmware skips it (or runs a macro of that name)"
+            )
         for word in cmd.words:
             exp.add(word.text.strip(), _GENERIC.get(word.letter, f"{word.letter} value"))
 
@@ -203,7 +225,9 @@ class Explainer:
         if kind == IMPLICIT:
             mode = self.state.motion_mode
             if mode is None:
-                exp = Explanation(line.number, line.raw, None, "axis words with no motion code: no modal motion is active")
+                exp = Explanation(
+                    line.number, line.raw, None, "axis words with no motion code: no modal motion is active"
+                )
                 self._generic(exp, cmd, None)
                 return exp
             exp = Explanation(line.number, line.raw, None, f"modal {mode} move: the words repeat the last motion code")
@@ -224,17 +248,26 @@ class Explainer:
                 exp.warn(f"{self.dialect.title} has no Klipper-style commands")
             return exp
         if kind == META:
-            exp = Explanation(line.number, line.raw, cmd.code, "RepRapFirmware meta command (conditional code, variables, messages)")
+            exp = Explanation(
+                line.number, line.raw, cmd.code, "RepRapFirmware meta command (conditional code, variables, messages)"
+            )
             if not self.dialect.meta_commands:
                 exp.warn(f"{self.dialect.title} has no meta commands")
             return exp
         if kind == OWORD:
-            exp = Explanation(line.number, line.raw, cmd.code, f"O-word {cmd.params.get('keyword') or ''} (LinuxCNC subroutine or control flow)".replace("  ", " "))
+            exp = Explanation(
+                line.number,
+                line.raw,
+                cmd.code,
+                f"O-word {cmd.params.get('keyword') or ''} (LinuxCNC subroutine or control flow)".replace("  ", " "),
+            )
             if not self.dialect.owords:
                 exp.warn(f"{self.dialect.title} has no O-words")
             return exp
         if kind == ASSIGNMENT:
-            return Explanation(line.number, line.raw, None, f"set parameter {cmd.params.get('target')} to {cmd.params.get('value')}")
+            return Explanation(
+                line.number, line.raw, None, f"set parameter {cmd.params.get('target')} to {cmd.params.get('value')}"
+            )
         if kind == PERCENT:
             return Explanation(line.number, line.raw, "%", "program start/end marker")
         return Explanation(line.number, line.raw, cmd.code, f"{kind} command")
@@ -257,8 +290,14 @@ class Explainer:
             text += "; this v4 correspondence is inferred, not documented"
         return text
 
-    def _target(self, exp: Explanation, cmd: Command, role: str = "target head", default: str | None = None,
-                physical: bool = False) -> Address | None:
+    def _target(
+        self,
+        exp: Explanation,
+        cmd: Command,
+        role: str = "target head",
+        default: str | None = None,
+        physical: bool = False,
+    ) -> Address | None:
         """Decode the T variable of an M-code; ``default`` says what happens without one."""
         word = cmd.param("T")
         if word is None:
@@ -297,7 +336,11 @@ class Explainer:
             if number < 0:
                 exp = Explanation(line.number, line.raw, code, "deselect the current tool")
             if self.family in ("linuxcnc", "smoothie"):
-                exp.note("prepares the tool; M6 changes to it" if self.family == "linuxcnc" else "select the tool (M6 T changes it on the ATC)")
+                exp.note(
+                    "prepares the tool; M6 changes to it"
+                    if self.family == "linuxcnc"
+                    else "select the tool (M6 T changes it on the ATC)"
+                )
             else:
                 exp.note(f"extruder/tool {number} becomes active (its offsets and temperature apply)")
             return exp
@@ -305,14 +348,20 @@ class Explainer:
         if address is None:
             return Explanation(line.number, line.raw, code, "tool change")
         if address.kind == HEAD:
-            exp = Explanation(line.number, line.raw, code,
-                              f"switch to head T{address.v5}: {yoke_label(address.v5)}, and invoke all its flow, prime, "  # type: ignore[arg-type]
-                              "unprime and offset parameters")
+            exp = Explanation(
+                line.number,
+                line.raw,
+                code,
+                f"switch to head T{address.v5}: {yoke_label(address.v5)}, and invoke all its flow, prime, "  # type: ignore[arg-type]
+                "unprime and offset parameters",
+            )
             if self.firmware == 4 and address.v5 != address.number:
                 exp.note(f"v4 tool number {address.number}")
             loaded = self.state.head_loaded(address.v5)  # type: ignore[arg-type]
             if loaded is False:
-                exp.warn(f"no head is loaded at T{address.v5}: Repetrel warns when T commands do not match the loaded heads")
+                exp.warn(
+                    f"no head is loaded at T{address.v5}: Repetrel warns when T commands do not match the loaded heads"
+                )
             return exp
         if address.kind == VIRTUAL:
             exp = Explanation(line.number, line.raw, code, f"switch to {address.label}: the squad's heads act together")
@@ -345,31 +394,63 @@ class Explainer:
         if self.hyrel:
             table.update(
                 {
-                    "G2": self._arc, "G3": self._arc,
-                    "G2.1": self._spiral, "G3.1": self._spiral, "G2.2": self._spiral, "G3.2": self._spiral,
-                    "G2.3": self._arc3, "G3.3": self._arc3,
-                    "M104": self._set_temp, "M140": self._set_temp, "M141": self._set_temp,
-                    "M109": self._wait_temp, "M190": self._wait_temp, "M191": self._wait_temp,
-                    "M116": lambda e, c, s: e.note("pause until every temperature set with W0 (M109/M190/M191) is reached"),
-                    "M106": self._fan, "M107": self._fan_off,
+                    "G2": self._arc,
+                    "G3": self._arc,
+                    "G2.1": self._spiral,
+                    "G3.1": self._spiral,
+                    "G2.2": self._spiral,
+                    "G3.2": self._spiral,
+                    "G2.3": self._arc3,
+                    "G3.3": self._arc3,
+                    "M104": self._set_temp,
+                    "M140": self._set_temp,
+                    "M141": self._set_temp,
+                    "M109": self._wait_temp,
+                    "M190": self._wait_temp,
+                    "M191": self._wait_temp,
+                    "M116": lambda e, c, s: e.note(
+                        "pause until every temperature set with W0 (M109/M190/M191) is reached"
+                    ),
+                    "M106": self._fan,
+                    "M107": self._fan_off,
                     "M229": self._m229,
-                    "M620": self._m620, "M621": self._m621, "M623": self._m623,
+                    "M620": self._m620,
+                    "M621": self._m621,
+                    "M623": self._m623,
                     "M660": self._m660,
-                    "M702": self._m702, "M703": self._m703, "M704": self._m704,
+                    "M702": self._m702,
+                    "M703": self._m703,
+                    "M704": self._m704,
                     "M6": self._m6,
                     "M0": self._m0,
-                    "M3": self._spindle, "M4": self._spindle, "M5": self._spindle_off,
+                    "M3": self._spindle,
+                    "M4": self._spindle,
+                    "M5": self._spindle_off,
                     "G81": self._g81,
-                    "M721": self._prime, "M722": self._prime,
-                    "M221": self._targeted, "M723": self._targeted, "M728": self._targeted, "M701": self._targeted,
+                    "M721": self._prime,
+                    "M722": self._prime,
+                    "M221": self._targeted,
+                    "M723": self._targeted,
+                    "M728": self._targeted,
+                    "M701": self._targeted,
                     "M783": self._targeted,
                 }
             )
         else:
-            table.update({"M104": self._set_temp, "M109": self._wait_temp, "M140": self._set_temp,
-                          "M190": self._wait_temp, "M106": self._fan, "M107": self._fan_off})
+            table.update(
+                {
+                    "M104": self._set_temp,
+                    "M109": self._wait_temp,
+                    "M140": self._set_temp,
+                    "M190": self._wait_temp,
+                    "M106": self._fan,
+                    "M107": self._fan_off,
+                }
+            )
             if self.family in ("linuxcnc", "smoothie"):
-                table.update({"M3": self._spindle, "M4": self._spindle, "M5": self._spindle_off, "M6": self._tool_change})
+                table.update(
+                    {"M3": self._spindle, "M4": self._spindle, "M5": self._spindle_off, "M6": self._tool_change}
+                )
         return table
 
     # -- motion -------------------------------------------------------------------------------------
@@ -390,7 +471,9 @@ class Explainer:
         if mode == "G0":
             exp.note("rapid (non-working) straight line move from the current location")
         else:
-            exp.note("working speed straight line move from the current location" if self.hyrel else "straight line move")
+            exp.note(
+                "working speed straight line move from the current location" if self.hyrel else "straight line move"
+            )
         for letter in "XYZAB":
             word = cmd.param(letter)
             if word is not None:
@@ -408,7 +491,12 @@ class Explainer:
             elif self.state.e_absolute:
                 exp.add(e.text.strip(), f"extrude until the E position is {e.value}")
             else:
-                exp.add(e.text.strip(), f"extrude {e.value} mm of filament" if _num(e.value) and (_num(e.value) or 0) > 0 else f"E by {e.value} (retract)")
+                exp.add(
+                    e.text.strip(),
+                    f"extrude {e.value} mm of filament"
+                    if _num(e.value) and (_num(e.value) or 0) > 0
+                    else f"E by {e.value} (retract)",
+                )
         f = cmd.param("F")
         if f is not None:
             if mode == "G0" and self.family in ("hyrel", "smoothie"):
@@ -425,7 +513,9 @@ class Explainer:
             offsets = self.state.tool_height_offsets
             stored = offsets.get(int(register)) if register is not None and register == int(register) else None
             if register is not None and register == int(register) and int(register) in offsets:
-                extra = f": Z{'+' if (stored or 0) >= 0 else ''}{_fmt(stored)} stored by M660" if stored is not None else ""
+                extra = (
+                    f": Z{'+' if (stored or 0) >= 0 else ''}{_fmt(stored)} stored by M660" if stored is not None else ""
+                )
                 exp.add(h.text.strip(), f"invoke the offsets stored in register H{int(register)}{extra}")
             else:
                 exp.add(h.text.strip(), f"invoke the offsets stored in register H{h.value}")
@@ -491,7 +581,9 @@ class Explainer:
             if word is not None:
                 exp.add(word.text.strip(), f"centered about a point {word.value} mm further in {axis}")
         laps = cmd.param("L")
-        exp.add(laps.text.strip(), f"complete no more than {laps.value} laps") if laps is not None else exp.note("complete all laps")
+        exp.add(laps.text.strip(), f"complete no more than {laps.value} laps") if laps is not None else exp.note(
+            "complete all laps"
+        )
         pitch = cmd.param("P")
         if pitch is not None:
             exp.add(pitch.text.strip(), f"{pitch.value} mm between centers of travel of adjacent laps")
@@ -500,14 +592,19 @@ class Explainer:
         self._segments(exp, cmd)
         r = cmd.param("R")
         if code.endswith(".1"):
-            flags = {"0": "spiral in toward the center from the current location", "1": "spiral out from the center to the current location (after an inward jump)",
-                     "2": "spiral out from the current position"}
+            flags = {
+                "0": "spiral in toward the center from the current location",
+                "1": "spiral out from the center to the current location (after an inward jump)",
+                "2": "spiral out from the current position",
+            }
             if r is not None:
                 exp.add(r.text.strip(), flags.get(r.value or "", "unknown spiral direction flag"))
             else:
                 exp.note("default R0: spiral in toward the center")
         f = cmd.param("F")
-        exp.add(f.text.strip(), f"at a speed of {f.value} mm/min") if f is not None else exp.note("moving at the established G1 F speed")
+        exp.add(f.text.strip(), f"at a speed of {f.value} mm/min") if f is not None else exp.note(
+            "moving at the established G1 F speed"
+        )
         self._generic(exp, cmd, spec, skip="XYZIJLPESRF")
 
     def _arc3(self, exp: Explanation, cmd: Command, spec: Code | None) -> None:
@@ -544,7 +641,9 @@ class Explainer:
                     exp.note(f"{axis} remains unchanged")
             if not listed:
                 exp.warn("no axis listed: Hyrel homes only the axes named (G28 X0 Y0)")
-            exp.note("afterwards G92 and H (M660) offsets are cleared, a G53 is performed and a head offset of 0 is applied")
+            exp.note(
+                "afterwards G92 and H (M660) offsets are cleared, a G53 is performed and a head offset of 0 is applied"
+            )
         elif self.family == "reprap":
             if listed:
                 for axis in listed:
@@ -552,25 +651,39 @@ class Explainer:
             else:
                 exp.note("no axis listed: home all axes")
         else:
-            exp.note("go to the stored G28 position (through the listed axes' intermediate point)" if self.family == "linuxcnc"
-                     else "go to the clearance (G28) position")
+            exp.note(
+                "go to the stored G28 position (through the listed axes' intermediate point)"
+                if self.family == "linuxcnc"
+                else "go to the clearance (G28) position"
+            )
             self._generic(exp, cmd, spec)
 
     def _set_position(self, exp: Explanation, cmd: Command, spec: Code | None) -> None:
         exp.note("replace the current position values (no motion)")
         for word in cmd.words:
             if word.letter in "XYZABE":
-                exp.add(word.text.strip(), f"present {word.letter} position is {word.value if word.value is not None else 0}")
+                exp.add(
+                    word.text.strip(),
+                    f"present {word.letter} position is {word.value if word.value is not None else 0}",
+                )
             else:
-                self._generic(exp, Command(cmd.code, cmd.kind, cmd.column, {word.letter: word.value}, words=(word,)), spec)
+                self._generic(
+                    exp, Command(cmd.code, cmd.kind, cmd.column, {word.letter: word.value}, words=(word,)), spec
+                )
 
     # -- temperatures -------------------------------------------------------------------------------
 
     def _device_default(self, code: str) -> str:
         if code in ("M140", "M190"):
-            return "no T: the primary bed" if code == "M140" else "no T: use the bed with current focus (the primary bed)"
+            return (
+                "no T: the primary bed" if code == "M140" else "no T: use the bed with current focus (the primary bed)"
+            )
         if code in ("M141", "M191"):
-            return "no T: the primary chamber" if code == "M141" else "no T: use the chamber with current focus (the primary chamber)"
+            return (
+                "no T: the primary chamber"
+                if code == "M141"
+                else "no T: use the chamber with current focus (the primary chamber)"
+            )
         focus = self.state.tool
         return "no T: use the head with current focus" + (f" (T{focus})" if focus is not None else "")
 
@@ -597,11 +710,21 @@ class Explainer:
         s_word = cmd.param("S")
         s = _num(s_word.value) if s_word is not None else None
         if s_word is not None:
-            exp.add(s_word.text.strip(), f"and set the temperature to {s_word.value}{DEG}" if s else f"to {s_word.value}{DEG}")
+            exp.add(
+                s_word.text.strip(),
+                f"and set the temperature to {s_word.value}{DEG}" if s else f"to {s_word.value}{DEG}",
+            )
         else:
-            key = address.v5 if address is not None and address.v5 is not None else (self.state.tool if code == "M109" else 24)
+            key = (
+                address.v5
+                if address is not None and address.v5 is not None
+                else (self.state.tool if code == "M109" else 24)
+            )
             known = self.state.targets.get(key) if key is not None else None
-            exp.note("no S: no new temperature is set" + (f"; the set point stays {_fmt(known)}{DEG}" if known is not None else ""))
+            exp.note(
+                "no S: no new temperature is set"
+                + (f"; the set point stays {_fmt(known)}{DEG}" if known is not None else "")
+            )
             s = known
         low = high = None
         groups = []
@@ -618,13 +741,17 @@ class Explainer:
                 exp.add(word.text.strip(), f"or end the wait once the temperature cools down to {v}{DEG}")
                 high = value
             elif letter == "L":
-                exp.add(word.text.strip(), f"but end the wait once the temperature reaches {v}{DEG} below the set point")
+                exp.add(
+                    word.text.strip(), f"but end the wait once the temperature reaches {v}{DEG} below the set point"
+                )
                 low = s - value if s is not None and value is not None else None
             elif letter == "U":
                 exp.add(word.text.strip(), f"or end the wait once the temperature reaches {v}{DEG} above the set point")
                 high = s + value if s is not None and value is not None else None
             else:
-                exp.add(word.text.strip(), f"but end the wait once the temperature is within +/-{v}{DEG} of the set point")
+                exp.add(
+                    word.text.strip(), f"but end the wait once the temperature is within +/-{v}{DEG} of the set point"
+                )
                 if s is not None and value is not None:
                     low, high = s - value, s + value
         if any(x in cmd.params for x in "HC"):
@@ -634,7 +761,10 @@ class Explainer:
         if "R" in cmd.params:
             groups.append("R")
         if len(groups) > 1:
-            exp.warn("the Hyrel page says: use EITHER (H and/or C) OR (L and/or U) OR (R); this mixes " + " and ".join(groups))
+            exp.warn(
+                "the Hyrel page says: use EITHER (H and/or C) OR (L and/or U) OR (R); this mixes "
+                + " and ".join(groups)
+            )
         if "H" in cmd.params and "L" in cmd.params or "C" in cmd.params and "U" in cmd.params:
             exp.warn("you can use H or L, but not both; C or U, but not both")
         if low is not None and high is not None:
@@ -691,7 +821,10 @@ class Explainer:
             value = _num(s.value)
             if value is not None and fan_range:
                 share = value / fan_range * 100
-                exp.add(s.text.strip(), f"target value of {s.value} of range 0-{_fmt(fan_range)}: {_fmt(round(share, 1))}% duty")
+                exp.add(
+                    s.text.strip(),
+                    f"target value of {s.value} of range 0-{_fmt(fan_range)}: {_fmt(round(share, 1))}% duty",
+                )
                 if value > fan_range:
                     exp.warn(f"S{s.value} is above the range 0-{_fmt(fan_range)} (M106 C sets the range)")
             else:
@@ -699,7 +832,10 @@ class Explainer:
         elif c_word is not None and "P" not in cmd.params:
             exp.note("no speed")
         if c_word is not None:
-            exp.add(c_word.text.strip(), f"of range 0-{c_word.value}: all following M106 commands of this job use this range")
+            exp.add(
+                c_word.text.strip(),
+                f"of range 0-{c_word.value}: all following M106 commands of this job use this range",
+            )
         elif s is not None:
             src = f"set by M106 C at line {self.state.fan_range_line}" if self.state.fan_range_line else "default 0-100"
             exp.note(f"range 0-{_fmt(self.state.fan_range)} ({src})")
@@ -718,7 +854,13 @@ class Explainer:
         s = cmd.param("S")
         if s is not None:
             value = _num(s.value)
-            if value is not None and value <= 1 and "." in (s.value or "") and self.family == "reprap" and self.dialect.name == "reprap":
+            if (
+                value is not None
+                and value <= 1
+                and "." in (s.value or "")
+                and self.family == "reprap"
+                and self.dialect.name == "reprap"
+            ):
                 exp.add(s.text.strip(), f"fan speed {_fmt(value * 100)}% (RepRapFirmware reads 0-1 as a fraction)")
             elif value is not None:
                 exp.add(s.text.strip(), f"fan speed {s.value} of 255: {_fmt(round(value / 255 * 100, 1))}%")
@@ -740,8 +882,13 @@ class Explainer:
         e = cmd.param("E")
         d = cmd.param("D")
         if e is not None:
-            exp.add(e.text.strip(), {"0": "disabled: native flow from speed, layer height and nozzle; E marks printing moves",
-                                     "1": "enabled: the slicer's E values drive the flow"}.get(e.value or "", "E must be 0 or 1"))
+            exp.add(
+                e.text.strip(),
+                {
+                    "0": "disabled: native flow from speed, layer height and nozzle; E marks printing moves",
+                    "1": "enabled: the slicer's E values drive the flow",
+                }.get(e.value or "", "E must be 0 or 1"),
+            )
         routes = {
             "0": "flow calculations on the head controller; constant, not adjusted for acceleration",
             "1": "flow calculations directed via CANBUS and adjusted to motion acceleration/deceleration",
@@ -752,7 +899,10 @@ class Explainer:
             exp.add(d.text.strip(), routes.get(d.value or "", "D must be 0 to 3"))
         s = cmd.param("S")
         if s is not None:
-            exp.add(s.text.strip(), f"isolated non-printing moves of under {s.value} seconds will not trigger unprime/prime actions")
+            exp.add(
+                s.text.strip(),
+                f"isolated non-printing moves of under {s.value} seconds will not trigger unprime/prime actions",
+            )
         if e is not None and e.value == "1" and d is not None and d.value == "0":
             exp.warn("E1 D0 is an illegal combination (use M229 E1 D1)")
         elif e is not None and e.value == "1" and d is None:
@@ -771,7 +921,9 @@ class Explainer:
             exp.add(e.text.strip(), "enable")
         a = cmd.param("A")
         if a is not None:
-            exp.add(a.text.strip(), f"cooling stays on for {a.value} s after shut-off (temperature safety still applies)")
+            exp.add(
+                a.text.strip(), f"cooling stays on for {a.value} s after shut-off (temperature safety still applies)"
+            )
         self._generic(exp, cmd, spec, skip="TEA")
 
     def _m621(self, exp: Explanation, cmd: Command, spec: Code | None) -> None:
@@ -810,8 +962,13 @@ class Explainer:
         if h is not None:
             exp.add(h.text.strip(), f"store in register {h.value}")
         if z is not None:
-            exp.add(z.text.strip(), f"{'+' if (_num(z.value) or 0) >= 0 and not (z.value or '').startswith('+') else ''}{z.value} to the Z position")
-        exp.note(f"applied only when a G1 carries H{h.value if h is not None else 'n'}; the EHR needs G28 Z0 in the header")
+            exp.add(
+                z.text.strip(),
+                f"{'+' if (_num(z.value) or 0) >= 0 and not (z.value or '').startswith('+') else ''}{z.value} to the Z position",
+            )
+        exp.note(
+            f"applied only when a G1 carries H{h.value if h is not None else 'n'}; the EHR needs G28 Z0 in the header"
+        )
         self._generic(exp, cmd, spec, skip="HZ")
 
     def _squad(self, cmd: Command) -> int | None:
@@ -822,7 +979,9 @@ class Explainer:
         self._target(exp, cmd, "using the flow values (pulse, prime, unprime) from")
         s = cmd.param("S")
         if s is not None:
-            exp.add(s.text.strip(), f"designate clone squad T{s.value}: its heads will perform the same extrusion commands")
+            exp.add(
+                s.text.strip(), f"designate clone squad T{s.value}: its heads will perform the same extrusion commands"
+            )
         exp.note("an M30 decommissions every clone squad")
         self._generic(exp, cmd, spec, skip="TS")
 
@@ -832,7 +991,10 @@ class Explainer:
         if self.firmware == 4:
             self._target(exp, cmd, "device")
             if s is not None:
-                exp.add(s.text.strip(), f"gets the alias {s.value} (v4 cloning: commands sent to {s.value} reach this device too)")
+                exp.add(
+                    s.text.strip(),
+                    f"gets the alias {s.value} (v4 cloning: commands sent to {s.value} reach this device too)",
+                )
             self._generic(exp, cmd, spec, skip="TS")
             return
         if squad is not None and 30 <= squad <= 39:
@@ -866,7 +1028,7 @@ class Explainer:
             exp.note("all future T# or M6 commands")
         o = cmd.param("O")
         if o is not None:
-            exp.add(o.text.strip(), f"offset stored in register \"O{o.value}\"")
+            exp.add(o.text.strip(), f'offset stored in register "O{o.value}"')
         for axis in "XYZAB":
             word = cmd.param(axis)
             if word is not None:
@@ -882,7 +1044,9 @@ class Explainer:
             exp.note("no move")
         k = cmd.param("K")
         if k is not None:
-            exp.add(k.text.strip(), "always force I0 with M6 unless K0 is given" if k.value == "1" else "use the I value")
+            exp.add(
+                k.text.strip(), "always force I0 with M6 unless K0 is given" if k.value == "1" else "use the I value"
+            )
         exp.note("Repetrel sends one M6 per loaded head when a job starts; it is not a tool change (T is)")
         self._generic(exp, cmd, spec, skip="TOXYZABDIK")
 
@@ -892,13 +1056,19 @@ class Explainer:
         exp.note("pause until the operator clicks Play; text after ';' is shown on the print mask")
         line = exp.source
         comment = line.split(";", 1)[1] if ";" in line else ""
-        what = {"SAY": "announce text", "PIC": "display image", "VID": "play video", "SEND": "send to the Aux port",
-                "BEEP": "sound a beep", "SHELL": "execute the program"}
+        what = {
+            "SAY": "announce text",
+            "PIC": "display image",
+            "VID": "play video",
+            "SEND": "send to the Aux port",
+            "BEEP": "sound a beep",
+            "SHELL": "execute the program",
+        }
         for part in comment.split(";"):
             part = part.strip()
             keyword = part.split(" ", 1)[0].upper() if part else ""
             if keyword in what:
-                argument = part[len(keyword):].strip()
+                argument = part[len(keyword) :].strip()
                 exp.add(part, f"{what[keyword]}: {argument}" if argument else what[keyword])
                 if keyword == "SHELL":
                     exp.warn("SHELL runs a program on the Repetrel computer when the job reaches this line")
@@ -910,7 +1080,9 @@ class Explainer:
             self._target(exp, cmd)
             s = cmd.param("S")
             if s is not None:
-                exp.add(s.text.strip(), "S0: the same as turning it off" if _num(s.value) == 0 else f"at {s.value}% power")
+                exp.add(
+                    s.text.strip(), "S0: the same as turning it off" if _num(s.value) == 0 else f"at {s.value}% power"
+                )
             f = cmd.param("F")
             exp.add(f.text.strip(), f"PWM at {f.value} Hz") if f is not None else exp.note("default PWM")
             exp.note("do not change direction while the spindle is in motion")
@@ -968,7 +1140,9 @@ class Explainer:
         texts = {
             "S": lambda v: f"set rate to {v} pulses per second",
             "E": lambda v: f"set pulses to {v}",
-            "P": lambda v: f"{v.lstrip('-')} ms {'before' if v.startswith('-') else 'after'} the {'end' if cmd.code == 'M721' else 'start'} of the print move",
+            "P": lambda v: (
+                f"{v.lstrip('-')} ms {'before' if v.startswith('-') else 'after'} the {'end' if cmd.code == 'M721' else 'start'} of the print move"
+            ),
         }
         for letter, text in texts.items():
             word = cmd.param(letter)
@@ -990,7 +1164,9 @@ class Explainer:
 # -- convenience ---------------------------------------------------------------------------------------
 
 
-def explain_lines(lines: Iterable[tuple[str, str]], dialect: Dialect, state: MachineState | None = None) -> Iterator[Explanation]:
+def explain_lines(
+    lines: Iterable[tuple[str, str]], dialect: Dialect, state: MachineState | None = None
+) -> Iterator[Explanation]:
     """Explanations of ``(text, ending)`` lines, in order."""
     explainer = Explainer(dialect, state)
     for number, (raw, ending) in enumerate(lines, start=1):

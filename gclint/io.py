@@ -30,7 +30,7 @@ class AtomicWriter:
         self._discarded = False
         self._direct = False
 
-    def __enter__(self) -> "AtomicWriter":
+    def __enter__(self) -> AtomicWriter:
         try:
             st = os.stat(self._target)
             self._direct = not stat.S_ISREG(st.st_mode)

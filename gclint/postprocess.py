@@ -155,8 +155,10 @@ def _translate(src: Source, dialect: Dialect, target: Dialect, outcome: Outcome,
         translator = translator_for(dialect, target, options)
     except (UnsupportedPair, ValueError) as exc:
         src.close()
-        outcome.translation_note = (f"{exc}: the file was left as {dialect.name} and checked as {dialect.name}; "
-                                    f"it is NOT ready for a {target.name} printer")
+        outcome.translation_note = (
+            f"{exc}: the file was left as {dialect.name} and checked as {dialect.name}; "
+            f"it is NOT ready for a {target.name} printer"
+        )
         return
     result = TranslationResult(outcome.display, dialect.name, target.name)
     try:
@@ -197,11 +199,15 @@ def write_report(outcome: Outcome, out: TextIO, fail_on: str, limit: int | None 
     for f in findings:
         counts[f.severity.label] += 1
     if findings:
-        out.write(f"{len(findings)} finding(s): {counts['error']} error(s), {counts['warning']} warning(s), {counts['info']} info\n")
+        out.write(
+            f"{len(findings)} finding(s): {counts['error']} error(s), {counts['warning']} warning(s), {counts['info']} info\n"
+        )
     else:
         out.write("no findings\n")
     threshold = FAIL_ON[fail_on]
-    if threshold is not None and (outcome.translation_note or (outcome.worst() is not None and outcome.worst() >= threshold)):  # type: ignore[operator]
+    if threshold is not None and (
+        outcome.translation_note or (outcome.worst() is not None and outcome.worst() >= threshold)
+    ):  # type: ignore[operator]
         out.write(f"export stopped by gclint (--fail-on {fail_on})\n")
 
 
@@ -215,9 +221,18 @@ def save_report(outcome: Outcome, fail_on: str) -> None:
         outcome.report_error = f"{outcome.report_path}: cannot write the report: {exc.strerror or exc}"
 
 
-def main(path: str, *, to: str | None, fail_on: str, source: str | None = None, printer: str | None = None,
-         loaded: frozenset[int] | None = None, report: str | None = None, no_report: bool = False,
-         stderr: TextIO | None = None) -> int:
+def main(
+    path: str,
+    *,
+    to: str | None,
+    fail_on: str,
+    source: str | None = None,
+    printer: str | None = None,
+    loaded: frozenset[int] | None = None,
+    report: str | None = None,
+    no_report: bool = False,
+    stderr: TextIO | None = None,
+) -> int:
     """Run the step, print on stderr, write the report; returns the exit code."""
     err = stderr if stderr is not None else sys.stderr
     outcome = run(path, to=to, source=source, printer=printer, loaded=loaded, report=report)

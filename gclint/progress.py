@@ -65,7 +65,11 @@ def _size(n: float) -> str:
 
 def _clock(seconds: float) -> str:
     seconds = int(seconds)
-    return f"{seconds // 60}:{seconds % 60:02d}" if seconds < 3600 else f"{seconds // 3600}:{seconds // 60 % 60:02d}:{seconds % 60:02d}"
+    return (
+        f"{seconds // 60}:{seconds % 60:02d}"
+        if seconds < 3600
+        else f"{seconds // 3600}:{seconds // 60 % 60:02d}:{seconds % 60:02d}"
+    )
 
 
 class ProgressBar:
@@ -101,7 +105,9 @@ class ProgressBar:
 
     def line(self) -> str:
         elapsed = time.monotonic() - self.start
-        share = self.done / self.total if self.total else (self.done_files / self.total_files if self.total_files else 1.0)
+        share = (
+            self.done / self.total if self.total else (self.done_files / self.total_files if self.total_files else 1.0)
+        )
         columns = self.width or _columns(self.stream)
         text = f" {self.done_files}/{self.total_files} files"
         if self.total:

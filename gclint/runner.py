@@ -4,10 +4,11 @@ to each file, spread the work over processes, and return results in a stable ord
 from __future__ import annotations
 
 import os
+from collections.abc import Callable, Iterable, Iterator
 from concurrent.futures import ProcessPoolExecutor
 from dataclasses import replace
 from pathlib import Path
-from typing import TYPE_CHECKING, Callable, Iterable, Iterator
+from typing import TYPE_CHECKING
 
 from gclint.config import ConfigError, apply, config_for, find_config
 from gclint.engine import FileResult, Linter, Options
@@ -107,7 +108,7 @@ def run(
     jobs: int = 1,
     stdin_name: str = "-",
     progress: Callable[[FileResult], None] | None = None,
-    cache: "ResultCache | None" = None,
+    cache: ResultCache | None = None,
 ) -> list[FileResult]:
     """Check ``files``; results come back in the order of ``files``.
 
@@ -146,7 +147,7 @@ def run(
             keys[index] = key
         tasks.append((path, options))
     order = [i for i in range(len(files)) if i not in results]
-    for index, result in zip(order, _map(tasks, jobs)):
+    for index, result in zip(order, _map(tasks, jobs), strict=True):
         results[index] = result
         if cache is not None and index in keys:
             cache.put(files[index], keys[index], result)

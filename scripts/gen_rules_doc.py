@@ -54,7 +54,9 @@ def render(docs: list[dict]) -> str:
     out += ["| Code | Name | Severity | Summary |", "|---|---|---|---|"]
     for prefix in order:
         for d in groups[prefix]:
-            out.append(f"| [{d['code']}](#{d['code'].lower()}) | `{d['name']}` | {d['severity']} | {_cell(d['summary'])} |")
+            out.append(
+                f"| [{d['code']}](#{d['code'].lower()}) | `{d['name']}` | {d['severity']} | {_cell(d['summary'])} |"
+            )
     out.append("")
     for prefix in order:
         out += [f"## {prefix}: {PREFIXES.get(prefix, 'Other rules')}", ""]

@@ -10,7 +10,20 @@ from pathlib import Path
 import pytest
 
 ROOT = Path(__file__).resolve().parent.parent
-CORPUS = Path(os.environ.get("GCLINT_CORPUS", ROOT.parent / "shared" / "corpus")).resolve()
+
+
+def _shared() -> Path:
+    """The workplace's shared folder (corpus, seeds): $GCLINT_SHARED, else ../shared beside the checkout,
+    else /work/shared (where a clone made elsewhere, e.g. in a temporary folder, still finds it)."""
+    for candidate in (os.environ.get("GCLINT_SHARED"), ROOT.parent / "shared", "/work/shared"):
+        if candidate and Path(candidate, "corpus").is_dir():
+            return Path(candidate).resolve()
+    return (ROOT.parent / "shared").resolve()
+
+
+SHARED = _shared()
+CORPUS = Path(os.environ.get("GCLINT_CORPUS", SHARED / "corpus")).resolve()
+SEEDS = SHARED / "seeds"
 FIXTURES = ROOT / "tests" / "fixtures"
 
 
@@ -21,8 +34,13 @@ def corpus_available() -> bool:
 needs_corpus = pytest.mark.skipif(not corpus_available(), reason=f"corpus not found at {CORPUS}")
 
 
-def run_cli(*args: str, input: bytes | None = None, cwd: str | os.PathLike | None = None, env: dict | None = None,
-            timeout: float = 120) -> subprocess.CompletedProcess:
+def run_cli(
+    *args: str,
+    input: bytes | None = None,
+    cwd: str | os.PathLike | None = None,
+    env: dict | None = None,
+    timeout: float = 120,
+) -> subprocess.CompletedProcess:
     """Run ``python -m gclint ARGS`` in a subprocess (the real command line)."""
     full_env = dict(os.environ)
     full_env.pop("GCLINT_CACHE_DIR", None)

@@ -133,7 +133,7 @@ def test_config_file(tmp_path):
     job = tmp_path / "a.gcode"
     job.write_text("G1 X1 X2\n")
     assert run_cli("check", str(job)).returncode == 0
-    (tmp_path / "gclint.toml").write_text('nonsense = 1\n')
+    (tmp_path / "gclint.toml").write_text("nonsense = 1\n")
     proc = run_cli("check", str(job))
     assert proc.returncode == 2 and b"unknown option 'nonsense'" in proc.stderr
 

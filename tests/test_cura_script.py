@@ -36,7 +36,7 @@ class Script:
         return self._values[key]
 '''
 
-UM_MESSAGE = '''
+UM_MESSAGE = """
 SHOWN = []
 
 
@@ -46,9 +46,9 @@ class Message:
 
     def show(self):
         SHOWN.append(self)
-'''
+"""
 
-UM_LOGGER = '''
+UM_LOGGER = """
 LOGGED = []
 
 
@@ -56,7 +56,7 @@ class Logger:
     @staticmethod
     def log(level, message, *args):
         LOGGED.append((level, message % args if args else message))
-'''
+"""
 
 
 @pytest.fixture
@@ -119,8 +119,18 @@ def test_checks_a_real_cura_job_and_shows_the_findings(cura):
     original = list(data)
     result = cura().execute(list(data))
 
-    expected = json.loads(run_cli("check", "-", "--no-cache", "--format", "json", "--stdin-filename", "cura-output.gcode",
-                                  input=JOB.read_bytes()).stdout)
+    expected = json.loads(
+        run_cli(
+            "check",
+            "-",
+            "--no-cache",
+            "--format",
+            "json",
+            "--stdin-filename",
+            "cura-output.gcode",
+            input=JOB.read_bytes(),
+        ).stdout
+    )
     assert len(result) == len(original) and result[1:] == original[1:]  # layers untouched
     header = result[0]
     assert header.endswith(original[0])
@@ -135,7 +145,11 @@ def test_checks_a_real_cura_job_and_shows_the_findings(cura):
 
 
 def test_findings_are_annotated_and_shown(cura):
-    data = [";FLAVOR:Marlin\n;Generated with Cura_SteamEngine 4.10.0\nM9999\nG28\n", ";LAYER:0\nG1 X1 X2 Y1 E1\n", ";LAYER:1\nG1 X5 Y5 E2\n"]
+    data = [
+        ";FLAVOR:Marlin\n;Generated with Cura_SteamEngine 4.10.0\nM9999\nG28\n",
+        ";LAYER:0\nG1 X1 X2 Y1 E1\n",
+        ";LAYER:1\nG1 X5 Y5 E2\n",
+    ]
     result = cura().execute(list(data))
     assert result[0].startswith(";gclint: 1 error(s), 1 warning(s), 0 info\n")
     saved = "".join(result).splitlines()
@@ -147,8 +161,12 @@ def test_findings_are_annotated_and_shown(cura):
 
 
 def test_translation_keeps_cura_chunks(cura):
-    data = [";FLAVOR:Marlin\n;Generated with Cura_SteamEngine 4.10.0\nM104 S200\nM109 S200\nG28\n",
-            ";LAYER:0\nG1 Z0.2 F600\nG1 X10 Y10 E1 F1200\n", ";LAYER:1\nG1 X20 Y10 E2\nM107\n", "M84\n"]
+    data = [
+        ";FLAVOR:Marlin\n;Generated with Cura_SteamEngine 4.10.0\nM104 S200\nM109 S200\nG28\n",
+        ";LAYER:0\nG1 Z0.2 F600\nG1 X10 Y10 E1 F1200\n",
+        ";LAYER:1\nG1 X20 Y10 E2\nM107\n",
+        "M84\n",
+    ]
     result = cura(translate_to="hyrel").execute(list(data))
     assert len(result) == len(data)
     assert result[1].startswith(";LAYER:0") and result[2].startswith(";LAYER:1")
@@ -172,5 +190,10 @@ def test_script_text_is_written_with_this_gclint(tmp_path):
     text = proc.stdout.decode()
     assert "class Gclint(Script):" in text and repr(sys.executable) in text
     compile(text, "Gclint.py", "exec")
-    assert subprocess.run([sys.executable, "-m", "gclint", "cura-script", "-o", str(tmp_path)], capture_output=True).returncode == 0
+    assert (
+        subprocess.run(
+            [sys.executable, "-m", "gclint", "cura-script", "-o", str(tmp_path)], capture_output=True
+        ).returncode
+        == 0
+    )
     assert (tmp_path / "Gclint.py").read_text() == text

@@ -59,8 +59,8 @@ def test_any_subset_alone(subset):
 
 def test_one_listener_for_g0_g1():
     linter = Linter(Options(dialect="hyrel"))
-    from gclint.engine import FileContext
     from gclint.dialects import get
+    from gclint.engine import FileContext
 
     ctx = FileContext("x", get("hyrel"), linter.profile, linter.options)
     rules = [cls(ctx) for cls in linter.rule_classes]

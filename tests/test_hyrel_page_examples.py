@@ -28,16 +28,15 @@ on with an M3 or M4 before this command".
 from __future__ import annotations
 
 import re
-from pathlib import Path
 
 import pytest
 
 from gclint.engine import Linter, Options
 from gclint.rules.base import Severity
 
-from .conftest import ROOT
+from .conftest import SEEDS as SHARED_SEEDS
 
-SEEDS = Path(ROOT.parent / "shared" / "seeds")
+SEEDS = SHARED_SEEDS
 PAGES = {
     "gcode": "hyrel-gcode-reference.wiki.txt",
     "t_v5": "hyrel-T_v5-addressing.wiki.txt",

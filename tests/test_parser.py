@@ -52,7 +52,7 @@ def roundtrip(raw: str) -> None:
         ("/G1 X1", ["G1"]),  # block delete
         ("N10 G1 X1", ["G1"]),  # line number
         ("G2.1 I15 J20 P1.2 E1", ["G2.1"]),  # decimal codes
-        ("M862.3 P \"MK3S\"", ["M862.3"]),  # decimal code, spaced quoted string
+        ('M862.3 P "MK3S"', ["M862.3"]),  # decimal code, spaced quoted string
         ("G1 X-.5 Y10. Z+1", ["G1"]),  # signed, leading-dot, trailing-dot numbers
         ("G0 X -5 Y 0 Z 0 F 200", ["G0"]),  # spaces inside words
         ("g1 x10 y20", ["G1"]),  # lowercase
@@ -165,7 +165,7 @@ _tail = st.sampled_from(["", " ; comment", ";c", " (note)", "*12", " ; noqa: HY0
 def gcode_lines(draw):
     words = draw(st.lists(_word, min_size=0, max_size=6))
     seps = [draw(_sep) for _ in words]
-    body = "".join(s + w for s, w in zip(seps, words))
+    body = "".join(s + w for s, w in zip(seps, words, strict=True))
     return draw(st.sampled_from(["", " ", "/"])) + body + draw(_tail)
 
 

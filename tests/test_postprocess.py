@@ -52,8 +52,13 @@ def export(tmp_path: Path, text: str, name: str = "part.gcode") -> tuple[Path, P
 def test_marlin_job_translated_to_hyrel_in_place(tmp_path):
     pp, final = export(tmp_path, SLICED)
     before_mode = stat.S_IMODE(pp.stat().st_mode)
-    proc = prusaslicer(f"{GCLINT} postprocess --to hyrel --fail-on error", pp,
-                       SLIC3R_GCODE_FLAVOR="marlin2", SLIC3R_PP_HOST="File", SLIC3R_PP_OUTPUT_NAME=str(final))
+    proc = prusaslicer(
+        f"{GCLINT} postprocess --to hyrel --fail-on error",
+        pp,
+        SLIC3R_GCODE_FLAVOR="marlin2",
+        SLIC3R_PP_HOST="File",
+        SLIC3R_PP_OUTPUT_NAME=str(final),
+    )
     err = proc.stderr.decode()
     report = Path(str(final) + ".gclint.txt")
     assert report.exists(), err
@@ -82,15 +87,18 @@ def test_clean_job_passes_and_is_left_byte_for_byte(tmp_path):
 
 def test_errors_stop_the_export(tmp_path):
     pp, final = export(tmp_path, HYREL_BAD)
-    proc = prusaslicer(f"{GCLINT} postprocess --to hyrel --fail-on error", pp,
-                       SLIC3R_PP_HOST="File", SLIC3R_PP_OUTPUT_NAME=str(final))
+    proc = prusaslicer(
+        f"{GCLINT} postprocess --to hyrel --fail-on error", pp, SLIC3R_PP_HOST="File", SLIC3R_PP_OUTPUT_NAME=str(final)
+    )
     err = proc.stderr.decode()
     assert proc.returncode == 1, err
     assert "part.gcode:4:" in err and "SX002" in err  # named after the final file, not the .pp copy
     assert "export stopped by gclint (--fail-on error)" in err
     assert "SX002" in Path(str(final) + ".gclint.txt").read_text()
 
-    never = prusaslicer(f"{GCLINT} postprocess --fail-on never", pp, SLIC3R_PP_HOST="File", SLIC3R_PP_OUTPUT_NAME=str(final))
+    never = prusaslicer(
+        f"{GCLINT} postprocess --fail-on never", pp, SLIC3R_PP_HOST="File", SLIC3R_PP_OUTPUT_NAME=str(final)
+    )
     assert never.returncode == 0 and "SX002" in never.stderr.decode()
 
 
@@ -105,7 +113,9 @@ def test_fail_on_warning(tmp_path):
 
 def test_quoted_path_and_print_host_output_name(tmp_path):
     pp, _ = export(tmp_path, HYREL_JOB, name="it's a part.gcode")
-    proc = prusaslicer(f"{GCLINT} postprocess", pp, SLIC3R_PP_HOST="OctoPrint", SLIC3R_PP_OUTPUT_NAME="it's a part.gcode")
+    proc = prusaslicer(
+        f"{GCLINT} postprocess", pp, SLIC3R_PP_HOST="OctoPrint", SLIC3R_PP_OUTPUT_NAME="it's a part.gcode"
+    )
     assert proc.returncode == 0, proc.stderr.decode()
     # For a print host the final name is only a name: the report goes beside the file gclint was given.
     assert (pp.parent / "it's a part.gcode.gclint.txt").exists()
@@ -135,5 +145,7 @@ def test_simplify3d_output_filepath_placeholder(tmp_path):
 @pytest.mark.parametrize("args", [["--to", "nonsense"], ["--fail-on", "sometimes"]])
 def test_usage_errors_exit_2(tmp_path, args):
     pp, _ = export(tmp_path, HYREL_JOB)
-    proc = subprocess.run([sys.executable, "-m", "gclint", "postprocess", *args, str(pp)], capture_output=True, timeout=120)
+    proc = subprocess.run(
+        [sys.executable, "-m", "gclint", "postprocess", *args, str(pp)], capture_output=True, timeout=120
+    )
     assert proc.returncode == 2 and b"Traceback" not in proc.stderr

@@ -33,8 +33,13 @@ def _pre_commit() -> list[str]:
 
 
 def _git(*args: str, cwd: Path) -> str:
-    env = dict(os.environ, GIT_AUTHOR_NAME="gclint test", GIT_AUTHOR_EMAIL="test@example.invalid",
-               GIT_COMMITTER_NAME="gclint test", GIT_COMMITTER_EMAIL="test@example.invalid")
+    env = dict(
+        os.environ,
+        GIT_AUTHOR_NAME="gclint test",
+        GIT_AUTHOR_EMAIL="test@example.invalid",
+        GIT_COMMITTER_NAME="gclint test",
+        GIT_COMMITTER_EMAIL="test@example.invalid",
+    )
     proc = subprocess.run(["git", *args], cwd=cwd, capture_output=True, env=env, timeout=120)
     assert proc.returncode == 0, proc.stderr.decode()
     return proc.stdout.decode().strip()

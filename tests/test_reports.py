@@ -115,7 +115,9 @@ def test_sarif_on_corpus_files_is_valid():
 def test_github_escaping_follows_the_actions_toolkit():
     assert github.escape_data("50% done\r\nnext") == "50%25 done%0D%0Anext"
     assert github.escape_property("a:b,c%\n") == "a%3Ab%2Cc%25%0A"
-    finding = Finding("dir,1/a:b.gcode", 3, 4, "HY003", Severity.ERROR, "line one\n::error::injected 100%", "name", end_column=9)
+    finding = Finding(
+        "dir,1/a:b.gcode", 3, 4, "HY003", Severity.ERROR, "line one\n::error::injected 100%", "name", end_column=9
+    )
     out = _render(github.write, [FileResult("dir,1/a:b.gcode", [finding])])
     assert out == (
         "::error file=dir%2C1/a%3Ab.gcode,line=3,col=4,endColumn=9,title=HY003::line one%0A::error::injected 100%25 (name)\n"
@@ -243,8 +245,13 @@ def _check_on_a_terminal(args: list[str]) -> tuple[int, str, bytes]:
     env = dict(os.environ, TERM="xterm")
     env.pop("GCLINT_CACHE_DIR", None)
     with open(os.devnull, "wb") as devnull:
-        proc = subprocess.Popen([sys.executable, "-m", "gclint", "check", "--no-cache", *args], stdout=subprocess.PIPE,
-                                stderr=slave, stdin=devnull, env=env)
+        proc = subprocess.Popen(
+            [sys.executable, "-m", "gclint", "check", "--no-cache", *args],
+            stdout=subprocess.PIPE,
+            stderr=slave,
+            stdin=devnull,
+            env=env,
+        )
     os.close(slave)
     chunks = []
     while True:

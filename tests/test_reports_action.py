@@ -38,8 +38,12 @@ def action_copy(tmp_path_factory) -> Path:
     if shutil.which("git") is None:
         pytest.skip("git is not installed")
     target = tmp_path_factory.mktemp("action") / "gclint"
-    listed = subprocess.run(["git", "ls-files", "-z", "--cached", "--others", "--exclude-standard"], cwd=ROOT,
-                            capture_output=True, check=True).stdout.decode()
+    listed = subprocess.run(
+        ["git", "ls-files", "-z", "--cached", "--others", "--exclude-standard"],
+        cwd=ROOT,
+        capture_output=True,
+        check=True,
+    ).stdout.decode()
     for name in filter(None, listed.split("\0")):
         if (ROOT / name).is_file():
             (target / name).parent.mkdir(parents=True, exist_ok=True)
@@ -55,7 +59,9 @@ def runner_temp(tmp_path_factory) -> Path:
 def run_action(action: Path, workspace: Path, runner_temp: Path, **inputs: str) -> dict:
     """Run the action's bash steps; returns {"steps": {id: outputs}, "log": text, "failed": step name or None}."""
     spec = _yaml().safe_load((action / "action.yml").read_text())
-    values = {name: str(inputs.get(name.replace("-", "_"), meta.get("default", ""))) for name, meta in spec["inputs"].items()}
+    values = {
+        name: str(inputs.get(name.replace("-", "_"), meta.get("default", ""))) for name, meta in spec["inputs"].items()
+    }
     values.update({k.replace("_", "-"): v for k, v in inputs.items()})
     outputs: dict[str, dict[str, str]] = {}
     path_file = runner_temp / "github_path"
@@ -73,7 +79,7 @@ def run_action(action: Path, workspace: Path, runner_temp: Path, **inputs: str) 
         def evaluate(match: re.Match) -> str:
             expr = match.group(1)
             if expr.startswith("inputs."):
-                return values[expr[len("inputs."):]]
+                return values[expr[len("inputs.") :]]
             if expr == "github.action_path":
                 return str(action)
             m = re.fullmatch(r"steps\.([\w-]+)\.outputs\.([\w-]+)", expr)
@@ -89,14 +95,25 @@ def run_action(action: Path, workspace: Path, runner_temp: Path, **inputs: str) 
         env = {k: v for k, v in os.environ.items() if not k.startswith(("GITHUB_", "GCLINT_"))}
         env.update({k: EXPR.sub(evaluate, str(v)) for k, v in step.get("env", {}).items()})
         extra_path = [p for p in path_file.read_text().splitlines() if p]
-        env.update(RUNNER_TEMP=str(runner_temp), GITHUB_OUTPUT=str(output_file), GITHUB_PATH=str(path_file),
-                   PATH=os.pathsep.join([*extra_path, env.get("PATH", "")]))
+        env.update(
+            RUNNER_TEMP=str(runner_temp),
+            GITHUB_OUTPUT=str(output_file),
+            GITHUB_PATH=str(path_file),
+            PATH=os.pathsep.join([*extra_path, env.get("PATH", "")]),
+        )
         assert step["shell"] == "bash"
-        proc = subprocess.run(["bash", "--noprofile", "--norc", "-eo", "pipefail", "-c", step["run"]], cwd=workspace,
-                              env=env, capture_output=True, timeout=900)
+        proc = subprocess.run(
+            ["bash", "--noprofile", "--norc", "-eo", "pipefail", "-c", step["run"]],
+            cwd=workspace,
+            env=env,
+            capture_output=True,
+            timeout=900,
+        )
         log.append(f"== {step['name']} (exit {proc.returncode})\n{proc.stdout.decode()}{proc.stderr.decode()}")
         if "id" in step:
-            outputs[step["id"]] = dict(line.split("=", 1) for line in output_file.read_text().splitlines() if "=" in line)
+            outputs[step["id"]] = dict(
+                line.split("=", 1) for line in output_file.read_text().splitlines() if "=" in line
+            )
         if proc.returncode != 0:
             failed = step["name"]
             break

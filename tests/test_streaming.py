@@ -28,7 +28,9 @@ class GeneratedJob(io.RawIOBase):
         for _ in range(min(1000, self.remaining)):
             r = self.rng.random()
             if r < 0.8:
-                out.append(f"G1 X{self.rng.uniform(0, 200):.3f} Y{self.rng.uniform(0, 200):.3f} E{self.rng.uniform(0, 2):.5f}\n")
+                out.append(
+                    f"G1 X{self.rng.uniform(0, 200):.3f} Y{self.rng.uniform(0, 200):.3f} E{self.rng.uniform(0, 2):.5f}\n"
+                )
             elif r < 0.9:
                 out.append(f"G0 X{self.rng.uniform(0, 200):.2f} Y{self.rng.uniform(0, 200):.2f} F9000\n")
             elif r < 0.95:
@@ -66,8 +68,9 @@ def peak_rss(lines: int) -> tuple[int, int]:
     from pathlib import Path
 
     root = str(Path(__file__).resolve().parent.parent)
-    out = subprocess.run([sys.executable, "-c", _SCRIPT.format(root=root, lines=lines)], capture_output=True,
-                         text=True, check=True)
+    out = subprocess.run(
+        [sys.executable, "-c", _SCRIPT.format(root=root, lines=lines)], capture_output=True, text=True, check=True
+    )
     checked, rss = out.stdout.split()
     return int(checked), int(rss)
 

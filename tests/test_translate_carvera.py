@@ -18,8 +18,13 @@ CARVERA = [
     Row("2.3 G10 L2/L20", "G10 L2 P1 X0", "", "TR005", out="workspace origins: use Repetrel fixture offsets"),
     Row("2.3 G17-G19", "G17\nG18\nG19", "G17\nG18\nG19"),
     Row("2.3 G20: G21 and lengths converted", "G20\nG0 X1", "G21\nG0 X25.4", "TR004"),
-    Row("2.3 G28 (clearance position)", "G28", "", "TR002",
-        out="the Carvera's clearance position has no Hyrel counterpart; Hyrel's G28 would home and clear offsets"),
+    Row(
+        "2.3 G28 (clearance position)",
+        "G28",
+        "",
+        "TR002",
+        out="the Carvera's clearance position has no Hyrel counterpart; Hyrel's G28 would home and clear offsets",
+    ),
     Row("2.3 G29 (wait for the queue)", "G29", "", "TR001"),
     Row("2.3 G30-G33, G38.x (probing)", "G30\nG38.2 Z-5 F100", "", "TR005"),
     Row("2.3 G53 line (machine coordinates)", "G53 G0 Z-3", "G0 Z-3", "TR005"),
@@ -35,16 +40,27 @@ CARVERA = [
     Row("2.3 M2: spindle and air off, M30", "M2", "M5 T0\nM9\nM30", prelude=RUNNING),
     Row("2.3 M3 S (rpm, Carvera maximum assumed)", "M3 S12000", "M3 T0 S80", "TR003"),
     Row("2.3 M3 S with spindle-max-rpm", "M3 S12000", "M3 T0 S50", settings={"spindle_max_rpm": "24000"}),
-    Row("2.3 M3 S above the maximum: clamped", "M3 S30000", "M3 T0 S100", "TR003",
-        settings={"spindle_max_rpm": "24000"}),
+    Row(
+        "2.3 M3 S above the maximum: clamped", "M3 S30000", "M3 T0 S100", "TR003", settings={"spindle_max_rpm": "24000"}
+    ),
     Row("2.3 S word before M3 (S10000 M3)", "S12000 M3", "M3 T0 S50", settings={"spindle_max_rpm": "24000"}),
-    Row("2.3 spindle on a Hyrel head", "M3 S12000", "M3 T2 S50", settings={"spindle_max_rpm": "24000", "spindle": "T2"},
-        v4="M3 T13 S50"),
+    Row(
+        "2.3 spindle on a Hyrel head",
+        "M3 S12000",
+        "M3 T2 S50",
+        settings={"spindle_max_rpm": "24000", "spindle": "T2"},
+        v4="M3 T13 S50",
+    ),
     Row("2.3 M5", "M5", "M5 T0"),
     Row("2.3 M6 T (manual change on one spindle)", "M6 T2", "M0 ; change to tool 2", "TR003"),
     Row("2.3 T M6 (prepared tool)", "T3 M6", "M0 ; change to tool 3", "TR003"),
-    Row("2.3 M6 with a running spindle", "M3 S6000\nM6 T2", "M3 T0 S25\nM5 T0\nM0 ; change to tool 2", "TR003",
-        settings={"spindle_max_rpm": "24000"}),
+    Row(
+        "2.3 M6 with a running spindle",
+        "M3 S6000\nM6 T2",
+        "M3 T0 S25\nM5 T0\nM0 ; change to tool 2",
+        "TR003",
+        settings={"spindle_max_rpm": "24000"},
+    ),
     Row("2.3 M6 T with the tool map", "M6 T2", "T1", settings={"tool_map": "2=T1"}),
     Row("2.3 M6 T0 (probe) / T-1 (empty)", "M6 T0\nT-1 M6", "", "TR002"),
     Row("2.3 M7/M9 (air) on Aux1", "M7\nM9", "M7\nM9"),
@@ -64,11 +80,20 @@ CARVERA = [
     Row("2.3 M220 S (feed override)", "M220 S80", "", "TR002", out="F values are not rescaled"),
     Row("2.3 M221 (soft endstops)", "M221 S0", "", "TR001"),
     Row("2.3 M223 (spindle override)", "M223 S80", "", "TR002", out="spindle percentages are not rescaled"),
-    Row("2.3 M321 laser mode, M3, S power on moves, M322",
+    Row(
+        "2.3 M321 laser mode, M3, S power on moves, M322",
         "M321\nM3\nG0 X1 Y1\nG1 X2 S0.5 F1000\nG1 X3 S0\nG1 X4 S0.5\nM5\nG1 X5\nM322",
-        "M620 T0 E1\nG0 X1 Y1\nM621 P50\nG1 X2 F1000 E1\nG1 X3\nG1 X4 E1\nG1 X5\nM620 T0 E0", "TR003"),
-    Row("2.3 laser on another device", "M321\nM322", "M620 T21 E1\nM620 T21 E0", "TR003", settings={"laser": "T21"},
-        v4="M620 T41 E1\nM620 T41 E0"),
+        "M620 T0 E1\nG0 X1 Y1\nM621 P50\nG1 X2 F1000 E1\nG1 X3\nG1 X4 E1\nG1 X5\nM620 T0 E0",
+        "TR003",
+    ),
+    Row(
+        "2.3 laser on another device",
+        "M321\nM322",
+        "M620 T21 E1\nM620 T21 E0",
+        "TR003",
+        settings={"laser": "T21"},
+        v4="M620 T41 E1\nM620 T41 E0",
+    ),
     Row("2.3 M325 (laser power override)", "M325 S50", "", "TR002"),
     Row("2.3 M331-M336", "M331\nM333\nM336", "", "TR001"),
     Row("2.3 M400", "M400", "", "TR001"),
@@ -96,8 +121,17 @@ def test_carvera(row: Row) -> None:
 
 def test_carvera_header_focuses_the_spindle_head() -> None:
     out, _ = translate("carvera", "G90 G94\nG17\nG21\nT1 M6\nS10000 M3\nG0 X1\nM30\n", spindle_max_rpm="20000")
-    assert out.splitlines() == ["G90", "G17", "G21", "M0 ; change to tool 1", "M3 T0 S50", "T0", "G0 X1", "M5 T0",
-                                "M30"]
+    assert out.splitlines() == [
+        "G90",
+        "G17",
+        "G21",
+        "M0 ; change to tool 1",
+        "M3 T0 S50",
+        "T0",
+        "G0 X1",
+        "M5 T0",
+        "M30",
+    ]
 
 
 def test_carvera_footer_at_end_of_file_without_m30() -> None:

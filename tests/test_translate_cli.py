@@ -84,8 +84,9 @@ def test_annotate():
 
 def test_tool_map_and_printer():
     data = b"T1\nM104 T1 S200\nG1 X1 F600\n"
-    proc = run_cli("translate", "--from", "marlin", "--to", "hyrel", "--tool-map", "1=T4", "--printer", "ehr", "-",
-                   input=data)
+    proc = run_cli(
+        "translate", "--from", "marlin", "--to", "hyrel", "--tool-map", "1=T4", "--printer", "ehr", "-", input=data
+    )
     assert proc.returncode == 0
     assert proc.stdout.decode().splitlines()[:2] == ["T4", "M104 T4 S200"]
     proc = run_cli("translate", "--from", "marlin", "--to", "hyrel", "--tool-map", "1=T4", "-", input=data)
@@ -94,8 +95,19 @@ def test_tool_map_and_printer():
 
 def test_flow_and_settings():
     data = b"G1 X1 Y1 E0.5 F600\nG10\n"
-    proc = run_cli("translate", "--from", "marlin", "--to", "hyrel", "--flow", "native", "--set", "retract=explicit",
-                   "-", input=data)
+    proc = run_cli(
+        "translate",
+        "--from",
+        "marlin",
+        "--to",
+        "hyrel",
+        "--flow",
+        "native",
+        "--set",
+        "retract=explicit",
+        "-",
+        input=data,
+    )
     assert proc.returncode == 0
     assert proc.stdout.decode().splitlines() == ["G21", "G90", "T0", "G1 X1 Y1 E1 F600", "M721 T0 I1", "M30"]
 

@@ -27,8 +27,9 @@ V4_TO_V5 = [
     Row("head yoke 1 position 2", "M109 T12 S20", "M109 T1 S20"),
     Row("head yoke 1 position 5", "M104 T15 S200", "M104 T4 S200"),
     Row("head yoke 2", "M104 T25 S240", "M104 T9 S240"),
-    Row("M6 T O X Y Z: T renumbered, O kept", "M6 T12 O2 X120.000 Y5.000 Z56.000 ",
-        "M6 T1 O2 X120.000 Y5.000 Z56.000 "),
+    Row(
+        "M6 T O X Y Z: T renumbered, O kept", "M6 T12 O2 X120.000 Y5.000 Z56.000 ", "M6 T1 O2 X120.000 Y5.000 Z56.000 "
+    ),
     Row("all devices T0 -> T40", "M104 T0 S0", "M104 T40 S0"),
     Row("yoke 1 all T10 -> T41", "M221 T10 S1", "M221 T41 S1"),
     Row("yoke 2 all T20 -> T42", "M221 T20 S1", "M221 T42 S1"),
@@ -116,11 +117,17 @@ def test_corpus_v4_job_checks_clean_as_v5(path) -> None:
     v5, result = _translate(path.read_bytes(), "hyrel-v4", "hyrel")
     findings = Linter(Options(dialect="hyrel")).check_text(v5.decode("utf-8", "surrogateescape"), path.name).findings
     assert not [f for f in findings if f.code == "HY008"]  # no v4-style addressing left
-    errors_v4 = {(f.line, f.code) for f in Linter(Options(dialect="hyrel-v4")).check_path(str(path)).findings
-                 if f.severity == Severity.ERROR}
+    errors_v4 = {
+        (f.line, f.code)
+        for f in Linter(Options(dialect="hyrel-v4")).check_path(str(path)).findings
+        if f.severity == Severity.ERROR
+    }
     reported = {f.line for f in result.findings}  # renumbering keeps line numbers
-    new_errors = [(f.line, f.code, f.message) for f in findings
-                  if f.severity == Severity.ERROR and (f.line, f.code) not in errors_v4 and f.line not in reported]
+    new_errors = [
+        (f.line, f.code, f.message)
+        for f in findings
+        if f.severity == Severity.ERROR and (f.line, f.code) not in errors_v4 and f.line not in reported
+    ]
     assert not new_errors  # renumbering adds no error it did not report
 
 
@@ -138,8 +145,9 @@ def hyrel_lines(draw, numbers: list[int], commands: list[int]) -> str:
     else:
         code = draw(st.sampled_from(CODES))
         words = [f"T{draw(st.sampled_from(numbers))}"]
-        words += draw(st.lists(st.sampled_from(["S200", "E1", "P-15", "I1", "O2", "X1.500", "W0.4"]), max_size=3,
-                               unique=True))
+        words += draw(
+            st.lists(st.sampled_from(["S200", "E1", "P-15", "I1", "O2", "X1.500", "W0.4"]), max_size=3, unique=True)
+        )
         words = draw(st.permutations(words))
         text = space.join([code, *words])
     if draw(st.booleans()):
@@ -148,8 +156,10 @@ def hyrel_lines(draw, numbers: list[int], commands: list[int]) -> str:
 
 
 @settings(max_examples=300, deadline=None)
-@given(lines=st.lists(hyrel_lines(CERTAIN_V4, sorted(V4_TO_V5_COMMAND)), min_size=1, max_size=20),
-       ending=st.sampled_from(["\n", "\r\n"]))
+@given(
+    lines=st.lists(hyrel_lines(CERTAIN_V4, sorted(V4_TO_V5_COMMAND)), min_size=1, max_size=20),
+    ending=st.sampled_from(["\n", "\r\n"]),
+)
 def test_generated_v4_round_trip_is_exact(lines, ending) -> None:
     data = ending.join(lines).encode() + ending.encode()
     v5, result = _translate(data, "hyrel-v4", "hyrel")
@@ -172,6 +182,14 @@ def test_foreign_source_to_v4_is_v5_renumbered() -> None:
     text = "M104 S200\nM140 S60\nT1\nG1 X1 Y1 E0.5 F600\nM107\n"
     v4, _ = _translate(text.encode(), "marlin", "hyrel-v4")
     assert v4.decode().splitlines() == [
-        "M104 T11 S200", "M140 T91 S60", "T1", "G21", "G90", "M229 E1 D1", "M82", "G1 X1 Y1 E0.5 F600",
-        "M107 T12", "M30",
+        "M104 T11 S200",
+        "M140 T91 S60",
+        "T1",
+        "G21",
+        "G90",
+        "M229 E1 D1",
+        "M82",
+        "G1 X1 Y1 E0.5 F600",
+        "M107 T12",
+        "M30",
     ]

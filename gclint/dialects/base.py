@@ -7,8 +7,8 @@ written as a delta (``base.derive(...)``), in the manner of sqlfluff's ``copy_as
 from __future__ import annotations
 
 import re
+from collections.abc import Callable, Iterable, Mapping
 from dataclasses import dataclass, field, replace
-from typing import Callable, Iterable, Mapping
 
 
 @dataclass(frozen=True)
@@ -88,14 +88,18 @@ class Code:
         return self.meanings.get(letter) if self.meanings else None
 
 
-def code(name: str, summary: str = "", *params: Param, source: str = "", supported: bool = True, open_params: bool = False) -> Code:
+def code(
+    name: str, summary: str = "", *params: Param, source: str = "", supported: bool = True, open_params: bool = False
+) -> Code:
     """Shorthand for a ``Code`` whose parameters are listed (``open_params`` leaves them unchecked)."""
     table = None if open_params else {p.letter: p for p in params}
     meanings = {p.letter: p.meaning for p in params} if open_params and params else None
     return Code(name, summary, table, supported, source, meanings)
 
 
-def describe(codes_table: dict[str, Code], descriptions: Mapping[str, str | tuple[str, Mapping[str, str]]]) -> dict[str, Code]:
+def describe(
+    codes_table: dict[str, Code], descriptions: Mapping[str, str | tuple[str, Mapping[str, str]]]
+) -> dict[str, Code]:
     """Give codes of ``codes_table`` a summary and parameter meanings (what ``gclint explain`` prints).
 
     ``descriptions`` maps a code to ``"summary"`` or ``("summary", {"S": "meaning", ...})``.  Only codes
@@ -108,7 +112,9 @@ def describe(codes_table: dict[str, Code], descriptions: Mapping[str, str | tupl
         if existing is None:
             continue
         summary, meanings = (description, None) if isinstance(description, str) else description
-        out[name] = replace(existing, summary=summary or existing.summary, meanings=dict(meanings) if meanings else existing.meanings)
+        out[name] = replace(
+            existing, summary=summary or existing.summary, meanings=dict(meanings) if meanings else existing.meanings
+        )
     return out
 
 
@@ -189,7 +195,9 @@ class Dialect:
     def spec(self, code: str) -> Code | None:
         return self.codes.get(code)
 
-    def derive(self, name: str, title: str, *, add: Iterable[Code] = (), remove: Iterable[str] = (), **changes) -> "Dialect":
+    def derive(
+        self, name: str, title: str, *, add: Iterable[Code] = (), remove: Iterable[str] = (), **changes
+    ) -> Dialect:
         """A new dialect that is this one plus ``add`` minus ``remove`` (codes), with other fields changed."""
         table = dict(self.codes)
         for c in remove:

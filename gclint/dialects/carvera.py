@@ -24,29 +24,54 @@ _M = (
 )
 
 # What the common codes do, for ``gclint explain`` (seeds/carvera-mcodes.md; Smoothieware in grbl mode).
-_MOVE = {"X": "X", "Y": "Y", "Z": "Z", "A": "A axis (4th axis, degrees)", "F": "feed rate, mm/min", "S": "laser power or spindle speed"}
+_MOVE = {
+    "X": "X",
+    "Y": "Y",
+    "Z": "Z",
+    "A": "A axis (4th axis, degrees)",
+    "F": "feed rate, mm/min",
+    "S": "laser power or spindle speed",
+}
 _DESCRIPTIONS = {
     "G0": ("rapid move", _MOVE),
     "G1": ("linear move at feed rate", _MOVE),
-    "G2": ("clockwise arc", {**_MOVE, "I": "center X offset", "J": "center Y offset", "K": "center Z offset", "R": "radius"}),
-    "G3": ("counter-clockwise arc", {**_MOVE, "I": "center X offset", "J": "center Y offset", "K": "center Z offset", "R": "radius"}),
+    "G2": (
+        "clockwise arc",
+        {**_MOVE, "I": "center X offset", "J": "center Y offset", "K": "center Z offset", "R": "radius"},
+    ),
+    "G3": (
+        "counter-clockwise arc",
+        {**_MOVE, "I": "center X offset", "J": "center Y offset", "K": "center Z offset", "R": "radius"},
+    ),
     "G4": ("dwell", {"P": "seconds (grbl mode)", "S": "seconds"}),
-    "G10": ("set a work coordinate system", {"L": "L2: values, L20: so the current position gets them", "P": "coordinate system number"}),
-    "G17": "arc plane XY", "G18": "arc plane XZ", "G19": "arc plane YZ",
-    "G20": "units are inches", "G21": "units are millimetres",
+    "G10": (
+        "set a work coordinate system",
+        {"L": "L2: values, L20: so the current position gets them", "P": "coordinate system number"},
+    ),
+    "G17": "arc plane XY",
+    "G18": "arc plane XZ",
+    "G19": "arc plane YZ",
+    "G20": "units are inches",
+    "G21": "units are millimetres",
     "G28": "go to the clearance position",
     "G38.2": "probe toward the workpiece, stop on contact, error if none",
     "G53": "move in machine coordinates (this line only)",
-    "G54": "use work coordinate system 1", "G55": "use work coordinate system 2", "G56": "use work coordinate system 3",
-    "G57": "use work coordinate system 4", "G58": "use work coordinate system 5", "G59": "use work coordinate system 6",
-    "G90": "absolute positioning", "G91": "relative positioning",
+    "G54": "use work coordinate system 1",
+    "G55": "use work coordinate system 2",
+    "G56": "use work coordinate system 3",
+    "G57": "use work coordinate system 4",
+    "G58": "use work coordinate system 5",
+    "G59": "use work coordinate system 6",
+    "G90": "absolute positioning",
+    "G91": "relative positioning",
     "G92": ("set the current position (offset)", _MOVE),
     "M1": "optional stop (pauses when M333 optional stop mode is on)",
     "M2": "end of program: stop the spindle and the air",
     "M3": ("start the spindle", {"S": "speed, RPM"}),
     "M5": "stop the spindle",
     "M6": ("automatic tool change (ATC) and tool length offset", {"T": "tool number (T0 wireless probe, T-1 none)"}),
-    "M7": "air on", "M9": "air off",
+    "M7": "air on",
+    "M9": "air off",
     "M30": "end of program (no action on the Carvera)",
     "M98": ("run a macro from gcodes/macros", {"P": "macro number"}),
     "M99": "return from a subprogram",
@@ -72,7 +97,8 @@ _DESCRIPTIONS = {
     "M802": "vacuum off",
     "M811": ("spindle cooling fan on", {"S": "power, percent"}),
     "M812": "spindle cooling fan off",
-    "M821": "light on", "M822": "light off",
+    "M821": "light on",
+    "M822": "light off",
 }
 
 

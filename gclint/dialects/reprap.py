@@ -26,19 +26,36 @@ _M = (
     " M913 M914 M915 M916 M917 M918 M929 M950 M951 M952 M953 M954 M955 M956 M957 M997 M998 M999"
 )
 
-META_KEYWORDS = frozenset("if elif else while break continue var global set echo abort return".split())
+META_KEYWORDS = frozenset(
+    ["if", "elif", "else", "while", "break", "continue", "var", "global", "set", "echo", "abort", "return"]
+)
 
 # What the common codes do, for ``gclint explain`` (Duet G-code dictionary; dialects.md 1 [RRF]).
-_MOVE = {"X": "X", "Y": "Y", "Z": "Z", "E": "extruder position", "F": "feed rate, mm/min (modal)",
-         "H": "H1: homing move that stops at the endstop, H2: move motors individually"}
+_MOVE = {
+    "X": "X",
+    "Y": "Y",
+    "Z": "Z",
+    "E": "extruder position",
+    "F": "feed rate, mm/min (modal)",
+    "H": "H1: homing move that stops at the endstop, H2: move motors individually",
+}
 _DESCRIPTIONS = {
     "G0": ("rapid move", _MOVE),
     "G1": ("linear move", _MOVE),
     "G2": ("clockwise arc", {**_MOVE, "I": "center X offset", "J": "center Y offset", "R": "radius"}),
     "G3": ("counter-clockwise arc", {**_MOVE, "I": "center X offset", "J": "center Y offset", "R": "radius"}),
     "G4": ("dwell", {"P": "milliseconds", "S": "seconds"}),
-    "G10": ("tool offsets and temperatures (with P), else firmware retraction",
-            {"P": "tool number", "X": "X offset", "Y": "Y offset", "Z": "Z offset", "R": "standby temperature, C", "S": "active temperature, C"}),
+    "G10": (
+        "tool offsets and temperatures (with P), else firmware retraction",
+        {
+            "P": "tool number",
+            "X": "X offset",
+            "Y": "Y offset",
+            "Z": "Z offset",
+            "R": "standby temperature, C",
+            "S": "active temperature, C",
+        },
+    ),
     "G11": "unretract (firmware retraction)",
     "G20": "units are inches",
     "G21": "units are millimetres",
@@ -59,22 +76,48 @@ _DESCRIPTIONS = {
     "M84": "disable the motors",
     "M98": ("run a macro file", {"P": "file name"}),
     "M99": "return from a macro",
-    "M104": ("set tool temperature (no wait)", {"S": "active temperature, C", "R": "standby temperature, C", "T": "tool number"}),
-    "M106": ("fan speed", {"P": "fan number", "S": "speed, 0-1 or 0-255", "H": "thermostatic heaters", "T": "thermostatic temperature"}),
+    "M104": (
+        "set tool temperature (no wait)",
+        {"S": "active temperature, C", "R": "standby temperature, C", "T": "tool number"},
+    ),
+    "M106": (
+        "fan speed",
+        {"P": "fan number", "S": "speed, 0-1 or 0-255", "H": "thermostatic heaters", "T": "thermostatic temperature"},
+    ),
     "M107": "fan 0 off",
-    "M109": ("set tool temperature and wait", {"S": "active temperature, C", "R": "standby temperature, C", "T": "tool number"}),
+    "M109": (
+        "set tool temperature and wait",
+        {"S": "active temperature, C", "R": "standby temperature, C", "T": "tool number"},
+    ),
     "M116": ("wait for temperatures", {"P": "tool number", "H": "heater number", "C": "chamber", "S": "tolerance, C"}),
     "M117": "show a message",
     "M118": ("send a message", {"P": "destination", "S": "the message"}),
-    "M140": ("set bed temperature (no wait)", {"S": "active temperature, C", "R": "standby temperature, C", "H": "heater number"}),
+    "M140": (
+        "set bed temperature (no wait)",
+        {"S": "active temperature, C", "R": "standby temperature, C", "H": "heater number"},
+    ),
     "M141": ("set chamber temperature (no wait)", {"S": "temperature, C", "H": "heater number"}),
-    "M190": ("wait for bed temperature", {"S": "target; wait only while heating", "R": "target; wait while heating or cooling"}),
-    "M191": ("wait for chamber temperature", {"S": "target; wait only while heating", "R": "target; wait while heating or cooling"}),
+    "M190": (
+        "wait for bed temperature",
+        {"S": "target; wait only while heating", "R": "target; wait while heating or cooling"},
+    ),
+    "M191": (
+        "wait for chamber temperature",
+        {"S": "target; wait only while heating", "R": "target; wait while heating or cooling"},
+    ),
     "M201": ("maximum accelerations, mm/s²", {"X": "X", "Y": "Y", "Z": "Z", "E": "E"}),
     "M203": ("maximum feed rates, mm/min", {"X": "X", "Y": "Y", "Z": "Z", "E": "E", "I": "minimum overall speed"}),
     "M204": ("accelerations", {"P": "printing moves, mm/s²", "T": "travel moves, mm/s²"}),
-    "M207": ("firmware retraction settings", {"S": "length, mm", "R": "extra restart length, mm", "F": "retract speed, mm/min",
-                                              "T": "unretract speed, mm/min", "Z": "Z hop, mm"}),
+    "M207": (
+        "firmware retraction settings",
+        {
+            "S": "length, mm",
+            "R": "extra restart length, mm",
+            "F": "retract speed, mm/min",
+            "T": "unretract speed, mm/min",
+            "Z": "Z hop, mm",
+        },
+    ),
     "M220": ("speed factor", {"S": "percent"}),
     "M221": ("extrusion factor", {"S": "percent", "D": "extruder drive"}),
     "M291": ("show a message box", {"P": "message", "R": "title", "S": "mode (0-7)", "T": "time-out, s"}),
@@ -84,14 +127,27 @@ _DESCRIPTIONS = {
     "M550": ("set the machine name", {"P": "name"}),
     "M563": ("define a tool", {"P": "tool number", "D": "extruder drives", "H": "heaters", "F": "fans", "S": "name"}),
     "M566": ("maximum instantaneous speed changes (jerk), mm/min", {"X": "X", "Y": "Y", "Z": "Z", "E": "E"}),
-    "M568": ("tool settings", {"P": "tool number", "S": "active temperature, C", "R": "standby temperature, C", "A": "heater state"}),
+    "M568": (
+        "tool settings",
+        {"P": "tool number", "S": "active temperature, C", "R": "standby temperature, C", "A": "heater state"},
+    ),
     "M569": ("stepper driver settings", {"P": "driver number", "S": "direction"}),
     "M572": ("pressure advance", {"D": "extruder drive", "S": "seconds"}),
     "M574": "endstop configuration",
     "M584": "map axes to drivers",
     "M906": ("motor currents, mA", {"X": "X", "Y": "Y", "Z": "Z", "E": "E", "I": "idle factor, percent"}),
-    "M950": ("create a heater, fan, spindle or GPIO port", {"H": "heater", "F": "fan", "P": "GPIO output", "J": "GPIO input",
-                                                            "C": "pin name", "Q": "PWM frequency, Hz", "T": "sensor number"}),
+    "M950": (
+        "create a heater, fan, spindle or GPIO port",
+        {
+            "H": "heater",
+            "F": "fan",
+            "P": "GPIO output",
+            "J": "GPIO input",
+            "C": "pin name",
+            "Q": "PWM frequency, Hz",
+            "T": "sensor number",
+        },
+    ),
 }
 
 

@@ -7,8 +7,8 @@ job but deletes a file on Marlin; G90 resets the E mode on Marlin only).  Facts 
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from functools import partial
-from typing import Callable
 
 from gclint.dialects.addressing import Address, resolve_v5
 from gclint.dialects.base import Dialect
@@ -374,10 +374,7 @@ class Interpreter:
 
     def _set_temp(self, cmd: Command, line: Line) -> None:
         st = self.state
-        if cmd.code in ("M140", "M190"):
-            device = self.address(cmd)
-            target = device.v5 if device is not None else 24
-        elif cmd.code in ("M141", "M191"):
+        if cmd.code in ("M140", "M190") or cmd.code in ("M141", "M191"):
             device = self.address(cmd)
             target = device.v5 if device is not None else 24
         else:

@@ -85,7 +85,9 @@ class UnknownPrinter(ValueError):
 
 def get_profile(name: str) -> PrinterProfile:
     key = name.strip().lower().replace("_", "-")
-    key = {"16a-single": "16a", "hydra16a": "16a", "16a-2": "16a-dual", "16a2": "16a-dual", "system30m": "30m"}.get(key, key)
+    key = {"16a-single": "16a", "hydra16a": "16a", "16a-2": "16a-dual", "16a2": "16a-dual", "system30m": "30m"}.get(
+        key, key
+    )
     profile = PROFILES.get(key)
     if profile is None:
         raise UnknownPrinter(f"unknown printer {name!r} (known: {', '.join(PROFILES)})")

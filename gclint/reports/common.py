@@ -41,7 +41,9 @@ def clean(text: str) -> str:
     """Undecodable bytes (lone surrogates) shown as ``\\xNN``, so any encoder can write the text."""
     if not _SURROGATES.search(text):
         return text
-    return _SURROGATES.sub(lambda m: f"\\x{ord(m.group()) - 0xDC00:02x}" if ord(m.group()) >= 0xDC80 else "\ufffd", text)
+    return _SURROGATES.sub(
+        lambda m: f"\\x{ord(m.group()) - 0xDC00:02x}" if ord(m.group()) >= 0xDC80 else "\ufffd", text
+    )
 
 
 # C0 controls except tab, DEL, C1 controls: they would drive a terminal (ESC sequences) or break XML.

@@ -25,8 +25,9 @@ def build(results: list[FileResult], ctx) -> ET.Element:
     total_tests = total_failures = total_errors = 0
     for index, r in enumerate(results):
         path = printable(r.path)
-        suite = ET.SubElement(suites, "testsuite", name=path, id=str(index), hostname=hostname, timestamp=timestamp,
-                              time="0", skipped="0")
+        suite = ET.SubElement(
+            suites, "testsuite", name=path, id=str(index), hostname=hostname, timestamp=timestamp, time="0", skipped="0"
+        )
         tests = failures = errors = 0
         if r.dialect:
             props = ET.SubElement(suite, "properties")
@@ -43,8 +44,15 @@ def build(results: list[FileResult], ctx) -> ET.Element:
             tests = 1
         for f in r.findings:
             text = message(f)
-            case = ET.SubElement(suite, "testcase", name=f"{f.code} at line {f.line}, column {f.column}", classname=path,
-                                 file=path, line=str(f.line), time="0")
+            case = ET.SubElement(
+                suite,
+                "testcase",
+                name=f"{f.code} at line {f.line}, column {f.column}",
+                classname=path,
+                file=path,
+                line=str(f.line),
+                time="0",
+            )
             failure = ET.SubElement(case, "failure", type=f.code, message=text)
             body = [f"{path}:{f.line}:{f.column}: {f.code} [{f.severity.label}] {text}"]
             line = source_line(f)

@@ -114,7 +114,11 @@ def build(results: list[FileResult], ctx) -> dict:
             artifact_index[r.path] = len(artifacts)
             artifact: dict = {"location": _location(uri, base), "sourceLanguage": "gcode"}
             if r.dialect:
-                artifact["properties"] = {"dialect": r.dialect, "dialectReason": clean(r.dialect_reason), "lines": r.lines}
+                artifact["properties"] = {
+                    "dialect": r.dialect,
+                    "dialectReason": clean(r.dialect_reason),
+                    "lines": r.lines,
+                }
             artifacts.append(artifact)
         for f in r.findings:
             region: dict = {"startLine": max(1, f.line), "startColumn": max(1, f.column)}

@@ -36,7 +36,9 @@ def write_summary(results: list[FileResult], out: TextIO, ctx) -> None:
     n = sum(total.values())
     if n:
         parts = [f"{total[k]} {k}{'s' if total[k] != 1 else ''}" for k in ("error", "warning", "info") if total[k]]
-        out.write(f"Found {n} finding{'s' if n != 1 else ''} ({', '.join(parts)}) in {files_with} file{'s' if files_with != 1 else ''}.\n")
+        out.write(
+            f"Found {n} finding{'s' if n != 1 else ''} ({', '.join(parts)}) in {files_with} file{'s' if files_with != 1 else ''}.\n"
+        )
         if fixable:
             out.write(f"[*] {fixable} fixable with --fix.\n")
     elif any(r.error is None for r in results):

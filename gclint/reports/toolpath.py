@@ -55,7 +55,6 @@ class HeadPath:
             self.points = self.points[::2]
             self.stride *= 2
 
-
     def jump(self, x: float, y: float) -> None:
         """Start a stroke at (x, y) without counting a move (the head took over from another one)."""
         self.points.append((x, y, False))
@@ -97,8 +96,9 @@ def head_label(key: int | None, family: str) -> str:
     return f"tool T{key}"
 
 
-def read_toolpath(path: str, dialect_name: str | None, flagged: set[int] | frozenset[int] = frozenset(),
-                  budget: int = 6000) -> Toolpath:
+def read_toolpath(
+    path: str, dialect_name: str | None, flagged: set[int] | frozenset[int] = frozenset(), budget: int = 6000
+) -> Toolpath:
     """Replay ``path`` and collect its XY moves per head, plus the position of each flagged line."""
     toolpath = Toolpath()
     if path == "-":

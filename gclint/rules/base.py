@@ -13,9 +13,10 @@ a module (importing it registers its rules) or a ``Rule`` subclass.
 from __future__ import annotations
 
 import textwrap
+from collections.abc import Iterable
 from dataclasses import dataclass, field
 from enum import IntEnum
-from typing import TYPE_CHECKING, ClassVar, Iterable
+from typing import TYPE_CHECKING, ClassVar
 
 from gclint.syntax.nodes import Command, Comment, Line, Node
 
@@ -33,7 +34,7 @@ class Severity(IntEnum):
         return self.name.lower()
 
     @classmethod
-    def parse(cls, text: str) -> "Severity":
+    def parse(cls, text: str) -> Severity:
         try:
             return cls[text.strip().upper()]
         except KeyError:
@@ -128,7 +129,7 @@ class Rule:
     fixable: ClassVar[bool] = False
     default_enabled: ClassVar[bool] = True
 
-    def __init__(self, ctx: "FileContext") -> None:
+    def __init__(self, ctx: FileContext) -> None:
         self.ctx = ctx
         self.state = ctx.state
 
@@ -256,9 +257,8 @@ def all_rules() -> dict[str, type[Rule]]:
 
 
 def _load_plugins() -> None:
-    from importlib.metadata import entry_points
-
     import types
+    from importlib.metadata import entry_points
 
     for ep in entry_points(group="gclint.rules"):
         plugin = f"rule plugin {ep.name!r} ({ep.value})"

@@ -85,7 +85,9 @@ class ParamTableRule(Rule):
                 continue
             raw = params[p.letter]
             if p.forbidden:
-                self.report(line, f"{cmd.code}: {p.letter} is not allowed ({p.meaning})", node=cmd.param(p.letter) or cmd)
+                self.report(
+                    line, f"{cmd.code}: {p.letter} is not allowed ({p.meaning})", node=cmd.param(p.letter) or cmd
+                )
                 continue
             if raw is None:
                 if p.required:

@@ -123,7 +123,9 @@ class ChecksumMismatch(Rule):
             from gclint.rules.base import Edit, Fix
 
             start = checksum.column
-            fix = Fix(f"set the checksum to {expected}", (Edit(line.number, start, checksum.end_column, f"*{expected}"),))
+            fix = Fix(
+                f"set the checksum to {expected}", (Edit(line.number, start, checksum.end_column, f"*{expected}"),)
+            )
             self.report(line, f"checksum is {actual}, the line's bytes give {expected}", node=checksum, fix=fix)
 
 

@@ -177,11 +177,27 @@ class AfterEndOfProgram(TranslationRule):
 
 TR_SEVERITY: dict[str, Severity] = {
     cls.code: cls.severity
-    for cls in (Dropped, DroppedBehaviourLost, Approximate, TranslatedWithNote, Untranslatable,
-                AddressWithoutCounterpart, ToolNotOnPrinter, AfterEndOfProgram)
+    for cls in (
+        Dropped,
+        DroppedBehaviourLost,
+        Approximate,
+        TranslatedWithNote,
+        Untranslatable,
+        AddressWithoutCounterpart,
+        ToolNotOnPrinter,
+        AfterEndOfProgram,
+    )
 }
 TR_NAME: dict[str, str] = {
     cls.code: cls.name
-    for cls in (Dropped, DroppedBehaviourLost, Approximate, TranslatedWithNote, Untranslatable,
-                AddressWithoutCounterpart, ToolNotOnPrinter, AfterEndOfProgram)
+    for cls in (
+        Dropped,
+        DroppedBehaviourLost,
+        Approximate,
+        TranslatedWithNote,
+        Untranslatable,
+        AddressWithoutCounterpart,
+        ToolNotOnPrinter,
+        AfterEndOfProgram,
+    )
 }

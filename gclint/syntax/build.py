@@ -120,14 +120,22 @@ def assemble(
                     issues.append(Issue(BAD_NUMBER, piece.column, f"{letter} value {piece.value!r} is not a number"))
                 elif _too_long(piece.value):
                     issues.append(
-                        Issue(BAD_NUMBER, piece.column, f"{letter} value has {len(piece.value)} characters: no firmware reads a number this long")
+                        Issue(
+                            BAD_NUMBER,
+                            piece.column,
+                            f"{letter} value has {len(piece.value)} characters: no firmware reads a number this long",
+                        )
                     )
             # G and M words start a command; so does a T that starts the line or follows another T
             # command (T2M6, T1 T2).  A G, M or T with no value after a command is a flag parameter
             # (Bambu "M620 M", Marlin "M20 T", RepRapFirmware "T T{expr}").
             if letter in "GMT" and (piece.value is not None or current is None):
-                starts = letter != "T" or current is None or (
-                    current.kind == GCODE and current.code[0] == "T" and current.word.value is not None  # type: ignore[index, union-attr]
+                starts = (
+                    letter != "T"
+                    or current is None
+                    or (
+                        current.kind == GCODE and current.code[0] == "T" and current.word.value is not None  # type: ignore[index, union-attr]
+                    )
                 )
             else:
                 starts = False
@@ -167,7 +175,9 @@ def assemble(
             for w in words:
                 params.setdefault(w.letter, w.value)
             commands.append(
-                Command(code_of(piece.word), TEXT, piece.word.column, params, word=piece.word, words=words, args=piece.text)
+                Command(
+                    code_of(piece.word), TEXT, piece.word.column, params, word=piece.word, words=words, args=piece.text
+                )
             )
         elif isinstance(piece, Assignment):
             close()

@@ -241,9 +241,7 @@ class _Builder:
             kind=PERCENT,
         )
 
-    def named(
-        self, tree: Tree, kind: str, block_delete: BlockDelete | None, line_number: Word | None
-    ) -> ParsedLine:
+    def named(self, tree: Tree, kind: str, block_delete: BlockDelete | None, line_number: Word | None) -> ParsedLine:
         name_tok = tree.children[0]
         args = None
         comments = []

@@ -11,7 +11,7 @@ surrogates (``surrogateescape``), so re-encoding a rendered line gives back the 
 from __future__ import annotations
 
 import re
-from typing import Iterator
+from collections.abc import Iterator
 
 # Word kinds.
 NUMBER = "number"  # X10.5, G1, T-1

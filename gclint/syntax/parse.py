@@ -36,7 +36,11 @@ def parse_slow(raw: str) -> ParsedLine:
 
         return ParsedLine(
             extra=(Unparsed(raw, 1),),
-            issues=(Issue("SX001", 1, f"line is {len(raw):,} characters long; lines over {_LARK_LINE_LIMIT:,} are not parsed"),),
+            issues=(
+                Issue(
+                    "SX001", 1, f"line is {len(raw):,} characters long; lines over {_LARK_LINE_LIMIT:,} are not parsed"
+                ),
+            ),
             kind="error",
         )
     return parse_with_lark(raw)

@@ -16,7 +16,8 @@ import codecs
 import io
 import re
 import sys
-from typing import BinaryIO, Iterator
+from collections.abc import Iterator
+from typing import BinaryIO
 
 CHUNK = 1 << 20
 HEAD = 1 << 16
@@ -59,7 +60,7 @@ class Source:
         self._consumed = False
 
     @classmethod
-    def open(cls, path: str) -> "Source":
+    def open(cls, path: str) -> Source:
         """Open a file path (``-`` for standard input)."""
         if path == "-":
             return cls(sys.stdin.buffer, "-")
@@ -80,11 +81,11 @@ class Source:
             raise
 
     @classmethod
-    def from_bytes(cls, data: bytes, display: str = "<bytes>") -> "Source":
+    def from_bytes(cls, data: bytes, display: str = "<bytes>") -> Source:
         return cls(io.BytesIO(data), display)
 
     @classmethod
-    def from_text(cls, text: str, display: str = "<text>") -> "Source":
+    def from_text(cls, text: str, display: str = "<text>") -> Source:
         return cls.from_bytes(text.encode("utf-8", "surrogateescape"), display)
 
     def head_text(self, limit: int = HEAD) -> str:

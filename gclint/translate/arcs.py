@@ -45,8 +45,9 @@ def centre_from_radius(dx: float, dy: float, radius: float, clockwise: bool) -> 
     return (dx - dy * h) / 2, (dy + dx * h) / 2
 
 
-def sweep(start: tuple[float, float], end: tuple[float, float], centre: tuple[float, float], clockwise: bool,
-          turns: int = 0) -> float:
+def sweep(
+    start: tuple[float, float], end: tuple[float, float], centre: tuple[float, float], clockwise: bool, turns: int = 0
+) -> float:
     """The signed angle (radians) the arc sweeps: negative clockwise; a full circle when start == end."""
     a0 = math.atan2(start[1] - centre[1], start[0] - centre[0])
     a1 = math.atan2(end[1] - centre[1], end[0] - centre[0])
@@ -61,8 +62,14 @@ def sweep(start: tuple[float, float], end: tuple[float, float], centre: tuple[fl
     return angle - extra if clockwise else angle + extra
 
 
-def segments(start: dict[str, float], end: dict[str, float], offsets: tuple[float, float], clockwise: bool,
-             plane: int = 17, turns: int = 0) -> list[dict[str, float]]:
+def segments(
+    start: dict[str, float],
+    end: dict[str, float],
+    offsets: tuple[float, float],
+    clockwise: bool,
+    plane: int = 17,
+    turns: int = 0,
+) -> list[dict[str, float]]:
     """Points along the arc from ``start`` to ``end`` (dicts of axis -> absolute value, the three axes
     of the plane), the last one being ``end`` exactly."""
     a, b, _, _, helix = PLANES[plane]
@@ -79,10 +86,12 @@ def segments(start: dict[str, float], end: dict[str, float], offsets: tuple[floa
     for k in range(1, count):
         t = k / count
         theta = a0 + angle * t
-        points.append({
-            a: centre[0] + radius * math.cos(theta),
-            b: centre[1] + radius * math.sin(theta),
-            helix: start[helix] + (end[helix] - start[helix]) * t,
-        })
+        points.append(
+            {
+                a: centre[0] + radius * math.cos(theta),
+                b: centre[1] + radius * math.sin(theta),
+                helix: start[helix] + (end[helix] - start[helix]) * t,
+            }
+        )
     points.append({a: end[a], b: end[b], helix: end[helix]})
     return points

@@ -175,8 +175,9 @@ class HyrelTranslator(Translator):
                     self.remove(cmd, TR_AFTER_END, "after the end of the program; dropped", key="after-end")
                     continue
                 if check and (cmd.kind == GCODE or cmd.kind == IMPLICIT) and has_expression(cmd):
-                    self.untranslatable(cmd, "a parameter is an expression or variable the translator cannot evaluate",
-                                        key="expression")
+                    self.untranslatable(
+                        cmd, "a parameter is an expression or variable the translator cannot evaluate", key="expression"
+                    )
                 else:
                     handler = handlers.get(cmd.code)  # type: ignore[arg-type]
                     if handler is None:
@@ -190,8 +191,9 @@ class HyrelTranslator(Translator):
             return (line.raw, ending)  # type: ignore[return-value]
         if edit.changed:
             result.lines_changed += 1
-        if not self.wrote_command and (edit.before or edit.after
-                                       or any(edit.replaced.get(i, True) for i in range(len(commands)))):
+        if not self.wrote_command and (
+            edit.before or edit.after or any(edit.replaced.get(i, True) for i in range(len(commands)))
+        ):
             self.wrote_command = True
         return edit.render(self.annotate, self.default_ending)  # type: ignore[return-value]
 
@@ -299,11 +301,13 @@ class HyrelTranslator(Translator):
         if kind == GCODE and code and code[0] == "T":
             self.tool_command(cmd)
         elif kind == META:
-            self.untranslatable(cmd, f"meta command '{code}' (program flow or variables) cannot be translated",
-                                key="meta")
+            self.untranslatable(
+                cmd, f"meta command '{code}' (program flow or variables) cannot be translated", key="meta"
+            )
         elif kind in (OWORD, ASSIGNMENT):
-            self.untranslatable(cmd, "O-words and # parameters (program flow, variables) cannot be translated",
-                                key="oword")
+            self.untranslatable(
+                cmd, "O-words and # parameters (program flow, variables) cannot be translated", key="oword"
+            )
         elif kind == EXTENDED:
             self.extended(cmd)
         elif code in self.END_CODES:
@@ -379,12 +383,17 @@ class HyrelTranslator(Translator):
     def _no_tool(self, what: str, index: int, address: int | None = None) -> None:
         printer = self.opts.printer
         if address is None:
-            self.report(TR_LOST, f"{what} {index} has no Hyrel address; dropped (map it with --set fan-map={index}=T#)",
-                        key=(what, index))
+            self.report(
+                TR_LOST,
+                f"{what} {index} has no Hyrel address; dropped (map it with --set fan-map={index}=T#)",
+                key=(what, index),
+            )
             return
         else:
-            message = (f"{what} {index} maps to T{address}, which the {printer.name} does not have "
-                       f"({printer.describe_positions()}); use --tool-map or --printer")
+            message = (
+                f"{what} {index} maps to T{address}, which the {printer.name} does not have "
+                f"({printer.describe_positions()}); use --tool-map or --printer"
+            )
         self.report(TR_NO_TOOL, message, key=(what, index))
 
     def current_tool(self) -> int:
@@ -406,8 +415,11 @@ class HyrelTranslator(Translator):
             self.focus = address
             lines.append(f"T{address}")  # G28 applies a head offset of 0: focus the head again
         self.before(*lines, note="re-home after M18/M84")
-        self.report(TR_APPROX, "a move after the motors were disengaged: Hyrel must re-home first, G28 X0 Y0 added",
-                    key="rehome")
+        self.report(
+            TR_APPROX,
+            "a move after the motors were disengaged: Hyrel must re-home first, G28 X0 Y0 added",
+            key="rehome",
+        )
 
     def before_motion(self, focus: bool = True) -> None:
         """Header lines due before the first move: G21, G90 and a T (X5); ``focus=False`` before a G28,
@@ -609,11 +621,20 @@ class HyrelTranslator(Translator):
             return
         if self.evalues and self.e_absolute():
             self.replace(cmd, f"G92 E{self.scaled_e(params[self.EXTRUDER])}")
-            self.report(TR_NOTE, "extruder-only move (retract/prime) left to the head's automatic unprime/prime; "
-                        "written as G92 E so Hyrel's E position stays the source's", key="e-only", cmd=cmd)
+            self.report(
+                TR_NOTE,
+                "extruder-only move (retract/prime) left to the head's automatic unprime/prime; "
+                "written as G92 E so Hyrel's E position stays the source's",
+                key="e-only",
+                cmd=cmd,
+            )
             return
-        self.remove(cmd, TR_NOTE, "extruder-only move (retract/prime) left to the head's automatic "
-                    "unprime/prime (M721/M722); dropped", key="e-only")
+        self.remove(
+            cmd,
+            TR_NOTE,
+            "extruder-only move (retract/prime) left to the head's automatic unprime/prime (M721/M722); dropped",
+            key="e-only",
+        )
 
     def arc(self, cmd: Command) -> None:
         """G2/G3: R-form -> I/J, other planes, extra turns and E amounts that matter -> G1 segments (X9)."""
@@ -640,8 +661,9 @@ class HyrelTranslator(Translator):
                 return
             drop += "R"
             values["I"], values["J"] = fmt(centre[0]), fmt(centre[1])
-            self.report(TR_NOTE, "R-form arc written with its centre I/J (Hyrel's G2/G3 take no R)", key="arc-R",
-                        cmd=cmd)
+            self.report(
+                TR_NOTE, "R-form arc written with its centre I/J (Hyrel's G2/G3 take no R)", key="arc-R", cmd=cmd
+            )
         if "K" in params:
             drop += "K"
         if "P" in params:
@@ -678,8 +700,9 @@ class HyrelTranslator(Translator):
         x0, y0 = st.position.get("X"), st.position.get("Y")
         radius = num(params.get("R"))
         if x0 is None or y0 is None or radius is None:
-            self.untranslatable(cmd, "R-form arc from an unknown position: its centre cannot be computed",
-                                key="arc-unknown")
+            self.untranslatable(
+                cmd, "R-form arc from an unknown position: its centre cannot be computed", key="arc-unknown"
+            )
             return None
         x1, y1 = num(params.get("X")), num(params.get("Y"))
         if st.absolute:
@@ -700,11 +723,16 @@ class HyrelTranslator(Translator):
         start = {axis: st.position.get(axis) for axis in (a, b, helix)}
         if any(v is None for v in start.values()):
             if "R" in params:
-                self.untranslatable(cmd, "R-form arc from an unknown position: its centre cannot be computed",
-                                    key="arc-unknown")
+                self.untranslatable(
+                    cmd, "R-form arc from an unknown position: its centre cannot be computed", key="arc-unknown"
+                )
             else:
-                self.remove(cmd, TR_UNTRANSLATABLE, "arc from an unknown position cannot be written as segments",
-                            key="arc-unknown")
+                self.remove(
+                    cmd,
+                    TR_UNTRANSLATABLE,
+                    "arc from an unknown position cannot be written as segments",
+                    key="arc-unknown",
+                )
             return
         end: dict[str, float] = {}
         for axis in (a, b, helix):
@@ -799,11 +827,20 @@ class HyrelTranslator(Translator):
         if len(texts) > 1:
             self._edit().after[:0] = texts[1:]
         if plane != 17 or "R" in params or turns:
-            self.report(TR_NOTE, f"{reason} written as G1 segments (Hyrel G2/G3 draw XY arcs with I/J only)",
-                        key=("arc", plane, "R" in params), cmd=cmd)
+            self.report(
+                TR_NOTE,
+                f"{reason} written as G1 segments (Hyrel G2/G3 draw XY arcs with I/J only)",
+                key=("arc", plane, "R" in params),
+                cmd=cmd,
+            )
         elif extruding and self.evalues:
-            self.report(TR_NOTE, "extruding arc written as G1 segments so its E amount counts "
-                        "(Hyrel computes arc flow natively even under M229 E1)", key="arc-evalues", cmd=cmd)
+            self.report(
+                TR_NOTE,
+                "extruding arc written as G1 segments so its E amount counts "
+                "(Hyrel computes arc flow natively even under M229 E1)",
+                key="arc-evalues",
+                cmd=cmd,
+            )
 
     # -- common commands -----------------------------------------------------------------------------------
 
@@ -815,8 +852,12 @@ class HyrelTranslator(Translator):
         self.inch = cmd.code == "G20"
         if cmd.code == "G20":
             self.replace(cmd, "G21")
-            self.report(TR_NOTE, "inches: Hyrel's G20 is unsupported; written as G21 and every length converted "
-                        "to mm", key="G20", cmd=cmd)
+            self.report(
+                TR_NOTE,
+                "inches: Hyrel's G20 is unsupported; written as G21 and every length converted to mm",
+                key="G20",
+                cmd=cmd,
+            )
 
     # The note written with M82/M83 when the source's G90/G91 also switch the E mode (Marlin: G90/G91
     # set E absolute/relative; Machinekit: the extruder axis A follows them; Hyrel's do not, dialects.md
@@ -828,8 +869,13 @@ class HyrelTranslator(Translator):
         with values they would store new ones (Gcode page, G54 - G59), so values are dropped."""
         if cmd.params:
             self.replace(cmd, cmd.code or "G54")
-        self.report(TR_NOTE, f"{cmd.code} selects Hyrel's stored fixture offsets (Repetrel Settings > Fixture "
-                    "Offsets); G54 with values would store new ones", key="wcs", cmd=cmd)
+        self.report(
+            TR_NOTE,
+            f"{cmd.code} selects Hyrel's stored fixture offsets (Repetrel Settings > Fixture "
+            "Offsets); G54 with values would store new ones",
+            key="wcs",
+            cmd=cmd,
+        )
 
     def clear_g92(self, cmd: Command) -> None:
         """G92.1 (clear the G92 offsets) is Hyrel's G93 ("G93 clears ALL offsets implemented via G92")."""
@@ -844,8 +890,12 @@ class HyrelTranslator(Translator):
             if address is not None:
                 self.replace(cmd, f"{code} T{address} I1", note=f"TR004 {what} -> {code} I1")
                 return
-        self.remove(cmd, TR_NOTE, f"{what} left to the head's automatic unprime/prime (set retract=explicit for "
-                    "M721/M722 I1)", key=key)
+        self.remove(
+            cmd,
+            TR_NOTE,
+            f"{what} left to the head's automatic unprime/prime (set retract=explicit for M721/M722 I1)",
+            key=key,
+        )
 
     def positioning(self, cmd: Command) -> None:
         """G90/G91: same meaning for X Y Z; the E mode follows where the source couples them."""
@@ -887,8 +937,9 @@ class HyrelTranslator(Translator):
         params = cmd.params
         if "P" in params:
             self.replace(cmd, rewrite(cmd, drop="P", first=("S" + (params["P"] or "0"),)))
-            self.report(TR_NOTE, "G4 P is seconds in the source, milliseconds on Hyrel: written as G4 S",
-                        key="G4", cmd=cmd)
+            self.report(
+                TR_NOTE, "G4 P is seconds in the source, milliseconds on Hyrel: written as G4 S", key="G4", cmd=cmd
+            )
 
     def speed_word(self, cmd: Command) -> None:
         """An S word outside M3/M4: the spindle speed (rpm) for the next M3, or a speed change now."""
@@ -911,8 +962,12 @@ class HyrelTranslator(Translator):
         if running is not None and running != code:
             # "DO NOT CHANGE DIRECTION while the spindle is in motion" (Hyrel Gcode page, M3)
             self.before(f"M5 T{address}", note="stop before changing direction")
-            self.report(TR_APPROX, "spindle direction changed while running: Hyrel needs it stopped first, M5 added",
-                        key="M3-M4", cmd=cmd)
+            self.report(
+                TR_APPROX,
+                "spindle direction changed while running: Hyrel needs it stopped first, M5 added",
+                key="M3-M4",
+                cmd=cmd,
+            )
         self.replace(cmd, " ".join(words))
         if percent is not None and float(percent) == 0:  # "S0 is the same as turning it off" (M3)
             self.spindles_on.pop(address, None)
@@ -929,12 +984,17 @@ class HyrelTranslator(Translator):
         top = self.opts.spindle_max_rpm
         if top is None:
             top = assumed_max or 15000.0
-            self.report(TR_APPROX, f"spindle rpm converted to percent of an assumed {fmt(top)} rpm maximum; set "
-                        "spindle-max-rpm to the Hyrel spindle's", key="rpm-assumed")
+            self.report(
+                TR_APPROX,
+                f"spindle rpm converted to percent of an assumed {fmt(top)} rpm maximum; set "
+                "spindle-max-rpm to the Hyrel spindle's",
+                key="rpm-assumed",
+            )
         pct = rpm / top * 100
         if pct > 100:
-            self.report(TR_APPROX, f"{fmt(rpm)} rpm is above the spindle's {fmt(top)} rpm: clamped to 100 %",
-                        key="rpm-clamp")
+            self.report(
+                TR_APPROX, f"{fmt(rpm)} rpm is above the spindle's {fmt(top)} rpm: clamped to 100 %", key="rpm-clamp"
+            )
             pct = 100
         return fmt(max(pct, 0.0), 1)
 
@@ -955,8 +1015,15 @@ class HyrelTranslator(Translator):
             return
         self.replace(cmd, f"M107 T{address}")
 
-    def temperature(self, cmd: Command, code: str, address: int | None, temp: str | None, window: bool = False,
-                    extra: tuple[str, ...] = ()) -> None:
+    def temperature(
+        self,
+        cmd: Command,
+        code: str,
+        address: int | None,
+        temp: str | None,
+        window: bool = False,
+        extra: tuple[str, ...] = (),
+    ) -> None:
         """Write a temperature command with an explicit address; ``window`` adds R<temp-window> (the source
         waits heating *or* cooling; Hyrel's R is a +/- tolerance)."""
         if address is None:
@@ -1000,13 +1067,20 @@ class HyrelTranslator(Translator):
             self.untranslatable(cmd, "a tool given by a query or expression cannot be translated", key="T?")
             return
         if len(number) > 2:
-            self.untranslatable(cmd, "a vendor pseudo-tool (filament unload, calibration) cannot be translated",
-                                key=("T-vendor", number))
+            self.untranslatable(
+                cmd,
+                "a vendor pseudo-tool (filament unload, calibration) cannot be translated",
+                key=("T-vendor", number),
+            )
             return
         dropped = [letter for letter in cmd.params]
         if dropped:
-            self.report(TR_NOTE, f"T parameters {' '.join(dropped)} (tool-change moves, macros) dropped",
-                        key="T-params", cmd=cmd)
+            self.report(
+                TR_NOTE,
+                f"T parameters {' '.join(dropped)} (tool-change moves, macros) dropped",
+                key="T-params",
+                cmd=cmd,
+            )
         self.select_tool(cmd, int(number))
 
 

@@ -33,20 +33,56 @@ class CarveraToHyrel(HyrelTranslator):
     EXTRA_LETTERS: ClassVar[frozenset[str]] = frozenset("SABE")
 
     HANDLERS: ClassVar[dict[str, str]] = {
-        "G0": "move", "G1": "move", "G2": "arc", "G3": "arc", "G4": "dwell_seconds",
-        "G17": "keep", "G18": "keep", "G19": "keep", "G20": "units", "G21": "units", "G28": "clearance",
-        "G53": "g53", "G90": "positioning", "G91": "positioning", "G92": "set_position", "G92.1": "clear_g92",
-        **WORKSPACES, "M0": "keep", "M2": "end_program", "M30": "end_program", "M3": "spindle", "M4": "spindle",
-        "M5": "spindle_stop", "M6": "tool_change", "M7": "air", "M9": "air_off", "M17": "motors_on",
-        "M18": "disengage", "M84": "disengage", "M600": "pause", "M321": "laser_mode", "M322": "laser_mode_off",
-        "M801": "vacuum", "M802": "vacuum_off", "M821": "light", "M822": "light_off",
+        "G0": "move",
+        "G1": "move",
+        "G2": "arc",
+        "G3": "arc",
+        "G4": "dwell_seconds",
+        "G17": "keep",
+        "G18": "keep",
+        "G19": "keep",
+        "G20": "units",
+        "G21": "units",
+        "G28": "clearance",
+        "G53": "g53",
+        "G90": "positioning",
+        "G91": "positioning",
+        "G92": "set_position",
+        "G92.1": "clear_g92",
+        **WORKSPACES,
+        "M0": "keep",
+        "M2": "end_program",
+        "M30": "end_program",
+        "M3": "spindle",
+        "M4": "spindle",
+        "M5": "spindle_stop",
+        "M6": "tool_change",
+        "M7": "air",
+        "M9": "air_off",
+        "M17": "motors_on",
+        "M18": "disengage",
+        "M84": "disengage",
+        "M600": "pause",
+        "M321": "laser_mode",
+        "M322": "laser_mode_off",
+        "M801": "vacuum",
+        "M802": "vacuum_off",
+        "M821": "light",
+        "M822": "light_off",
     }
     DROPPED: ClassVar[dict[str, tuple[str, str]]] = {
         **_codes("M1", TR_DROPPED, "optional stop (off unless M334 enables it)"),
-        **_codes("M105 M114 M115 M119 M27 M957 M117 M118 M118.1 M20 M21 M23 M24 M25 M26 M503 M500 M501 M502 M504 "
-                 "M498 M498.1 M499 M499.1 M499.2 M493.4 M601", TR_DROPPED, "report, message or file operation"),
-        **_codes("M331 M332 M333 M334 M335 M336 M811 M812 M831 M832 M841 M842 M881 M882 M885 M886 M887 M888 M1000",
-                 TR_DROPPED, "Carvera machine feature with no effect on the toolpath"),
+        **_codes(
+            "M105 M114 M115 M119 M27 M957 M117 M118 M118.1 M20 M21 M23 M24 M25 M26 M503 M500 M501 M502 M504 "
+            "M498 M498.1 M499 M499.1 M499.2 M493.4 M601",
+            TR_DROPPED,
+            "report, message or file operation",
+        ),
+        **_codes(
+            "M331 M332 M333 M334 M335 M336 M811 M812 M831 M832 M841 M842 M881 M882 M885 M886 M887 M888 M1000",
+            TR_DROPPED,
+            "Carvera machine feature with no effect on the toolpath",
+        ),
         **_codes("M221", TR_DROPPED, "soft endstops on/off (Carvera's M221 is not a flow command)"),
         **_codes("M82 M83", TR_DROPPED, "extruder mode (no extrusion here)"),
         **_codes("M400 G29", TR_DROPPED, "wait for the move queue"),
@@ -54,12 +90,18 @@ class CarveraToHyrel(HyrelTranslator):
         **_codes("M203 M203.1 M204 M205", TR_LOST, "feed and acceleration limits have no Hyrel counterpart"),
         **_codes("M220 M223 M325", TR_LOST, "feed, spindle or laser override"),
         **_codes("M323 M324 M321.2 M322.2", TR_LOST, "laser test mode"),
-        **_codes("M370 M374 M374.1 M375 M375.1 M561 M565 M670", TR_LOST, "levelling or probe settings "
-                 "(Hyrel's M670 is the Y-arm light)"),
+        **_codes(
+            "M370 M374 M374.1 M375 M375.1 M561 M565 M670",
+            TR_LOST,
+            "levelling or probe settings (Hyrel's M670 is the Y-arm light)",
+        ),
         **_codes("M851 M852", TR_LOST, "extended port power (map it to an aux port by hand)"),
         **_codes("M92 M206 M306 M120 M121 M665 M958 G28.1", TR_LOST, "machine configuration"),
-        **_codes("G30 G31 G32 G33 G38.2 G38.3 G38.4 G38.5 G92.4 G93", TR_UNTRANSLATABLE,
-                 "probing, machine-coordinate setting or inverse-time feed Hyrel has no command for"),
+        **_codes(
+            "G30 G31 G32 G33 G38.2 G38.3 G38.4 G38.5 G92.4 G93",
+            TR_UNTRANSLATABLE,
+            "probing, machine-coordinate setting or inverse-time feed Hyrel has no command for",
+        ),
         **_codes("M97 M98 M98.1 M99 M32", TR_UNTRANSLATABLE, "jump, subprogram or file call"),
         **_codes("M112", TR_UNTRANSLATABLE, "emergency stop: Hyrel documents no e-stop code"),
         **_codes("G10", TR_UNTRANSLATABLE, "workspace origin setting (G10 L2/L20); use Repetrel fixture offsets"),
@@ -87,8 +129,12 @@ class CarveraToHyrel(HyrelTranslator):
             self.speed_word(cmd)
         if ("A" in params or "B" in params) and "A" not in self.opts.printer.axes:
             drop += "AB"
-            self.report(TR_UNTRANSLATABLE, f"rotary axis words dropped: the {self.opts.printer.name} has no "
-                        "A/B axis (use --printer ehr or 16a)", key="A", cmd=cmd)
+            self.report(
+                TR_UNTRANSLATABLE,
+                f"rotary axis words dropped: the {self.opts.printer.name} has no A/B axis (use --printer ehr or 16a)",
+                key="A",
+                cmd=cmd,
+            )
         if "E" in params:
             drop += "E"
         if self.laser and self.laser_fire and not rapid and self.laser_power > 0:
@@ -104,8 +150,9 @@ class CarveraToHyrel(HyrelTranslator):
             return
         if self.laser:
             if s > 1:
-                self.report(TR_APPROX, "laser power above 1 taken as percent (Carvera's laser S is 0-1)",
-                            key="laser-S", cmd=cmd)
+                self.report(
+                    TR_APPROX, "laser power above 1 taken as percent (Carvera's laser S is 0-1)", key="laser-S", cmd=cmd
+                )
                 self.laser_power = min(100.0, s)
             else:
                 self.laser_power = s * 100
@@ -113,12 +160,18 @@ class CarveraToHyrel(HyrelTranslator):
         super().speed_word(cmd)
 
     def clearance(self, cmd: Command) -> None:
-        self.remove(cmd, TR_LOST, "Carvera's G28 goes to the clearance position; Hyrel's G28 homes and clears "
-                    "offsets, so it is dropped: add a safe retract", key="G28")
+        self.remove(
+            cmd,
+            TR_LOST,
+            "Carvera's G28 goes to the clearance position; Hyrel's G28 homes and clears "
+            "offsets, so it is dropped: add a safe retract",
+            key="G28",
+        )
 
     def g53(self, cmd: Command) -> None:
-        self.untranslatable(cmd, "machine-coordinate move (G53): the Carvera's machine coordinates mean nothing on "
-                            "the Hyrel", key="G53")
+        self.untranslatable(
+            cmd, "machine-coordinate move (G53): the Carvera's machine coordinates mean nothing on the Hyrel", key="G53"
+        )
 
     def motors_on(self, cmd: Command) -> None:
         if cmd.params:
@@ -189,8 +242,13 @@ class CarveraToHyrel(HyrelTranslator):
         if first:
             self.before(*first)
         self.replace(cmd, last)
-        self.report(TR_APPROX, "automatic tool change written as a manual change (spindle off, pause); map tools "
-                    "to Hyrel heads with --tool-map to switch heads instead", key="M6-manual", cmd=cmd)
+        self.report(
+            TR_APPROX,
+            "automatic tool change written as a manual change (spindle off, pause); map tools "
+            "to Hyrel heads with --tool-map to switch heads instead",
+            key="M6-manual",
+            cmd=cmd,
+        )
 
     def laser_mode(self, cmd: Command) -> None:
         self.laser = True
@@ -198,8 +256,13 @@ class CarveraToHyrel(HyrelTranslator):
         address = self.opts.laser_address()
         self.emitters_on.add(address)
         self.replace(cmd, f"M620 T{address} E1")
-        self.report(TR_APPROX, f"laser mode: the laser is Hyrel device T{address} (set laser=T#); firing moves "
-                    "get E1 and the power M621 P", key="M321", cmd=cmd)
+        self.report(
+            TR_APPROX,
+            f"laser mode: the laser is Hyrel device T{address} (set laser=T#); firing moves "
+            "get E1 and the power M621 P",
+            key="M321",
+            cmd=cmd,
+        )
 
     def laser_mode_off(self, cmd: Command) -> None:
         self.laser = False
@@ -248,8 +311,13 @@ class CarveraToHyrel(HyrelTranslator):
 
     def fallback(self, cmd: Command) -> None:
         code = cmd.code or ""
-        if cmd.kind == "gcode" and code[:1] == "M" and code[1:4].isdigit() and 460 <= int(code[1:4]) <= 499 \
-                and (len(code) == 4 or not code[4].isdigit()):
+        if (
+            cmd.kind == "gcode"
+            and code[:1] == "M"
+            and code[1:4].isdigit()
+            and 460 <= int(code[1:4]) <= 499
+            and (len(code) == 4 or not code[4].isdigit())
+        ):
             self.untranslatable(cmd, "probing, tool changer or tool-length routine of the Carvera", key="M46x-M49x")
             return
         if cmd.kind == "meta" and code == "echo":

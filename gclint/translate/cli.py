@@ -31,9 +31,16 @@ def run_translate(
     from gclint.translate.options import TranslateOptions
 
     try:
-        options = TranslateOptions.build(input_path, printer=printer, tool_map=tool_map, annotate=annotate,
-                                         unsupported=unsupported, config_file=config_file, flow=flow,
-                                         settings=settings)
+        options = TranslateOptions.build(
+            input_path,
+            printer=printer,
+            tool_map=tool_map,
+            annotate=annotate,
+            unsupported=unsupported,
+            config_file=config_file,
+            flow=flow,
+            settings=settings,
+        )
         translator = translator_for(source, target, options)
     except UnsupportedPair as exc:
         click.echo(f"gclint: {exc}", err=True)
@@ -95,5 +102,8 @@ def _report(result: TranslationResult, unsupported: str) -> None:
     for f in result.findings:
         click.echo(f"{f.path}:{f.line}:{f.column}: {f.code} {message(f)}", err=True)
     if unsupported == "error" and _refused(result, unsupported):
-        click.echo(f"gclint: {result.path}: not translated: {len(result.findings)} construct(s) cannot be translated "
-                   "exactly (--unsupported error)", err=True)
+        click.echo(
+            f"gclint: {result.path}: not translated: {len(result.findings)} construct(s) cannot be translated "
+            "exactly (--unsupported error)",
+            err=True,
+        )

@@ -35,22 +35,58 @@ class MachinekitToHyrel(HyrelTranslator):
     EXTRA_LETTERS: ClassVar[frozenset[str]] = frozenset("FEBCUVW")
 
     HANDLERS: ClassVar[dict[str, str]] = {
-        "G0": "move", "G1": "move", "G2": "arc", "G3": "arc", "G4": "dwell_seconds",
-        "G17": "keep", "G18": "keep", "G19": "keep", "G20": "units", "G21": "units",
-        "G22": "retract", "G23": "unretract", "G28": "mk_home", "G90": "positioning", "G91": "positioning",
-        "G92": "set_position", "G92.1": "clear_g92", **WORKSPACES,
-        "M0": "keep", "M2": "end_program", "M30": "end_program", "M3": "spindle", "M4": "spindle",
-        "M5": "spindle_stop", "M6": "tool_change", "M7": "keep", "M8": "keep", "M9": "keep",
-        "M104": "m104", "M109": "m109", "M140": "m140", "M141": "m141", "M190": "m190", "M191": "m191",
-        "M106": "m106", "M107": "m107", "M221": "m221", "M226": "m226", "M300": "beep",
-        "M701": "m701", "M702": "m702", "G53": "g53",
+        "G0": "move",
+        "G1": "move",
+        "G2": "arc",
+        "G3": "arc",
+        "G4": "dwell_seconds",
+        "G17": "keep",
+        "G18": "keep",
+        "G19": "keep",
+        "G20": "units",
+        "G21": "units",
+        "G22": "retract",
+        "G23": "unretract",
+        "G28": "mk_home",
+        "G90": "positioning",
+        "G91": "positioning",
+        "G92": "set_position",
+        "G92.1": "clear_g92",
+        **WORKSPACES,
+        "M0": "keep",
+        "M2": "end_program",
+        "M30": "end_program",
+        "M3": "spindle",
+        "M4": "spindle",
+        "M5": "spindle_stop",
+        "M6": "tool_change",
+        "M7": "keep",
+        "M8": "keep",
+        "M9": "keep",
+        "M104": "m104",
+        "M109": "m109",
+        "M140": "m140",
+        "M141": "m141",
+        "M190": "m190",
+        "M191": "m191",
+        "M106": "m106",
+        "M107": "m107",
+        "M221": "m221",
+        "M226": "m226",
+        "M300": "beep",
+        "M701": "m701",
+        "M702": "m702",
+        "G53": "g53",
     }
     DROPPED: ClassVar[dict[str, tuple[str, str]]] = {
         **_codes("M1", TR_DROPPED, "optional stop (off unless the operator enables it)"),
         **_codes("M400", TR_DROPPED, "wait for the move queue"),
         **_codes("M420", TR_DROPPED, "RGBW light"),
-        **_codes("G40 G61 G61.1 G64 G80 G94 G17.1 G18.1 G19.1 G90.1 G91.1 G97 G98 G99 M48 M49 M50 M51 M52 M53",
-                 TR_DROPPED, "interpreter mode with no effect on a Hyrel job"),
+        **_codes(
+            "G40 G61 G61.1 G64 G80 G94 G17.1 G18.1 G19.1 G90.1 G91.1 G97 G98 G99 M48 M49 M50 M51 M52 M53",
+            TR_DROPPED,
+            "interpreter mode with no effect on a Hyrel job",
+        ),
         **_codes("M200", TR_DROPPED, "filament diameter (velocity extrusion)"),
         **_codes("M207", TR_LOST, "retraction settings (Hyrel heads carry their own unprime/prime settings)"),
         **_codes("M280", TR_LOST, "servo position"),
@@ -58,14 +94,20 @@ class MachinekitToHyrel(HyrelTranslator):
         **_codes("M710", TR_LOST, "manual filament jog"),
         **_codes("M600 M601 M306", TR_LOST, "Z calibration or probing remap"),
         **_codes("G29 G29.1 G29.2 G30 G30.1 G28.1", TR_LOST, "probing and bed calibration"),
-        **_codes("G43 G43.1 G43.2 G49", TR_LOST, "tool length offsets (Hyrel: M660 registers applied with H on G1; "
-                 "set them up by hand)"),
+        **_codes(
+            "G43 G43.1 G43.2 G49",
+            TR_LOST,
+            "tool length offsets (Hyrel: M660 registers applied with H on G1; set them up by hand)",
+        ),
         **_codes("G92.2 G92.3", TR_LOST, "suspend/restore G92 offsets"),
         **_codes("M19 M70 M71 M72 M73 M60 M61", TR_LOST, "spindle orientation, modal state save/restore, pallet"),
         **_codes("G41 G41.1 G42 G42.1", TR_UNTRANSLATABLE, "cutter radius compensation"),
-        **_codes("G5 G5.1 G5.2 G5.3 G7 G8 G33 G33.1 G38.2 G38.3 G38.4 G38.5 G52 G70 G71 G71.1 G71.2 G72 G72.1 G72.2 "
-                 "G73 G74 G76 G81 G82 G83 G84 G85 G86 G87 G88 G89 G93 G95 G96",
-                 TR_UNTRANSLATABLE, "canned cycle, spline, threading, probing or feed mode Hyrel has no command for"),
+        **_codes(
+            "G5 G5.1 G5.2 G5.3 G7 G8 G33 G33.1 G38.2 G38.3 G38.4 G38.5 G52 G70 G71 G71.1 G71.2 G72 G72.1 G72.2 "
+            "G73 G74 G76 G81 G82 G83 G84 G85 G86 G87 G88 G89 G93 G95 G96",
+            TR_UNTRANSLATABLE,
+            "canned cycle, spline, threading, probing or feed mode Hyrel has no command for",
+        ),
         **_codes("M62 M63 M64 M65 M66 M67 M68", TR_UNTRANSLATABLE, "HAL digital/analog I/O"),
         **_codes("M98 M99", TR_UNTRANSLATABLE, "subprogram call"),
         **_codes("G59.1 G59.2 G59.3", TR_UNTRANSLATABLE, "Hyrel has no G59.1-G59.3 workspaces"),
@@ -122,12 +164,18 @@ class MachinekitToHyrel(HyrelTranslator):
         self.replace(cmd, lines[0])
         if len(lines) > 1:
             self.after(*lines[1:])
-        self.report(TR_APPROX, "Machinekit's G28 moves to 0 without homing; written as a G0 to 0 (and G92 E0). "
-                    "Hyrel homing belongs in the header", key="G28", cmd=cmd)
+        self.report(
+            TR_APPROX,
+            "Machinekit's G28 moves to 0 without homing; written as a G0 to 0 (and G92 E0). "
+            "Hyrel homing belongs in the header",
+            key="G28",
+            cmd=cmd,
+        )
 
     def g53(self, cmd: Command) -> None:
-        self.untranslatable(cmd, "machine-coordinate move (G53): the source machine's coordinates mean nothing "
-                            "on the Hyrel")
+        self.untranslatable(
+            cmd, "machine-coordinate move (G53): the source machine's coordinates mean nothing on the Hyrel"
+        )
 
     def spindle(self, cmd: Command) -> None:
         s = num(cmd.params.get("S"))
@@ -171,8 +219,13 @@ class MachinekitToHyrel(HyrelTranslator):
             return
         self.temperature(cmd, code, address, temp, window=wait)
         if wait:
-            self.report(TR_NOTE, "Machinekit waits until the temperature is in range (heating or cooling): written "
-                        f"with Hyrel's tolerance window R{fmt(self.opts.temp_window)}", key="mk-wait", cmd=cmd)
+            self.report(
+                TR_NOTE,
+                "Machinekit waits until the temperature is in range (heating or cooling): written "
+                f"with Hyrel's tolerance window R{fmt(self.opts.temp_window)}",
+                key="mk-wait",
+                cmd=cmd,
+            )
 
     def m104(self, cmd: Command) -> None:
         temp, index = self._flavour(cmd)
@@ -201,8 +254,9 @@ class MachinekitToHyrel(HyrelTranslator):
     def m106(self, cmd: Command) -> None:
         value, index = self._flavour(cmd)
         if "I" in cmd.params:
-            self.report(TR_NOTE, "M106 I (execute at once) dropped: Hyrel executes M106 in order", key="M106-I",
-                        cmd=cmd)
+            self.report(
+                TR_NOTE, "M106 I (execute at once) dropped: Hyrel executes M106 in order", key="M106-I", cmd=cmd
+            )
         self.fan(cmd, self.head(index if index is not None else 0, "fan"), num(value))
 
     def m107(self, cmd: Command) -> None:
@@ -223,8 +277,9 @@ class MachinekitToHyrel(HyrelTranslator):
     def beep(self, cmd: Command) -> None:
         self.before("M792 ; BEEP")
         self.consume(cmd)
-        self.report(TR_NOTE, "tone written as Hyrel's BEEP action: frequency and duration are lost", key="M300",
-                    cmd=cmd)
+        self.report(
+            TR_NOTE, "tone written as Hyrel's BEEP action: frequency and duration are lost", key="M300", cmd=cmd
+        )
 
     def m701(self, cmd: Command) -> None:
         width = cmd.params.get("P")
@@ -233,8 +288,9 @@ class MachinekitToHyrel(HyrelTranslator):
             self.remove(cmd, TR_DROPPED, "M701 without a width sets nothing", key="M701")
             return
         self.replace(cmd, f"M221 T{address} W{width}")
-        self.report(TR_NOTE, "velocity-extrusion line width written as Hyrel's M221 W (native flow)", key="M701",
-                    cmd=cmd)
+        self.report(
+            TR_NOTE, "velocity-extrusion line width written as Hyrel's M221 W (native flow)", key="M701", cmd=cmd
+        )
 
     def m702(self, cmd: Command) -> None:
         height = cmd.params.get("P")
@@ -242,8 +298,9 @@ class MachinekitToHyrel(HyrelTranslator):
             self.remove(cmd, TR_DROPPED, "M702 without a height sets nothing", key="M702")
             return
         self.replace(cmd, f"M756 S{height}")
-        self.report(TR_NOTE, "velocity-extrusion line height written as Hyrel's M756 (native flow)", key="M702",
-                    cmd=cmd)
+        self.report(
+            TR_NOTE, "velocity-extrusion line height written as Hyrel's M756 (native flow)", key="M702", cmd=cmd
+        )
 
     def fallback(self, cmd: Command) -> None:
         code = cmd.code or ""

@@ -57,10 +57,19 @@ class TranslateOptions:
     tool_offsets: str = "drop"
 
     @classmethod
-    def build(cls, input_path: str, *, printer: str | None = None, tool_map: dict[int, int] | None = None,
-              annotate: bool = False, unsupported: str = "warn", config_file: str | None = None,
-              flow: str | None = None, settings: dict[str, str] | None = None,
-              spindle_max_rpm: float | None = None) -> TranslateOptions:
+    def build(
+        cls,
+        input_path: str,
+        *,
+        printer: str | None = None,
+        tool_map: dict[int, int] | None = None,
+        annotate: bool = False,
+        unsupported: str = "warn",
+        config_file: str | None = None,
+        flow: str | None = None,
+        settings: dict[str, str] | None = None,
+        spindle_max_rpm: float | None = None,
+    ) -> TranslateOptions:
         from gclint.config import apply as apply_config
         from gclint.engine import Options
 
@@ -143,8 +152,23 @@ class TranslateOptions:
         return self.laser if self.laser is not None else self.tool(0)
 
 
-SETTINGS = ("flow", "retract", "fan-map", "tool-map", "bed", "chamber", "temp-window", "spindle", "laser", "air",
-            "max-feed", "home-z", "tool-offsets", "spindle-max-rpm", "printer")
+SETTINGS = (
+    "flow",
+    "retract",
+    "fan-map",
+    "tool-map",
+    "bed",
+    "chamber",
+    "temp-window",
+    "spindle",
+    "laser",
+    "air",
+    "max-feed",
+    "home-z",
+    "tool-offsets",
+    "spindle-max-rpm",
+    "printer",
+)
 
 
 def parse_settings(values: tuple[str, ...] | list[str]) -> dict[str, str]:

@@ -30,8 +30,16 @@ def command_text(code: str, *words: str | None) -> str:
     return " ".join([code, *(w for w in words if w)])
 
 
-def rewrite(cmd: Command, *, code: str | None = None, drop: str = "", values: Mapping[str, str | None] | None = None,
-            add: tuple[str, ...] = (), first: tuple[str, ...] = (), rename: dict[str, str] | None = None) -> str:
+def rewrite(
+    cmd: Command,
+    *,
+    code: str | None = None,
+    drop: str = "",
+    values: Mapping[str, str | None] | None = None,
+    add: tuple[str, ...] = (),
+    first: tuple[str, ...] = (),
+    rename: dict[str, str] | None = None,
+) -> str:
     """The text of ``cmd`` with changes: another ``code``, letters in ``drop`` removed, letters renamed
     (``{"A": "E"}``), the values of ``values`` replaced (None removes the word), words ``first`` put right
     after the code and ``add`` at the end.  Words that do not change keep their source text (``X10.000``
@@ -115,7 +123,7 @@ class LineEdit:
 
 
 def _quote(text: str) -> str:
-    return text.strip().replace("'", "\"")
+    return text.strip().replace("'", '"')
 
 
 def _span(cmd: Command, line: Line) -> tuple[int, int]:

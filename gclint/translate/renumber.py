@@ -86,8 +86,14 @@ class Renumber(Translator):
                 return None
             new = self.commands.get(number)
             if new is None:
-                self._report(line, cmd, result, f"T{number} (tool number) has no certain "
-                             f"{'v5' if self.to_v5 else 'v4'} counterpart; left unchanged", ("cmd", number))
+                self._report(
+                    line,
+                    cmd,
+                    result,
+                    f"T{number} (tool number) has no certain "
+                    f"{'v5' if self.to_v5 else 'v4'} counterpart; left unchanged",
+                    ("cmd", number),
+                )
                 return None
             if new == number:
                 return None
@@ -96,8 +102,14 @@ class Renumber(Translator):
             return _splice(line, cmd, {word: _renumbered(word.text, code[1:], new)})
         changes: dict = {}
         if code in _SQUAD_CODES and "S" not in cmd.params:
-            self._report(line, cmd, result, f"{code} without S has no certain {'v5' if self.to_v5 else 'v4'} form "
-                         "(v5 needs a squad or a head in S); T renumbered, the rest left as it is", (code, "noS"))
+            self._report(
+                line,
+                cmd,
+                result,
+                f"{code} without S has no certain {'v5' if self.to_v5 else 'v4'} form "
+                "(v5 needs a squad or a head in S); T renumbered, the rest left as it is",
+                (code, "noS"),
+            )
         for w in cmd.words:
             letter = w.letter
             if letter == "T" or (letter == "S" and code in _SQUAD_CODES):
@@ -109,9 +121,14 @@ class Renumber(Translator):
                 new = self._variable(number, letter == "S")
                 if new is None:
                     what = "alias/squad" if letter == "S" else "address"
-                    self._report(line, cmd, result, f"{code} {letter}{number}: this {what} has no certain "
-                                 f"{'v5' if self.to_v5 else 'v4'} counterpart; left unchanged",
-                                 (code, letter, number))
+                    self._report(
+                        line,
+                        cmd,
+                        result,
+                        f"{code} {letter}{number}: this {what} has no certain "
+                        f"{'v5' if self.to_v5 else 'v4'} counterpart; left unchanged",
+                        (code, letter, number),
+                    )
                     continue
                 if new != number:
                     changes[w] = _renumbered(w.text, w.value, new)
@@ -132,8 +149,16 @@ class Renumber(Translator):
         if entry is not None:
             entry[1] += 1
             return
-        finding = Finding(path=result.path, line=line.number, column=cmd.column, code="TR006",
-                          severity=TR_SEVERITY["TR006"], message=message, name=TR_NAME["TR006"], source=line.raw)
+        finding = Finding(
+            path=result.path,
+            line=line.number,
+            column=cmd.column,
+            code="TR006",
+            severity=TR_SEVERITY["TR006"],
+            message=message,
+            name=TR_NAME["TR006"],
+            source=line.raw,
+        )
         result.findings.append(finding)
         self._reported[key] = [finding, 1]
 

@@ -125,8 +125,11 @@ class ArcRadiusOrK(ParamTableRule):
     def check(self, line: Line, cmd: Command) -> None:
         super().check(line, cmd)  # R and K are forbidden (table: G2/G3)
         if "R" not in cmd.params and _centre_is_zero(cmd):
-            self.report(line, f"{cmd.code} has no centre: I and J are both 0 or omitted (the firmware rejects the arc)",
-                        node=cmd)
+            self.report(
+                line,
+                f"{cmd.code} has no centre: I and J are both 0 or omitted (the firmware rejects the arc)",
+                node=cmd,
+            )
 
     def range_message(self, cmd: Command, p: Param, problem: str) -> str:
         return f"{cmd.code}: {problem}"
@@ -189,8 +192,12 @@ class SpiralNeedsPitchOrLaps(Rule):
             message = f"{cmd.code} needs P (pitch between laps, mm) or L (number of laps); at least one must be given"
             self.report(line, message, node=cmd)
         elif "P" in p and "L" in p:
-            self.report(line, f"{cmd.code} with both P and L: if they conflict, L is changed to match P",
-                        node=cmd.param("L") or cmd, severity=Severity.INFO)
+            self.report(
+                line,
+                f"{cmd.code} with both P and L: if they conflict, L is changed to match P",
+                node=cmd.param("L") or cmd,
+                severity=Severity.INFO,
+            )
 
 
 @register

@@ -47,8 +47,11 @@ class M229E1D0(Rule):
         e = to_number(p["E"]) if p.get("E") is not None else None  # type: ignore[arg-type]
         d = to_number(p["D"]) if p.get("D") is not None else None  # type: ignore[arg-type]
         if e == 1 and d == 0:
-            self.report(line, "M229 E1 D0 is an illegal combination: use M229 E1 D1 to enable E values",
-                        node=cmd.param("D") or cmd)
+            self.report(
+                line,
+                "M229 E1 D0 is an illegal combination: use M229 E1 D1 to enable E values",
+                node=cmd.param("D") or cmd,
+            )
         elif e == 1 and "D" not in p and not self.routing_set:
             self.report(
                 line,
@@ -106,8 +109,11 @@ class FanDutyOverRange(ParamTableRule):
                 node=cmd.param("S") or cmd,
             )
         if "P" in p:
-            self.report(line, "M106 with both S and P: S is used and P (duty during extrusion only) is ignored",
-                        node=cmd.param("P") or cmd)
+            self.report(
+                line,
+                "M106 with both S and P: S is used and P (duty during extrusion only) is ignored",
+                node=cmd.param("P") or cmd,
+            )
 
     def range_message(self, cmd: Command, p: Param, problem: str) -> str:
         return f"M106: {problem} (P is the percent duty during extrusion moves only, 0-100; not a fan index)"

@@ -39,7 +39,6 @@ class MoveChecks:
     the leader, so the engine still sees a rule's method (and drops the leader if a check fails).
     """
 
-
     def __init__(self, ctx) -> None:
         self.state = ctx.state
         self.leader: Rule | None = None
@@ -55,14 +54,14 @@ class MoveChecks:
         self.slicer_e: _Member | None = None  # HY060: E amounts that look sliced
 
     @classmethod
-    def of(cls, ctx) -> "MoveChecks":
+    def of(cls, ctx) -> MoveChecks:
         checks = ctx.shared.get("move_checks")
         if checks is None:
             checks = ctx.shared["move_checks"] = cls(ctx)
         return checks
 
     @classmethod
-    def join(cls, rule: Rule, slot: str | None = None) -> "MoveChecks":
+    def join(cls, rule: Rule, slot: str | None = None) -> MoveChecks:
         """Make ``rule`` a member (in ``slot``); one member (the leader) listens to G0/G1 for all.
 
         The engine creates every rule of a file before it reads their ``codes``, so the leader can
@@ -180,8 +179,11 @@ class RapidMoveWithE(MoveRule):
     slot = "rapid_e"
 
     def move(self, line: Line, cmd: Command) -> None:
-        self.report(line, "G0 is a rapid, non-working move: its E is ignored and nothing prints (use G1 to print)",
-                    node=cmd.param("E") or cmd)
+        self.report(
+            line,
+            "G0 is a rapid, non-working move: its E is ignored and nothing prints (use G1 to print)",
+            node=cmd.param("E") or cmd,
+        )
 
 
 @register
