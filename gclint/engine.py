@@ -19,6 +19,7 @@ from gclint.machine.interpreter import Interpreter
 from gclint.machine.profiles import DEFAULT_PROFILE, PrinterProfile, get_profile
 from gclint.machine.state import MachineState
 from gclint.rules.base import ANY_T, Finding, Fix, Rule, Severity, all_rules, select_rules
+from gclint.syntax.fastpath import PLAIN_MOVE
 from gclint.syntax.nodes import GCODE, Command, Line
 from gclint.syntax.parse import parse_line
 from gclint.syntax.sniff import not_gcode_reason
@@ -276,7 +277,7 @@ class Linter:
             # A rule raised: say so once (naming the rule, the file and the line), drop the rule for the
             # rest of this file and go on.  The loops below iterate over tuples, so replacing them here
             # does not skip the other rules' hooks on the current line.
-            nonlocal line_hooks, numbered_hooks, issue_hooks, comment_hooks, long_hooks, after_end_hooks
+            nonlocal line_hooks, numbered_hooks, issue_hooks, comment_hooks, long_hooks, after_end_hooks, plain
             rule = getattr(hook, "__self__", None)
             if rule is None or rule not in rules:  # pragma: no cover - hooks are bound rule methods
                 raise exc
@@ -295,6 +296,7 @@ class Linter:
             any_t[:] = keep(any_t)
             unknown[:] = keep(unknown)
             dispatch.clear()
+            plain = None  # (conservative: the plain-move route stays off for the rest of the file)
 
         def build(cmd: Command) -> tuple[tuple, tuple, Callable[[Command, Line], None]]:
             code = cmd.code
@@ -314,6 +316,14 @@ class Linter:
             dispatch[code] = out
             return out
 
+        # Plain moves ("G1 X10 Y20 E0.5", most lines of a job) skip the tree when no rule would look at
+        # them: no rule listens to the code unless the line has a letter a plain move never carries, and
+        # the interpreter's own motion handler applies it.  tests/test_plain_moves.py checks that the
+        # findings are the same with and without this route on every corpus file.
+        plain = self._plain_moves(build, interpreter, line_hooks)
+        long_limit = shortest_long if shortest_long is not None else 1 << 62
+        plain_match = PLAIN_MOVE.fullmatch
+        plain_move = interpreter.plain_move
         state = ctx.state
         read_directives = ctx.read_directives
         parse = parse_line
@@ -322,6 +332,23 @@ class Linter:
         for chunk in source.chunks():
             for raw, ending in chunk:
                 number += 1
+                if plain is not None and raw[:1] == "G" and len(raw) <= long_limit:
+                    m = plain_match(raw)
+                    if m is not None:
+                        digit, f_first, x, y, z, e, f = m.groups()
+                        if (f_first is None or f is None) and not (after_end_hooks and state.after_m30):
+                            mode, filters = plain[digit]
+                            if f is None:
+                                f = f_first
+                            for wants in filters:
+                                try:
+                                    if wants(mode, x, y, z, e, f):
+                                        break
+                                except Exception:  # the rule's own check will run (and be dropped if it fails)
+                                    break
+                            else:
+                                plain_move(mode, number, x, y, z, e, f)
+                                continue
                 parsed = parse(raw)
                 line = Line(number, raw, ending, parsed)
                 # Every rule call is guarded (a "try" costs nothing until something raises, Python 3.11+).
@@ -390,6 +417,33 @@ class Linter:
                 r.finish()
             except Exception as exc:
                 disable(r.finish, exc, None)
+
+
+    plain_moves_enabled = True  # the tests switch this off to compare
+
+    def _plain_moves(
+        self, build: Callable, interpreter: Interpreter, line_hooks: tuple
+    ) -> dict[str, tuple[str, tuple[Callable[..., bool], ...]]] | None:
+        """How plain G0/G1 lines may skip the tree in this file: ``{"0": ("G0", filters), "1": ...}``, or
+        None when they may not.
+
+        A rule that listens to every G0/G1 allows the route by having a ``plain_filter(mode, x, y, z, e,
+        f)`` that says (True) when a plain move needs its ``check``; rules that listen only for letters
+        a plain move never carries (S, H, A...) do not count."""
+        if not self.plain_moves_enabled or line_hooks:
+            return None
+        out = {}
+        for code in ("G0", "G1"):
+            always, filtered, apply = build(Command(code, GCODE, 1, {}))
+            if any(not letters.isdisjoint("XYZEF") for _, letters in filtered):
+                return None
+            if getattr(apply, "func", None) != interpreter._motion or apply.keywords != {"mode": code}:
+                return None
+            filters = tuple(getattr(handler.__self__, "plain_filter", None) for handler in always)
+            if None in filters:
+                return None
+            out[code[1]] = (code, filters)
+        return out
 
 
 def _rule_failed(result: FileResult, rule: type[Rule], exc: Exception, line_number: int | None) -> None:

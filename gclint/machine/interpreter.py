@@ -205,14 +205,47 @@ class Interpreter:
         if mode in _MOTION:
             st.motion_mode = mode
         if "E" in p:
-            self._extrude(p["E"], mode, line)
+            self._extrude(p["E"], mode, line.number)
         if self.is_hyrel and "H" in p:
             register = _int(p["H"])
             if register != st.applied_height_register or st.applied_height_line is None:
                 st.applied_height_line = line.number
             st.applied_height_register = register
 
-    def _extrude(self, e: str | None, mode: str, line: Line) -> None:
+    def plain_move(
+        self, mode: str, number: int, x: str | None, y: str | None, z: str | None, e: str | None, f: str | None
+    ) -> None:
+        """``_motion`` for the commonest line, a G0/G1 with nothing but X Y Z E F words holding plain
+        numbers (the engine matches those lines without building a tree; values are source texts)."""
+        st = self.state
+        if st.absolute:
+            values = st.position.values
+            if x is not None:
+                values["X"] = x
+            if y is not None:
+                values["Y"] = y
+            if z is not None:
+                values["Z"] = z
+        else:
+            pos = st.position
+            if x is not None:
+                pos.add("X", float(x))
+            if y is not None:
+                pos.add("Y", float(y))
+            if z is not None:
+                pos.add("Z", float(z))
+        if f is not None and not (mode == "G0" and self.g0_feed_one_shot):
+            st.feed = float(f)
+            if mode != "G0":
+                st.working_feed_set = True
+        st.moved = True
+        if st.first_move_line is None:
+            st.first_move_line = number
+        st.motion_mode = mode
+        if e is not None:
+            self._extrude(e, mode, number)
+
+    def _extrude(self, e: str | None, mode: str, number: int) -> None:
         st = self.state
         try:
             value = float(e) if e is not None else None
@@ -232,11 +265,11 @@ class Interpreter:
             if printing:
                 if not st.printed:
                     st.printed = True
-                    st.first_print_line = line.number
+                    st.first_print_line = number
                 if st.first_print_since_home_line is None:
-                    st.first_print_since_home_line = line.number
+                    st.first_print_since_home_line = number
                 if st.first_print_since_m30_line is None:
-                    st.first_print_since_m30_line = line.number
+                    st.first_print_since_m30_line = number
         if value is None:
             st.e_position = None
         elif st.e_absolute:

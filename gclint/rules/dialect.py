@@ -9,7 +9,7 @@ from __future__ import annotations
 
 from gclint.dialects.base import Param
 from gclint.rules.base import Rule, Severity, register
-from gclint.syntax.nodes import EXTENDED, GCODE, IMPLICIT, META, OWORD, TEXT, Command, Line, to_number
+from gclint.syntax.nodes import EXTENDED, GCODE, IMPLICIT, META, OWORD, TEXT, WORD_LETTERS, Command, Line, to_number
 
 
 @register
@@ -176,6 +176,12 @@ class UnknownParameter(Rule):
         }
         self.codes = tuple(self.allowed)
         self._seen: dict[tuple, tuple[str, ...]] = {}
+
+    def trigger_letters(self, code: str) -> frozenset[str] | None:
+        # Moves are the hot path: call check only when a G0/G1 has a letter the dialect does not allow.
+        if code in ("G0", "G1") and code in self.allowed:
+            return WORD_LETTERS - self.allowed[code]
+        return None
 
     def check(self, line: Line, cmd: Command) -> None:
         if cmd.params.keys() <= self.allowed[cmd.code]:  # type: ignore[index]

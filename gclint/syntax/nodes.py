@@ -32,6 +32,9 @@ OWORD = "oword"  # LinuxCNC O-words: o100 if [#1 GT 2]
 ASSIGNMENT = "assignment"  # LinuxCNC parameter assignment: #1 = 5
 PERCENT = "percent"  # % program delimiter
 
+# Every letter a word can have (grammar.lark: A-Z in either case, read as upper case, and LinuxCNC's @ ^ $).
+WORD_LETTERS = frozenset("ABCDEFGHIJKLMNOPQRSTUVWXYZ@^$")
+
 _STRICT_NUMBER = re.compile(r"[-+]?(?:\d+(?:\.\d*)?|\.\d+)|0x[0-9A-Fa-f]+")  # unambiguous: linear time
 
 

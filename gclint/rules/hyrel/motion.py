@@ -78,12 +78,44 @@ class MoveChecks:
         if leader is None or (not own_codes and not checks.direct):
             if leader is not None:  # hand over: the old leader goes back to its own codes and check
                 del leader.check
+                del leader.plain_filter
                 leader.codes = tuple(c for c in leader.codes if c not in _MOVES)  # type: ignore[misc]
             checks.leader = rule
             checks.direct = not own_codes
             rule.codes = (*own_codes, *_MOVES)  # type: ignore[misc]
             rule.check = MethodType(_listen if not own_codes else _listen_and_own, rule)  # type: ignore[method-assign]
+            rule.plain_filter = checks.wants_plain  # type: ignore[attr-defined]
         return checks
+
+    def wants_plain(
+        self, mode: str, x: str | None, y: str | None, z: str | None, e: str | None, f: str | None
+    ) -> bool:
+        """Whether ``_listen`` would call a member for a plain move (a G0/G1 with only X Y Z E F words,
+        given as source texts or None): the engine builds the line's tree only then.  Mirrors
+        ``_listen`` for lines without S, A or B; tests/test_plain_moves.py checks that they agree."""
+        st = self.state
+        if st.motors_off_line is not None and self.motors_off is not None:
+            return True
+        if mode == "G1":
+            if e is not None:
+                travel = self.travel_prints
+                if travel is not None and st.flow_mode == NATIVE:
+                    if not (
+                        (x is not None or y is not None)
+                        and (
+                            (not st.e_absolute and e[0] != "-" and e.strip("+0."))
+                            or (e == travel.fine and (not st.e_absolute or st.e_position == travel.fine_value))
+                        )
+                    ):
+                        return True
+                if self.relative_print is not None and not st.absolute:
+                    return True
+                if self.slicer_e is not None:
+                    return True
+            if self.feed_undefined is not None and not st.working_feed_set:
+                return True
+            return self.inverse_time is not None
+        return e is not None and self.rapid_e is not None
 
     def check(self, line: Line, cmd: Command) -> None:
         """Run the G0/G1 checks of every member on one line."""

@@ -177,6 +177,9 @@ class ToolHeightRegister(ParamTableRule):
         self.warned: set[int] = set()
         self.reset_by_m30: dict[int, int] = {}  # register -> M30 line that reset it
 
+    def trigger_letters(self, code: str) -> frozenset[str] | None:
+        return frozenset("H") if code in ("G0", "G1") else None  # a move matters only when it applies H
+
     def check(self, line: Line, cmd: Command) -> None:
         params = cmd.params
         code = cmd.code

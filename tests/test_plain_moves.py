@@ -1,0 +1,120 @@
+"""The plain-move route (engine.Linter._run): G0/G1 lines that no rule would look at skip the tree.
+
+It must change nothing but speed: the same findings and the same machine state as the general route,
+on every corpus file and on generated jobs, in every dialect.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+
+import pytest
+from hypothesis import given
+from hypothesis import strategies as st
+
+from gclint import dialects
+from gclint.engine import FileContext, FileResult, Linter, Options
+from gclint.syntax.fastpath import PLAIN_MOVE
+from gclint.syntax.source import Source
+from tests.conftest import CORPUS, needs_corpus
+from tests.strategies import DIALECTS, any_line, numbers
+
+FOLDER_DIALECT = {"hyrel": "hyrel-v4", "linuxcnc": "machinekit"}
+
+
+def _run(text_or_path: str, dialect: str, plain: bool, *, is_path: bool = False):
+    linter = Linter(Options(dialect=dialect))
+    linter.plain_moves_enabled = plain
+    source = Source.open(text_or_path) if is_path else Source.from_text(text_or_path, "<t>")
+    d = dialects.get(dialect) if dialect != "auto" else dialects.detect(source.head_text(), text_or_path)[0]
+    ctx = FileContext(source.display, d, linter.profile, linter.options)
+    result = FileResult(source.display)
+    linter._run(source, ctx, result)
+    findings = sorted((f.line, f.column, f.code, f.message) for f in ctx.findings)
+    state = {
+        f.name: getattr(ctx.state, f.name) for f in dataclasses.fields(ctx.state) if f.name != "position"
+    }
+    state["position"] = ctx.state.position.snapshot()
+    return findings, state, result.error
+
+
+def _same(text_or_path: str, dialect: str, *, is_path: bool = False) -> None:
+    fast = _run(text_or_path, dialect, True, is_path=is_path)
+    slow = _run(text_or_path, dialect, False, is_path=is_path)
+    assert fast == slow
+
+
+def test_the_pattern_takes_only_plain_moves():
+    for line in ["G1 X10 Y20 E.5", "G0 F7200 X1 Y2 Z.3", "G1 E-.8 F2100", "G1 Z.2 F720", "G1", "G0 X1.  "]:
+        assert PLAIN_MOVE.fullmatch(line), line
+    for line in ["G1 X10 Y20 E.5 ; c", "G1 Y1 X2", "G01 X1", "G10 X1", "g1 x1", " G1 X1", "G1 X1 H2", "G1X1"]:
+        assert not PLAIN_MOVE.fullmatch(line), line
+    assert PLAIN_MOVE.fullmatch("G1 X" + "9" * 31) is None  # long numbers go to the grammar (SX006)
+
+
+def test_the_route_is_taken_where_no_rule_looks():
+    linter = Linter(Options(dialect="marlin"))
+    source = Source.from_text("G1 X1 Y2\n", "<t>")
+    ctx = FileContext("<t>", dialects.get("marlin"), linter.profile, linter.options)
+    calls = []
+    ctx.interpreter.plain_move = lambda *a: calls.append(a)  # type: ignore[method-assign]
+    linter._run(source, ctx, FileResult("<t>"))
+    assert calls == [("G1", 1, "1", "2", None, None, None)]
+
+
+@pytest.mark.parametrize(
+    "text",
+    [
+        "G91\nG1 X1 Y2 E.5\nG1 X-1 F600\nG90\nG1 X5\n",
+        "M83\nG1 E-1 F2400\nG0 F7200 X1 Y1\nG1 X2 Y2 E0\nM82\nG1 E5\nG1 E4\n",
+        "G1 F100 X1 F200\nG1 X1 Y2 Z3 E4 F5\nM30\nG1 X2\nG0 X3 E1\n",
+        "M229 E1 D1\nM6 T12 O1\nT12\nM660 H1 Z5\nG1 X1 H1\nG1 X2 Y2 E1 F600\nM18\nG1 X3\n",
+        "G0 X1 E1\nG1 X2 S3\nG1 X" + "9" * 40 + "\n",
+    ],
+)
+@pytest.mark.parametrize("dialect", DIALECTS)
+def test_same_findings_and_state(text, dialect):
+    _same(text, dialect)
+
+
+@st.composite
+def _move(draw) -> str:
+    letters = draw(st.lists(st.sampled_from("FXYZEF"), max_size=6, unique=False))
+    words = [f"{letter}{draw(numbers())}" for letter in letters]
+    return draw(st.sampled_from(["G0", "G1"])) + "".join(" " + w for w in words)
+
+
+@given(
+    st.lists(
+        st.one_of(
+            _move(),
+            _move(),
+            st.sampled_from(["G91", "G90", "M82", "M83", "M30", "G92 E0", "M18", "M84", "M229 E1 D1", "G93", "G94"]),
+            any_line().filter(lambda line: "\x00" not in line),
+        ),
+        max_size=30,
+    ),
+    st.sampled_from(DIALECTS),
+)
+def test_same_on_generated_jobs(lines, dialect):
+    _same("\n".join(lines) + "\n", dialect)
+
+
+def _corpus_files() -> list:
+    if not CORPUS.is_dir():
+        return []
+    out = []
+    for folder in sorted(p for p in CORPUS.iterdir() if p.is_dir()):
+        for path in sorted(folder.rglob("*")):
+            if path.is_file() and path.suffix.lower() in (".gcode", ".gco", ".g", ".nc", ".ngc", ".cnc", ".tap"):
+                out.append((folder.name, path))
+    return out
+
+
+@needs_corpus
+@pytest.mark.parametrize("folder,path", _corpus_files(), ids=lambda v: getattr(v, "name", v))
+def test_same_on_the_corpus(folder, path):
+    dialect = FOLDER_DIALECT.get(folder, "auto")
+    _same(str(path), dialect, is_path=True)
+    if dialect != "hyrel-v4":
+        _same(str(path), "hyrel", is_path=True)  # every Hyrel rule on, the most G1 listeners
