@@ -7,7 +7,7 @@ from __future__ import annotations
 
 import re
 
-from gclint.dialects.base import Code, Dialect, Param
+from gclint.dialects.base import Code, Dialect, HeadScan, Param
 from gclint.dialects.carvera import CARVERA
 from gclint.dialects.hyrel import HYREL_V4, HYREL_V5
 from gclint.dialects.machinekit import MACHINEKIT
@@ -55,7 +55,8 @@ def detect(head: str, path: str = "", env_flavor: str | None = None) -> tuple[Di
     Order: a ``; gclint: dialect=NAME`` directive, then a slicer flavour from the environment
     (``SLIC3R_GCODE_FLAVOR``), then the best-scoring header patterns, else ``hyrel``.
     """
-    m = _DIRECTIVE.search(head)
+    scan = HeadScan(head)
+    m = _DIRECTIVE.search(head) if "gclint" in scan.lowered else None
     if m:
         try:
             return get(m.group(1)), f"'gclint: dialect={m.group(1)}' directive"
@@ -68,7 +69,7 @@ def detect(head: str, path: str = "", env_flavor: str | None = None) -> tuple[Di
             return get(mapped), f"slicer flavour {env_flavor!r}"
     best, best_score = DEFAULT, 0
     for dialect in _ALL:
-        score = dialect.detection.score(head, path)
+        score = dialect.detection.score(scan, path)
         if score > best_score:
             best, best_score = dialect, score
     if best_score == 0:

@@ -9,6 +9,7 @@ from __future__ import annotations
 import re
 from collections.abc import Callable, Iterable, Mapping
 from dataclasses import dataclass, field, replace
+from functools import lru_cache
 
 
 @dataclass(frozen=True)
@@ -130,19 +131,97 @@ def span(letter: str, first: int, last: int) -> str:
     return " ".join(f"{letter}{i}" for i in range(first, last + 1))
 
 
+_FLAGS = re.compile(r"\(\?([im]+)\)")
+_LITERALS = re.compile(r"[\w ]+(?:\|[\w ]+)*")  # "repetrel|hyrel": plain words, one of which must occur
+_LEADING = re.compile(r"\^?(?:\\s\*)?;?(?:\\s\*)?([A-Za-z0-9_]+)(.?)")  # "^\s*M229\b" -> "M229"
+
+
+@lru_cache(maxsize=None)
+def _plan(pattern: str) -> tuple[re.Pattern[str], tuple[str, ...], bool]:
+    """How to test ``pattern`` quickly: the compiled pattern, the texts one of which must occur in the head
+    for it to match (empty: no such test), and whether that test ignores case."""
+    flags = _FLAGS.match(pattern)
+    body = pattern[flags.end() :] if flags else pattern
+    ignore_case = bool(flags and "i" in flags.group(1))
+    compiled = re.compile(pattern, re.MULTILINE)
+    if _LITERALS.fullmatch(body):
+        return compiled, tuple(body.split("|")), ignore_case
+    lead = _LEADING.match(body)
+    if lead is None or _top_level_alternation(body):
+        return compiled, (), ignore_case
+    literal = lead.group(1)
+    if lead.group(2) in ("?", "*", "{"):  # the last character is optional
+        literal = literal[:-1]
+    return compiled, ((literal,) if len(literal) >= 2 else ()), ignore_case
+
+
+def _top_level_alternation(pattern: str) -> bool:
+    """Whether ``pattern`` has a ``|`` outside every group and character class."""
+    depth, i, in_class = 0, 0, False
+    while i < len(pattern):
+        c = pattern[i]
+        if c == "\\":
+            i += 2
+            continue
+        if in_class:
+            in_class = c != "]"
+        elif c == "[":
+            in_class = True
+        elif c == "(":
+            depth += 1
+        elif c == ")":
+            depth -= 1
+        elif c == "|" and depth == 0:
+            return True
+        i += 1
+    return False
+
+
+class HeadScan:
+    """The head of one file, asked by every dialect's ``Detection``: each pattern is tested once, and a
+    pattern whose required text does not occur in the head is not run (most patterns, on most files)."""
+
+    def __init__(self, head: str) -> None:
+        self.head = head
+        self._lowered: str | None = None
+        self._seen: dict[str, bool] = {}
+
+    @property
+    def lowered(self) -> str:
+        if self._lowered is None:
+            self._lowered = self.head.lower()
+        return self._lowered
+
+    def matches(self, pattern: str) -> bool:
+        found = self._seen.get(pattern)
+        if found is None:
+            compiled, needed, ignore_case = _plan(pattern)
+            if needed:
+                text = self.lowered if ignore_case else self.head
+                if ignore_case:
+                    needed = tuple(n.lower() for n in needed)
+                if not any(n in text for n in needed):
+                    self._seen[pattern] = False
+                    return False
+            found = self._seen[pattern] = compiled.search(self.head) is not None
+        return found
+
+
 @dataclass(frozen=True)
 class Detection:
-    """How ``--dialect auto`` recognises a file: regular expressions over the file's head, each with a
-    weight.  The dialect with the highest total wins; ties and zero scores fall back to ``hyrel``."""
+    """How ``--dialect auto`` recognises a file: regular expressions over the file's head (multi-line
+    mode), each with a weight.  The dialect with the highest total wins; ties and zero scores fall back
+    to ``hyrel``."""
 
     patterns: tuple[tuple[str, int], ...] = ()
     extensions: tuple[str, ...] = ()
     extension_weight: int = 1
 
-    def score(self, head: str, path: str) -> int:
+    def score(self, head: str | HeadScan, path: str) -> int:
+        scan = head if isinstance(head, HeadScan) else HeadScan(head)
         total = 0
         for pattern, weight in self.patterns:
-            if re.search(pattern, head, re.MULTILINE):
+            if scan.matches(pattern):
                 total += weight
         if path.lower().endswith(self.extensions):
             total += self.extension_weight

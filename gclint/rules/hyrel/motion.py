@@ -95,20 +95,15 @@ class MoveChecks:
         ``_listen`` for lines without S, A or B; tests/test_plain_moves.py checks that they agree."""
         st = self.state
         if st.motors_off_line is not None and self.motors_off is not None:
-            return True
+            if st.motors_off_line != self.motors_off.reported_for:
+                return True
         if mode == "G1":
             if e is not None:
                 travel = self.travel_prints
                 if travel is not None and st.flow_mode == NATIVE:
-                    if not (
-                        (x is not None or y is not None)
-                        and (
-                            (not st.e_absolute and e[0] != "-" and e.strip("+0."))
-                            or (e == travel.fine and (not st.e_absolute or st.e_position == travel.fine_value))
-                        )
-                    ):
+                    if (x is None and y is None) or not _prints_forward(st, travel, e):
                         return True
-                if self.relative_print is not None and not st.absolute:
+                if self.relative_print is not None and not st.absolute and not self.relative_print.reported:
                     return True
                 if self.slicer_e is not None:
                     return True
@@ -123,6 +118,22 @@ class MoveChecks:
         _listen(self.leader, line, cmd)
 
 
+def _prints_forward(st, travel: TravelMarkedPrinting, e: str) -> bool:
+    """Whether a G1 with X or Y and this E text is a move HY031 finds fine (it extrudes forward), decided
+    without a call to the rule for the common moves: a positive relative amount (slicers, M83), the
+    same amount as the last good move while the E position still equals it (native jobs write E1 on
+    every printing move), or an absolute E that goes forward (slicers, M82)."""
+    if st.e_absolute:
+        if e == travel.fine and st.e_position == travel.fine_value:
+            return True
+        try:
+            value = float(e)
+        except ValueError:
+            return False
+        return value > 0 and (st.e_position is None or value >= st.e_position)
+    return e == travel.fine or (e[0] != "-" and bool(e.strip("+0.")))
+
+
 def _listen(leader: Rule, line: Line, cmd: Command) -> None:
     """The G0/G1 hook: calls each member only when the line has what it looks for."""
     self: MoveChecks = leader.move_checks  # type: ignore[attr-defined]
@@ -132,20 +143,10 @@ def _listen(leader: Rule, line: Line, cmd: Command) -> None:
         if "E" in p:
             travel = self.travel_prints
             if travel is not None and st.flow_mode == NATIVE:
-                # Skip the call for the common printing moves, without converting E: a positive relative
-                # amount (slicers, M83), or the same amount as the last good move while the E position
-                # still equals it (native jobs write E1 on every printing move).
                 e = p["E"]
-                if not (
-                    ("X" in p or "Y" in p)
-                    and e is not None
-                    and (
-                        (not st.e_absolute and e[0] != "-" and e.strip("+0."))
-                        or (e == travel.fine and (not st.e_absolute or st.e_position == travel.fine_value))
-                    )
-                ):
+                if e is None or not ("X" in p or "Y" in p) or not _prints_forward(st, travel, e):
                     travel.move(line, cmd)
-            if self.relative_print is not None and not st.absolute:
+            if self.relative_print is not None and not st.absolute and not self.relative_print.reported:
                 self.relative_print.move(line, cmd)
             if self.slicer_e is not None:
                 self.slicer_e.move(line, cmd)
@@ -158,7 +159,8 @@ def _listen(leader: Rule, line: Line, cmd: Command) -> None:
     elif "E" in p and self.rapid_e is not None:
         self.rapid_e.move(line, cmd)
     if st.motors_off_line is not None and self.motors_off is not None:
-        self.motors_off.move(line, cmd)
+        if st.motors_off_line != self.motors_off.reported_for:
+            self.motors_off.move(line, cmd)
     if self.axis_on_model is not None and ("A" in p or "B" in p):
         self.axis_on_model.move(line, cmd)
 
