@@ -35,8 +35,7 @@ def measure(task: str, paths: list[str]) -> dict:
     return json.loads(out.stdout.strip().splitlines()[-1])
 
 
-def main() -> None:
-    paths = sys.argv[1:] or [str(DEFAULT)]
+def available_tasks() -> list[str]:
     tasks = list(TASKS)
     try:
         import gcodeparser  # noqa: F401
@@ -45,25 +44,39 @@ def main() -> None:
         print("(gcodeparser not installed: pip install gcodeparser, or pip install -e '.[bench]')")
     if COMPILED:
         tasks += ["check (mypyc)", "check-hyrel (mypyc)"]
+    return tasks
+
+
+def run(tasks: list[str], paths: list[str], rounds: int = ROUNDS) -> dict[str, dict]:
+    """The fastest of ``rounds`` interleaved rounds of each task (a fresh process each)."""
     best: dict[str, dict] = {}
-    for _ in range(ROUNDS):
+    for _ in range(rounds):
         for task in tasks:
             r = measure(task, paths)
             if task not in best or r["seconds"] < best[task]["seconds"]:
                 best[task] = r
-    base = best["regex"]["lines"] / best["regex"]["seconds"]
+    return best
+
+
+def speed(result: dict) -> float:
+    return result["lines"] / result["seconds"]
+
+
+def main() -> None:
+    paths = sys.argv[1:] or [str(DEFAULT)]
+    tasks = available_tasks()
+    best = run(tasks, paths)
+    base = speed(best["regex"])
     print(f"{'task':<22}{'lines':>12}{'seconds':>10}{'lines/s':>12}{'vs regex':>10}{'peak MB':>10}")
     for task in tasks:
         r = best[task]
-        speed = r["lines"] / r["seconds"]
         print(
-            f"{task:<22}{r['lines']:>12,}{r['seconds']:>10.2f}{speed:>12,.0f}{speed / base:>9.2f}x{r['peak_mb']:>10.0f}"
+            f"{task:<22}{r['lines']:>12,}{r['seconds']:>10.2f}{speed(r):>12,.0f}{speed(r) / base:>9.2f}x{r['peak_mb']:>10.0f}"
         )
     if "gcodeparser" in best:
-        gp = best["gcodeparser"]["lines"] / best["gcodeparser"]["seconds"]
+        gp = speed(best["gcodeparser"])
         for task in [t for t in tasks if t.startswith("check")]:
-            speed = best[task]["lines"] / best[task]["seconds"]
-            print(f"{task:<22} vs gcodeparser: {speed / gp:.2f}x")
+            print(f"{task:<22} vs gcodeparser: {speed(best[task]) / gp:.2f}x")
 
 
 if __name__ == "__main__":

@@ -20,7 +20,6 @@ import os
 import re
 import tomllib
 from dataclasses import replace
-from functools import lru_cache
 from pathlib import Path
 
 from gclint.engine import Options
@@ -97,8 +96,24 @@ _KEYS = {
 }
 
 
+_LOADED: dict[tuple, dict] = {}  # (file, mtime, size) -> its table, for the current run (read-only)
+
+
 def load_file(path: Path) -> dict:
-    """The gclint table of a configuration file ({} when a pyproject.toml has none)."""
+    """The gclint table of a configuration file ({} when a pyproject.toml has none); parsed once per
+    run unless the file changes."""
+    try:
+        st = path.stat()
+    except OSError:
+        return _read_file(path)  # says why, as a ConfigError
+    key = (path, st.st_mtime_ns, st.st_size)
+    table = _LOADED.get(key)
+    if table is None:
+        table = _LOADED[key] = _read_file(path)
+    return table
+
+
+def _read_file(path: Path) -> dict:
     try:
         with open(path, "rb") as fh:
             data = tomllib.load(fh)
@@ -169,23 +184,56 @@ def apply(options: Options, table: dict, path: Path) -> Options:
     return replace(options, **changes)
 
 
-@lru_cache(maxsize=1024)
+_FOUND: dict[Path, Path | None] = {}  # folder -> its nearest configuration file, for the current run
+_BY_NAME: dict[str, Path | None] = {}  # the same, by the folder name as given
+_UNKNOWN = object()
+
+
 def find_config(directory: str) -> Path | None:
     """The nearest configuration file at or above ``directory`` (a pyproject.toml counts only with
-    a [tool.gclint] table).  Cached: ``runner.run`` clears the cache at the start of every run, so
-    files are looked up once per folder per run and a configuration written between runs is seen."""
-    current = Path(directory).resolve()
-    for folder in (current, *current.parents):
-        for name in CONFIG_NAMES:
-            candidate = folder / name
-            if candidate.is_file():
-                if name == "pyproject.toml":
-                    try:
-                        if not load_file(candidate):
-                            continue
-                    except ConfigError:
-                        raise
-                return candidate
+    a [tool.gclint] table).  Cached per folder, parents included (sibling folders share their
+    parents' answer); ``runner.run`` clears the cache at the start of every run, so a configuration
+    written between runs is seen."""
+    answer = _BY_NAME.get(directory, _UNKNOWN)
+    if answer is not _UNKNOWN:
+        return answer  # type: ignore[return-value]
+    answer = _BY_NAME[directory] = _find_config(Path(directory).resolve())
+    return answer
+
+
+def _find_config(folder: Path) -> Path | None:
+    visited: list[Path] = []
+    found: Path | None = None
+    while True:
+        if folder in _FOUND:
+            found = _FOUND[folder]
+            break
+        visited.append(folder)
+        found = _config_in(folder)
+        if found is not None or folder.parent == folder:
+            break
+        folder = folder.parent
+    for seen in visited:
+        _FOUND[seen] = found
+    return found
+
+
+def _clear() -> None:
+    _FOUND.clear()
+    _BY_NAME.clear()
+    _LOADED.clear()
+
+
+find_config.cache_clear = _clear  # type: ignore[attr-defined]
+
+
+def _config_in(folder: Path) -> Path | None:
+    for name in CONFIG_NAMES:
+        candidate = folder / name
+        if candidate.is_file():
+            if name == "pyproject.toml" and not load_file(candidate):
+                continue
+            return candidate
     return None
 
 

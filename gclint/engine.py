@@ -418,7 +418,6 @@ class Linter:
             except Exception as exc:
                 disable(r.finish, exc, None)
 
-
     plain_moves_enabled = True  # the tests switch this off to compare
 
     def _plain_moves(

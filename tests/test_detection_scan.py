@@ -5,7 +5,6 @@ from __future__ import annotations
 
 import re
 
-import pytest
 from hypothesis import given
 from hypothesis import strategies as st
 
@@ -28,9 +27,34 @@ def test_top_level_alternation():
     assert not _top_level_alternation(r"x\|y")
 
 
-@given(st.lists(st.sampled_from(["M229", "m229", " M6 T12 O1", "; Repetrel", "HYREL", "G1 X1 A2", "M8", "M82",
-                                 "; FLAVOR:Marlin", ";flavor: reprap", "o100 sub", "echo hi", "\n", " ", "\r",
-                                 "carvera", "G22", "M104 P1 S200", ";gcode_flavor = marlin2"]), max_size=12))
+@given(
+    st.lists(
+        st.sampled_from(
+            [
+                "M229",
+                "m229",
+                " M6 T12 O1",
+                "; Repetrel",
+                "HYREL",
+                "G1 X1 A2",
+                "M8",
+                "M82",
+                "; FLAVOR:Marlin",
+                ";flavor: reprap",
+                "o100 sub",
+                "echo hi",
+                "\n",
+                " ",
+                "\r",
+                "carvera",
+                "G22",
+                "M104 P1 S200",
+                ";gcode_flavor = marlin2",
+            ]
+        ),
+        max_size=12,
+    )
+)
 def test_same_answers_on_generated_heads(parts):
     head = "".join(parts)
     scan = HeadScan(head)

@@ -31,9 +31,7 @@ def _run(text_or_path: str, dialect: str, plain: bool, *, is_path: bool = False)
     result = FileResult(source.display)
     linter._run(source, ctx, result)
     findings = sorted((f.line, f.column, f.code, f.message) for f in ctx.findings)
-    state = {
-        f.name: getattr(ctx.state, f.name) for f in dataclasses.fields(ctx.state) if f.name != "position"
-    }
+    state = {f.name: getattr(ctx.state, f.name) for f in dataclasses.fields(ctx.state) if f.name != "position"}
     state["position"] = ctx.state.position.snapshot()
     return findings, state, result.error
 

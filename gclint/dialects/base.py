@@ -9,7 +9,7 @@ from __future__ import annotations
 import re
 from collections.abc import Callable, Iterable, Mapping
 from dataclasses import dataclass, field, replace
-from functools import lru_cache
+from functools import cache
 
 
 @dataclass(frozen=True)
@@ -136,7 +136,7 @@ _LITERALS = re.compile(r"[\w ]+(?:\|[\w ]+)*")  # "repetrel|hyrel": plain words,
 _LEADING = re.compile(r"\^?(?:\\s\*)?;?(?:\\s\*)?([A-Za-z0-9_]+)(.?)")  # "^\s*M229\b" -> "M229"
 
 
-@lru_cache(maxsize=None)
+@cache
 def _plan(pattern: str) -> tuple[re.Pattern[str], tuple[str, ...], bool]:
     """How to test ``pattern`` quickly: the compiled pattern, the texts one of which must occur in the head
     for it to match (empty: no such test), and whether that test ignores case."""

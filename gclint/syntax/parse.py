@@ -7,7 +7,6 @@ sliced job: retractions, fan and temperature commands, comment banners) share on
 from __future__ import annotations
 
 from gclint.syntax.fastpath import parse_fast
-from gclint.syntax.larkparse import parse_with_lark
 from gclint.syntax.nodes import ParsedLine
 
 _CACHE: dict[str, ParsedLine] = {}
@@ -43,4 +42,6 @@ def parse_slow(raw: str) -> ParsedLine:
             ),
             kind="error",
         )
+    from gclint.syntax.larkparse import parse_with_lark  # imported on first use: most files never need lark
+
     return parse_with_lark(raw)

@@ -32,7 +32,7 @@ from gclint.rules.base import Finding
 from gclint.rules.translation import TR_NAME, TR_SEVERITY
 from gclint.syntax.nodes import ASSIGNMENT, EXTENDED, GCODE, IMPLICIT, META, OWORD, TEXT, Command, Line, to_number
 from gclint.translate import arcs
-from gclint.translate.engine import TranslationResult, Translator
+from gclint.translate.engine import PlainMove, TranslationResult, Translator
 from gclint.translate.options import TranslateOptions
 from gclint.translate.output import LineEdit, fmt, rewrite
 
@@ -84,6 +84,9 @@ class HyrelTranslator(Translator):
     FAN_MAX = 255.0  # the source's full fan value
     EXTRA_LETTERS: ClassVar[frozenset[str]] = frozenset()  # letters that make ``move`` call ``move_extra``
     MAX_RPM: ClassVar[float | None] = None  # the source machine's top spindle speed (an assumption for %)
+    # A subclass whose ``move`` differs from this class's only for words a plain move never has (H, S, R...)
+    # says so, to keep plain moves off the tree (``plain_route``).
+    MOVE_OVERRIDE_IGNORES_PLAIN: ClassVar[bool] = False
 
     def __init__(self, source: Dialect, target: Dialect, options: TranslateOptions | None = None) -> None:
         super().__init__(source, target, options)
@@ -585,6 +588,62 @@ class HyrelTranslator(Translator):
             self.consume(cmd)  # nothing left to move (the words were dropped, with their findings)
             return
         self.replace(cmd, rewrite(cmd, code=out_code, drop=drop, values=values, add=add, rename=rename))
+
+    def plain_route(self) -> PlainMove | None:
+        # Plain moves that ``move`` would keep unchanged skip the tree (translate_source): only where G0/G1
+        # go to this class's ``move`` with E as the extrusion word and no extra letters among X Y Z E F,
+        # and the source interpreter applies them with its motion handler.
+        if (
+            self.EXTRUDER != "E"
+            or not self.EXTRA_LETTERS.isdisjoint("XYZEF")
+            or (type(self).move is not HyrelTranslator.move and not self.MOVE_OVERRIDE_IGNORES_PLAIN)
+            or type(self).translate_line is not HyrelTranslator.translate_line
+        ):
+            return None
+        for code in ("G0", "G1"):
+            apply = self.interp.handler_for(Command(code, GCODE, 1, {}))
+            if self.handlers.get(code) != self.move or getattr(apply, "func", None) != self.interp._motion:
+                return None
+        return self.plain_move
+
+    def plain_move(
+        self,
+        g1: bool,
+        number: int,
+        x: str | None,
+        y: str | None,
+        z: str | None,
+        e: str | None,
+        f: str | None,
+        ending: str,
+    ) -> bool:
+        """``translate_line`` for a plain move when ``move`` would leave it unchanged (True), else False
+        with nothing done.  The unchanged case of ``move``: motion started, no re-homing due, no inch
+        conversion or extra words, an extruding G1 with E values on (M229 written), and a feed that
+        Hyrel already has.  tests/test_translate_plain.py checks that the output is the same without."""
+        if self.ended or not self.started_motion or self.motors_off or self.inch or self.extra_always:
+            return False
+        st = self.state
+        if e is not None:
+            if not g1 or (x is None and y is None and z is None) or not self.evalues or not self.m229_written:
+                return False
+            delta = float(e)
+            if st.e_absolute and st.e_position is not None:
+                delta -= st.e_position
+            if not delta > 0:
+                return False
+        if g1:
+            if f is not None:
+                self.hy_feed = float(f)
+            elif st.feed is not None and st.feed != self.hy_feed:
+                return False
+        self._last_ending = ending
+        if not self._ending_known and ending:
+            self.default_ending = ending
+            self._ending_known = True
+        self.wrote_command = True
+        self.interp.plain_move("G1" if g1 else "G0", number, x, y, z, e, f)
+        return True
 
     def move_extra(self, cmd: Command, rapid: bool) -> tuple[str, tuple[str, ...]] | None:
         """Dialect hook: (letters to drop, words to add) for a move; None for no change."""

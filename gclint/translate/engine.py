@@ -3,11 +3,12 @@ output lines; the identity translator (same dialect on both sides) keeps every l
 
 from __future__ import annotations
 
-from collections.abc import Iterator
+from collections.abc import Callable, Iterator
 from dataclasses import dataclass, field
 
 from gclint.dialects.base import Dialect
 from gclint.rules.base import Finding
+from gclint.syntax.fastpath import PLAIN_MOVE
 from gclint.syntax.nodes import Line
 from gclint.syntax.parse import parse_line
 from gclint.syntax.source import Source
@@ -46,6 +47,21 @@ class Translator:
     def finish(self, result: TranslationResult) -> Iterator[str]:
         return iter(())
 
+    def plain_route(self) -> PlainMove | None:
+        """A function that takes a plain move (``syntax.fastpath.PLAIN_MOVE``: a G0/G1 with only X Y Z E F
+        numbers) without its tree and says whether it leaves the line unchanged (True; it has then
+        applied it to its state), or None when every line must go through ``translate_line``.  The
+        identity keeps every line."""
+        return _keep if type(self).translate_line is Translator.translate_line else None
+
+
+# (is G1, line number, X, Y, Z, E, F as source texts or None, line ending) -> the line is kept unchanged
+PlainMove = Callable[[bool, int, "str | None", "str | None", "str | None", "str | None", "str | None", str], bool]
+
+
+def _keep(g1: bool, number: int, x, y, z, e, f, ending: str) -> bool:
+    return True
+
 
 def translator_for(source: Dialect, target: Dialect, options=None) -> Translator:
     if source.name == target.name:
@@ -67,11 +83,22 @@ def translate_source(source: Source, translator: Translator, result: Translation
     yield from translator.start(result)
     number = 0
     translate = translator.translate_line
+    plain = translator.plain_route()  # plain moves the translator keeps as they are skip the tree
+    plain_match = PLAIN_MOVE.fullmatch
     for chunk in source.chunks():
         parts: list[str] = []
         extend = parts.extend
         for raw, ending in chunk:
             number += 1
+            if plain is not None and raw[:1] == "G":
+                m = plain_match(raw)
+                if m is not None:
+                    digit, f_first, x, y, z, e, f = m.groups()
+                    if (f_first is None or f is None) and plain(
+                        digit == "1", number, x, y, z, e, f if f is not None else f_first, ending
+                    ):
+                        extend((raw, ending))
+                        continue
             extend(translate(Line(number, raw, ending, parse_line(raw)), result))
         if parts:
             yield "".join(parts)

@@ -642,6 +642,7 @@ class RepRapToHyrel(MarlinToHyrel):
     E_MODE_FOLLOWS_POSITIONING = None  # RepRapFirmware: G90/G91 leave the E mode alone
     CHECK_EXPRESSIONS = True
     END_CODES = frozenset({"M2"})
+    MOVE_OVERRIDE_IGNORES_PLAIN = True  # move() below adds cases for H, S and R words only
 
     def move(self, cmd: Command) -> None:
         params = cmd.params

@@ -87,22 +87,23 @@ class MoveChecks:
             rule.plain_filter = checks.wants_plain  # type: ignore[attr-defined]
         return checks
 
-    def wants_plain(
-        self, mode: str, x: str | None, y: str | None, z: str | None, e: str | None, f: str | None
-    ) -> bool:
+    def wants_plain(self, mode: str, x: str | None, y: str | None, z: str | None, e: str | None, f: str | None) -> bool:
         """Whether ``_listen`` would call a member for a plain move (a G0/G1 with only X Y Z E F words,
         given as source texts or None): the engine builds the line's tree only then.  Mirrors
         ``_listen`` for lines without S, A or B; tests/test_plain_moves.py checks that they agree."""
         st = self.state
-        if st.motors_off_line is not None and self.motors_off is not None:
-            if st.motors_off_line != self.motors_off.reported_for:
-                return True
+        motors_off = self.motors_off
+        if motors_off is not None and st.motors_off_line is not None and st.motors_off_line != motors_off.reported_for:
+            return True
         if mode == "G1":
             if e is not None:
                 travel = self.travel_prints
-                if travel is not None and st.flow_mode == NATIVE:
-                    if (x is None and y is None) or not _prints_forward(st, travel, e):
-                        return True
+                if (
+                    travel is not None
+                    and st.flow_mode == NATIVE
+                    and ((x is None and y is None) or not _prints_forward(st, travel, e))
+                ):
+                    return True
                 if self.relative_print is not None and not st.absolute and not self.relative_print.reported:
                     return True
                 if self.slicer_e is not None:
@@ -158,9 +159,9 @@ def _listen(leader: Rule, line: Line, cmd: Command) -> None:
             self.inverse_time.move(line, cmd)
     elif "E" in p and self.rapid_e is not None:
         self.rapid_e.move(line, cmd)
-    if st.motors_off_line is not None and self.motors_off is not None:
-        if st.motors_off_line != self.motors_off.reported_for:
-            self.motors_off.move(line, cmd)
+    motors_off = self.motors_off
+    if motors_off is not None and st.motors_off_line is not None and st.motors_off_line != motors_off.reported_for:
+        motors_off.move(line, cmd)
     if self.axis_on_model is not None and ("A" in p or "B" in p):
         self.axis_on_model.move(line, cmd)
 
