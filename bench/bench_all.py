@@ -4,6 +4,7 @@
 
 1. lines/s of ``check --jobs 1`` (all default rules; and ``--dialect hyrel``, every HY rule on) against
    the bare regex tokenizer and gcodeparser on the marlin folder (bench_check.py);
+   and the same folder translated to Hyrel checked with every rule (real Hyrel jobs, ``auto`` -> hyrel);
 2. translate (marlin -> hyrel) against check on the same files, in process (bench_check.py's tasks);
 3. ``--jobs 2`` against ``--jobs 1`` on the whole corpus, and a cached second run against the first
    (bench_scale.py, real ``gclint`` commands);
@@ -28,6 +29,27 @@ import bench_memory  # noqa: E402
 import bench_scale  # noqa: E402
 
 
+def translate_folder(folder: Path, out: str) -> None:
+    """Translate every job of ``folder`` (Marlin) to Hyrel into ``out`` (not timed)."""
+    from gclint import dialects
+    from gclint.syntax.source import Source
+    from gclint.translate.engine import TranslationResult, translate_source, translator_for
+
+    for i, path in enumerate(bench_check_files(folder)):
+        source = Source.open(path)
+        translator = translator_for(dialects.get("marlin"), dialects.get("hyrel"))
+        result = TranslationResult(path, "marlin", "hyrel")
+        with open(os.path.join(out, f"job{i:03}.gcode"), "wb") as fh:
+            for text in translate_source(source, translator, result):
+                fh.write(source.encode(text))
+
+
+def bench_check_files(folder: Path) -> list[str]:
+    from _measure import files_of
+
+    return files_of([str(folder)])
+
+
 def main() -> None:
     corpus = Path(sys.argv[1]) if len(sys.argv) > 1 else bench_scale.DEFAULT
     marlin = [str(corpus / "marlin")]
@@ -40,6 +62,13 @@ def main() -> None:
     for task in tasks:
         print(f"  {task:<14}{speed[task]:>12,.0f} lines/s   peak {best[task]['peak_mb']:.0f} MB")
 
+    print("== 1b. Hyrel jobs: the marlin folder translated to Hyrel, checked with every rule (auto -> hyrel) ==")
+    with tempfile.TemporaryDirectory(prefix="gclint-bench-hyrel-") as folder:
+        translate_folder(corpus / "marlin", folder)
+        hyrel = bench_check.run(["regex", "check"], [folder], rounds)
+    hyrel_ratio = bench_check.speed(hyrel["check"]) / bench_check.speed(hyrel["regex"])
+    print(f"  regex {bench_check.speed(hyrel['regex']):,.0f} lines/s, check {bench_check.speed(hyrel['check']):,.0f}")
+
     print("== 3. whole runs (bench_scale.py) ==", flush=True)
     scale = bench_scale.run(corpus)
 
@@ -51,6 +80,7 @@ def main() -> None:
     rows = [
         ("check --jobs 1 vs regex baseline", speed["check"] / speed["regex"], ">= 0.5x"),
         ("check --dialect hyrel vs regex baseline", speed["check-hyrel"] / speed["regex"], ">= 0.5x"),
+        ("check of Hyrel jobs (every rule) vs regex", hyrel_ratio, ">= 0.5x"),
     ]
     if "gcodeparser" in speed:
         rows.append(("check --jobs 1 vs gcodeparser", speed["check"] / speed["gcodeparser"], ">= 2.5x"))
