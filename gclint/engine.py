@@ -105,6 +105,7 @@ class FileContext:
         self.shared: dict[str, object] = {}  # objects several rules of this file share (by name)
         self.noqa: dict[int, tuple[str, ...]] = {}
         self.directives: list[tuple[int, str, tuple[str, ...]]] = []
+        self._plain_comments: set[str] = set()  # lines whose comments hold no noqa or gclint directive
 
     def enabled(self, code: str) -> bool:
         """Whether the rule ``code`` is selected for this run."""
@@ -143,14 +144,23 @@ class FileContext:
     # -- suppression ------------------------------------------------------------------------------------
 
     def read_directives(self, line: Line) -> None:
+        raw = line.raw
+        if raw in self._plain_comments:
+            return
+        found = False
         for comment in line.parsed.comments:
             body = comment.body
             if "noqa" in body or "NOQA" in body or "gclint" in body.lower():
+                found = True
                 m = _NOQA.search(body)
                 if m:
                     self.noqa[line.number] = self.noqa.get(line.number, ()) + _codes(m.group(1))
                 for d in _DIRECTIVE.finditer(body):
                     self.directives.append((line.number, d.group(1).lower(), _codes(d.group(2))))
+        if not found:  # comment lines repeat (";TYPE:Perimeter"): remember the ones with no directive
+            if len(self._plain_comments) >= 8192:
+                self._plain_comments.clear()
+            self._plain_comments.add(raw)
 
     def suppressed(self, finding: Finding) -> bool:
         codes = self.noqa.get(finding.line)

@@ -17,6 +17,7 @@ import io
 import re
 import sys
 from collections.abc import Iterator
+from itertools import repeat
 from typing import BinaryIO
 
 CHUNK = 1 << 20
@@ -187,16 +188,16 @@ def split_lines(text: str) -> list[tuple[str, str]]:
     if "\r" not in text:
         parts = text.split("\n")
         parts.pop()  # text ends with "\n"
-        return [(p, "\n") for p in parts]
+        return list(zip(parts, repeat("\n", len(parts)), strict=True))  # pairs built in C
     if "\n" not in text:
         parts = text.split("\r")
         parts.pop()
-        return [(p, "\r") for p in parts]
+        return list(zip(parts, repeat("\r", len(parts)), strict=True))
     crlf = text.count("\r\n")
     if crlf == text.count("\r") == text.count("\n"):
         parts = text.split("\r\n")
         parts.pop()
-        return [(p, "\r\n") for p in parts]
+        return list(zip(parts, repeat("\r\n", len(parts)), strict=True))
     return _LINES.findall(text)
 
 
