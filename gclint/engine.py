@@ -283,6 +283,8 @@ class Linter:
         # interpreter's function for the code)
         dispatch: dict[str | None, tuple[tuple, tuple, Callable[[Command, Line], None]]] = {}
 
+        plain: dict[str, tuple[str, tuple[Callable[..., bool], ...]]] | None = None  # set below
+
         def disable(hook: Callable, exc: Exception, line_number: int | None) -> None:
             # A rule raised: say so once (naming the rule, the file and the line), drop the rule for the
             # rest of this file and go on.  The loops below iterate over tuples, so replacing them here
@@ -448,8 +450,9 @@ class Linter:
                 return None
             if getattr(apply, "func", None) != interpreter._motion or apply.keywords != {"mode": code}:
                 return None
-            filters = tuple(getattr(handler.__self__, "plain_filter", None) for handler in always)
-            if None in filters:
+            found = [getattr(handler.__self__, "plain_filter", None) for handler in always]
+            filters = tuple(f for f in found if f is not None)
+            if len(filters) != len(found):
                 return None
             out[code[1]] = (code, filters)
         return out
