@@ -348,7 +348,7 @@ class Linter:
                     m = plain_match(raw)
                     if m is not None:
                         digit, f_first, x, y, z, e, f = m.groups()
-                        if (f_first is None or f is None) and not (after_end_hooks and state.after_m30):
+                        if not (after_end_hooks and state.after_m30):
                             mode, filters = plain[digit]
                             if f is None:
                                 f = f_first

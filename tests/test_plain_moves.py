@@ -48,6 +48,9 @@ def test_the_pattern_takes_only_plain_moves():
     for line in ["G1 X10 Y20 E.5 ; c", "G1 Y1 X2", "G01 X1", "G10 X1", "g1 x1", " G1 X1", "G1 X1 H2", "G1X1"]:
         assert not PLAIN_MOVE.fullmatch(line), line
     assert PLAIN_MOVE.fullmatch("G1 X" + "9" * 31) is None  # long numbers go to the grammar (SX006)
+    assert PLAIN_MOVE.fullmatch("G1 F100 X1 F200") is None  # F twice: the tree reports it (SX002)
+    assert PLAIN_MOVE.fullmatch("G1 F100 X1").groups() == ("1", "100", "1", None, None, None, None)
+    assert PLAIN_MOVE.fullmatch("G1 X1 F200").groups() == ("1", None, "1", None, None, None, "200")
 
 
 def test_the_route_is_taken_where_no_rule_looks():

@@ -32,11 +32,12 @@ _NUM_P = r"[-+]?+(?:\d{1,30}+(?:\.\d{0,30}+)?+|\.\d{1,30}+)"
 _CANON = re.compile(rf"[ \t]*+[A-Z]{_NUM_P}(?:[ \t]++[A-Z]{_NUM_P})*+[ \t]*+")
 _GENERAL = re.compile(rf"[ \t]*(?:[A-Za-z][ \t]*{_NUM}[ \t]*)+")
 _WORD = re.compile(rf"([A-Za-z])[ \t]*({_NUM})")
-# A G0/G1 with only plain X Y Z E F words in the order slicers write them (F first or last), no comment:
-# the engine's route for lines that need no tree (see Linter._run).  Same number syntax as _CANON.
+# A G0/G1 with only plain X Y Z E F words in the order slicers write them (F first or last, not both), no
+# comment: the route for lines that need no tree (Linter._run, translate_source).  Same number syntax as
+# _CANON.  Groups: 1 the digit of G0/G1, 2 F (first), 3-6 X Y Z E, 7 F (last).
 PLAIN_MOVE = re.compile(
     rf"G([01])(?:[ \t]++F({_NUM_P}))?+(?:[ \t]++X({_NUM_P}))?+(?:[ \t]++Y({_NUM_P}))?+(?:[ \t]++Z({_NUM_P}))?+"
-    rf"(?:[ \t]++E({_NUM_P}))?+(?:[ \t]++F({_NUM_P}))?+[ \t]*+"
+    rf"(?:[ \t]++E({_NUM_P}))?+(?(2)|(?:[ \t]++F({_NUM_P}))?+)[ \t]*+"
 )
 _LINENO_VALUE = re.compile(r"\d+(?:\.\d+)?")
 _LETTER_AND_VALUE = itemgetter(0, slice(1, None))  # "X10.5" -> ("X", "10.5"), in C

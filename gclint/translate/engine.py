@@ -94,9 +94,7 @@ def translate_source(source: Source, translator: Translator, result: Translation
                 m = plain_match(raw)
                 if m is not None:
                     digit, f_first, x, y, z, e, f = m.groups()
-                    if (f_first is None or f is None) and plain(
-                        digit == "1", number, x, y, z, e, f if f is not None else f_first, ending
-                    ):
+                    if plain(digit == "1", number, x, y, z, e, f if f is not None else f_first, ending):
                         extend((raw, ending))
                         continue
             extend(translate(Line(number, raw, ending, parse_line(raw)), result))
