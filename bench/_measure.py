@@ -80,13 +80,14 @@ def gclint_check(files: list[str], dialect: str) -> int:
 
 def gclint_translate(files: list[str], target: str) -> int:
     from gclint import dialects
+    from gclint.context import infer
     from gclint.syntax.source import Source
     from gclint.translate.engine import TranslationResult, translate_source, translator_for
 
     n = 0
     for path in files:
         source = Source.open(path)
-        src = dialects.detect(source.head_text(), path)[0]
+        src = dialects.get(infer(source.head_text(), path, complete=source.head_is_whole).dialect)
         translator = translator_for(src, dialects.get(target))
         result = TranslationResult(path, src.name, target)
         with open(os.devnull, "wb") as out:

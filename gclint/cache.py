@@ -22,11 +22,12 @@ from functools import lru_cache
 from pathlib import Path
 
 from gclint import __version__
+from gclint.context import Context
 from gclint.engine import FileResult
 from gclint.rules.base import Edit, Finding, Fix, Severity
 
 DEFAULT_DIR = ".gclint_cache"
-_FORMAT = 1
+_FORMAT = 2
 
 
 @lru_cache(maxsize=1)
@@ -137,6 +138,7 @@ def _dump(result: FileResult) -> dict:
         "path": result.path,
         "dialect": result.dialect,
         "dialect_reason": result.dialect_reason,
+        "context": result.context.to_dict() if result.context is not None else None,
         "lines": result.lines,
         "findings": [
             {
@@ -181,4 +183,5 @@ def _load(data: dict) -> FileResult:
                 source=f["source"],
             )
         )
-    return FileResult(data["path"], findings, data["dialect"], data["dialect_reason"], data["lines"])
+    context = Context.from_dict(data["context"]) if data.get("context") else None
+    return FileResult(data["path"], findings, data["dialect"], data["dialect_reason"], data["lines"], context=context)

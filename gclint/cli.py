@@ -150,6 +150,17 @@ def main() -> None:
 @click.option(
     "--progress/--no-progress", default=None, help="Progress bar on stderr (default: on a terminal, for many files)."
 )
+@click.option(
+    "--verbose",
+    "-v",
+    is_flag=True,
+    help="Say for every file what it was checked as (dialect, firmware, printer) and why.",
+)
+@click.option(
+    "--show-settings",
+    is_flag=True,
+    help="Print what each file would be checked as, and the settings that apply to it, then exit.",
+)
 def check(
     paths: tuple[str, ...],
     dialect: str | None,
@@ -170,10 +181,12 @@ def check(
     no_cache: bool,
     cache_dir: str | None,
     progress: bool | None,
+    verbose: bool = False,
+    show_settings: bool = False,
 ) -> None:
     """Check G-code files and folders (- for standard input)."""
     from gclint import runner
-    from gclint.reports import ReportContext, formats
+    from gclint.reports import MACHINE_FORMATS, ReportContext, formats
 
     writers = formats()
     if fmt not in writers:
@@ -181,8 +194,10 @@ def check(
     overrides: dict = {}
     if dialect is not None:
         overrides["dialect"] = _check_dialect(dialect)
+        overrides["dialect_origin"] = "option"
     if printer is not None:
         overrides["printer"] = _check_printer(printer)
+        overrides["printer_origin"] = "option"
     try:
         if loaded is not None:
             overrides["loaded"] = parse_heads(loaded)
@@ -198,6 +213,13 @@ def check(
         _fail(f"{config_file}: configuration file not found")
 
     files, problems = runner.collect(paths or (".",))
+    if show_settings:
+        from gclint.settings import show
+
+        for r in problems:
+            click.echo(f"gclint: {r.error}", err=True)
+        click.echo(show(files, overrides, config_file, stdin_filename or "-"), nl=False)
+        sys.exit(2 if problems else 0)
     if fix and "-" in files:
         _fail("--fix cannot rewrite standard input")
     from gclint import progress as progress_bar
@@ -241,6 +263,12 @@ def check(
             click.echo(f"gclint: {r.error}", err=True)
     ctx = ReportContext(tool_version=__version__, statistics=statistics)
     _write_report(writers[fmt], results, ctx, output)
+    if verbose or fmt not in MACHINE_FORMATS:  # after the report: a report that cannot be written is one line
+        from gclint.reports.common import printable
+        from gclint.reports.notes import context_notes
+
+        for note in context_notes(results, verbose=verbose):
+            click.echo(f"note: {printable(note)}", err=True)
     if any(r.error for r in results):
         sys.exit(2)
     worst = max((f.severity for r in results for f in r.findings), default=None)
@@ -399,7 +427,11 @@ def list_dialects() -> None:
     for d in dialects.all_dialects():
         aliases = f" (also: {', '.join(d.aliases)})" if d.aliases else ""
         click.echo(f"{d.name:<11} {d.title}{aliases}")
-    click.echo(f"{'auto':<11} detect from the file (directive, slicer header, codes); default {dialects.DEFAULT.name}")
+    click.echo(
+        f"{'auto':<11} the default for check: a '; gclint: dialect=' line, else content only one dialect has, else the"
+        f" slicer's flavour (content wins), else the extension as a tie-breaker (.ngc .nc .cnc .tap .g), else"
+        f" {dialects.DEFAULT.name}"
+    )
 
 
 # -- explain ---------------------------------------------------------------------------------------------
@@ -429,13 +461,13 @@ def explain(file: str | None, expressions: tuple[str, ...], dialect: str | None,
         _fail("give either FILE or -e LINE, not both")
     if not file and not expressions:
         _fail('nothing to explain: give a FILE or -e "M109 T0 S240"')
-    chosen = dialects.get(_check_dialect(dialect, allow_auto=True)) if dialect and dialect.lower() != "auto" else None  # type: ignore[arg-type]
+    from gclint.context import infer
+
+    chosen = _check_dialect(dialect, allow_auto=True) or ("auto" if file else "hyrel")
     if expressions:
         text = "\n".join(e.replace("\\n", "\n") for e in expressions)
-        found = (
-            chosen or dialects.detect(text)[0] if dialect and dialect.lower() == "auto" else chosen or dialects.DEFAULT
-        )
-        items = explain_text(text, found)
+        context = infer(text, dialect=chosen)
+        items = explain_text(text, dialects.get(context.dialect))
         source_name = "-e"
     else:
         try:
@@ -443,9 +475,10 @@ def explain(file: str | None, expressions: tuple[str, ...], dialect: str | None,
         except SourceError as exc:
             _fail(str(exc))
             return
-        found = chosen or dialects.detect(src.head_text(), file or "")[0]
-        items = explain_source(src, found)
+        context = infer(src.head_text(), file or "", dialect=chosen, complete=src.head_is_whole)
+        items = explain_source(src, dialects.get(context.dialect))
         source_name = file or "-"
+    found = dialects.get(context.dialect)
     try:
         if fmt == "json":
             click.echo(
@@ -457,6 +490,10 @@ def explain(file: str | None, expressions: tuple[str, ...], dialect: str | None,
             )
             return
         click.echo(f"; dialect: {found.name} ({found.title})")
+        if context.origin not in ("option", "configuration", "directive"):
+            from gclint.reports.common import printable
+
+            click.echo(f"; read as {context.label()}: {printable(context.why())}")
         last = None
         for e in items:
             if e.line != last:

@@ -155,12 +155,14 @@ def apply(options: Options, table: dict, path: Path) -> Options:
             except dialects.UnknownDialect as exc:
                 raise ConfigError(f"{path}: {exc}") from None
         changes["dialect"] = name
+        changes["dialect_origin"] = "configuration"
     if "printer" in table:
         try:
             get_profile(str(table["printer"]))
         except UnknownPrinter as exc:
             raise ConfigError(f"{path}: {exc}") from None
-        changes["printer"] = str(table["printer"])
+        changes["printer"] = get_profile(str(table["printer"])).name
+        changes["printer_origin"] = "configuration"
     if "loaded" in table:
         changes["loaded"] = parse_heads(table["loaded"], f"{path}: 'loaded'")
     if "select" in table:

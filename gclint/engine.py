@@ -14,6 +14,7 @@ from collections.abc import Callable, Iterable
 from dataclasses import dataclass, field
 
 from gclint import dialects
+from gclint.context import Context, infer
 from gclint.dialects.base import Dialect
 from gclint.machine.interpreter import Interpreter
 from gclint.machine.profiles import DEFAULT_PROFILE, PrinterProfile, get_profile
@@ -31,7 +32,9 @@ class Options:
     """Everything that shapes a check, from the command line and the configuration file."""
 
     dialect: str = "auto"
-    printer: str = DEFAULT_PROFILE
+    printer: str | None = None  # a Hyrel model; None = read it from the job (else the default, 30m)
+    dialect_origin: str = "option"  # where an explicit dialect/printer came from: option or configuration
+    printer_origin: str = "option"
     loaded: frozenset[int] | None = None  # v5 head positions; None = take them from the job header
     select: list[str] | None = None
     ignore: list[str] = field(default_factory=list)
@@ -47,6 +50,8 @@ class Options:
             (
                 self.dialect,
                 self.printer,
+                self.dialect_origin,
+                self.printer_origin,
                 sorted(self.loaded) if self.loaded is not None else None,
                 self.select,
                 sorted(self.ignore),
@@ -69,6 +74,14 @@ class FileResult:
     dialect_reason: str = ""
     lines: int = 0
     error: str | None = None  # the file could not be read (exit code 2)
+    context: Context | None = None  # what the file was read as, and why (gclint.context)
+
+    @property
+    def read_as(self) -> str:
+        """What the file was checked as: ``hyrel v5, printer 30m (assumed)``, ``marlin``."""
+        if self.context is not None:
+            return self.context.label()
+        return self.dialect or ""
 
     def counts(self) -> dict[str, int]:
         out = {"error": 0, "warning": 0, "info": 0}
@@ -92,11 +105,15 @@ def _codes(text: str | None) -> tuple[str, ...]:
 class FileContext:
     """The per-file world a rule sees: dialect, printer, options, machine state, and the findings."""
 
-    def __init__(self, path: str, dialect: Dialect, profile: PrinterProfile, options: Options) -> None:
+    def __init__(
+        self, path: str, dialect: Dialect, profile: PrinterProfile, options: Options, context: Context | None = None
+    ) -> None:
         self.path = path
         self.dialect = dialect
         self.profile = profile
         self.options = options
+        # what the file was read as; rules that rest on an assumed printer model say so (``model_note``)
+        self.context = context if context is not None else Context(dialect.name, printer=profile.name)
         self.state = MachineState(loaded_heads=options.loaded)
         self.interpreter = Interpreter(dialect, self.state)
         self.findings: list[Finding] = []
@@ -110,6 +127,10 @@ class FileContext:
     def enabled(self, code: str) -> bool:
         """Whether the rule ``code`` is selected for this run."""
         return code in self.enabled_codes
+
+    def model_note(self) -> str:
+        """What a finding that rests on the printer model adds when nobody said which model it is."""
+        return self.context.model_note()
 
     def add(
         self,
@@ -189,8 +210,10 @@ class Linter:
             base = select if select is not None else [r.code for r in all_rules().values() if r.default_enabled]
             select = list(base) + list(self.options.extend_select)
         self.rule_classes = select_rules(all_rules().values(), select, self.options.ignore)
-        self.profile = get_profile(self.options.printer)
-        self.fixed_dialect = None if self.options.dialect == "auto" else dialects.get(self.options.dialect)
+        if self.options.printer is not None:
+            get_profile(self.options.printer)  # an unknown model fails here, once, not per file
+        if self.options.dialect != "auto":
+            dialects.get(self.options.dialect)
 
     # -- entry points ---------------------------------------------------------------------------------
 
@@ -214,28 +237,43 @@ class Linter:
         if reason is not None:
             source.close()
             return FileResult(path, error=f"{path}: {reason}")
-        if self.fixed_dialect is not None:
-            dialect, reason = self.fixed_dialect, "--dialect"
-            directive = dialects.detect(source.head_text(), path)
-            if directive[1].startswith("'gclint: dialect="):
-                dialect, reason = directive
-        else:
-            dialect, reason = dialects.detect(source.head_text(), path, self.options.env_flavor)
-        result = FileResult(path, dialect=dialect.name, dialect_reason=reason)
-        ctx = FileContext(path, dialect, self.profile, self.options)
+        ctx, result = self.prepare(source)
         try:
             self._run(source, ctx, result)
         except SourceError as exc:
             result.error = str(exc)
             return result
-        ignored = self._per_file_ignores(path)
+        ignored = self.per_file_ignores(path)
         result.findings = [
             f for f in ctx.findings if not ctx.suppressed(f) and not (ignored and _matches(f.code, ignored))
         ]
         result.findings.sort(key=Finding.sort_key)
         return result
 
-    def _per_file_ignores(self, path: str) -> tuple[str, ...]:
+    def context_of(self, source: Source) -> Context:
+        """What ``source`` is checked as (its head decides; the stream is not consumed)."""
+        options = self.options
+        return infer(
+            source.head_text(),
+            source.display,
+            dialect=options.dialect,
+            dialect_origin=options.dialect_origin,
+            printer=options.printer,
+            printer_origin=options.printer_origin,
+            env_flavor=options.env_flavor,
+            complete=source.head_is_whole,
+        )
+
+    def prepare(self, source: Source) -> tuple[FileContext, FileResult]:
+        """The per-file world for ``source`` and its (empty) result, in the file's context."""
+        context = self.context_of(source)
+        dialect = dialects.get(context.dialect)
+        profile = get_profile(context.printer or DEFAULT_PROFILE)
+        result = FileResult(source.display, dialect=dialect.name, dialect_reason=context.why(), context=context)
+        return FileContext(source.display, dialect, profile, self.options, context), result
+
+    def per_file_ignores(self, path: str) -> tuple[str, ...]:
+        """The codes ``per-file-ignores`` switches off for ``path``."""
         out: list[str] = []
         norm = path.replace(os.sep, "/")
         for pattern, codes in self.options.per_file_ignores.items():

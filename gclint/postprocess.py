@@ -23,6 +23,7 @@ from dataclasses import dataclass, field, replace
 from typing import TextIO
 
 from gclint import __version__, dialects
+from gclint.context import infer
 from gclint.dialects.base import Dialect
 from gclint.engine import FileResult, Linter, Options
 from gclint.io import AtomicWriter, OutputError
@@ -95,9 +96,12 @@ def report_path_for(path: str, environ: dict[str, str] | None = None) -> str:
 
 
 def source_dialect(source: Source, path: str, env_flavor: str | None, explicit: str | None) -> tuple[Dialect, str]:
+    """The dialect the slicer wrote: ``--from``, else what the content says (gclint.context), with the
+    slicer's flavour (``SLIC3R_GCODE_FLAVOR``) as header evidence that loses to clear content."""
     if explicit and explicit != "auto":
         return dialects.get(explicit), "--from"
-    return dialects.detect(source.head_text(), path, env_flavor or None)
+    context = infer(source.head_text(), path, env_flavor=env_flavor or None, complete=source.head_is_whole)
+    return dialects.get(context.dialect), context.why()
 
 
 def run(

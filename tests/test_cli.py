@@ -33,11 +33,12 @@ def test_clean_file_exits_0(tmp_path):
 def test_exit_zero_and_select_ignore(tmp_path):
     job = tmp_path / "bad.gcode"
     job.write_text("G1 X1 X2\n")
-    assert run_cli("check", str(job)).returncode == 1
-    assert run_cli("check", str(job), "--exit-zero").returncode == 0
-    assert run_cli("check", str(job), "--ignore", "SX002").returncode == 0
-    assert run_cli("check", str(job), "--select", "DL").returncode == 0
-    assert run_cli("check", str(job), "--select", "SX00").returncode == 1
+    marlin = ("--dialect", "marlin")  # (with nothing to tell, the file would be read as hyrel: no M30, no F)
+    assert run_cli("check", str(job), *marlin).returncode == 1
+    assert run_cli("check", str(job), *marlin, "--exit-zero").returncode == 0
+    assert run_cli("check", str(job), *marlin, "--ignore", "SX002").returncode == 0
+    assert run_cli("check", str(job), *marlin, "--select", "DL").returncode == 0
+    assert run_cli("check", str(job), *marlin, "--select", "SX00").returncode == 1
 
 
 def test_json_format_fields(tmp_path):
@@ -129,7 +130,7 @@ def test_translate_to_dev_full_exits_2(tmp_path):
 
 
 def test_config_file(tmp_path):
-    (tmp_path / "gclint.toml").write_text('ignore = ["SX002"]\n')
+    (tmp_path / "gclint.toml").write_text('dialect = "marlin"\nignore = ["SX002"]\n')
     job = tmp_path / "a.gcode"
     job.write_text("G1 X1 X2\n")
     assert run_cli("check", str(job)).returncode == 0
@@ -148,14 +149,14 @@ def test_noqa_and_disable_ranges(tmp_path):
         "; gclint: enable=SX002\n"
         "G1 X1 X2\n"
     )
-    data = json.loads(run_cli("check", str(job), "--format", "json").stdout)
+    data = json.loads(run_cli("check", str(job), "--dialect", "marlin", "--format", "json").stdout)
     assert [(f["line"], f["code"]) for f in data] == [(6, "SX002")]
 
 
 def test_fix_applies_safe_fixes(tmp_path):
     job = tmp_path / "a.gcode"
     job.write_text("N1 G1 X1*12\n")
-    proc = run_cli("check", str(job), "--fix")
+    proc = run_cli("check", str(job), "--fix", "--dialect", "marlin")
     assert proc.returncode == 0, proc.stdout
     assert job.read_text() == "N1 G1 X1*96\n"  # XOR of the bytes of "N1 G1 X1"
-    assert run_cli("check", str(job)).returncode == 0
+    assert run_cli("check", str(job), "--dialect", "marlin").returncode == 0

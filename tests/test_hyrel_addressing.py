@@ -118,8 +118,9 @@ def test_hy008_only_in_v5_files():
     ],
 )
 def test_hy008_rewrites_with_the_certain_map(line, v5):
-    found = lint(line + "\n", printer="16a-dual", codes=("HY008",))
-    assert [f.fix.edits[0].text for f in found] == [v5]
+    # in a file whose addresses say v4 (M6 T12 O2, M109 T12: v4 head 2, no head in v5)
+    found = lint("M6 T12 O2\nM109 T12 S200\n" + line + "\n", printer="16a-dual", codes=("HY008",))
+    assert [f.fix.edits[0].text for f in found if f.line == 3] == [v5]
 
 
 def test_hy008_leaves_addresses_that_mean_the_same_in_v5():
@@ -128,9 +129,18 @@ def test_hy008_leaves_addresses_that_mean_the_same_in_v5():
     assert lint(text, printer="16a-dual", codes=("HY008",)) == []
 
 
-def test_hy008_ambiguous_numbers_count_once_the_file_is_v4():
-    text = "M190 T24 S60\nM109 T12 S200\n"
-    assert where(lint(text, codes=("HY008",))) == [(1, "HY008", "warning"), (2, "HY008", "warning")]
+def test_hy008_only_where_the_files_addresses_say_v4():
+    # one v4-looking number among v5 ones: the file is v5, and T12 is what it is in v5 (issue 11)
+    text = "M190 T24 S60\nM141 T25 S40\nM109 T12 S200\n"
+    assert lint(text, printer="16a", codes=("HY008",)) == []
+    hy007 = lint(text, printer="16a", codes=("HY007",))
+    assert where(hy007) == [(3, "HY007", "error")] and "in v4 numbering T12 was yoke 1, position 2" in hy007[0].message
+    # the same numbers in a file whose addresses say v4: all reported; where v5 also has a meaning, the
+    # fix is unsafe (M190 T24 is Bed1 in v5)
+    text = "M6 T12 O2\nM221 T12 S1\nM190 T24 S60\nM109 T12 S200\n"
+    found = lint(text, codes=("HY008",))
+    assert where(found) == [(n, "HY008", "warning") for n in (1, 2, 3, 4)]
+    assert [f.fix.safe for f in found] == [True, True, False, True]
 
 
 def test_hy008_takes_over_from_the_other_address_rules():
@@ -270,10 +280,16 @@ def test_cli_fix_rewrites_v4_numbers(tmp_path):
         tmp_path, "job.gcode", "; gclint: dialect=hyrel\nM6 T21 O6 X0 Y0\nM104 T21 S200\nM109 T21 S200\nT5\nM30\n"
     )
     run_cli("check", "--fix", "--printer", "16a-dual", str(path))
+    # M6 T21 declares the CO2 laser in v5: a line valid in v5 is not rewritten by a safe fix
     assert (
         path.read_text(encoding="utf-8")
-        == "; gclint: dialect=hyrel\nM6 T5 O6 X0 Y0\nM104 T5 S200\nM109 T5 S200\nT5\nM30\n"
+        == "; gclint: dialect=hyrel\nM6 T21 O6 X0 Y0\nM104 T5 S200\nM109 T5 S200\nT5\nM30\n"
     )
+    # (and once fixed, the file's addresses say v5: M6 T21 is the laser there, and HY008 is silent)
+    assert "HY008" not in run_cli("check", "--printer", "16a-dual", str(path)).stdout.decode()
+    path = write(tmp_path, "job2.gcode", "; gclint: dialect=hyrel\nM6 T21 O6 X0 Y0\nM104 T21 S200\nM109 T21 S200\n")
+    run_cli("check", "--fix", "--unsafe-fixes", "--printer", "16a-dual", str(path))
+    assert path.read_text(encoding="utf-8") == "; gclint: dialect=hyrel\nM6 T5 O6 X0 Y0\nM104 T5 S200\nM109 T5 S200\n"
 
 
 def test_severities_are_the_documented_ones():

@@ -45,14 +45,14 @@ def lines(text: str, code: str, **options) -> list[int]:
 
 
 def test_all_move_rules_fire_together():
-    result = check_text(TRIGGERS, dialect="hyrel")
+    result = check_text(TRIGGERS, dialect="hyrel", printer="30m")  # (a 30m has no A axis: HY042)
     assert {f.code for f in result} >= set(MOVE_RULES)
 
 
 @pytest.mark.parametrize("subset", [s for n in (1, 2) for s in itertools.combinations(MOVE_RULES, n)])
 def test_any_subset_alone(subset):
-    every = check_text(TRIGGERS, dialect="hyrel")
-    alone = Linter(Options(dialect="hyrel", select=list(subset))).check_text(TRIGGERS).findings
+    every = check_text(TRIGGERS, dialect="hyrel", printer="30m")
+    alone = Linter(Options(dialect="hyrel", printer="30m", select=list(subset))).check_text(TRIGGERS).findings
     expected = sorted((f.line, f.code, f.message) for f in every if f.code in subset)
     assert sorted((f.line, f.code, f.message) for f in alone) == expected
 
@@ -61,8 +61,9 @@ def test_one_listener_for_g0_g1():
     linter = Linter(Options(dialect="hyrel"))
     from gclint.dialects import get
     from gclint.engine import FileContext
+    from gclint.machine.profiles import get_profile
 
-    ctx = FileContext("x", get("hyrel"), linter.profile, linter.options)
+    ctx = FileContext("x", get("hyrel"), get_profile("30m"), linter.options)
     rules = [cls(ctx) for cls in linter.rule_classes]
     listeners = [r for r in rules if "G1" in r.codes and r.code in MOVE_RULES]
     assert len(listeners) == 1

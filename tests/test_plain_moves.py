@@ -12,8 +12,7 @@ import pytest
 from hypothesis import given
 from hypothesis import strategies as st
 
-from gclint import dialects
-from gclint.engine import FileContext, FileResult, Linter, Options
+from gclint.engine import Linter, Options
 from gclint.syntax.fastpath import PLAIN_MOVE
 from gclint.syntax.source import Source
 from tests.conftest import CORPUS, needs_corpus
@@ -26,9 +25,7 @@ def _run(text_or_path: str, dialect: str, plain: bool, *, is_path: bool = False)
     linter = Linter(Options(dialect=dialect))
     linter.plain_moves_enabled = plain
     source = Source.open(text_or_path) if is_path else Source.from_text(text_or_path, "<t>")
-    d = dialects.get(dialect) if dialect != "auto" else dialects.detect(source.head_text(), text_or_path)[0]
-    ctx = FileContext(source.display, d, linter.profile, linter.options)
-    result = FileResult(source.display)
+    ctx, result = linter.prepare(source)
     linter._run(source, ctx, result)
     findings = sorted((f.line, f.column, f.code, f.message) for f in ctx.findings)
     state = {f.name: getattr(ctx.state, f.name) for f in dataclasses.fields(ctx.state) if f.name != "position"}
@@ -56,10 +53,10 @@ def test_the_pattern_takes_only_plain_moves():
 def test_the_route_is_taken_where_no_rule_looks():
     linter = Linter(Options(dialect="marlin"))
     source = Source.from_text("G1 X1 Y2\n", "<t>")
-    ctx = FileContext("<t>", dialects.get("marlin"), linter.profile, linter.options)
+    ctx, result = linter.prepare(source)
     calls = []
     ctx.interpreter.plain_move = lambda *a: calls.append(a)  # type: ignore[method-assign]
-    linter._run(source, ctx, FileResult("<t>"))
+    linter._run(source, ctx, result)
     assert calls == [("G1", 1, "1", "2", None, None, None)]
 
 

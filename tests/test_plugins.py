@@ -169,7 +169,7 @@ def test_a_rule_that_raises_does_not_stop_the_run(tmp_path: Path, jobs: str) -> 
     (files / "b_boom.gcode").write_text("G28\n; BOOM\nG1 X1 (unclosed\nG1 X2 (also unclosed\n")
     (files / "c_binary.gcode").write_bytes(bytes(range(256)) * 8)
     (files / "d.gcode").write_text("G1 X2 (unclosed\n")
-    proc = run_with(plugins, "check", "--jobs", jobs, "--format", "json", str(files))
+    proc = run_with(plugins, "check", "--jobs", jobs, "--dialect", "marlin", "--format", "json", str(files))
     stderr = proc.stderr.decode()
     assert proc.returncode == 2 and "Traceback" not in stderr, stderr
     lines = [line for line in stderr.splitlines() if line.strip()]

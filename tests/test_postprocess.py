@@ -63,7 +63,7 @@ def test_marlin_job_translated_to_hyrel_in_place(tmp_path):
     report = Path(str(final) + ".gclint.txt")
     assert report.exists(), err
     text = report.read_text()
-    assert "source dialect: marlin (slicer flavour 'marlin2')" in text
+    assert "source dialect: marlin (" in text and "SLIC3R_GCODE_FLAVOR=marlin2" in text
     assert stat.S_IMODE(pp.stat().st_mode) == before_mode
     assert not list(pp.parent.glob(".gclint-*"))  # no temporary file left behind
     if "translated to: hyrel" in text:
@@ -82,7 +82,7 @@ def test_clean_job_passes_and_is_left_byte_for_byte(tmp_path):
     assert proc.returncode == 0, proc.stderr.decode()
     assert pp.read_text() == HYREL_JOB
     report = Path(str(final) + ".gclint.txt").read_text()
-    assert "source dialect: hyrel (file header)" in report and "no findings" in report
+    assert "source dialect: hyrel (content: M6 T0 O1" in report and "no findings" in report
 
 
 def test_errors_stop_the_export(tmp_path):

@@ -189,7 +189,7 @@ def test_full_format_shows_the_line_and_a_caret(jobs):
     unknown = text.split("bad job.gcode:7:1:")[1].splitlines()
     assert unknown[2].startswith(" 7 | M9999") and unknown[3].endswith("| ^^^^^")  # the whole code word
     assert SECRET not in text and "\x1b" not in text and "\\x1b[31m" in text
-    assert text.rstrip().splitlines()[-1].startswith("Found ")
+    assert text.rstrip().splitlines()[-2].startswith("Found ") and text.rstrip().endswith("Checked as marlin.")
 
 
 def test_grouped_format_groups_by_file(jobs):

@@ -159,3 +159,27 @@ V4_TO_V5_COMMAND: dict[int, int] = {
     n: v5 for n, (kind, v5, label, certain) in _V4_COMMANDS.items() if certain and v5 is not None
 }
 V5_TO_V4_COMMAND: dict[int, int] = {v5: n for n, v5 in V4_TO_V5_COMMAND.items()}
+
+
+# -- which devices a command's T variable can name ---------------------------------------------------
+
+# Read from the Gcode page ("T# is the target head / bed / chamber / tool position" in each section) and
+# the T_v5 chart.  Codes not listed take any device.
+_HEADS = frozenset({HEAD, VIRTUAL, GROUP})
+_FITS: dict[str, frozenset[str]] = {
+    **{c: _HEADS for c in "M104 M109 M106 M107 M221 M701 M702 M703 M704 M721 M722 M723 M728 M783".split()},  # noqa: SIM905
+    **{c: frozenset({BED, GROUP}) for c in ("M140", "M141", "M190", "M191")},
+    "M6": frozenset({HEAD, VIRTUAL, SPINDLE, LASER}),
+    "M620": frozenset({HEAD, LASER, GROUP}),
+    "M3": frozenset({HEAD, SPINDLE, GROUP}),
+    "M4": frozenset({HEAD, SPINDLE, GROUP}),
+    "M5": frozenset({HEAD, SPINDLE, GROUP}),
+    "G81": frozenset({HEAD, SPINDLE}),
+    "G38": frozenset({HEAD}),
+}
+_ANY_DEVICE = frozenset({HEAD, VIRTUAL, GROUP, SPINDLE, LASER, AUX, BED})
+
+
+def fits(code: str, address: Address) -> bool:
+    """Whether ``code``'s T variable can sensibly name ``address`` (a bed for M140, a head for M104...)."""
+    return address.kind != RESERVED and address.kind in _FITS.get(code, _ANY_DEVICE)

@@ -6,7 +6,8 @@ in grbl mode: G4 P is seconds; M3 S is RPM; M6 T is an automatic tool change; M7
 
 from __future__ import annotations
 
-from gclint.dialects.base import Detection, Dialect, codes, describe, span, table
+from gclint.dialects.base import Clue, Detection, Dialect, codes, describe, span, table
+from gclint.dialects.machinekit import NGC_LANGUAGE_CLUES
 
 _G = (
     "G0 G1 G2 G3 G4 G10 G17 G18 G19 G20 G21 G28 G28.1 G29 G30 G31 G32 G33 G38.2 G38.3 G38.4 G38.5 G53 G54 G55"
@@ -113,16 +114,9 @@ CARVERA = Dialect(
     codes=describe(table(codes(_G), codes(_M)), _DESCRIPTIONS),
     aliases=("smoothieware", "makera"),
     detection=Detection(
-        patterns=(
-            (r"(?i)carvera|makera", 10),
-            (r"^\s*M49[0-9](?:\.\d)?\b", 6),
-            (r"^\s*M32[1-5]\b", 5),
-            (r"^\s*M46[0-9]\b", 5),
-            (r"(?i)^\s*echo\s", 2),
-            (r"^\s*M118\.1\b", 3),
-        ),
+        patterns=((r"(?i)carvera|makera", 10),),
         extensions=(".nc", ".cnc", ".tap"),
-        extension_weight=3,
+        clues=(*NGC_LANGUAGE_CLUES, Clue("an echo command (RepRapFirmware or Carvera console)", "echo", weight=1)),
     ),
     owords=True,
     open_codes=_open,

@@ -13,7 +13,7 @@ from gclint.dialects.addressing import (
     resolve_v4_variable,
     resolve_v5,
 )
-from gclint.dialects.base import Code, Detection, Dialect, Param, code, table
+from gclint.dialects.base import Clue, Code, Detection, Dialect, Param, code, has_all, has_any, table, value_at_least
 
 P = Param
 PCT = dict(minimum=0, maximum=100)  # "Sn is the percentage (0-100)"
@@ -458,18 +458,58 @@ def _is_t_command(c: str) -> bool:
 
 HYREL_DETECTION = Detection(
     patterns=(
-        (r"^\s*M229\b", 5),
-        (r"^\s*M756\b", 4),
-        (r"^\s*M72[12]\b.*\bT\d", 3),
-        (r"^\s*M660\b", 3),
-        (r"^\s*M790\b", 3),
-        (r"^\s*M772\b", 2),
-        (r"^\s*M6\s+T\d+\s+O\d", 4),
         (r"(?i)repetrel|hyrel", 5),
         (r"(?i);\s*gcode_flavor\s*=\s*hyrel", 10),
     ),
+    clues=(
+        # T_v5 Default Mode: "M6 T0 O1 X0 Y0 Z0" declares a head and its offset register; a CNC M6 has no O.
+        Clue("M6 T# O# declares a head and its offset register (Hyrel)", "M6", test=has_all("T", "O"), weight=4),
+        # M109/M190/M191 "Sn Hn Cn Ln Un Rn [v5+] W0": H C L U W are Hyrel's wait window.
+        *(
+            Clue(f"{c} H/C/L/U/W: a Hyrel temperature-wait window", c, test=has_any("H", "C", "L", "U", "W"))
+            for c in ("M109", "M190", "M191")
+        ),
+        # Heads and beds have T addresses above 9 only on Hyrel (v5 T10-T48, v4 T11-T100); Marlin's
+        # extruders are T0-T7, and Marlin/RRF address beds with I/H/P, not T.
+        *(
+            Clue(f"{c} T10 or above: a Hyrel device address", c, test=value_at_least("T", 10), weight=4)
+            for c in ("M104", "M109")
+        ),
+        *(
+            Clue(f"{c} T#: a Hyrel bed or chamber address", c, test=has_all("T"))
+            for c in ("M140", "M141", "M190", "M191")
+        ),
+        Clue("M106 C: the Hyrel fan range (M106 Set Cooling)", "M106", test=has_all("C")),
+        Clue("M620 T# E: Hyrel's enable-emitter command", "M620", test=has_all("T", "E")),
+        # What a Hyrel job never says (marks for the dialects that have the code):
+        # "R ... is how close the relative temperature needs to be to the set temp" (M109): never a target
+        *(
+            Clue(
+                f"{c} R as a target temperature (on Hyrel R is a tolerance)",
+                c,
+                test=value_at_least("R", 40, without="S"),
+                against=True,
+            )
+            for c in ("M109", "M190", "M191")
+        ),
+        # "Sn is the percent of duty cycle ... Cn is the range (0-100 or 0-255) ... default is C100" (M106)
+        Clue(
+            "M106 S above 100 with no C range (a 0-255 fan value)",
+            "M106",
+            test=value_at_least("S", 101, without="C"),
+            weight=2,
+            against=True,
+        ),
+        # "Any axis not homed will have its position remain unchanged" (G28): a bare G28 homes nothing on Hyrel
+        Clue(
+            "G28 with no axis (home all; on Hyrel it homes nothing)",
+            "G28",
+            test=lambda c: not c.params,
+            weight=2,
+            against=True,
+        ),
+    ),
 )
-
 HYREL_V5 = Dialect(
     name="hyrel",
     title="Hyrel (Repetrel v5, unified T addressing)",
@@ -527,13 +567,7 @@ HYREL_V4 = HYREL_V5.derive(
         ),
     ],
     aliases=("hyrel4",),
-    detection=Detection(
-        patterns=HYREL_DETECTION.patterns
-        + (
-            # v4 device addresses on M-codes: M6 T12 O2, M109 T12, M104 T100, M140 T90 (hyrel_v4.md)
-            (r"^\s*M(?:6|104|106|107|109|221|620|703|721|722|728)\s[^;\n]*\bT(?:1[0-6]|2[0-6]|9[0-2]|100)\b", 8),
-        ),
-    ),
+    detection=HYREL_DETECTION,  # v4 or v5 is decided from the addresses the file uses (gclint.context)
     description="Hyrel firmware/Repetrel v4 and earlier: T commands are tool numbers 0-9, T variables inside M-codes are CAN device addresses.",
     extras={
         "firmware": 4,

@@ -7,7 +7,8 @@ language is LinuxCNC's RS274NGC: O-words, #parameters, [expressions], user M-cod
 
 from __future__ import annotations
 
-from gclint.dialects.base import Detection, Dialect, Param, code, codes, describe, span, table
+from gclint.dialects.base import Clue, Detection, Dialect, Param, code, codes, describe, span, table
+from gclint.syntax.nodes import ASSIGNMENT, GCODE, OWORD
 
 P = Param
 
@@ -175,6 +176,33 @@ def _open(code: str) -> bool:
     return False
 
 
+def _bracket_expression(cmd) -> bool:
+    return cmd.kind == GCODE and any(v and v[0] in "[#" for v in cmd.params.values())
+
+
+# Content that marks Machinekit/LinuxCNC (research/dialects.md 1.8 [MK, LCNC] and section 2.2's flavour detection).
+# The RS274NGC program language (O-words, # parameters, [expressions]) is Carvera's too.
+NGC_LANGUAGE_CLUES = (
+    Clue("an O-word (o100 sub/if/while/call)", kind=OWORD, weight=4),
+    Clue("a # parameter assignment", kind=ASSIGNMENT, weight=4),
+    Clue("a [expression] or #parameter value", test=_bracket_expression, weight=2),
+)
+MACHINEKIT_CLUES = (
+    *NGC_LANGUAGE_CLUES,
+    # the remap.ini M-codes take the value in P ("M104 P200"), where the others write S
+    *(
+        Clue(
+            f"{c} P# without S: a Machinekit remap temperature",
+            c,
+            test=lambda c: "P" in c.params and "S" not in c.params,
+        )
+        for c in ("M104", "M109", "M140", "M190")
+    ),
+    # the extruder is the A axis: a working move with A and no E
+    # (weak: Carvera's 4th axis and Hyrel's A/B axes move A too)
+    Clue("G1 A#: extrusion on the A axis", "G1", test=lambda c: "A" in c.params and "E" not in c.params, weight=1),
+)
+
 MACHINEKIT = Dialect(
     name="machinekit",
     title="Machinekit FDM / LinuxCNC (RS274NGC with the FDM remaps)",
@@ -182,18 +210,9 @@ MACHINEKIT = Dialect(
     codes=describe(table(codes(_LINUXCNC_G), codes(_LINUXCNC_M), _FDM), _DESCRIPTIONS),
     aliases=("linuxcnc", "machinekit-fdm"),
     detection=Detection(
-        patterns=(
-            (r"(?i)^;\s*gcode_flavor\s*=\s*machinekit", 12),
-            (r"(?im)^\s*o\s*(?:\d+|<[^>]*>)\s+(?:sub|if|while|do|call|repeat|endsub)\b", 8),
-            (r"#<[A-Za-z_][^>]*>", 5),
-            (r"^\s*#\d+\s*=", 5),
-            (r"^\s*G2[23]\b", 3),
-            (r"^\s*M10[49]\s+P\d+\s+S\d", 3),
-            (r"^\s*M10[49]\s+P[\d.]+(?:\s+T\d+)?\s*(?:;|$)", 3),
-            (r"^\s*G1\b[^;\n]*\bA-?[\d.]", 1),
-        ),
+        patterns=((r"(?i)^;\s*gcode_flavor\s*=\s*machinekit", 12),),
         extensions=(".ngc",),
-        extension_weight=4,
+        clues=MACHINEKIT_CLUES,
     ),
     owords=True,
     open_codes=_open,

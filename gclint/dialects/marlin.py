@@ -8,7 +8,8 @@ Klipper hosts read Marlin-flavour files.
 
 from __future__ import annotations
 
-from gclint.dialects.base import Detection, Dialect, codes, describe, span, table
+from gclint.dialects.base import Clue, Detection, Dialect, codes, describe, span, table
+from gclint.syntax.nodes import EXTENDED
 
 _G = (
     "G0 G1 G2 G3 G4 G5 G6 G10 G11 G12 G17 G18 G19 G20 G21 G26 G27 G28 G29 G29.1 G29.2 G30 G31 G32 G33 G34 G35"
@@ -184,6 +185,9 @@ def _open(code: str) -> bool:
     return code[0] == "T"
 
 
+# Content that marks Marlin-flavour G-code (the uses Hyrel would never write are Hyrel's "against" clues).
+MARLIN_CLUES = (Clue("a Klipper extended command (NAME KEY=VALUE)", kind=EXTENDED, weight=4),)
+
 MARLIN = Dialect(
     name="marlin",
     title="Marlin 2.x (Marlin-flavour slicer output, Prusa, Bambu, Klipper hosts)",
@@ -202,12 +206,9 @@ MARLIN = Dialect(
                 r"(?i)generated (?:by|with) (?:PrusaSlicer|Slic3r|SuperSlicer|OrcaSlicer|BambuStudio|Cura|Simplify3D|KISSlicer|ideaMaker|Skeinforge)",
                 3,
             ),
-            (r"^\s*M862\.\d", 3),
-            (r"^\s*M73\s+P", 2),
-            (r"^\s*(?:SET_|EXCLUDE_OBJECT|START_PRINT|PRINT_START)", 3),
-            (r"^\s*M8[23]\b", 1),
         ),
         extensions=(".gcode", ".gco"),
+        clues=MARLIN_CLUES,
     ),
     extended_commands=True,
     open_codes=_open,

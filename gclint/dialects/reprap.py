@@ -6,7 +6,8 @@ a macro file for a code it does not know (sys/M<n>.g, sys/G<n>.g), so unknown co
 
 from __future__ import annotations
 
-from gclint.dialects.base import Detection, Dialect, codes, describe, span, table
+from gclint.dialects.base import Clue, Detection, Dialect, codes, describe, span, table
+from gclint.syntax.nodes import META
 
 _G = (
     "G0 G1 G2 G3 G4 G10 G11 G17 G18 G19 G20 G21 G22 G23 G28 G29 G30 G31 G32 G38.2 G38.3 G38.4 G38.5 G53 G54 G55"
@@ -156,6 +157,25 @@ def _open(code: str) -> bool:
     return code[0] in "TGM"
 
 
+def _object_model(cmd) -> bool:
+    return any(v and v[0] == "{" for v in cmd.params.values())
+
+
+# Content that marks RepRapFirmware 3 (research/dialects.md 1 [RRF]; firmware_codes.md).
+REPRAP_CLUES = (
+    Clue("a meta command (if, while, var, set, global, abort)", kind=META, test=lambda c: c.code != "echo", weight=4),
+    Clue("an echo command (RepRapFirmware or Carvera console)", "echo", weight=1),
+    Clue('M98 P"file": calls a macro by name', "M98", test=lambda c: (c.params.get("P") or "")[:1] == '"'),
+    Clue("an object-model expression {...}", test=_object_model),
+    # LinuxCNC's G10 always has L (G10 L2 P1 R45 rotates a coordinate system)
+    Clue(
+        "G10 P# R/S: tool temperatures",
+        "G10",
+        test=lambda c: "P" in c.params and "L" not in c.params and ("R" in c.params or "S" in c.params),
+    ),
+    Clue("T-1: deselects every tool", "T-1"),
+)
+
 REPRAP = Dialect(
     name="reprap",
     title="RepRapFirmware 3.x (Duet)",
@@ -166,16 +186,9 @@ REPRAP = Dialect(
         patterns=(
             (r"(?i)^;\s*gcode_flavor\s*=\s*reprapfirmware", 12),
             (r"(?i)^;\s*FLAVOR:\s*RepRap\s*\(RepRap\)", 8),
-            (r"^\s*(?:if|elif|while|var|global|set|echo|abort)\b", 6),
-            (r"\{[^}\n]*(?:var|global|param|move|state|heat|tools|sensors)\.", 5),
-            (r"^\s*M98\s+P\"", 4),
-            (r"^\s*M563\s", 4),
-            (r"^\s*G10\s+P\d+\s+[RS]", 3),
-            (r"^\s*M(?:550|552|569|584|950|308|307)\s", 3),
-            (r"^\s*T-1\b", 2),
         ),
         extensions=(".g",),
-        extension_weight=2,
+        clues=REPRAP_CLUES,
     ),
     meta_commands=True,
     open_codes=_open,

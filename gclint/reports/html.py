@@ -140,6 +140,8 @@ class FileView:
     plot: Plot | None
     plot_error: str | None
     dialect_reason: str
+    read_as: str
+    weak: bool
 
 
 def _file_view(index: int, result: FileResult, plot_budget: int) -> FileView:
@@ -181,6 +183,8 @@ def _file_view(index: int, result: FileResult, plot_budget: int) -> FileView:
         plot=plot,
         plot_error=plot_error,
         dialect_reason=printable(result.dialect_reason),
+        read_as=printable(result.read_as),
+        weak=result.context is not None and result.context.weak,
     )
 
 

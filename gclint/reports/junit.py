@@ -32,7 +32,14 @@ def build(results: list[FileResult], ctx) -> ET.Element:
         if r.dialect:
             props = ET.SubElement(suite, "properties")
             ET.SubElement(props, "property", name="dialect", value=r.dialect)
+            ET.SubElement(props, "property", name="read_as", value=printable(r.read_as))
             ET.SubElement(props, "property", name="dialect_reason", value=printable(r.dialect_reason))
+            if r.context is not None:
+                ET.SubElement(props, "property", name="evidence", value=r.context.strength)
+                if r.context.printer is not None:
+                    ET.SubElement(
+                        props, "property", name="printer_assumed", value=str(r.context.printer_assumed).lower()
+                    )
             ET.SubElement(props, "property", name="lines", value=str(r.lines))
         if r.error:
             case = ET.SubElement(suite, "testcase", name="read", classname=path, file=path, time="0")

@@ -116,8 +116,10 @@ def build(results: list[FileResult], ctx) -> dict:
             if r.dialect:
                 artifact["properties"] = {
                     "dialect": r.dialect,
+                    "readAs": r.read_as,
                     "dialectReason": clean(r.dialect_reason),
                     "lines": r.lines,
+                    **_context_properties(r),
                 }
             artifacts.append(artifact)
         for f in r.findings:
@@ -174,3 +176,19 @@ def _location(uri: str, base: str | None) -> dict:
 def write(results: list[FileResult], out: TextIO, ctx) -> None:
     json.dump(build(results, ctx), out, indent=2, ensure_ascii=False)
     out.write("\n")
+
+
+def _context_properties(r) -> dict:
+    """How the file's dialect, Hyrel firmware version and printer model were decided (gclint.context)."""
+    c = r.context
+    if c is None:
+        return {}
+    out: dict = {"decidedBy": c.origin, "evidence": c.strength, "weakEvidence": c.weak}
+    if c.conflict:
+        out["conflict"] = clean(c.conflict)
+    if c.firmware is not None:
+        out["firmware"] = c.firmware
+    if c.printer is not None:
+        out["printer"] = c.printer
+        out["printerAssumed"] = c.printer_assumed
+    return out

@@ -43,6 +43,20 @@ def write_summary(results: list[FileResult], out: TextIO, ctx) -> None:
             out.write(f"[*] {fixable} fixable with --fix.\n")
     elif any(r.error is None for r in results):
         out.write("All checks passed.\n")
+    checked_as = read_as_line(results)
+    if checked_as:
+        out.write(checked_as + "\n")
+
+
+def read_as_line(results: list[FileResult]) -> str:
+    """``Checked as hyrel v5, printer 30m (assumed).`` or, for a mix, each label with its file count."""
+    labels = Counter(r.read_as for r in results if r.error is None and r.read_as)
+    if not labels:
+        return ""
+    if len(labels) == 1:
+        return f"Checked as {next(iter(labels))}."
+    parts = [f"{label} ({n} file{'s' if n != 1 else ''})" for label, n in labels.most_common()]
+    return "Checked as: " + "; ".join(parts) + "."
 
 
 def write_statistics(results: list[FileResult], out: TextIO) -> None:

@@ -89,6 +89,11 @@ class Source:
     def from_text(cls, text: str, display: str = "<text>") -> Source:
         return cls.from_bytes(text.encode("utf-8", "surrogateescape"), display)
 
+    @property
+    def head_is_whole(self) -> bool:
+        """True when the head read at opening is the whole file."""
+        return self._head_eof
+
     def head_text(self, limit: int = HEAD) -> str:
         """The beginning of the file as text (for dialect detection); does not consume the stream."""
         data = self._head[:limit]

@@ -19,12 +19,11 @@ from gclint.dialects.addressing import (
     BED,
     GROUP,
     HEAD,
-    LASER,
     RESERVED,
-    SPINDLE,
     V4_STYLE_VARIABLES,
     VIRTUAL,
     Address,
+    fits,
     resolve_v4_variable,
     resolve_v5,
 )
@@ -54,15 +53,31 @@ def t_variable_codes(dialect: Dialect) -> tuple[str, ...]:
     return tuple(code for code, spec in dialect.codes.items() if spec.params and "T" in spec.params)
 
 
+def reads_v4_numbers(ctx) -> bool:
+    """True when HY008 reads v4 numbers in this file: it is checked as v5 (``--dialect hyrel``, the
+    configuration or a directive) but its own addresses say v4 (``Context.version_evidence``).  A file
+    whose addresses say v5 is never re-read as v4: a number wrong in v5 is reported as what it is in
+    v5, with a hint of its v4 meaning (``v4_hint``)."""
+    return is_v5(ctx) and ctx.enabled("HY008") and ctx.context.version_evidence == 4
+
+
 def reported_as_v4(ctx, cmd: Command, letter: str = "T") -> bool:
-    """True when HY008 reports this word as a v4 device number in a v5 file.
+    """True when HY008 reports this word as a v4 device number.
 
     The other address rules then leave it alone: one cause, one finding (HY008 says what it most
     likely means and how to write it in v5).
     """
-    if not is_v5(ctx) or not ctx.enabled("HY008"):
+    if not reads_v4_numbers(ctx):
         return False
     return int_value(cmd.params.get(letter)) in V4_STYLE_VARIABLES
+
+
+def v4_hint(ctx, number: int | None) -> str:
+    """ " (in v4 numbering T12 was yoke 1, position 2)" for a v4-style number in a file read as v5."""
+    if number is None or number not in V4_STYLE_VARIABLES or not is_v5(ctx):
+        return ""
+    v4 = resolve_v4_variable(number)
+    return f" (in v4 numbering T{number} was {v4.label.removesuffix(f' (v4 T{number})')})"
 
 
 def heads_text(heads) -> str:
@@ -197,31 +212,18 @@ class ToolBeyondModel(Rule):
             return
         profile = self.ctx.profile
         if address.position not in profile.positions:
+            hint = v4_hint(self.ctx, int_value(cmd.params.get("T"))) if node is not cmd else ""
             self.report(
                 line,
                 f"{what} names {address.label}, but a {profile.name} has tool positions "
-                f"{profile.describe_positions()} only ({profile.title})",
+                f"{profile.describe_positions()} only ({profile.title}){self.ctx.model_note()}{hint}",
                 node=node,
             )
 
 
 # -- HY008 ---------------------------------------------------------------------------------------------
 
-# The kinds of device a code's T variable can sensibly name, read as v5 (T_v5 chart; the Gcode page
-# "T# is the target head / bed / chamber / tool position").  Codes not listed take any device.
-_HEADS = frozenset({HEAD, VIRTUAL, GROUP})
-_FITS: dict[str, frozenset[str]] = {
-    **{c: _HEADS for c in "M104 M109 M106 M107 M221 M701 M702 M703 M704 M721 M722 M723 M728 M783".split()},  # noqa: SIM905
-    **{c: frozenset({BED, GROUP}) for c in ("M140", "M141", "M190", "M191")},
-    "M6": frozenset({HEAD, VIRTUAL, SPINDLE, LASER}),
-    "M620": frozenset({HEAD, LASER, GROUP}),
-    "M3": frozenset({HEAD, SPINDLE, GROUP}),
-    "M4": frozenset({HEAD, SPINDLE, GROUP}),
-    "M5": frozenset({HEAD, SPINDLE, GROUP}),
-    "G81": frozenset({HEAD, SPINDLE}),
-    "G38": frozenset({HEAD}),
-}
-_ANY_DEVICE = frozenset({HEAD, VIRTUAL, GROUP, SPINDLE, LASER, AUX, BED})
+
 _MAX_KEPT = 50_000  # findings kept for the end of the file (memory stays bounded on absurd files)
 
 
@@ -231,7 +233,7 @@ class V4AddressingInV5(Rule):
     name = "v4-addressing-in-v5"
     severity = Severity.WARNING
     fixable = True
-    summary = "A T variable uses v4 device numbering (T11-T15, T21-T25, T90-T92, T100...) in a v5 file"
+    summary = "A file checked as v5 whose addresses are v4 numbers (T11-T15, T21-T25, T90-T92, T100...)"
     explanation = """
         Before Repetrel v5, "the nomenclature for T Commands and the T Variables were not the same": a
         tool change said `T1`, but the M-codes for that head said `T12` (yoke 1 heads were T11-T15, yoke 2
@@ -240,21 +242,26 @@ class V4AddressingInV5(Rule):
         are referring to it", so the old numbers name other devices or none: v4 `M109 T12 S200` heats
         the second head, v5 reads it as head T12 on a third yoke that the printer does not have.
 
-        The rule reports T variables with v4 numbers whose v5 meaning does not fit the command (a head
-        the model lacks, a laser asked for a head temperature, an address that does not exist).  Numbers
-        that would make sense either way (`M140 T24` is Bed1 in v5) are reported only when the same
-        file uses v4 numbering elsewhere.  M703/M704 S values that are v4 head numbers are reported
-        too (`M703 T14 S12`: in v5, `S` is the head to copy).
+        The rule speaks only when a file is checked as v5 (`--dialect hyrel`, `dialect = "hyrel"` in the
+        configuration, or `; gclint: dialect=hyrel`) while its own addresses say v4: more of its T
+        variables fit their commands in v4 numbering than in v5 (gclint weighs every address; `M116`
+        and `W0` count for v5).  It reports every v4-style number then.  Where the v5 reading makes no
+        sense (a head the model lacks, an address no device has), the fix to the v5 number is safe; where
+        the line also means something in v5 (`M140 T24` is Bed1 in v5), the fix is unsafe
+        (`--unsafe-fixes`).  In a file whose addresses say v5, a v4-style number is what it is in v5
+        (HY007, HY047 report it, with its v4 meaning as a hint): nothing re-reads a v5 file as v4.
+        With `--dialect auto` (the default) a v4 file is checked as `hyrel-v4` and this rule is silent.
 
-        Fix: `gclint check --fix` rewrites the number to its v5 address where the v4 -> v5 map is
-        certain (research/hyrel_v4.md, confidence "high"); never in a file with a parse error.  To
-        check a v4 job as v4 instead, use `--dialect hyrel-v4`.
+        Fixes use the v4 -> v5 map where it is certain (research/hyrel_v4.md, confidence "high"); other
+        numbers are reported without a fix.  Never in a file with a parse error.
     """
     example_bad = """
+        ; gclint: dialect=hyrel
         M6 T12 O2 X0 Y0 Z0
         M109 T12 S200
     """
     example_good = """
+        ; gclint: dialect=hyrel
         M6 T1 O2 X0 Y0 Z0
         M109 T1 S200
     """
@@ -267,10 +274,10 @@ class V4AddressingInV5(Rule):
 
     def __init__(self, ctx) -> None:
         super().__init__(ctx)
-        self.codes = t_variable_codes(ctx.dialect) if is_v5(ctx) else ()  # type: ignore[misc]
-        self.definite: list[tuple[Line, Word, str, int | None]] = []  # v5 meaning does not fit: surely v4
-        self.ambiguous: list[tuple[Line, Word, str, int | None]] = []  # would also make sense in v5
+        self.codes = t_variable_codes(ctx.dialect) if reads_v4_numbers(ctx) else ()  # type: ignore[misc]
         self.unparsable = False
+        # reported at the end, when it is known whether the file parses (fixes only then)
+        self.found: list[tuple[Line, Word, str, int | None, bool]] = []
 
     def check_issues(self, line: Line) -> None:
         if any(issue.code == "SX001" for issue in line.issues):
@@ -280,34 +287,28 @@ class V4AddressingInV5(Rule):
         params = cmd.params
         number = int_value(params.get("T"))
         if number in V4_STYLE_VARIABLES:
-            self._variable(line, cmd, "T", number)  # type: ignore[arg-type]
+            self._variable(line, cmd, number)  # type: ignore[arg-type]
         if cmd.code in ("M703", "M704"):
             number = int_value(params.get("S"))
             if number in V4_STYLE_VARIABLES:
                 self._copied_head(line, cmd, number)  # type: ignore[arg-type]
 
-    def _variable(self, line: Line, cmd: Command, letter: str, number: int) -> None:
-        v4 = resolve_v4_variable(number)
-        v5 = resolve_v5(number)
-        problem = self._misfit(cmd.code, v5)  # type: ignore[arg-type]
-        word = cmd.param(letter)
+    def _variable(self, line: Line, cmd: Command, number: int) -> None:
+        word = cmd.param("T")
         if word is None:
             return
-        target = v4.v5 if v4.certain else None
+        v4, v5 = resolve_v4_variable(number), resolve_v5(number)
+        problem = self._misfit(cmd.code, v5)  # type: ignore[arg-type]
         if problem is None:
             message = (
-                f"{cmd.code} {letter}{number}: {letter}{number} is the v4 device address of {v4.label}; "
+                f"{cmd.code} T{number}: the file's addresses are v4, where T{number} is {v4.label}; "
                 f"in v5 it is {v5.label}"
             )
-            if len(self.ambiguous) < _MAX_KEPT:
-                self.ambiguous.append((line, word, message, target))
-            return
-        message = (
-            f"{cmd.code} {letter}{number} looks like v4 numbering: in v4 it is {v4.label}; "
-            f"in v5 {letter}{number} is {v5.label}{problem}"
-        )
-        if len(self.definite) < _MAX_KEPT:
-            self.definite.append((line, word, message, target))
+        else:
+            message = (
+                f"{cmd.code} T{number} is v4 numbering: in v4 it is {v4.label}; in v5 T{number} is {v5.label}{problem}"
+            )
+        self._report(line, word, message, v4.v5 if v4.certain else None, safe=problem is not None)
 
     def _copied_head(self, line: Line, cmd: Command, number: int) -> None:
         # M703/M704 S: in v4 an alias (a device address, "M703 T14 S12": the pen answers to head 12);
@@ -316,23 +317,21 @@ class V4AddressingInV5(Rule):
         if v4.kind != HEAD:
             return
         v5 = resolve_v5(number)
-        if v5.kind == HEAD and v5.position in self.ctx.profile.positions:
-            return
         word = cmd.param("S")
         if word is None:
             return
+        valid_in_v5 = v5.kind == HEAD and v5.position in self.ctx.profile.positions
         message = (
-            f"{cmd.code} S{number} looks like v4 numbering: in v4 S{number} is {v4.label}; in v5 S names the "
+            f"{cmd.code} S{number} is v4 numbering: in v4 S{number} is {v4.label}; in v5 S names the "
             f"head to copy, and S{number} is {v5.label}{self._beyond(v5)}"
         )
-        if len(self.definite) < _MAX_KEPT:
-            self.definite.append((line, word, message, v4.v5 if v4.certain else None))
+        self._report(line, word, message, v4.v5 if v4.certain else None, safe=not valid_in_v5)
 
     def _misfit(self, code: str, v5: Address) -> str | None:
         """Why the v5 reading does not fit the command, or None when it does."""
         if v5.kind == RESERVED:
             return ", an address no device has"
-        if v5.kind not in _FITS.get(code, _ANY_DEVICE):
+        if not fits(code, v5):
             return f", which {code} does not address"
         if v5.kind == HEAD and v5.position not in self.ctx.profile.positions:
             return self._beyond(v5)
@@ -341,18 +340,20 @@ class V4AddressingInV5(Rule):
     def _beyond(self, v5: Address) -> str:
         if v5.kind == HEAD and v5.position not in self.ctx.profile.positions:
             profile = self.ctx.profile
-            return f", a position a {profile.name} does not have ({profile.describe_positions()})"
+            return (
+                f", a position a {profile.name} does not have ({profile.describe_positions()}){self.ctx.model_note()}"
+            )
         return ""
 
-    def finish(self) -> None:
-        for line, word, message, target in self.definite:
-            self._report(line, word, message, target)
-        if self.definite:
-            first = self.definite[0][0].number
-            for line, word, message, target in self.ambiguous:
-                self._report(line, word, f"{message}, but this file uses v4 numbering (line {first})", target)
+    def _report(self, line: Line, word: Word, message: str, target: int | None, safe: bool) -> None:
+        if len(self.found) < _MAX_KEPT:
+            self.found.append((line, word, message, target, safe))
 
-    def _report(self, line: Line, word: Word, message: str, target: int | None) -> None:
+    def finish(self) -> None:
+        for found in self.found:
+            self._emit(*found)
+
+    def _emit(self, line: Line, word: Word, message: str, target: int | None, safe: bool) -> None:
         letter = word.text[0]
         if target is None:
             self.report(line, f"{message}; the v4 -> v5 map is uncertain here: check the address by hand", node=word)
@@ -362,8 +363,14 @@ class V4AddressingInV5(Rule):
             fix = Fix(
                 f"Replace {word.text} with {letter}{target}",
                 (Edit(line.number, word.column, word.end_column, f"{letter}{target}"),),
+                safe=safe,
             )
-        self.report(line, f"{message}; in v5 write {letter.upper()}{target}", node=word, fix=fix)
+        advice = (
+            f"in v5 write {letter.upper()}{target}"
+            if safe
+            else f"if it is the v4 number, write {letter.upper()}{target}"
+        )
+        self.report(line, f"{message}; {advice}", node=word, fix=fix)
 
 
 # -- HY022 ---------------------------------------------------------------------------------------------
@@ -560,7 +567,8 @@ class AddressOutOfTable(Rule):
         if address is not None and address.kind == RESERVED:
             self.report(
                 line,
-                f"{cmd.code} T{cmd.params['T']}: {address.label}: the command addresses nothing",
+                f"{cmd.code} T{cmd.params['T']}: {address.label}: the command addresses nothing"
+                f"{v4_hint(self.ctx, address.number)}",
                 node=cmd.param("T"),
             )
 

@@ -444,8 +444,8 @@ class AxisNotOnModel(MoveRule):
         from Machinekit, where A is the extruder, or from 4th-axis CNC jobs).  Choose the printer with
         `--printer` (`ehr`, `16a`, `16a-dual` have A/B).
     """
-    example_bad = "G1 X10 Y10 A90 F1200"
-    example_good = "G1 X10 Y10 F1200"
+    example_bad = "; gclint-test: printer=30m\nG1 X10 Y10 A90 F1200"
+    example_good = "; gclint-test: printer=30m\nG1 X10 Y10 F1200"
     source = "Gcode page, G0 Rapid Move / G1 Working Move note on axes (catalogue H59)"
     codes = (*_ARCS, "G28", "G92", "G38")
     slot = "axis_on_model"

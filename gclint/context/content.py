@@ -1,0 +1,181 @@
+"""Read what the head of a file says about its dialect: the codes it uses, the dialects' clues, and the
+Hyrel addresses, declared heads, axes and model-specific codes (for the firmware version and model).
+
+One pass over the head's lines with the real parser (parses are cached by text, so the check that
+follows gets these lines for free).  Plain moves (``G1 X.. Y.. E..``) carry no clue and are skipped.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+from gclint.dialects import Dialect, all_dialects, get
+from gclint.dialects.base import Clue
+from gclint.syntax.fastpath import PLAIN_MOVE
+from gclint.syntax.nodes import GCODE, TEXT, Command
+from gclint.syntax.parse import parse_line
+
+_LINE_LIMIT = 2000  # longer lines are not read for clues (they are reported by the check itself)
+
+
+@dataclass(frozen=True)
+class Seen:
+    """Where something was first seen: the line number and the command's text."""
+
+    line: int
+    text: str
+
+    def __str__(self) -> str:
+        return f"{self.text} at line {self.line}"
+
+
+@dataclass
+class ContentReading:
+    """What the head's content says."""
+
+    codes: dict[str, Seen] = field(default_factory=dict)  # G/M codes -> first use
+    clues: dict[str, dict[Clue, Seen]] = field(default_factory=dict)  # candidate -> clue -> first match
+    # Hyrel: (code, letter, number) of each T variable (and M703/M704 S) -> first use
+    addresses: dict[tuple[str, str, int], Seen] = field(default_factory=dict)
+    tool_commands: dict[int, Seen] = field(default_factory=dict)  # T<n> lines
+    declarations: dict[int, Seen] = field(default_factory=dict)  # M6 T<n> O.. (T as written)
+    waits_w0: Seen | None = None  # M109/M190/M191 W0
+    m116: Seen | None = None
+    rotary_axes: Seen | None = None  # an A or B word on a move, G28 or G92
+    lathe: Seen | None = None  # M253/M254
+    aux_codes: dict[str, Seen] = field(default_factory=dict)  # model-specific aux ports (M670-M689)
+    e_amounts: Seen | None = None  # a working move with a fractional E before any M229 E1
+    m229_e1: bool = False
+
+
+def candidates() -> tuple[Dialect, ...]:
+    """The dialects ``auto`` chooses between (Hyrel v4 and v5 are one candidate; the version is decided
+    from the addresses afterwards)."""
+    return tuple(d for d in all_dialects() if d.name != "hyrel-v4")
+
+
+_HYREL = get("hyrel")
+# Hyrel codes whose T is an address (a T variable): every code whose parameter table lists T.
+_T_VARIABLE_CODES = frozenset(c for c, spec in _HYREL.codes.items() if spec.params and "T" in spec.params)
+_MOVES = frozenset({"G0", "G1", "G2", "G3", "G28", "G92"})
+_MODEL_AUX = frozenset(f"M{n}" for n in range(670, 690))
+
+
+def _clue_index() -> tuple[dict[str, list[tuple[str, Clue]]], list[tuple[str, Clue]]]:
+    by_code: dict[str, list[tuple[str, Clue]]] = {}
+    general: list[tuple[str, Clue]] = []
+    for dialect in candidates():
+        for clue in dialect.detection.clues:
+            entry = (dialect.name, clue)
+            if clue.code is not None:
+                by_code.setdefault(clue.code, []).append(entry)
+            else:
+                general.append(entry)
+    return by_code, general
+
+
+_BY_CODE, _GENERAL = _clue_index()
+
+
+def read_content(head: str, complete: bool) -> ContentReading:
+    """Read ``head`` (the beginning of a file; ``complete`` when it is the whole file)."""
+    reading = ContentReading()
+    lines = head.splitlines()
+    if not complete and lines:
+        lines.pop()  # cut short: the last line may be half a line
+    plain = PLAIN_MOVE.fullmatch
+    for number, raw in enumerate(lines, 1):
+        stripped = raw.lstrip()
+        if not stripped or stripped[0] in ";(" or len(raw) > _LINE_LIMIT:
+            continue
+        move = plain(raw)
+        if move is not None:
+            if reading.e_amounts is None and not reading.m229_e1 and move.group(1) == "1":
+                e = move.group(6)
+                if e is not None and "." in e and e.strip("0").strip(".").strip("-+") not in ("", "1"):
+                    reading.e_amounts = Seen(number, raw.strip()[:40])
+            continue
+        for cmd in parse_line(raw).commands:
+            _read_command(reading, cmd, number)
+    return reading
+
+
+def _read_command(reading: ContentReading, cmd: Command, number: int) -> None:
+    code = cmd.code
+    seen = None
+    for candidate, clue in _BY_CODE.get(code, ()) if code is not None else ():  # type: ignore[arg-type]
+        seen = _match(reading, candidate, clue, cmd, number, seen)
+    for candidate, clue in _GENERAL:
+        seen = _match(reading, candidate, clue, cmd, number, seen)
+    if code is None or cmd.kind not in (GCODE, TEXT):
+        return
+    params = cmd.params
+    letter = code[0]
+    if letter in "GM" and code not in reading.codes:
+        reading.codes[code] = seen or _seen(cmd, number)
+    if letter == "T":
+        tail = code[1:]
+        if tail.isdigit() and int(tail) not in reading.tool_commands:
+            reading.tool_commands[int(tail)] = _seen(cmd, number)
+        return
+    if code in _T_VARIABLE_CODES:
+        _address(reading, cmd, "T", number)
+        if code in ("M703", "M704"):
+            _address(reading, cmd, "S", number)
+    if code == "M6" and "O" in params:
+        head = _whole(params.get("T"))
+        if head is not None and head not in reading.declarations:
+            reading.declarations[head] = _seen(cmd, number)
+    elif code in ("M109", "M190", "M191") and _whole(params.get("W")) == 0 and reading.waits_w0 is None:
+        reading.waits_w0 = _seen(cmd, number)
+    elif code == "M229" and _whole(params.get("E")) == 1:
+        reading.m229_e1 = True
+    elif code == "M116" and reading.m116 is None:
+        reading.m116 = _seen(cmd, number)
+    elif code in ("M253", "M254") and reading.lathe is None:
+        reading.lathe = _seen(cmd, number)
+    elif code in _MODEL_AUX and code not in reading.aux_codes:
+        reading.aux_codes[code] = _seen(cmd, number)
+    if code in _MOVES and reading.rotary_axes is None and ("A" in params or "B" in params):
+        reading.rotary_axes = _seen(cmd, number)
+
+
+def _match(
+    reading: ContentReading, candidate: str, clue: Clue, cmd: Command, number: int, seen: Seen | None
+) -> Seen | None:
+    found = reading.clues.setdefault(candidate, {})
+    if clue in found:
+        return seen
+    try:
+        matched = clue.matches(cmd)
+    except (TypeError, ValueError, AttributeError):  # a clue never stops the reading
+        matched = False
+    if matched:
+        seen = seen or _seen(cmd, number)
+        found[clue] = seen
+    return seen
+
+
+def _address(reading: ContentReading, cmd: Command, letter: str, number: int) -> None:
+    value = _whole(cmd.params.get(letter))
+    if value is None:
+        return
+    key = (cmd.code or "", letter, value)
+    if key not in reading.addresses:
+        reading.addresses[key] = _seen(cmd, number)
+
+
+def _whole(text: str | None) -> int | None:
+    if text is None or not 0 < len(text) <= 6:
+        return None
+    try:
+        value = float(text)
+    except ValueError:
+        return None
+    return int(value) if value == int(value) else None
+
+
+def _seen(cmd: Command, number: int) -> Seen:
+    params = " ".join(f"{k}{v if v is not None else ''}" for k, v in list(cmd.params.items())[:4])
+    text = f"{cmd.code} {params}".strip() if cmd.kind in (GCODE, TEXT) else (cmd.code or cmd.kind)
+    return Seen(number, text[:40])

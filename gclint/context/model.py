@@ -1,0 +1,109 @@
+"""``Context``: what a file was read as (dialect, Hyrel firmware version, printer model) and why."""
+
+from __future__ import annotations
+
+from dataclasses import asdict, dataclass, fields
+
+# Where the dialect came from, strongest first.
+OPTION = "option"  # --dialect / --printer on the command line
+CONFIGURATION = "configuration"  # gclint.toml / pyproject.toml
+DIRECTIVE = "directive"  # "; gclint: dialect=NAME" in the file
+CONTENT = "content"  # codes and addressing only one dialect has
+HEADER = "header"  # the slicer's flavour (";FLAVOR:", "; gcode_flavor =", SLIC3R_GCODE_FLAVOR)
+EXTENSION = "extension"  # the file extension, as a tie-breaker
+DEFAULT = "default"  # nothing decided: the first target, hyrel
+
+EXPLICIT_ORIGINS = (OPTION, CONFIGURATION, DIRECTIVE)
+
+# How sure the decision is.
+EXPLICIT = "explicit"  # the user said so
+STRONG = "strong"  # clear evidence, nothing against it
+WEAK = "weak"  # little evidence, or evidence against it: shown to the user
+NONE = "none"  # nothing decided: the default
+
+
+@dataclass(frozen=True)
+class Context:
+    """The context a file is checked in, with the evidence kept for the user.
+
+    ``version_evidence`` is what the file's own Hyrel addresses say (4, 5, or None when they say
+    nothing or are even), whatever version the file is checked as: HY008 reports v4 numbers in a file
+    checked as v5 only when the file's evidence says v4.
+    """
+
+    dialect: str
+    origin: str = DEFAULT
+    strength: str = NONE
+    reasons: tuple[str, ...] = ()
+    conflict: str = ""
+    firmware: int | None = None  # Hyrel: 4 or 5
+    firmware_origin: str = DEFAULT
+    firmware_reasons: tuple[str, ...] = ()
+    version_evidence: int | None = None
+    printer: str | None = None  # Hyrel model (gclint.machine.profiles), None for other dialects
+    printer_origin: str = DEFAULT
+    printer_reasons: tuple[str, ...] = ()
+
+    @property
+    def printer_assumed(self) -> bool:
+        """True when no one said which model the job is for (the default, or read from the job)."""
+        return self.printer is not None and self.printer_origin not in (OPTION, CONFIGURATION)
+
+    @property
+    def weak(self) -> bool:
+        """True when the user should be told how the file was read (little or conflicting evidence)."""
+        return self.strength in (WEAK, NONE) or bool(self.conflict)
+
+    def label(self) -> str:
+        """``hyrel v5, printer 30m (assumed)`` / ``marlin``."""
+        text = self.dialect
+        if self.firmware is not None:
+            text = f"hyrel v{self.firmware}"
+        if self.printer is not None:
+            text += f", printer {self.printer}"
+            if self.printer_origin == DEFAULT:
+                text += " (assumed)"
+            elif self.printer_assumed:
+                text += " (from the job)"
+        return text
+
+    def why(self) -> str:
+        """Why the file was read so, in one sentence (for notes and -v)."""
+        if self.origin == OPTION:
+            base = "set with --dialect"
+        elif self.origin == CONFIGURATION:
+            base = "set in the configuration"
+        elif self.origin == DIRECTIVE:
+            base = "set by a '; gclint: dialect=' line"
+        elif self.origin == DEFAULT:
+            base = "nothing in the file tells the dialect; hyrel is the default"
+        else:
+            evidence = "; ".join(self.reasons[:3])
+            base = {CONTENT: "content", HEADER: "slicer header", EXTENSION: "file extension"}[self.origin]
+            base = f"{base}: {evidence}" if evidence else base
+        parts = [base]
+        if self.conflict:
+            parts.append(self.conflict)
+        if self.firmware is not None and self.firmware_origin not in EXPLICIT_ORIGINS and self.firmware_reasons:
+            parts.append(f"v{self.firmware}: " + "; ".join(self.firmware_reasons[:3]))
+        if self.printer is not None and self.printer_reasons and self.printer_origin not in (OPTION, CONFIGURATION):
+            parts.append(f"printer {self.printer}: " + "; ".join(self.printer_reasons[:2]))
+        return "; ".join(parts)
+
+    def model_note(self) -> str:
+        """What a finding that rests on the printer model adds: which model it assumed and why."""
+        if not self.printer_assumed:
+            return ""
+        if self.printer_origin == DEFAULT:
+            return f" (printer assumed: {self.printer}, the default; set it with --printer)"
+        told = self.printer_reasons[0].split(": ")[0] if self.printer_reasons else "the job"
+        return f" (printer assumed: {self.printer}, from {told}; set it with --printer)"
+
+    def to_dict(self) -> dict:
+        return asdict(self)
+
+    @classmethod
+    def from_dict(cls, data: dict) -> Context:
+        known = {f.name for f in fields(cls)}
+        values = {k: (tuple(v) if isinstance(v, list) else v) for k, v in data.items() if k in known}
+        return cls(**values)

@@ -1,0 +1,39 @@
+"""Notes for people about how files were read (the way ruff prints warnings on stderr): a file read on weak
+or conflicting evidence gets a note; files where nothing told the dialect share one note (read as
+``hyrel``, the first target); ``-v`` gives the decision for every file."""
+
+from __future__ import annotations
+
+from gclint.engine import FileResult
+
+MAX_NOTES = 20  # more weak files than this: the rest are counted (-v lists every file)
+
+
+def context_notes(results: list[FileResult], verbose: bool = False) -> list[str]:
+    """The note lines (without the ``note:`` prefix's colour) for ``results``, in file order."""
+    lines: list[str] = []
+    defaulted: list[str] = []
+    weak: list[str] = []
+    for r in results:
+        c = r.context
+        if r.error is not None or c is None:
+            continue
+        if verbose:
+            lines.append(f"{r.path}: checked as {c.label()}: {c.why()}")
+        elif c.strength == "none" and not c.conflict:
+            defaulted.append(r.path)
+        elif c.weak:
+            weak.append(f"{r.path}: checked as {c.label()} on weak evidence: {c.why()}")
+    if verbose:
+        return lines
+    lines.extend(weak[:MAX_NOTES])
+    if len(weak) > MAX_NOTES:
+        lines.append(f"{len(weak) - MAX_NOTES} more files were read on weak evidence (-v lists every file)")
+    if defaulted:
+        shown = ", ".join(defaulted[:3]) + (f" and {len(defaulted) - 3} more" if len(defaulted) > 3 else "")
+        what = "file tells" if len(defaulted) == 1 else "files tell"
+        lines.append(
+            f"nothing in {len(defaulted)} {what} its dialect ({shown}): checked as hyrel v5, the first target; "
+            "set --dialect, dialect = ... in gclint.toml or '; gclint: dialect=NAME' in the file"
+        )
+    return lines
