@@ -138,7 +138,8 @@ def main() -> None:
     "--config", "config_file", type=click.Path(dir_okay=False), help="Configuration file (else found upward)."
 )
 @click.option("--fix", is_flag=True, help="Apply the safe fixes in place.")
-@click.option("--unsafe-fixes", is_flag=True, help="With --fix, apply unsafe fixes too.")
+@click.option("--unsafe-fixes", is_flag=True, help="With --fix or --diff, apply unsafe fixes too.")
+@click.option("--diff", "show_diff", is_flag=True, help="Print the fixes as a unified diff; write nothing.")
 @click.option("--stdin-filename", metavar="NAME", help="Name to use for the file read from '-'.")
 @click.option("--no-cache", is_flag=True, help="Do not read or write the result cache.")
 @click.option(
@@ -183,6 +184,7 @@ def check(
     progress: bool | None,
     verbose: bool = False,
     show_settings: bool = False,
+    show_diff: bool = False,
 ) -> None:
     """Check G-code files and folders (- for standard input)."""
     from gclint import runner
@@ -220,8 +222,8 @@ def check(
             click.echo(f"gclint: {r.error}", err=True)
         click.echo(show(files, overrides, config_file, stdin_filename or "-"), nl=False)
         sys.exit(2 if problems else 0)
-    if fix and "-" in files:
-        _fail("--fix cannot rewrite standard input")
+    if (fix or show_diff) and "-" in files:
+        _fail("--fix and --diff need files, not standard input")
     from gclint import progress as progress_bar
     from gclint.cache import ResultCache
 
@@ -238,7 +240,7 @@ def check(
             jobs=jobs or (runner.default_jobs() if len(files) > 1 else 1),
             stdin_name=stdin_filename or "-",
             progress=bar.advance if bar is not None else None,
-            cache=None if (no_cache or fix) else ResultCache(cache_dir),
+            cache=None if (no_cache or fix or show_diff) else ResultCache(cache_dir),
         )
     except RuleError as exc:
         _fail(str(exc))
@@ -246,22 +248,18 @@ def check(
     finally:
         if bar is not None:
             bar.close()
-    if fix:
-        from gclint.fixes import apply_fixes
-
-        fixed = []
-        for r in results:
-            if r.error is None:
-                # re-check with the very options of the first check (configuration and command line)
-                options = runner.options_for(r.path, Options(), overrides, config_file)
-                r = apply_fixes(r, unsafe=unsafe_fixes, linter=runner.linter_for(options))
-            fixed.append(r)
-        results = fixed
+    fixed = None
+    if fix or show_diff:
+        results, fixed = _apply_fixes(results, overrides, config_file, unsafe=unsafe_fixes, write=not show_diff)
+        if show_diff:
+            remaining = sum(len(r.findings) for r in results)
+            click.echo(f"Would fix {fixed} finding{'s' if fixed != 1 else ''} ({remaining} remaining).", err=True)
+            sys.exit(2 if any(r.error for r in results + problems) else 1 if fixed else 0)
     results = problems + results
     for r in results:
         if r.error:
             click.echo(f"gclint: {r.error}", err=True)
-    ctx = ReportContext(tool_version=__version__, statistics=statistics)
+    ctx = ReportContext(tool_version=__version__, statistics=statistics, fixed=fixed)
     _write_report(writers[fmt], results, ctx, output)
     if verbose or fmt not in MACHINE_FORMATS:  # after the report: a report that cannot be written is one line
         from gclint.reports.common import printable
@@ -274,6 +272,34 @@ def check(
     worst = max((f.severity for r in results for f in r.findings), default=None)
     if not exit_zero and worst is not None and worst >= Severity.WARNING:
         sys.exit(1)
+
+
+def _apply_fixes(
+    results: list[FileResult], overrides: dict, config_file: str | None, *, unsafe: bool, write: bool
+) -> tuple[list[FileResult], int]:
+    """Fix each file (gclint.fixes); with ``write=False`` print the diffs instead.  Returns the results
+    as the files are now and the number of findings fixed (or that would be)."""
+    from gclint import runner
+    from gclint.fixes import fix_file
+    from gclint.reports.common import printable
+
+    out: list[FileResult] = []
+    fixed = 0
+    for r in results:
+        if r.error is None:
+            # re-check with the very options of the first check (configuration and command line)
+            options = runner.options_for(r.path, Options(), overrides, config_file)
+            outcome = fix_file(r, runner.linter_for(options), unsafe=unsafe, write=write)
+            fixed += outcome.fixed
+            for note in outcome.reverted:
+                click.echo(f"note: {printable(note)}", err=True)
+            if outcome.diff:
+                click.echo(outcome.diff, nl=False)
+            r = outcome.result
+            if outcome.error is not None:
+                r = FileResult(r.path, r.findings, r.dialect, r.dialect_reason, r.lines, outcome.error, r.context)
+        out.append(r)
+    return out, fixed
 
 
 def _write_report(writer, results: list[FileResult], ctx, output: str | None) -> None:

@@ -75,6 +75,7 @@ class FileResult:
     lines: int = 0
     error: str | None = None  # the file could not be read (exit code 2)
     context: Context | None = None  # what the file was read as, and why (gclint.context)
+    digest: str | None = None  # hash of the bytes checked (Source.digest), for --fix
 
     @property
     def read_as(self) -> str:
@@ -243,6 +244,7 @@ class Linter:
         except SourceError as exc:
             result.error = str(exc)
             return result
+        result.digest = source.digest
         ignored = self.per_file_ignores(path)
         result.findings = [
             f for f in ctx.findings if not ctx.suppressed(f) and not (ignored and _matches(f.code, ignored))

@@ -1,50 +1,172 @@
-"""Apply fixes: rewrite a file with the edits of its findings' fixes, atomically, then check it again.
+"""Apply fixes the way ruff does: a safe fix never changes what a valid line means, and a fix never makes
+a file worse.
 
-A fix is never applied to a file that does not parse (SX001 findings), and a fixed file that would not
-parse is left untouched (the sqlfluff safety net).
+* Fixes come from the findings of one check (``--fix``: the safe ones; ``--unsafe-fixes``: all).
+* Never in a file that does not parse (SX001).
+* The fixed text is checked again, in the same context, before anything is written: a fix after which a
+  finding appears that was not there before is taken back (with every fix when the new finding cannot be
+  tied to one line), and the file is checked again; what was taken back is reported.
+* The file is written only if its bytes are still the ones that were checked (a file that changed since
+  it was read is not fixed), through a temporary file renamed over it (a failure leaves it untouched).
+* ``write=False`` (``--diff``) writes nothing and returns the diff instead.
 """
 
 from __future__ import annotations
 
+import tempfile
+from collections.abc import Iterator
+from dataclasses import dataclass, field
+
 from gclint.engine import FileResult, Linter
 from gclint.io import AtomicWriter, OutputError
-from gclint.rules.base import Edit
+from gclint.rules.base import Edit, Finding, Fix
 from gclint.syntax.source import Source, SourceError
 
+_ROUNDS = 4  # checks of the fixed text at most (each round takes back at least one fix)
 
-def apply_fixes(result: FileResult, unsafe: bool = False, linter: Linter | None = None) -> FileResult:
-    """Fix ``result.path`` in place; returns the result of checking the fixed file again with ``linter``
-    (pass the linter of the first check, so that its printer, loaded heads and selection apply)."""
-    if any(f.code == "SX001" for f in result.findings):
-        return result
-    edits: dict[int, list[Edit]] = {}
-    fixed_codes = []
-    for f in result.findings:
-        if f.fix is not None and (f.fix.safe or unsafe):
-            for e in f.fix.edits:
-                edits.setdefault(e.line, []).append(e)
-            fixed_codes.append(f.code)
-    if not edits:
-        return result
+
+@dataclass
+class FixOutcome:
+    """What fixing one file did."""
+
+    result: FileResult  # the findings of the file as it is now (fixed or not)
+    fixed: int = 0  # findings whose fix was applied
+    reverted: list[str] = field(default_factory=list)  # fixes taken back, and why
+    diff: str = ""  # with write=False: the changes as a unified diff
+    error: str | None = None
+
+
+def fix_file(result: FileResult, linter: Linter, *, unsafe: bool = False, write: bool = True) -> FixOutcome:
+    """Apply the fixes of ``result`` (the check of ``result.path`` by ``linter``) to the file."""
+    outcome = FixOutcome(result)
+    if result.error is not None or any(f.code == "SX001" for f in result.findings):
+        return outcome
+    chosen = [f for f in result.findings if f.fix is not None and (f.fix.safe or unsafe)]
+    if not chosen:
+        return outcome
+    if result.digest is None:
+        outcome.error = f"{result.path}: not fixed: the file was not read to the end"
+        return outcome
+    before = {(f.line, f.code) for f in result.findings}
+    for _ in range(_ROUNDS):
+        edits = _edits(chosen)
+        try:
+            checked, digest = _check_fixed(result.path, edits, linter)
+        except (OSError, SourceError, OutputError) as exc:
+            outcome.error = f"{result.path}: not fixed: {exc}"
+            return outcome
+        if digest != result.digest:
+            outcome.error = f"{result.path}: not fixed: the file changed since it was checked; check it again"
+            return outcome
+        new = [f for f in checked.findings if (f.line, f.code) not in before]
+        if not new:
+            break
+        edited = set(edits)
+        blamed = [f for f in chosen if any(e.line in {n.line for n in new} for e in f.fix.edits)]  # type: ignore[union-attr]
+        if not blamed or not edited & {n.line for n in new}:
+            blamed = chosen  # a new finding away from every edited line: no fix can be trusted
+        for f in blamed:
+            caused = next((n for n in new if any(e.line == n.line for e in f.fix.edits)), new[0])  # type: ignore[union-attr]
+            outcome.reverted.append(
+                f"{f.path}:{f.line}: {f.code} fix not applied: it would bring {caused.code} "
+                f"at line {caused.line} ({caused.message})"
+            )
+        chosen = [f for f in chosen if f not in blamed]
+        if not chosen:
+            return outcome
+    else:
+        return outcome  # still not clean after every round: leave the file as it is
+    outcome.fixed = len(chosen)
     try:
-        source = Source.open(result.path)
-        with AtomicWriter(result.path) as out:
-            out.write(source.bom)
-            number = 0
-            for chunk in source.chunks():
-                for raw, ending in chunk:
-                    number += 1
-                    line_edits = edits.get(number)
-                    text = _edit(raw, line_edits) if line_edits else raw
-                    out.write(source.encode(text + ending))
-    except (SourceError, OutputError) as exc:
-        return FileResult(result.path, findings=result.findings, dialect=result.dialect, error=str(exc))
-    checker = linter
-    if checker is None:
-        from gclint.engine import Options
+        if write:
+            _write(result.path, _edits(chosen), result.digest)
+        else:
+            outcome.diff = "".join(_diff(result.path, _edits(chosen)))
+    except (OSError, SourceError, OutputError) as exc:
+        outcome.fixed = 0
+        outcome.error = str(exc) if str(exc).startswith(result.path) else f"{result.path}: not fixed: {exc}"
+        return outcome
+    outcome.result = checked
+    return outcome
 
-        checker = Linter(Options(dialect=result.dialect or "auto"))
-    return checker.check_path(result.path)
+
+class _Changed(Exception):
+    pass
+
+
+def _edits(findings: list[Finding]) -> dict[int, list[Edit]]:
+    edits: dict[int, list[Edit]] = {}
+    for f in findings:
+        for e in f.fix.edits:  # type: ignore[union-attr]
+            edits.setdefault(e.line, []).append(e)
+    return edits
+
+
+def _fixed_lines(source: Source, edits: dict[int, list[Edit]]) -> Iterator[tuple[int, str, str, str]]:
+    """(line number, original text, fixed text, ending) for every line of ``source``."""
+    number = 0
+    for chunk in source.chunks():
+        for raw, ending in chunk:
+            number += 1
+            line_edits = edits.get(number)
+            yield number, raw, (_edit(raw, line_edits) if line_edits else raw), ending
+
+
+def _check_fixed(path: str, edits: dict[int, list[Edit]], linter: Linter) -> tuple[FileResult, str | None]:
+    """Check the fixed text (in a temporary file, named as the real one) and hash the original's bytes."""
+    source = Source.open(path)
+    with tempfile.TemporaryFile() as scratch:
+        scratch.write(source.bom)
+        for _, _, text, ending in _fixed_lines(source, edits):
+            scratch.write(source.encode(text + ending))
+        scratch.seek(0)
+        checked = linter.check_source(Source(scratch, path))
+    return checked, source.digest
+
+
+def _write(path: str, edits: dict[int, list[Edit]], digest: str) -> None:
+    source = Source.open(path)
+    with AtomicWriter(path) as out:
+        out.write(source.bom)
+        for _, _, text, ending in _fixed_lines(source, edits):
+            out.write(source.encode(text + ending))
+        if source.digest != digest:  # changed while being fixed: keep what is there
+            out.discard()
+            raise OutputError(f"{path}: not fixed: the file changed while it was being fixed")
+
+
+def _diff(path: str, edits: dict[int, list[Edit]], context: int = 3) -> Iterator[str]:
+    """A unified diff of the fixes (lines change in place: never added or removed)."""
+    ranges: list[list[int]] = []  # [first, last] line of each hunk, changes with their context merged
+    for number in sorted(edits):
+        first, last = max(1, number - context), number + context
+        if ranges and first <= ranges[-1][1] + 1:
+            ranges[-1][1] = last
+        else:
+            ranges.append([first, last])
+    yield f"--- {path}\n+++ {path} (fixed)\n"
+    index, lines = 0, []
+    for number, raw, text, _ in _fixed_lines(Source.open(path), edits):
+        first, last = ranges[index]
+        if number < first:
+            continue
+        lines.append((raw, text))
+        if number == last:
+            yield from _hunk(first, lines)
+            index, lines = index + 1, []
+            if index == len(ranges):
+                return
+    if lines:  # the file ended inside the last hunk's context
+        yield from _hunk(ranges[index][0], lines)
+
+
+def _hunk(start: int, lines: list[tuple[str, str]]) -> Iterator[str]:
+    yield f"@@ -{start},{len(lines)} +{start},{len(lines)} @@\n"
+    for raw, text in lines:
+        if raw == text:
+            yield f" {raw}\n"
+        else:
+            yield f"-{raw}\n+{text}\n"
 
 
 def _edit(raw: str, edits: list[Edit]) -> str:
@@ -57,3 +179,6 @@ def _edit(raw: str, edits: list[Edit]) -> str:
         text = text[: e.start - 1] + e.text + text[e.end - 1 :]
         last_start = e.start
     return text
+
+
+__all__ = ["fix_file", "FixOutcome", "Fix"]

@@ -19,6 +19,7 @@ class ReportContext:
     show_fixes: bool = True
     color: bool = False
     rules: dict = field(default_factory=dict)  # code -> rule class, for formats that describe rules
+    fixed: int | None = None  # with --fix: how many findings were fixed
 
 
 Writer = Callable[[list[FileResult], TextIO, ReportContext], None]

@@ -13,6 +13,7 @@ its longest line).
 from __future__ import annotations
 
 import codecs
+import hashlib
 import io
 import re
 import sys
@@ -59,6 +60,10 @@ class Source:
             _refuse_binary(head, display)
         self._head = head
         self._consumed = False
+        self._hash = hashlib.blake2b(digest_size=16)  # of the bytes read, as read (BOM included)
+        self._hash.update(self.bom)
+        self._hash.update(head)
+        self._complete = False
 
     @classmethod
     def open(cls, path: str) -> Source:
@@ -101,6 +106,12 @@ class Source:
             return data.decode("utf-8", "surrogateescape")
         return data[: len(data) // 2 * 2].decode(self.encoding, "replace")
 
+    @property
+    def digest(self) -> str | None:
+        """A hash of every byte of the file, once it has been read to the end (else None): what was
+        checked, for ``--fix`` to see that the file has not changed since."""
+        return self._hash.hexdigest() if self._complete else None
+
     def encode(self, text: str) -> bytes:
         """Encode output text so that unchanged text gives back the original bytes."""
         if self.encoding == "utf-8":
@@ -141,6 +152,7 @@ class Source:
             if not eof:
                 more = read(CHUNK)
                 if more:
+                    self._hash.update(more)
                     buffer += more
                 else:
                     eof = True
@@ -149,6 +161,7 @@ class Source:
                 yield split_lines(buffer[:cut].decode("utf-8", "surrogateescape"))
                 buffer = buffer[cut:]
             if eof:
+                self._complete = True
                 if buffer:
                     yield [(buffer.decode("utf-8", "surrogateescape"), "")]
                 return
@@ -170,10 +183,12 @@ class Source:
                 yield split_lines(pending[: cut + 1])
                 pending = pending[cut + 1 :]
             if final:
+                self._complete = True
                 if pending:
                     yield [(pending, "")]
                 return
             data = self._stream.read(CHUNK)
+            self._hash.update(data)
 
 
 def _last_line_end(buffer: bytes, eof: bool) -> int:

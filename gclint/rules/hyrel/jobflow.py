@@ -190,7 +190,11 @@ class AuxPortNotOnModel(Rule):
         spec = self.ctx.dialect.spec(cmd.code)  # type: ignore[arg-type]
         what = spec.summary if spec is not None else cmd.code
         models = ", ".join(p.name for p in PROFILES.values() if cmd.code in p.aux_codes)
-        self.report(line, f"{cmd.code} ({what}) is not on a {profile.name} (it is on: {models})", node=cmd)
+        self.report(
+            line,
+            f"{cmd.code} ({what}) is not on a {profile.name} (it is on: {models}){self.ctx.model_note()}",
+            node=cmd,
+        )
 
 
 # -- HY044 ---------------------------------------------------------------------------------------------

@@ -468,7 +468,7 @@ class AxisNotOnModel(MoveRule):
                 self.report(
                     line,
                     f"{cmd.code} {axis}: the {self.ctx.profile.name.upper()} has no {axis} axis "
-                    "(only EHR and 16A printers may be expanded to five axes)",
+                    f"(only EHR and 16A printers may be expanded to five axes){self.ctx.model_note()}",
                     node=cmd.param(axis) or cmd,
                 )
 

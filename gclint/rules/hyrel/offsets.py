@@ -97,7 +97,7 @@ class M660EhrWithoutZHome(Rule):
             self.report(
                 line,
                 f"M660 on an {self.ctx.profile.name.upper()} needs a G28 Z0 before it "
-                "('You MUST have a G28 Z0 in your header to run this M660 on the EHR')",
+                f"('You MUST have a G28 Z0 in your header to run this M660 on the EHR'){self.ctx.model_note()}",
                 node=cmd,
             )
 
