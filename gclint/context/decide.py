@@ -64,6 +64,7 @@ _ENV_WEIGHT = 10
 _DECIDES = 3  # content decides from this score on (a clue, or two codes only one group has)
 _STRONG = 4  # ... and is strong from here, when it leads the runner-up by _LEAD
 _LEAD = 3
+_LEANS = 2  # below _DECIDES, content still beats the default from here (weakly): a bare G28, one odd code
 MODEL_ORDER = ("30m", "esr", "ehr", "16a", "16a-dual")  # the simplest model that fits the job wins
 
 
@@ -241,7 +242,7 @@ def _weigh(
         if len(by_extension) == 1:
             group, origin = group_of[by_extension[0]], EXTENSION
             reasons = (f"the extension {_extension(path)}",) + _top_reasons(points.group[group], 2)
-        elif best > 0:
+        elif best >= _LEANS:
             group, origin = ("hyrel" if "hyrel" in top else top[0]), CONTENT
             reasons = _top_reasons(points.group[group])
         else:
