@@ -7,7 +7,7 @@ a macro file for a code it does not know (sys/M<n>.g, sys/G<n>.g), so unknown co
 from __future__ import annotations
 
 from gclint.dialects.base import Clue, Detection, Dialect, codes, describe, span, table
-from gclint.syntax.nodes import META
+from gclint.syntax.nodes import META, is_number
 
 _G = (
     "G0 G1 G2 G3 G4 G10 G11 G17 G18 G19 G20 G21 G22 G23 G28 G29 G30 G31 G32 G38.2 G38.3 G38.4 G38.5 G53 G54 G55"
@@ -165,7 +165,8 @@ def _object_model(cmd) -> bool:
 REPRAP_CLUES = (
     Clue("a meta command (if, while, var, set, global, abort)", kind=META, test=lambda c: c.code != "echo", weight=4),
     Clue("an echo command (RepRapFirmware or Carvera console)", "echo", weight=1),
-    Clue('M98 P"file": calls a macro by name', "M98", test=lambda c: (c.params.get("P") or "")[:1] == '"'),
+    # (a CNC M98 calls a numbered subprogram: M98 P100)
+    Clue('M98 P"file": calls a macro file by name', "M98", test=lambda c: not is_number(c.params.get("P") or "")),
     Clue("an object-model expression {...}", test=_object_model),
     # LinuxCNC's G10 always has L (G10 L2 P1 R45 rotates a coordinate system)
     Clue(
