@@ -149,6 +149,49 @@ def test_hy055_homing_at_the_end_is_fine():
     assert lint(text, codes=("HY055",)) == []
 
 
+def test_hy055_g28_applies_a_head_offset_of_0():
+    # "applies a head offset of 0 mm (as in an M6 O0)": the head selected before the G28 prints without
+    # its offsets until a T command invokes them again
+    text = """\
+        M6 T0 O1 X0 Y0 Z0
+        M6 T1 O2 X20 Y-30 Z0
+        T1
+        G28 X0 Y0
+        G1 X20 Y10 E1 F1200
+        """
+    found = lint(text, codes=("HY055",))
+    assert where(found) == [(4, "HY055", "warning")]
+    assert "T1" in found[0].message and "M6 O0" in found[0].message
+    # re-selected before printing: fine; a T after the printing started does not help
+    assert lint(text.replace("G1 X20", "T1\n        G1 X20"), codes=("HY055",)) == []
+    assert len(lint(text + "        T1\n        G1 X30 E1\n", codes=("HY055",))) == 1
+    # an M6 T# ... I1 applies the offsets ("when you execute a tool change with T#")
+    assert lint(text.replace("G1 X20", "M6 T1 O2 X20 Y-30 Z0 I1\n        G1 X20"), codes=("HY055",)) == []
+
+
+def test_hy055_head_offset_silent_when_it_changes_nothing_or_nothing_was_selected():
+    # T0 declares only zero offsets: a head offset of 0 mm is its own offset
+    assert lint("M6 T0 O1 X0 Y0 Z0\nT0\nG28 X0 Y0\nG1 X1 E1 F600\n", codes=("HY055",)) == []
+    # no T command at all: Default Mode, "executed with the only head loaded"
+    assert lint("M6 T1 O2 X20 Y0 Z0\nG28 X0 Y0\nG1 X1 E1 F600\n", codes=("HY055",)) == []
+    # the usual header: home first, then select the head
+    assert lint("G28 X0 Y0\nT1\nG1 X1 E1 F600\nG28 X0 Y0\nM30\n", codes=("HY055",)) == []
+    # offsets unknown (Repetrel sends them behind the scenes): reported
+    assert len(lint("T1\nG28 X0 Y0\nG1 X1 E1 F600\n", codes=("HY055",))) == 1
+    # v4 files: the same (T commands are tool numbers 0-9)
+    assert len(lint("M6 T12 O2 X20 Y0\nT1\nG28 X0 Y0\nG1 X1 E1 F600\n", dialect="hyrel-v4", codes=("HY055",))) == 1
+
+
+def test_state_head_reselected_since_g28():
+    st = run_state("T1\nG28 X0 Y0\n")
+    assert st.head_reselected_line is None and st.tool == 1
+    st = run_state("T1\nG28 X0 Y0\nT2\nT1\n")
+    assert st.head_reselected_line == 3
+    st = run_state("M6 T1 O2 X20 Y-3 Z0\nM6 T2 O3 X0 Y0\n")
+    assert st.declared_offsets == {1: {"X": 20, "Y": -3, "Z": 0}, 2: {"X": 0, "Y": 0}}
+    assert not st.head_offsets_zero(1) and st.head_offsets_zero(2) and not st.head_offsets_zero(3)
+
+
 def test_hy061_o0_without_offsets_is_fine():
     assert lint("M6 O0\nM6 T0 O0 X0 Y0\n", codes=("HY061",)) == []
 

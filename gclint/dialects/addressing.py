@@ -69,6 +69,23 @@ _V5_SPECIAL = {
 }
 
 
+# The devices a v5 group address covers (T_v5 "Logical/Vurtual Device Addresses": T40 "ALL DEVICES",
+# T41-T44 "Yoke n, all Heads", T45 "All Aux devices", T46 "All Beds / Chambers", T47 "All non-Bed /
+# non-Chamber devices", T48 "All Virtual devices (T30-T39)").  A clone squad's heads are job state
+# (M702/M703), not data: ``MachineState.squads``.
+GROUP_MEMBERS: dict[int, tuple[int, ...]] = {
+    40: tuple(range(26)),
+    41: tuple(range(0, 5)),
+    42: tuple(range(5, 10)),
+    43: tuple(range(10, 15)),
+    44: tuple(range(15, 20)),
+    45: (22, 23),
+    46: (24, 25),
+    47: tuple(range(24)),
+    48: tuple(range(30, 40)),
+}
+
+
 def resolve_v5(number: int) -> Address:
     """The v5 meaning of ``T<number>`` (command or variable)."""
     if 0 <= number <= 19:
