@@ -100,6 +100,12 @@ def test_hy035_targets_per_device():
     assert where(lint(text, codes=("HY035",))) == [(3, "HY035", "warning"), (7, "HY035", "warning")]
 
 
+def test_hy035_no_limit_on_r_with_s():
+    # "Rn if present, is how close the relative temperature needs to be to the set temp": no limit given
+    assert lint("M109 T0 S240 R60\nM190 T24 S100 R80\nM191 S60 R55\n", codes=("HY035",)) == []
+    assert where(lint("M109 T0 R60\n", codes=("HY035",))) == [(1, "HY035", "error")]
+
+
 def test_hy036_reports_at_the_w0_line_once():
     text = "M109 T0 S200 W0\nG1 X1 E1 F600\nM30\n"
     assert where(lint(text, codes=("HY036",))) == [(1, "HY036", "warning")]
