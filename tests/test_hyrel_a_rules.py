@@ -114,6 +114,15 @@ def test_hy036_reports_at_the_w0_line_once():
 
 def test_hy051_beds_may_be_chilled():
     assert lint("M140 T24 S-10\nM190 T24 S-10\n", codes=("HY051",)) == []
+    # "heated and chilled (sub-ambient) beds": no lowest set point on the page, so no DL003 either
+    assert lint("M140 T24 S-60\nM141 T25 S-80\n", codes=("HY051", "DL003")) == []
+
+
+def test_hy051_a_chilled_head_is_not_an_error():
+    # "we have both heated and chilled (sub-ambient) heads as options": at most an info
+    found = lint("M104 T0 S-20\nM109 T1 S-5 R2\nM104 T2 S4\n")
+    assert where(found) == [(1, "HY051", "info"), (2, "HY051", "info")]
+    assert "chilled" in found[0].message
 
 
 # -- offsets -------------------------------------------------------------------------------------------

@@ -41,7 +41,8 @@ _WAIT = [
     P("R", "stop waiting within +/- this many degrees of S"),
     P("W", "W0: set, do not wait until M116 (v5+)", choices=(0,)),
 ]
-# M109 Wait for Temp (Head): "Sn ... is the new set temperature in °C"; a head below 0 °C is a typo (HY051).
+# M109 Wait for Temp (Head): "Sn ... is the new set temperature in °C"; "we have both heated and chilled
+# (sub-ambient) heads": no lowest set point, but below 0 °C is mentioned (HY051, info).
 _WAIT_HEAD = [P("S", "set temperature, C (optional)", minimum=0, rule="HY051") if p.letter == "S" else p for p in _WAIT]
 
 _ARC = [
@@ -182,14 +183,16 @@ HYREL_CODES = table(
     code(
         "M140",
         "set bed temperature (no wait)",
-        P("S", "temperature, C", minimum=-50),
+        # "heated and chilled (sub-ambient) beds" (M190): the page gives no lowest set point
+        P("S", "temperature, C"),
         P("T", "target bed (default primary)"),
         source="M140 Set Temp (Bed)",
     ),
     code(
         "M141",
         "set chamber temperature (no wait)",
-        P("S", "temperature, C", minimum=-50),
+        # "heated and chilled (sub-ambient) chambers" (M191): the page gives no lowest set point
+        P("S", "temperature, C"),
         P("T", "target chamber"),
         source="M141 Set Temp (Chamber)",
     ),

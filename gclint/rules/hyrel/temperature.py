@@ -332,17 +332,27 @@ class WaitTargetKind(Rule):
 class NegativeTemperature(ParamTableRule):
     code = "HY051"
     name = "negative-temperature"
-    severity = Severity.ERROR
-    summary = "A head temperature below 0 °C (M104/M109 S)"
+    severity = Severity.INFO
+    summary = "A head set below 0 °C (M104/M109 S): only a chilled (sub-ambient) head goes there"
     explanation = """
-        "Sn is the new set temperature in °C" for the head (M104, M109).  Hyrel has heated and chilled
-        heads, but no head is set below 0 °C: a negative S is a typo or a value from another unit.  The
-        ranges are data in gclint/dialects/hyrel.py (`rule="HY051"`).
+        "Sn is the new set temperature in °C" for the head (M104, M109), and "Remember, we have both
+        heated and chilled (sub-ambient) heads as options."  The page gives no lowest set point, so a
+        set point below 0 °C is not an error: it is right for a chilled head and a typo (or a value in
+        another unit) for a heated one, and a G-code file does not say which head is which.  gclint
+        mentions it (info) so that a heated head set to `S-20` instead of `S20` is noticed; beds and
+        chambers ("heated and chilled (sub-ambient) beds", "chambers") are not reported.  The ranges
+        are data in gclint/dialects/hyrel.py (`rule="HY051"`).
     """
     example_bad = "M104 T0 S-20"
     example_good = "M104 T0 S20"
-    source = "Gcode page, M104 Set Temp (Head) and M109 Wait for Temp (Head) (catalogue H61)"
+    source = (
+        "Gcode page, M104 Set Temp (Head) and M109 Wait for Temp (Head) ('heated and chilled (sub-ambient) "
+        "heads') (catalogue H61)"
+    )
     families = ("hyrel",)
 
     def range_message(self, cmd: Command, p: Param, problem: str) -> str:
-        return f"{cmd.code}: {problem}: a head temperature below 0 °C"
+        return (
+            f"{cmd.code} S{cmd.params.get('S')} sets a head below 0 °C: fine for a chilled (sub-ambient) head, "
+            "a typo for a heated one"
+        )
