@@ -353,7 +353,7 @@ HYREL_CODES = table(
     code(
         "M254", "lathe on counter-clockwise (16A only)", P("S", "speed, units/min"), source="M254 Turn On Lathe (CCW)"
     ),
-    code("M255", "lathe off (16A only)", source="M255 Turn Off Lathe"),
+    code("M255", "lathe off (if it has one)", source="M255 Turn Off Lathe"),
     code(
         "G81",
         "peck drilling (needs an applied M660 offset)",
