@@ -112,6 +112,20 @@ def test_hy036_reports_at_the_w0_line_once():
     assert lint("M109 T0 S200 W0\nM116\nM30\n", codes=("HY036",)) == []
 
 
+# (select=HY046 alone: with HY008 enabled, T21-T26 are left to HY008 as possible v4 numbers)
+@pytest.mark.parametrize("line", ["M109 T20 S50", "M190 T20 S50", "M191 T21 S30", "M109 T22 S40", "M190 T23 S40"])
+def test_hy046_no_wait_fits_a_spindle_laser_or_aux(line):
+    found = lint(line + "\n", select=["HY046"])
+    assert len(found) == 1
+    assert "use M109" not in found[0].message and "no temperature to wait for" in found[0].message
+
+
+def test_hy046_names_the_wait_that_fits():
+    assert "use M109" in lint("M190 T0 S60\n", select=["HY046"])[0].message
+    assert "M190 (bed) or M191 (chamber)" in lint("M109 T24 S60\n", select=["HY046"])[0].message
+    assert lint("M109 T0 S200\nM190 T24 S60\nM191 T25 S40\n", select=["HY046"]) == []
+
+
 def test_hy051_beds_may_be_chilled():
     assert lint("M140 T24 S-10\nM190 T24 S-10\n", codes=("HY051",)) == []
     # "heated and chilled (sub-ambient) beds": no lowest set point on the page, so no DL003 either

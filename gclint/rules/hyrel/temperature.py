@@ -294,9 +294,12 @@ class WaitTargetKind(Rule):
     summary = "M109 addressed to something other than a head, or M190/M191 to something other than a bed/chamber"
     explanation = """
         M109 waits for a head ("T# is the target head"), M190 for a bed and M191 for a chamber ("T# is
-        the target bed / chamber").  In v5, beds and chambers are T24 and T25 and heads T0-T19: `M190
-        T0` or `M109 T24` waits on the wrong kind of device, most often because the T was copied from
-        another line.  (Group addresses are HY003, unknown addresses HY047.)
+        the target bed" / "the target chamber").  In v5, beds and chambers are T24 and T25 ("Bed1 /
+        Chamber1", "Bed2 / Chamber2") and heads T0-T19: `M190 T0` or `M109 T24` waits on the wrong kind
+        of device, most often because the T was copied from another line; the message names the wait
+        for that device.  The 3-phase spindle (T20), the CO2 laser (T21) and the aux ports (T22, T23)
+        are none of these, and the page gives them no temperature to wait for, so no wait command fits
+        them.  (Group addresses are HY003, unknown addresses HY047.)
     """
     example_bad = "M190 T0 S60"
     example_good = "M190 T24 S60"
@@ -316,11 +319,18 @@ class WaitTargetKind(Rule):
         expected = HEAD if cmd.code == "M109" else BED
         if address.kind == expected:
             return
-        hint = "M190 (bed) or M191 (chamber)" if address.kind == BED else "M109"
+        if address.kind == BED:
+            hint = "; for that device use M190 (bed) or M191 (chamber)"
+        elif address.kind == HEAD:
+            hint = "; for a head use M109"
+        else:
+            hint = (
+                ", which is not a head, bed or chamber: the page gives it no temperature to wait for "
+                "(M109 waits for a head, M190 for a bed, M191 for a chamber)"
+            )
         self.report(
             line,
-            f"{cmd.code} waits for a {_WAITED[str(cmd.code)]}, but T{cmd.params['T']} is {address.label}; "
-            f"for that device use {hint}",
+            f"{cmd.code} waits for a {_WAITED[str(cmd.code)]}, but T{cmd.params['T']} is {address.label}{hint}",
             node=cmd.param("T"),
         )
 
