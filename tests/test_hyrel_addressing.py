@@ -35,6 +35,7 @@ def test_hy006_loaded_heads_from_the_command_line_win_over_the_header():
         M6 T1 O2 X20 Y0 Z0
         T1
         T2
+        T0
         """
     assert where(lint(text, codes=("HY006",))) == [(4, "HY006", "warning")]
     assert where(lint(text, loaded={0, 2}, codes=("HY006",))) == [(3, "HY006", "warning")]
@@ -51,6 +52,7 @@ def test_hy006_takes_the_whole_header_and_reports_each_position_once():
         M6 T1 O2 X20 Y0 Z0
         T3
         T3
+        T0
         """
     assert where(lint(text, codes=("HY006",))) == [(4, "HY006", "warning")]
 
@@ -63,7 +65,38 @@ def test_hy006_reads_v4_header_addresses():
 
 def test_hy006_an_m6_without_o_declares_nothing():
     # "M6 T1" is a CNC-style tool change (HY038), not Repetrel's "M6 T# O..." declaration
-    assert where(lint("M6 T0 O1 X0 Y0\nM6 T1\nT1\n", codes=("HY006",))) == [(3, "HY006", "warning")]
+    assert where(lint("M6 T0 O1 X0 Y0\nM6 T1\nT1\nT0\n", codes=("HY006",))) == [(3, "HY006", "warning")]
+
+
+def test_hy006_any_mismatch_includes_a_loaded_head_no_t_command_calls():
+    # "If there is any mismatch, warning message popups will appear.  If you have your heads called out
+    # in your gcode and the same tool positions loaded with heads, you will not see these warnings."
+    text = """\
+        M6 T0 O1 X0 Y0 Z0
+        M6 T1 O2 X20 Y0 Z0
+        M6 T2 O3 X40 Y0 Z0
+        T0
+        G1 X10 E1 F600
+        T2
+        G1 X20 E1
+        """
+    found = lint(text, codes=("HY006",))
+    assert where(found) == [(2, "HY006", "warning")]
+    assert "T1" in found[0].message and "no T command calls it" in found[0].message
+    # from --loaded: reported at line 1
+    assert where(lint("T0\nG1 X1 E1 F600\n", loaded={0, 3}, codes=("HY006",))) == [(1, "HY006", "warning")]
+    # a head that prints through a clone squad, or copies another head, is called
+    squad = text + "        M702 T0 S30\n        M703 T1 S30\n"
+    assert lint(squad, codes=("HY006",)) == []
+
+
+def test_hy006_default_mode_one_head_no_t_command_is_fine():
+    # "the gcode will be executed with the only head loaded, regardless of what slot it is in"
+    assert lint("M6 T1 O2 X0 Y0 Z0\nG1 X10 E1 F600\nM30\n", codes=("HY006",)) == []
+    assert lint("G1 X10 E1 F600\n", loaded={2}, codes=("HY006",)) == []
+    # two loaded heads and no T command: both are a mismatch
+    found = lint("M6 T0 O1 X0 Y0 Z0\nM6 T1 O2 X20 Y0 Z0\nG1 X10 E1 F600\n", codes=("HY006",))
+    assert where(found) == [(1, "HY006", "warning"), (2, "HY006", "warning")]
 
 
 # -- HY007 tool-beyond-model ---------------------------------------------------------------------------
@@ -257,8 +290,9 @@ def test_cli_config_printer_and_loaded_heads(tmp_path):
     # an EHR has T4; the configuration says only T0 and T1 are loaded
     write(tmp_path, "pyproject.toml", '[tool.gclint]\nprinter = "ehr"\nloaded = ["T0", "T1"]\n')
     configured = run_cli("check", "--format", "json", str(path), cwd=tmp_path)
-    assert codes(configured) == [(5, "HY006")]
-    finding = [f for f in json.loads(configured.stdout) if f["code"] == "HY006"][0]
+    # T4 is not loaded, and the loaded T1 is never called ("any mismatch")
+    assert codes(configured) == [(1, "HY006"), (5, "HY006")]
+    finding = [f for f in json.loads(configured.stdout) if f["code"] == "HY006" and f["line"] == 5][0]
     assert finding["severity"] == "warning" and "T0, T1" in finding["message"]
     # the command line wins over the configuration
     override = run_cli("check", "--format", "json", "--loaded", "T0,T4", str(path), cwd=tmp_path)
