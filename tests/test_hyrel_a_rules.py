@@ -281,3 +281,16 @@ def test_hy056_printing_after_m30_without_m229_and_t():
 def test_hy059_actions_any_case_and_directives():
     text = "M792 ; say hello ; beep\nM0 ; SAY hi ; noqa: HY029\nM792 ;SHELL C:\\x.exe\nM792 ; SAYS hi\n"
     assert where(lint(text, codes=("HY059",))) == [(4, "HY059", "info")]
+
+
+# -- the Hyrel code table (DL001) ------------------------------------------------------------------------
+
+
+@pytest.mark.parametrize("dialect", ["hyrel", "hyrel-v4"])
+def test_dl001_knows_the_codes_the_pages_and_hyrel_files_use(dialect):
+    # M92 (named by M253: "using the value set with M92 for RPM"), the M772 reports M774/M775/M776/M779
+    # (hidden-codes page) and M627 (Hyrel's own slicer start code: "M627 X0 Y0 Z0 J-500 K5")
+    text = "M92 S200\nM774\nM775\nM776\nM779\nM627 X0 Y0 Z0 J-500 K5\n"
+    assert lint(text, dialect=dialect, codes=("DL001", "DL002")) == []
+    # M777 and M778 are not named anywhere on the pages
+    assert where(lint("M777\nM778\n", dialect=dialect, codes=("DL001",))) == [(1, "DL001", "error"), (2, "DL001", "error")]
