@@ -144,7 +144,6 @@ def test_hy008_only_in_v5_files():
         ("M104 T100 S0", "T47"),  # v4 all heads -> v5 all non-bed devices
         ("M140 T90 S0", "T46"),  # all beds
         ("M140 T91 S60", "T24"),  # bed 1
-        ("M104 T16 S0", "T22"),  # aux
         ("M3 T26 S50", "T20"),  # spindle
         ("M104 T10 S0", "T41"),  # yoke 1, all heads
         ("M104 T25 S200", "T9"),  # yoke 2, position 5
@@ -153,6 +152,13 @@ def test_hy008_only_in_v5_files():
 def test_hy008_rewrites_with_the_certain_map(line, v5):
     found = lint(line + "\n", printer="16a-dual", codes=("HY008",))
     assert [f.fix.edits[0].text for f in found] == [v5]
+
+
+def test_hy008_aux_map_is_uncertain():
+    # hyrel_v4.md: aux T16 "high for v4; mapping to v5 Aux1 is I - medium": no fix, and the message says so
+    found = lint("M104 T16 S0\n", printer="16a-dual", codes=("HY008",))
+    assert len(found) == 1 and found[0].fix is None
+    assert "uncertain" in found[0].message
 
 
 def test_hy008_leaves_addresses_that_mean_the_same_in_v5():
