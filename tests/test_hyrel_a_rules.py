@@ -294,3 +294,72 @@ def test_dl001_knows_the_codes_the_pages_and_hyrel_files_use(dialect):
     assert lint(text, dialect=dialect, codes=("DL001", "DL002")) == []
     # M777 and M778 are not named anywhere on the pages
     assert where(lint("M777\nM778\n", dialect=dialect, codes=("DL001",))) == [(1, "DL001", "error"), (2, "DL001", "error")]
+
+
+# -- HY063 head-prints-without-temperature ---------------------------------------------------------------
+
+
+def test_state_group_addresses_set_every_head_they_cover():
+    # T_v5: T40 "ALL DEVICES", T41 "Yoke 1, all Heads", T46 "All Beds / Chambers", T47 "All non-Bed /
+    # non-Chamber devices"; a clone squad's heads
+    st = run_state("M104 T41 S200\n")
+    assert {d: st.targets[d] for d in range(5)} == dict.fromkeys(range(5), 200) and 5 not in st.targets
+    st = run_state("M104 T47 S0\nM140 T46 S60\n")
+    assert st.targets[19] == 0 and st.targets[24] == st.targets[25] == 60
+    st = run_state("M702 T0 S30\nM703 T2 S30\nM104 T30 S180\n")
+    assert st.targets[2] == 180 and st.targets[30] == 180 and 1 not in st.targets
+    # v4: T100 is all heads (v5 T47), T10 yoke 1 (v5 T41)
+    st = run_state("M104 T100 S210\n", dialect="hyrel-v4")
+    assert st.targets[7] == 210
+    # first printing move since the tool change
+    st = run_state("T1\nG1 X1 E1 F600\nG1 X2 E1\n")
+    assert st.first_print_since_tool_line == 2
+    assert run_state("T1\nG1 X1 E1 F600\nT2\n").first_print_since_tool_line is None
+
+
+def test_hy063_a_tool_change_to_a_head_never_heated():
+    text = """\
+        M109 T0 S215
+        T0
+        G1 X10 Y10 E1 F1200
+        T1
+        G0 X0
+        G1 X20 Y10 E1
+        T1
+        G1 X30 Y10 E1
+        """
+    found = lint(text, codes=("HY063",))
+    assert where(found) == [(6, "HY063", "warning")]  # once per head, at its first printing move
+    assert "T1" in found[0].message and "line 4" in found[0].message
+    # heated before printing (by its address, the focused head, a group, or a squad it is in): fine
+    for heat in ("M104 T1 S200", "M104 T41 S200", "M104 T40 S200", "M104 T47 S200"):
+        assert lint(text.replace("T1\n", f"T1\n        {heat}\n", 1), codes=("HY063",)) == [], heat
+    assert lint(text.replace("G0 X0", "M109 S200"), codes=("HY063",)) == []
+    # (M702 T0 only copies T0's flow settings: "this head does not need to be in the group")
+    squad = "M702 T0 S30\nM703 T0 S30\nM703 T1 S30\nM104 T30 S200\nT0\nG1 X1 E1 F600\nT1\nG1 X2 E1\n"
+    assert lint(squad, codes=("HY063",)) == []
+    # heated only after it printed: reported
+    late = "M109 T0 S215\nT0\nG1 X1 E1 F600\nT1\nG1 X2 E1\nM104 T1 S200\nG1 X3 E1\n"
+    assert where(lint(late, codes=("HY063",))) == [(5, "HY063", "warning")]
+
+
+def test_hy063_silent_where_it_cannot_know():
+    # the file sets no head temperature (only the footer's S0): Repetrel's settings, or unheated heads
+    assert lint("T0\nG1 X1 E1 F600\nT1\nG1 X2 E1\nM104 T40 S0\nM30\n", codes=("HY063",)) == []
+    # no T command: Default Mode, the head Repetrel focused
+    assert lint("M104 T0 S200\nG1 X1 E1 F600\n", codes=("HY063",)) == []
+    # an M104 without T before any T command heats the head focused at the start: unknown, so all count
+    assert lint("M104 S200\nT0\nG1 X1 E1 F600\nT1\nG1 X2 E1\n", codes=("HY063",)) == []
+    # lasers/UV pens (M620 T# E1) and spindles (M3/M4) need no heat
+    uv = "M109 T0 S215\nM620 T2 E1\nT0\nG1 X1 E1 F600\nT2\nG1 X2 E1\nM620 T2 E0\n"
+    assert lint(uv, codes=("HY063",)) == []
+    spindle = "M109 T0 S215\nT0\nG1 X1 E1 F600\nT3\nM3 S50\nG1 X2 E1\nM5\n"
+    assert lint(spindle, codes=("HY063",)) == []
+    # moves that do not print (travel, no E) are not printing
+    assert lint("M109 T0 S215\nT0\nG1 X1 E1 F600\nT1\nG0 X5\nG1 X6\n", codes=("HY063",)) == []
+
+
+def test_hy063_v4_addressing():
+    # v4: M104 T12 is yoke 1 position 2, which the T command T1 selects; T13 (position 3) is never heated
+    text = "M104 T12 S200\nM104 T11 S200\nT0\nG1 X1 E1 F600\nT1\nG1 X2 E1\nT2\nG1 X3 E1\n"
+    assert where(lint(text, dialect="hyrel-v4", codes=("HY063",))) == [(8, "HY063", "warning")]

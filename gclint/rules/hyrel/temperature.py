@@ -9,7 +9,7 @@ from __future__ import annotations
 
 from gclint.dialects.addressing import BED, GROUP, HEAD, RESERVED, VIRTUAL
 from gclint.dialects.base import Param
-from gclint.rules.base import Rule, Severity, register
+from gclint.rules.base import ANY_T, Rule, Severity, register
 from gclint.rules.dialect import ParamTableRule
 from gclint.rules.hyrel.addressing import reported_as_v4
 from gclint.syntax.nodes import Command, Line
@@ -366,3 +366,121 @@ class NegativeTemperature(ParamTableRule):
             f"{cmd.code} S{cmd.params.get('S')} sets a head below 0 °C: fine for a chilled (sub-ambient) head, "
             "a typo for a heated one"
         )
+
+
+# -- HY063 ---------------------------------------------------------------------------------------------
+
+
+@register
+class HeadPrintsWithoutTemperature(Rule):
+    code = "HY063"
+    name = "head-prints-without-temperature"
+    severity = Severity.WARNING
+    summary = "A head prints after a T command, but no M104/M109 set its temperature (the job heats other heads)"
+    explanation = """
+        A T command changes the head that prints, "invoking the parameters specified in the M6" (flow,
+        prime, unprime, offsets); it does not heat the head.  Temperatures come from the job: "the
+        slicing program generates gcode which dictates temperature and movement commands", M104 "sets
+        the extruder temperature" ("T# is the tool assignment for this temperature command"), and "All
+        parameters are persistent, so once they are set, they will remain in place".  A head that a
+        tool change brings in and that no M104/M109 has set (by its own address, or a group address
+        covering it: T40 "ALL DEVICES", T41-T44 "Yoke n, all Heads", T47 "All non-Bed / non-Chamber
+        devices", a clone squad it belongs to) prints at whatever it holds, cold for a heated head.
+
+        Not every head needs heat, and a file does not say which head is which, so this is a warning
+        and it assumes a heated head.  gclint leaves out what it can recognise: heads enabled with
+        `M620 T# E1` ("The CO_2 and Diode Lasers and the UV Pens require the following enabling
+        codes"), spindle heads (M3/M4), and jobs whose file sets no head temperature at all (other than
+        S0, which footers use to switch heaters off): such a job leaves temperatures to Repetrel (the
+        head settings and header it sends "when you start a job") or runs heads that need none.  A
+        cold paste or bio head at room temperature, or a chilled head ("we have both heated and chilled
+        (sub-ambient) heads as options"), printing beside heated ones is reported: ignore the finding
+        for it (`; noqa: HY063`), or set its temperature in the job.  An M104/M109 without T before the
+        first T command heats the head Repetrel focused at the start, which gclint cannot name, so
+        every head then counts as set.  Each head is reported once, at its first printing move without
+        a temperature.
+    """
+    example_bad = """
+        M109 T0 S215
+        T0
+        G1 X10 Y10 E1 F1200
+        T1
+        G1 X20 Y10 E1
+    """
+    example_good = """
+        M104 T41 S215
+        M109 T0 R5
+        T0
+        G1 X10 Y10 E1 F1200
+        T1
+        M109 R5
+        G1 X20 Y10 E1
+    """
+    source = (
+        "Gcode page, What is GCode?, Controlling Material Flow, M104 Set Temp (Head), T Tool Change, "
+        "Controlling Lasers and UV Pens; T_v5, Chart of Addresses (group addresses)"
+    )
+    codes = (ANY_T, "M104", "M109", "M140", "M141", "M190", "M191", "M30", "M620", "M3", "M4")
+    families = ("hyrel",)
+
+    def __init__(self, ctx) -> None:
+        super().__init__(ctx)
+        self.judged = False  # the printing since the last T command has been looked at
+        self.first_heat: int | None = None  # first M104/M109 with a non-zero S
+        self.candidates: list[tuple[int, int, int | None]] = []  # (first print, head, line of its T command)
+        self.no_heat: set[int] = set()  # heads known to need no heat: lasers/UV pens (M620), spindles
+
+    def check(self, line: Line, cmd: Command) -> None:
+        code = cmd.code
+        interpreter = self.ctx.interpreter
+        if code == "M620":
+            address = interpreter.address(cmd)
+            if address is not None and address.position is not None and cmd.get("E") == 1:
+                self.no_heat.add(address.position)
+            return
+        if code == "M3" or code == "M4":
+            device = interpreter.target(cmd)
+            if device is not None and 0 <= device <= 19:
+                self.no_heat.add(device)
+            return
+        self._settle()
+        if code == "M104" or code == "M109":
+            s = cmd.get("S")
+            if s is not None and s != 0 and self.first_heat is None:
+                self.first_heat = line.number
+        elif code == "M30" or (code is not None and code[0] == "T"):
+            self.judged = False
+
+    def _settle(self) -> None:
+        """Look at the printing since the last T command once: was the printing head set, before it?"""
+        if self.judged:
+            return
+        st = self.state
+        printed = st.first_print_since_tool_line
+        if printed is None:
+            return
+        self.judged = True
+        head = st.tool
+        if head is None or not 0 <= head <= 19 or st.tool_line is None:
+            return  # no T command: the head Repetrel focused at the start (Default Mode)
+        targets = st.targets
+        if head in targets or -1 in targets:
+            return
+        self.candidates.append((printed, head, st.tool_line))
+
+    def finish(self) -> None:
+        self._settle()
+        if self.first_heat is None:
+            return  # the file sets no head temperature: Repetrel's settings, or heads that need none
+        reported: set[int] = set()
+        for printed, head, tool_line in self.candidates:
+            if head in self.no_heat or head in reported:
+                continue
+            reported.add(head)
+            self.report(
+                printed,
+                f"head T{head} (selected at line {tool_line}) prints here, but no M104/M109 before this line "
+                f"set its temperature, while the job does set head temperatures (line {self.first_heat}): a "
+                "heated head prints cold (ignore this for a head that needs no heat: a UV pen, a laser, a "
+                "room-temperature paste or bio head)",
+            )
