@@ -293,7 +293,10 @@ def test_dl001_knows_the_codes_the_pages_and_hyrel_files_use(dialect):
     text = "M92 S200\nM774\nM775\nM776\nM779\nM627 X0 Y0 Z0 J-500 K5\n"
     assert lint(text, dialect=dialect, codes=("DL001", "DL002")) == []
     # M777 and M778 are not named anywhere on the pages
-    assert where(lint("M777\nM778\n", dialect=dialect, codes=("DL001",))) == [(1, "DL001", "error"), (2, "DL001", "error")]
+    assert where(lint("M777\nM778\n", dialect=dialect, codes=("DL001",))) == [
+        (1, "DL001", "error"),
+        (2, "DL001", "error"),
+    ]
 
 
 # -- HY063 head-prints-without-temperature ---------------------------------------------------------------

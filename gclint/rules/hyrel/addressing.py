@@ -150,9 +150,7 @@ class ToolNotLoaded(Rule):
         if st.loaded_heads is None and declared:
             for line, cmd, address in self.pending:
                 if address.position not in declared:
-                    self._report(
-                        line, cmd, address, f"the job header declares {heads_text(declared)} with M6 T# O..."
-                    )
+                    self._report(line, cmd, address, f"the job header declares {heads_text(declared)} with M6 T# O...")
         loaded = st.loaded_heads if st.loaded_heads is not None else (frozenset(declared) or None)
         if loaded is None:
             return  # nobody says which heads are loaded: stay silent

@@ -293,9 +293,7 @@ class OffsetsClearedByG28(Rule):
     code = "HY055"
     name = "offsets-cleared-by-g28"
     severity = Severity.WARNING
-    summary = (
-        "G28 clears G92, fixture (G54-G59), H and head (M6) offsets that the printing after it still relies on"
-    )
+    summary = "G28 clears G92, fixture (G54-G59), H and head (M6) offsets that the printing after it still relies on"
     explanation = """
         "After homing, a G28 also resets current offsets to 0 - including any may have been set with a
         G92 or an H (as defined in an M660 and invoked on a G1), performs a G53, and applies a head
