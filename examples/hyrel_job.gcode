@@ -1,7 +1,7 @@
 ; Example Hyrel job (Repetrel v5 addressing) with a few mistakes for gclint to find
 ; gclint: dialect=hyrel
 M6 T0 O1 X0 Y0 Z0                  ; head declarations, as Repetrel writes them
-M6 T1 O2 X25 Y0 Z0
+M6 T1 O2 X25 Y0 Z0                 ; T1 is loaded, but no T command calls it
 G21                                ; millimetres
 G90                                ; absolute positioning
 G28 X0 Y0                          ; home X and Y

@@ -297,8 +297,10 @@ class Explainer:
         role: str = "target head",
         default: str | None = None,
         physical: bool = False,
+        declares: bool = False,
     ) -> Address | None:
-        """Decode the T variable of an M-code; ``default`` says what happens without one."""
+        """Decode the T variable of an M-code; ``default`` says what happens without one.  ``declares``:
+        the command itself declares the head loaded (Repetrel's ``M6 T# O...``), so it takes effect on it."""
         word = cmd.param("T")
         if word is None:
             focus = self.state.tool
@@ -321,7 +323,12 @@ class Explainer:
             exp.warn(f"no device has the address T{address.number}")
         if physical and address.kind in (VIRTUAL, GROUP):
             exp.warn(f"{cmd.code} will FAIL (non-fatally) on a virtual or group address: use a physical address")
-        if address.kind == HEAD and address.position is not None and self.state.head_loaded(address.position) is False:
+        if (
+            address.kind == HEAD
+            and address.position is not None
+            and not (declares and self.state.loaded_heads is None)
+            and self.state.head_loaded(address.position) is False
+        ):
             exp.warn(f"no head is loaded at T{address.position} (per the job header or --loaded)")
         return address
 
@@ -1023,7 +1030,8 @@ class Explainer:
 
     def _m6(self, exp: Explanation, cmd: Command, spec: Code | None) -> None:
         if "T" in cmd.params:
-            self._target(exp, cmd)
+            # "M6 T# O..." is the header line that declares the head: it is loaded from this line on
+            self._target(exp, cmd, declares="O" in cmd.params)
         else:
             exp.note("all future T# or M6 commands")
         o = cmd.param("O")

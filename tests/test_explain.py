@@ -183,6 +183,15 @@ ROWS = [
         [],
     ),
     ("marlin", "SET_FAN_SPEED FAN=part SPEED=0.5", ["Klipper extended command", "FAN=part"], []),
+    # Repetrel's header declares each loaded head with M6 T# O...: the declaration takes effect on its own
+    # line (T_v5, Two Heads Loaded); a head no line declares is still not loaded
+    (
+        "hyrel",
+        "M6 T0 O1 X0 Y0 Z0\nM6 T1 O2 X0 Y0 Z0\nM104 T1 S200",
+        ["target head T1", 'offset stored in register "O2"', "M104"],
+        ["warning: no head is loaded at T1"],
+    ),
+    ("hyrel", "M6 T0 O1 X0 Y0 Z0\nM104 T2 S200", ["warning: no head is loaded at T2"], []),
 ]
 
 

@@ -35,6 +35,7 @@ def test_hy006_loaded_heads_from_the_command_line_win_over_the_header():
         M6 T1 O2 X20 Y0 Z0
         T1
         T2
+        T0
         """
     assert where(lint(text, codes=("HY006",))) == [(4, "HY006", "warning")]
     assert where(lint(text, loaded={0, 2}, codes=("HY006",))) == [(3, "HY006", "warning")]
@@ -51,6 +52,7 @@ def test_hy006_takes_the_whole_header_and_reports_each_position_once():
         M6 T1 O2 X20 Y0 Z0
         T3
         T3
+        T0
         """
     assert where(lint(text, codes=("HY006",))) == [(4, "HY006", "warning")]
 
@@ -63,7 +65,38 @@ def test_hy006_reads_v4_header_addresses():
 
 def test_hy006_an_m6_without_o_declares_nothing():
     # "M6 T1" is a CNC-style tool change (HY038), not Repetrel's "M6 T# O..." declaration
-    assert where(lint("M6 T0 O1 X0 Y0\nM6 T1\nT1\n", codes=("HY006",))) == [(3, "HY006", "warning")]
+    assert where(lint("M6 T0 O1 X0 Y0\nM6 T1\nT1\nT0\n", codes=("HY006",))) == [(3, "HY006", "warning")]
+
+
+def test_hy006_any_mismatch_includes_a_loaded_head_no_t_command_calls():
+    # "If there is any mismatch, warning message popups will appear.  If you have your heads called out
+    # in your gcode and the same tool positions loaded with heads, you will not see these warnings."
+    text = """\
+        M6 T0 O1 X0 Y0 Z0
+        M6 T1 O2 X20 Y0 Z0
+        M6 T2 O3 X40 Y0 Z0
+        T0
+        G1 X10 E1 F600
+        T2
+        G1 X20 E1
+        """
+    found = lint(text, codes=("HY006",))
+    assert where(found) == [(2, "HY006", "warning")]
+    assert "T1" in found[0].message and "no T command calls it" in found[0].message
+    # from --loaded: reported at line 1
+    assert where(lint("T0\nG1 X1 E1 F600\n", loaded={0, 3}, codes=("HY006",))) == [(1, "HY006", "warning")]
+    # a head that prints through a clone squad, or copies another head, is called
+    squad = text + "        M702 T0 S30\n        M703 T1 S30\n"
+    assert lint(squad, codes=("HY006",)) == []
+
+
+def test_hy006_default_mode_one_head_no_t_command_is_fine():
+    # "the gcode will be executed with the only head loaded, regardless of what slot it is in"
+    assert lint("M6 T1 O2 X0 Y0 Z0\nG1 X10 E1 F600\nM30\n", codes=("HY006",)) == []
+    assert lint("G1 X10 E1 F600\n", loaded={2}, codes=("HY006",)) == []
+    # two loaded heads and no T command: both are a mismatch
+    found = lint("M6 T0 O1 X0 Y0 Z0\nM6 T1 O2 X20 Y0 Z0\nG1 X10 E1 F600\n", codes=("HY006",))
+    assert where(found) == [(1, "HY006", "warning"), (2, "HY006", "warning")]
 
 
 # -- HY007 tool-beyond-model ---------------------------------------------------------------------------
@@ -111,7 +144,6 @@ def test_hy008_only_in_v5_files():
         ("M104 T100 S0", "T47"),  # v4 all heads -> v5 all non-bed devices
         ("M140 T90 S0", "T46"),  # all beds
         ("M140 T91 S60", "T24"),  # bed 1
-        ("M104 T16 S0", "T22"),  # aux
         ("M3 T26 S50", "T20"),  # spindle
         ("M104 T10 S0", "T41"),  # yoke 1, all heads
         ("M104 T25 S200", "T9"),  # yoke 2, position 5
@@ -121,6 +153,13 @@ def test_hy008_rewrites_with_the_certain_map(line, v5):
     # in a file whose addresses say v4 (M6 T12 O2, M109 T12: v4 head 2, no head in v5)
     found = lint("M6 T12 O2\nM109 T12 S200\n" + line + "\n", printer="16a-dual", codes=("HY008",))
     assert [f.fix.edits[0].text for f in found if f.line == 3] == [v5]
+
+
+def test_hy008_aux_map_is_uncertain():
+    # hyrel_v4.md: aux T16 "high for v4; mapping to v5 Aux1 is I - medium": no fix, and the message says so
+    found = lint("M104 T16 S0\n", printer="16a-dual", codes=("HY008",))
+    assert len(found) == 1 and found[0].fix is None
+    assert "uncertain" in found[0].message
 
 
 def test_hy008_leaves_addresses_that_mean_the_same_in_v5():
@@ -267,8 +306,9 @@ def test_cli_config_printer_and_loaded_heads(tmp_path):
     # an EHR has T4; the configuration says only T0 and T1 are loaded
     write(tmp_path, "pyproject.toml", '[tool.gclint]\nprinter = "ehr"\nloaded = ["T0", "T1"]\n')
     configured = run_cli("check", "--format", "json", str(path), cwd=tmp_path)
-    assert codes(configured) == [(5, "HY006")]
-    finding = [f for f in json.loads(configured.stdout) if f["code"] == "HY006"][0]
+    # T4 is not loaded, and the loaded T1 is never called ("any mismatch")
+    assert codes(configured) == [(1, "HY006"), (5, "HY006")]
+    finding = [f for f in json.loads(configured.stdout) if f["code"] == "HY006" and f["line"] == 5][0]
     assert finding["severity"] == "warning" and "T0, T1" in finding["message"]
     # the command line wins over the configuration
     override = run_cli("check", "--format", "json", "--loaded", "T0,T4", str(path), cwd=tmp_path)

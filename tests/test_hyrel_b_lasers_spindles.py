@@ -124,7 +124,12 @@ def test_spindle_power_percent():
 
 
 def test_lathe_only_on_16a():
+    # "Only available on Hydra 16A models" (M253, and M254: "All options are identical"); M255 stops the
+    # lathe "(if it has one)": harmless without one, as is M253 S0 ("S0 is the same as turning it off")
+    text = "M253 S75\nM255\nM254 S20\nM253 S0\nM254\n"
     for printer in ("30m", "esr", "ehr"):
-        assert lines("M253 S75\nM255\n", "HY041", printer=printer) == [1, 2]
+        assert lines(text, "HY041", printer=printer) == [1, 3, 5]
     for printer in ("16a", "16a-dual"):
-        assert lines("M253 S75\nM255\n", "HY041", printer=printer) == []
+        assert lines(text, "HY041", printer=printer) == []
+    message = found("M253 S75\n", "HY041", printer="esr")[0].message
+    assert "esr" in message and "Only available on Hydra 16A models" in message

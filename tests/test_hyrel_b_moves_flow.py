@@ -107,6 +107,16 @@ def test_hy042_by_printer():
     assert lines(text, "HY042", printer="16a") == []
 
 
+def test_hy042_where_the_pages_give_a_code_a_and_b():
+    # M203 "An is the new speed in the A axis for G0 moves", G54-G59 "An is the offset in mm in the A
+    # axis", M6 "An is the offset in the A axis"
+    text = "M203 X3000 A500\nG54 X30 B-2\nG59 A1\nM6 T1 O2 X20 A3\nM6 T0 O1 X0 Y0 Z0\nM203 Y2000\n"
+    assert lines(text, "HY042", printer="30m") == [1, 2, 3, 4]
+    message = next(f.message for f in check_text(text, dialect="hyrel", printer="esr") if f.code == "HY042")
+    assert "ESR" in message
+    assert lines(text, "HY042", printer="ehr") == []
+
+
 def test_hy050_once_and_only_without_a_working_feed():
     assert lines("G0 X1 F3000\nG1 X2 E1\nG1 X3 E1\n", "HY050") == [2]
     assert lines("G1 X2 E1 F600\nG0 X1 F3000\nG1 X3 E1\n", "HY050") == []

@@ -105,3 +105,11 @@ def _example_dialect(rule) -> str:
     if rule.families and "hyrel" in rule.families:
         return "hyrel"
     return "auto"
+
+
+def test_readme_counts_the_hy_rules():
+    from .conftest import ROOT
+
+    readme = (ROOT / "README.md").read_text(encoding="utf-8")
+    count = len([code for code in RULES if code.startswith("HY")])
+    assert f"({count} rules from the Hyrel pages)" in readme, f"README should say {count} HY rules"

@@ -37,11 +37,13 @@ V4_TO_V5 = [
     Row("all beds T90 -> T46", "M140 T90 S0", "M140 T46 S0"),
     Row("bed 1 T91 -> T24", "M140 T91 S60", "M140 T24 S60"),
     Row("bed 2 T92 -> T25", "M190 T92 S60", "M190 T25 S60"),
-    Row("aux T16 -> T22", "M106 T16 S100", "M106 T22 S100"),
+    # v4 aux T16 -> v5 Aux1 T22 is inferred (hyrel_v4.md: "medium"): left as it is and reported
+    Row("aux T16 (v5 Aux1 T22 inferred)", "M106 T16 S100", "M106 T16 S100", "TR006"),
     Row("CO2 laser T41 -> T21", "M620 T41 E0", "M620 T21 E0"),
     Row("spindle T26 -> T20", "M3 T26 S50", "M3 T20 S50"),
     Row("T command: heads stay", "T1\nT9", "T1\nT9"),
-    Row("T command: aux, laser, spindle, beds", "T10\nT11\nT12\nT13\nT14", "T22\nT21\nT20\nT24\nT25"),
+    Row("T command: laser, spindle, beds", "T11\nT12\nT13\nT14", "T21\nT20\nT24\nT25"),
+    Row("T command: aux (v5 Aux1 T22 inferred)", "T10", "T10", "TR006"),
     Row("T command: v4 group (uncertain)", "T51", "T51", "TR006"),
     Row("M703 T S (make head T copy head S)", "M703 T14 S12", "M703 T3 S1"),
     Row("M703 T P (v4 alias command without S)", "M703 T14 P10", "M703 T3 P10", "TR006"),
@@ -58,7 +60,7 @@ V5_TO_V4 = [
     Row("head yoke 2", "M109 T7 S200", "M109 T23 S200"),
     Row("all devices", "M104 T40 S0", "M104 T0 S0"),
     Row("all non-bed devices", "M620 T47 E0", "M620 T100 E0"),
-    Row("aux 1", "M106 T22 S50", "M106 T16 S50"),
+    Row("aux 1 (v4 aux T16 inferred)", "M106 T22 S50", "M106 T22 S50", "TR006"),
     Row("aux 2 (no v4 address)", "M106 T23 S50", "M106 T23 S50", "TR006"),
     Row("virtual head (uncertain)", "M104 T30 S200", "M104 T30 S200", "TR006"),
     Row("T command: heads stay", "T3", "T3"),
@@ -75,6 +77,19 @@ def test_v4_to_v5(row: Row) -> None:
     got, codes = translate_rows("hyrel-v4", row.src, target="hyrel", prelude="")
     assert got == row.hyrel.split("\n")
     assert codes == sorted(set(row.tr.split()))
+
+
+def test_uncertain_aux_map_is_named_in_the_finding() -> None:
+    # research/hyrel_v4.md: "mapping to v5 Aux1 is I - medium"; the finding says so and names the guess
+    for source, target, line, likely in (
+        ("hyrel-v4", "hyrel", "M106 T16 S100", "v5 T22"),
+        ("hyrel-v4", "hyrel", "T10", "v5 T22"),
+        ("hyrel", "hyrel-v4", "M106 T22 S50", "v4 T16"),
+    ):
+        out, result = _translate((line + "\n").encode(), source, target)
+        assert out == (line + "\n").encode()
+        messages = [f.message for f in result.findings if f.code == "TR006"]
+        assert len(messages) == 1 and "uncertain" in messages[0] and likely in messages[0], messages
 
 
 @pytest.mark.parametrize("row", V5_TO_V4, ids=ids(V5_TO_V4))

@@ -233,7 +233,8 @@ MARLIN = [
     Row("2.1 M106 (no S: full)", "M106", "M106 T0 S255"),
     Row("2.1 M106 P0 (part fan of the focused head)", "T1\nM106 P0 S255", "T1\nM106 T1 S255"),
     Row("2.1 M106 P2 unmapped", "M106 P2 S255", "", "TR002"),
-    Row("2.1 M106 P2 mapped", "M106 P2 S255", "M106 T22 S255", settings={"fan_map": "2=T22"}, v4="M106 T16 S255"),
+    # (v5 Aux1 T22 has no certain v4 address: hyrel_v4.md rates aux T16 "medium", so it stays, with TR006)
+    Row("2.1 M106 P2 mapped", "M106 P2 S255", "M106 T22 S255", settings={"fan_map": "2=T22"}, v4="M106 T22 S255"),
     Row("2.1 M106 T (secondary speed)", "M106 S255 T128", "M106 T0 S255", "TR004"),
     Row("2.1 M107", "M107", "M107 T0"),
     Row("2.1 M107 P0", "M107 P0", "M107 T0"),

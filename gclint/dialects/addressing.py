@@ -69,6 +69,23 @@ _V5_SPECIAL = {
 }
 
 
+# The devices a v5 group address covers (T_v5 "Logical/Vurtual Device Addresses": T40 "ALL DEVICES",
+# T41-T44 "Yoke n, all Heads", T45 "All Aux devices", T46 "All Beds / Chambers", T47 "All non-Bed /
+# non-Chamber devices", T48 "All Virtual devices (T30-T39)").  A clone squad's heads are job state
+# (M702/M703), not data: ``MachineState.squads``.
+GROUP_MEMBERS: dict[int, tuple[int, ...]] = {
+    40: tuple(range(26)),
+    41: tuple(range(0, 5)),
+    42: tuple(range(5, 10)),
+    43: tuple(range(10, 15)),
+    44: tuple(range(15, 20)),
+    45: (22, 23),
+    46: (24, 25),
+    47: tuple(range(24)),
+    48: tuple(range(30, 40)),
+}
+
+
 def resolve_v5(number: int) -> Address:
     """The v5 meaning of ``T<number>`` (command or variable)."""
     if 0 <= number <= 19:
@@ -87,7 +104,9 @@ def resolve_v5(number: int) -> Address:
 _V4_VARIABLES: dict[int, tuple[str, int | None, str, bool]] = {
     0: (GROUP, 40, "all devices", True),
     10: (GROUP, 41, "yoke 1, all heads", True),
-    16: (AUX, 22, "aux (yoke 1 aux position)", True),
+    # "Aux (yoke-1 aux position) | T10 | T16 | T22 (Aux1) | ... high for v4; mapping to v5 Aux1 is I -
+    # medium" (hyrel_v4.md section 2; open question 4: "whether v5 Aux1 (T22) = v4 device 16")
+    16: (AUX, 22, "aux (yoke 1 aux position)", False),
     20: (GROUP, 42, "yoke 2, all heads", True),
     26: (SPINDLE, 20, "3-phase spindle", True),
     30: (GROUP, 43, "yoke 3, all heads", False),
@@ -112,7 +131,7 @@ for _i in range(1, 5):
 # T commands (a line "T3") are tool numbers (hyrel_v4.md: toolNumberMap): 0-4 yoke 1, 5-9 yoke 2,
 # 10 aux, 11 CO2 laser, 12 spindle, 13/14 hotbeds; 50-57 select a group.
 _V4_COMMANDS: dict[int, tuple[str, int | None, str, bool]] = {
-    10: (AUX, 22, "aux", True),
+    10: (AUX, 22, "aux", False),  # v5 Aux1 inferred, "medium" (as variable 16 above)
     11: (LASER, 21, "CO2 laser", True),
     12: (SPINDLE, 20, "3-phase spindle", True),
     13: (BED, 24, "hotbed 1", True),
@@ -160,6 +179,16 @@ V4_TO_V5_COMMAND: dict[int, int] = {
 }
 V5_TO_V4_COMMAND: dict[int, int] = {v5: n for n, v5 in V4_TO_V5_COMMAND.items()}
 
+# The inferred part of the map (research confidence medium or low: v4 aux 16 / tool 10 -> v5 Aux1 T22,
+# yokes 3 and 4, groups): never applied, only named in messages as the likely counterpart.
+V4_TO_V5_VARIABLE_INFERRED: dict[int, int] = {
+    n: v5 for n, (kind, v5, label, certain) in _V4_VARIABLES.items() if not certain and v5 is not None
+}
+V5_TO_V4_VARIABLE_INFERRED: dict[int, int] = {v5: n for n, v5 in V4_TO_V5_VARIABLE_INFERRED.items()}
+V4_TO_V5_COMMAND_INFERRED: dict[int, int] = {
+    n: v5 for n, (kind, v5, label, certain) in _V4_COMMANDS.items() if not certain and v5 is not None
+}
+V5_TO_V4_COMMAND_INFERRED: dict[int, int] = {v5: n for n, v5 in V4_TO_V5_COMMAND_INFERRED.items()}
 
 # -- which devices a command's T variable can name ---------------------------------------------------
 

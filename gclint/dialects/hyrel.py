@@ -41,7 +41,8 @@ _WAIT = [
     P("R", "stop waiting within +/- this many degrees of S"),
     P("W", "W0: set, do not wait until M116 (v5+)", choices=(0,)),
 ]
-# M109 Wait for Temp (Head): "Sn ... is the new set temperature in °C"; a head below 0 °C is a typo (HY051).
+# M109 Wait for Temp (Head): "Sn ... is the new set temperature in °C"; "we have both heated and chilled
+# (sub-ambient) heads": no lowest set point, but below 0 °C is mentioned (HY051, info).
 _WAIT_HEAD = [P("S", "set temperature, C (optional)", minimum=0, rule="HY051") if p.letter == "S" else p for p in _WAIT]
 
 _ARC = [
@@ -182,14 +183,16 @@ HYREL_CODES = table(
     code(
         "M140",
         "set bed temperature (no wait)",
-        P("S", "temperature, C", minimum=-50),
+        # "heated and chilled (sub-ambient) beds" (M190): the page gives no lowest set point
+        P("S", "temperature, C"),
         P("T", "target bed (default primary)"),
         source="M140 Set Temp (Bed)",
     ),
     code(
         "M141",
         "set chamber temperature (no wait)",
-        P("S", "temperature, C", minimum=-50),
+        # "heated and chilled (sub-ambient) chambers" (M191): the page gives no lowest set point
+        P("S", "temperature, C"),
         P("T", "target chamber"),
         source="M141 Set Temp (Chamber)",
     ),
@@ -350,7 +353,15 @@ HYREL_CODES = table(
     code(
         "M254", "lathe on counter-clockwise (16A only)", P("S", "speed, units/min"), source="M254 Turn On Lathe (CCW)"
     ),
-    code("M255", "lathe off (16A only)", source="M255 Turn Off Lathe"),
+    code("M255", "lathe off (if it has one)", source="M255 Turn Off Lathe"),
+    # No section of its own: M253 turns the lathe "using the value set with M92 for RPM", "Sn - speed in
+    # units per minute (default: RPM if set with M92 as steps per revolution)".  Parameters not given.
+    code(
+        "M92",
+        "steps per revolution of the lathe (M253/M254 S is then in RPM); parameters not on the pages",
+        open_params=True,
+        source="M253 Turn On Lathe (CW) (names M92)",
+    ),
     code(
         "G81",
         "peck drilling (needs an applied M660 offset)",
@@ -434,6 +445,35 @@ HYREL_CODES = table(
     code("M791", "snap a camera image", source="M791 Snap Image"),
     code("M792", "execute an action (SAY/PIC/VID/SEND/BEEP/SHELL after ';')", source="M792 Execute Action"),
     # -- Hidden codes (Sekret page) -------------------------------------------------------------------
+    # M772 section: "Sn is a mask of which reports to auto send when M30 is processed ... Bit1 (0x02):
+    # enables M774 report (system configuration), Bit2 (0x04): enables M774 report (queue metrics), Bit3
+    # (0x08): enables M775 report (crashDataFromRam), Bit4 (0x10): enables M776 report (command and
+    # motionQ usage), Bit5 (0x20): enables M779 report (slice timing)".  Their parameters are not given;
+    # M777 and M778 are not named anywhere on the pages.
+    code(
+        "M774",
+        "report: system configuration (also named for queue metrics); parameters not on the pages",
+        open_params=True,
+        source="M772 Reset All Metrics (hidden codes)",
+    ),
+    code(
+        "M775",
+        "report: crash data from RAM; parameters not on the pages",
+        open_params=True,
+        source="M772 Reset All Metrics (hidden codes)",
+    ),
+    code(
+        "M776",
+        "report: command and motion queue usage; parameters not on the pages",
+        open_params=True,
+        source="M772 Reset All Metrics (hidden codes)",
+    ),
+    code(
+        "M779",
+        "report: slice timing; parameters not on the pages",
+        open_params=True,
+        source="M772 Reset All Metrics (hidden codes)",
+    ),
     # P: 0-5 with T, 0-29 without ("0 ... must specify probeHead via T arg"); "D only 1 is presently supported"
     code(
         "G38",
@@ -447,6 +487,16 @@ HYREL_CODES = table(
         P("O", "additional offset"),
         P("F", "feed rate (one-shot)"),
         source="G38 Distance Probing (hidden codes)",
+    ),
+    # -- Known only from Hyrel's own files ------------------------------------------------------------
+    # Not on the Gcode, T_v5 or hidden-codes pages.  Hyrel's own slicer profile (corpus/hyrel/
+    # oinkotariah__printer_30M-ESR_T1_Heated.ini, "BEGIN HYREL HEADER for a 30M/ESR ...") starts every
+    # job with "M627 X0 Y0 Z0 J-500 K5 ; setup abort action"; what its parameters mean is not documented.
+    code(
+        "M627",
+        "set up the abort action (undocumented: known from Hyrel's own slicer profile; parameters not catalogued)",
+        open_params=True,
+        source="not on the Hyrel pages; Hyrel's own PrusaSlicer profile start code ('; setup abort action')",
     ),
 )
 

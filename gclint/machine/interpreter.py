@@ -10,7 +10,7 @@ from __future__ import annotations
 from collections.abc import Callable
 from functools import partial
 
-from gclint.dialects.addressing import Address, resolve_v5
+from gclint.dialects.addressing import GROUP_MEMBERS, Address, resolve_v5
 from gclint.dialects.base import Dialect
 from gclint.machine.state import EVALUES, NATIVE, MachineState
 from gclint.syntax.nodes import GCODE, IMPLICIT, Command, Line, is_number
@@ -270,6 +270,8 @@ class Interpreter:
                     st.first_print_since_home_line = number
                 if st.first_print_since_m30_line is None:
                     st.first_print_since_m30_line = number
+                if st.first_print_since_tool_line is None:
+                    st.first_print_since_tool_line = number
         if value is None:
             st.e_position = None
         elif st.e_absolute:
@@ -312,6 +314,7 @@ class Interpreter:
             # G28 homes only the listed axes; afterwards G92, H and fixture offsets are cleared and a
             # head offset of 0 is applied (Gcode page, "G28 Send X, Y to Physical Home").
             homed = listed
+            st.head_reselected_line = None
             st.g92_offsets_active = False
             st.fixture_offsets_active = False
             st.applied_height_register = None
@@ -367,9 +370,13 @@ class Interpreter:
         st = self.state
         if self.family == "hyrel":
             st.tool = address.v5
+            # "T0 (Switch to far left head, and invoke all flow, prime, unprime, and offset parameters)"
+            if st.head_reselected_line is None:
+                st.head_reselected_line = line.number
         else:
             st.tool = address.number
         st.tool_line = line.number
+        st.first_print_since_tool_line = None
 
     def _tool_change(self, cmd: Command, line: Line) -> None:
         # CNC M6: change to the tool prepared by T (LinuxCNC; Carvera M6 T<n>)
@@ -377,13 +384,26 @@ class Interpreter:
         if number is not None:
             self.state.tool = number
             self.state.tool_line = line.number
+            self.state.first_print_since_tool_line = None
 
     def _declare_head(self, cmd: Command, line: Line) -> None:
         # Repetrel sends "M6 T# O..." for every loaded head at job start (T_v5, Default Mode); an M6 T#
         # without O is a tool change written the CNC way (HY038), not a declaration
-        address = self.address(cmd) if "O" in cmd.params else None
-        if address is not None and address.position is not None:
-            self.state.declared_heads.setdefault(address.position, line.number)
+        params = cmd.params
+        address = self.address(cmd) if "O" in params else None
+        if address is None or address.position is None:
+            return
+        st = self.state
+        st.declared_heads.setdefault(address.position, line.number)
+        offsets = st.declared_offsets.setdefault(address.position, {})
+        for axis in _AXES:
+            if axis in params:
+                text = params[axis]
+                offsets[axis] = float(text) if text is not None and is_number(text) else None
+        # "M6 T# O1 X20 Y-30 Z40 I1: This happens when you execute a tool change with T#, and so it
+        # triggers the move (I1) to properly position the next head."
+        if _int(params.get("I")) == 1 and st.head_reselected_line is None:
+            st.head_reselected_line = line.number
 
     def _m702(self, cmd: Command, line: Line) -> None:
         squad = _int(cmd.params.get("S"))
@@ -417,12 +437,26 @@ class Interpreter:
         s = cmd.get("S")
         if s is not None:
             st.targets[target] = s
+            if self.is_hyrel and target >= 30:
+                for member in self._members(target):
+                    st.targets[member] = s
         if self.family == "hyrel" and cmd.code in ("M109", "M190", "M191"):
             w = cmd.params.get("W")
             if w is not None and _int(w) == 0:
                 st.pending_w0[target] = line.number
             else:  # a plain wait on the device also waits for what an earlier W0 set
                 st.pending_w0.pop(target, None)
+
+    def _members(self, address: int) -> list[int]:
+        """The devices a group or virtual address covers: the T_v5 groups, a clone squad's heads."""
+        squads = self.state.squads
+        members: list[int] = []
+        for device in GROUP_MEMBERS.get(address, (address,)):
+            if device != address:
+                members.append(device)
+            if device in squads:
+                members.extend(squads[device])
+        return members
 
     def _fan_range(self, cmd: Command, line: Line) -> None:
         c = cmd.get("C")
@@ -496,6 +530,8 @@ class Interpreter:
         st.applied_height_register = None
         st.applied_height_line = None
         st.first_print_since_m30_line = None
+        st.first_print_since_tool_line = None
+        st.head_reselected_line = None
         if st.squads:
             st.squads_dissolved_line = line.number
         st.squads.clear()

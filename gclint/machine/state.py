@@ -75,6 +75,12 @@ class MachineState:
     tool: int | None = None  # focused head/device (v5 address)
     tool_line: int | None = None
     declared_heads: dict[int, int] = field(default_factory=dict)  # position -> line of its M6 T# O...
+    # position -> axis -> offset its M6 T# O... lines declare (None: not a plain number)
+    declared_offsets: dict[int, dict[str, float | None]] = field(default_factory=dict)
+    # The first line since the last Hyrel G28 (which "applies a head offset of 0 mm (as in an M6 O0)")
+    # or M30 that applied a head's offsets again: a T command ("invoke all flow, prime, unprime, and
+    # offset parameters") or an M6 T# ... I1.  None when there is none (also before the first G28).
+    head_reselected_line: int | None = None
     loaded_heads: frozenset[int] | None = None  # from --loaded or configuration; None = unknown
     squads: dict[int, set[int]] = field(default_factory=dict)  # squad (30-39) -> heads
     squads_dissolved_line: int | None = None  # last M30 that dissolved squads
@@ -111,6 +117,7 @@ class MachineState:
     first_move_line: int | None = None  # first G0/G1/G2/G3 (or spiral) move; homing does not count
     first_print_since_home_line: int | None = None  # first printing move after the last Hyrel G28
     first_print_since_m30_line: int | None = None  # first printing move after the last M30
+    first_print_since_tool_line: int | None = None  # first printing move since the last T command (or M30)
     after_m30: bool = False
     m30_line: int | None = None
     line_number: int = 0  # the line being processed
@@ -118,6 +125,12 @@ class MachineState:
     def e_values(self) -> bool:
         """True when Hyrel uses the E amounts (M229 E1 active)."""
         return self.flow_mode == EVALUES
+
+    def head_offsets_zero(self, position: int) -> bool:
+        """True when the job's M6 T# O... lines give head ``position`` only zero offsets (so a head
+        offset of 0 mm changes nothing for it); False when they give another value or none at all."""
+        offsets = self.declared_offsets.get(position)
+        return bool(offsets) and all(value == 0 for value in offsets.values())
 
     def head_loaded(self, position: int) -> bool | None:
         """Whether a head sits at ``position``; None when no one knows."""

@@ -134,7 +134,9 @@ class AddressWithoutCounterpart(TranslationRule):
         T26 spindle, T91/T92 beds, wildcards T0, T10, T20, T90, T100); v5 uses one address table for T
         commands and variables (T0-T19 heads, T20-T25 devices, T30-T48 groups).  The map is certain for
         the numbers the Hyrel firmware tables and wiki confirm (research/hyrel_v4.md); for the others
-        (v4 clone groups T50-T57, v5 Aux2 T23, yoke 3 and 4...) the number is left unchanged and reported.
+        (v4 clone groups T50-T57, v5 Aux2 T23, yoke 3 and 4, and the aux port: v4 T16 / tool T10 is v5
+        Aux1 T22 by inference only, "mapping to v5 Aux1 is I - medium") the number is left unchanged and
+        reported, and where research infers a counterpart the finding names it as uncertain.
     """
     example_bad = "M104 T23 S0"
     example_good = "M104 T22 S0"

@@ -2,10 +2,12 @@
 
 v4 T variables are CAN device addresses, v5 has one address table (research/hyrel_v4.md sections 1-3,
 gclint/dialects/addressing.py).  Only the certain part of the map is used (V4_TO_V5_VARIABLE and its
-inverse): 11-15 -> 0-4, 21-25 -> 5-9, 16 -> 22, 41 -> 21, 26 -> 20, 91/92 -> 24/25, and the wildcards
-0 -> 40, 10/20 -> 41/42, 100 -> 47, 90 -> 46.  T commands (tool numbers) are 0-9 in both; v4's special
-tool numbers 10-14 (aux, laser, spindle, beds) become 22, 21, 20, 24, 25.  A number with no certain
-counterpart stays as it is and is reported (TR006).  Edits touch the T value only, so spacing,
+inverse): 11-15 -> 0-4, 21-25 -> 5-9, 41 -> 21, 26 -> 20, 91/92 -> 24/25, and the wildcards 0 -> 40,
+10/20 -> 41/42, 100 -> 47, 90 -> 46.  T commands (tool numbers) are 0-9 in both; v4's special tool
+numbers 11-14 (laser, spindle, beds) become 21, 20, 24, 25.  A number with no certain counterpart stays
+as it is and is reported (TR006); where research/hyrel_v4.md infers one (the aux port, v4 T16 / tool
+T10 -> v5 Aux1 T22, rated "medium"; yokes 3 and 4; groups), the finding names it and says the map is
+uncertain there.  Edits touch the T value only, so spacing,
 comments and everything else stay byte for byte and v4 -> v5 -> v4 gives the file back.
 """
 
@@ -16,9 +18,13 @@ from collections.abc import Iterator
 
 from gclint.dialects.addressing import (
     V4_TO_V5_COMMAND,
+    V4_TO_V5_COMMAND_INFERRED,
     V4_TO_V5_VARIABLE,
+    V4_TO_V5_VARIABLE_INFERRED,
     V5_TO_V4_COMMAND,
+    V5_TO_V4_COMMAND_INFERRED,
     V5_TO_V4_VARIABLE,
+    V5_TO_V4_VARIABLE_INFERRED,
     resolve_v4_variable,
     resolve_v5,
 )
@@ -41,6 +47,8 @@ class Renumber(Translator):
         self.to_v5 = target.extras.get("firmware") == 5
         self.variables = V4_TO_V5_VARIABLE if self.to_v5 else V5_TO_V4_VARIABLE
         self.commands = V4_TO_V5_COMMAND if self.to_v5 else V5_TO_V4_COMMAND
+        self.inferred_variables = V4_TO_V5_VARIABLE_INFERRED if self.to_v5 else V5_TO_V4_VARIABLE_INFERRED
+        self.inferred_commands = V4_TO_V5_COMMAND_INFERRED if self.to_v5 else V5_TO_V4_COMMAND_INFERRED
         self.annotate = bool(getattr(options, "annotate", False))
         self.count = count
         self.default_ending = "\n"
@@ -91,7 +99,8 @@ class Renumber(Translator):
                     cmd,
                     result,
                     f"T{number} (tool number) has no certain "
-                    f"{'v5' if self.to_v5 else 'v4'} counterpart; left unchanged",
+                    f"{'v5' if self.to_v5 else 'v4'} counterpart{self._likely('T', number, self.inferred_commands)}; "
+                    "left unchanged",
                     ("cmd", number),
                 )
                 return None
@@ -126,7 +135,8 @@ class Renumber(Translator):
                         cmd,
                         result,
                         f"{code} {letter}{number}: this {what} has no certain "
-                        f"{'v5' if self.to_v5 else 'v4'} counterpart; left unchanged",
+                        f"{'v5' if self.to_v5 else 'v4'} counterpart"
+                        f"{self._likely(letter, number, self.inferred_variables)}; left unchanged",
                         (code, letter, number),
                     )
                     continue
@@ -143,6 +153,17 @@ class Renumber(Translator):
         # M702-M704 S: a squad (v5 30-39 / v4 groups 50-57, correspondence uncertain) or a head to copy
         kind = resolve_v4_variable(number).kind if self.to_v5 else resolve_v5(number).kind
         return new if kind == "head" else None
+
+    def _likely(self, letter: str, number: int, inferred: dict[int, int]) -> str:
+        """Where research/hyrel_v4.md infers a counterpart: say which, and that the map is uncertain there."""
+        likely = inferred.get(number)
+        if likely is None:
+            return ""
+        source, target = ("v4", "v5") if self.to_v5 else ("v5", "v4")
+        return (
+            f" (the v4 -> v5 map is uncertain here: {source} {letter}{number} is most likely {target} "
+            f"{letter}{likely}, inferred, not documented: research/hyrel_v4.md; check it by hand)"
+        )
 
     def _report(self, line: Line, cmd: Command, result: TranslationResult, message: str, key: tuple) -> None:
         entry = self._reported.get(key)

@@ -96,19 +96,24 @@ class ToolNotLoaded(Rule):
     code = "HY006"
     name = "tool-not-loaded"
     severity = Severity.WARNING
-    summary = "A T command selects a head position where no head is loaded"
+    summary = "The T commands and the loaded heads do not match (a T command with no head there, or a loaded head no T command calls)"
     explanation = """
         A T command moves Repetrel's focus to the head in that tool position.  When a job is loaded,
         Repetrel "check[s] which heads are called out with T commands in your gcode ... and we compare
         that with which tool positions on the yoke actually have heads.  If there is any mismatch,
-        warning message popups will appear."  gclint makes the same comparison before the job reaches
-        the printer.
+        warning message popups will appear.  If you have your heads called out in your gcode and the
+        same tool positions loaded with heads, you will not see these warnings."  gclint makes the same
+        comparison before the job reaches the printer, both ways: a T command that selects a position
+        with no head (reported at its first T command), and a loaded head that no T command calls
+        (reported at its `M6 T# O...` line, or line 1 when it comes from `--loaded`).  Heads that print
+        through a clone squad or copy another head (`M703 T# S#`) count as called.  A job with no T
+        command at all and one loaded head is Default Mode ("the gcode will be executed with the only
+        head loaded") and is not reported.
 
         The loaded heads come from `--loaded T0,T2` (or `loaded = ["T0", "T2"]` in the configuration);
         without them, from the job header, where Repetrel writes one `M6 T# O...` line for every loaded
         head.  When neither says which heads are loaded, the rule stays silent.  Each position is
-        reported once, at its first T command.  A position the printer model does not have at all is
-        HY007.
+        reported once.  A position the printer model does not have at all is HY007.
     """
     example_bad = """
         M6 T0 O1 X0 Y0 Z0
@@ -117,19 +122,28 @@ class ToolNotLoaded(Rule):
     example_good = """
         M6 T0 O1 X0 Y0 Z0
         M6 T1 O2 X0 Y0 Z0
+        T0
         T1
     """
     source = "T_v5, Error Messages and Default Mode (M6 T# O... for every loaded head) (catalogue H43)"
-    codes = (ANY_T,)
+    codes = (ANY_T, "M703")
     families = ("hyrel",)
 
     def __init__(self, ctx) -> None:
         super().__init__(ctx)
-        self.seen: set[int] = set()
+        self.seen: set[int] = set()  # positions called out by T commands
+        self.copies: set[int] = set()  # heads that print through a squad or copy a head (M703 T#)
         self.pending: list[tuple[Line, Command, Address]] = []  # waiting for the whole header (no --loaded)
 
     def check(self, line: Line, cmd: Command) -> None:
-        address = self.ctx.interpreter.tool_command_address(cmd)
+        interpreter = self.ctx.interpreter
+        if cmd.code == "M703":
+            if not reported_as_v4(self.ctx, cmd):
+                copier = interpreter.address(cmd)
+                if copier is not None and copier.position is not None:
+                    self.copies.add(copier.position)
+            return
+        address = interpreter.tool_command_address(cmd)
         if address is None or address.position is None:
             return
         position = address.position
@@ -146,12 +160,27 @@ class ToolNotLoaded(Rule):
             self.pending.append((line, cmd, address))
 
     def finish(self) -> None:
-        declared = self.state.declared_heads
-        if self.state.loaded_heads is not None or not declared:
+        st = self.state
+        declared = st.declared_heads
+        if st.loaded_heads is None and declared:
+            for line, cmd, address in self.pending:
+                if address.position not in declared:
+                    self._report(line, cmd, address, f"the job header declares {heads_text(declared)} with M6 T# O...")
+        loaded = st.loaded_heads if st.loaded_heads is not None else (frozenset(declared) or None)
+        if loaded is None:
             return  # nobody says which heads are loaded: stay silent
-        for line, cmd, address in self.pending:
-            if address.position not in declared:
-                self._report(line, cmd, address, f"the job header declares {heads_text(declared)} with M6 T# O...")
+        if not self.seen and len(loaded) < 2:
+            return  # Default Mode: no T command, "executed with the only head loaded"
+        for position in sorted(loaded - self.seen - self.copies):
+            if position not in self.ctx.profile.positions:
+                continue
+            at = declared.get(position)
+            where = f"declared by M6 T# O... at line {at}" if at is not None else "from --loaded or the configuration"
+            self.report(
+                at if at is not None else 1,
+                f"head T{position} is loaded ({where}), but no T command calls it: Repetrel warns when the "
+                "heads called out with T commands and the loaded heads do not match ('any mismatch')",
+            )
 
     def _report(self, line: Line, cmd: Command, address: Address, where: str) -> None:
         self.report(

@@ -280,20 +280,36 @@ class LatheOnNon16A(Rule):
     code = "HY041"
     name = "lathe-on-non-16a"
     severity = Severity.ERROR
-    summary = "M253/M254/M255 lathe codes on a printer other than the Hydra 16A"
+    summary = "M253/M254 turn on a lathe on a printer other than the Hydra 16A"
     explanation = """
-        M253 (lathe on, clockwise), M254 (counter-clockwise) and M255 (lathe off) drive the lathe motor:
-        "Only available on Hydra 16A models."  Choose the printer with `--printer 16a` (or `16a-dual`)
-        when the job is for a 16A.
+        "M253 tells the printer to activate (start) the lathe motor in the clockwise direction (if it
+        has one), using the value set with M92 for RPM.  Only available on Hydra 16A models."  M254 is
+        the same counter-clockwise ("All options are identical, with the exception of direction").  On
+        another model there is no lathe to turn, and the work the job expects it to do is not done.
+        Choose the printer with `--printer 16a` (or `16a-dual`) when the job is for a 16A; the message
+        names the model gclint checked for (the 30m unless told).
+
+        Turning the lathe off is not reported: "M255 tells the printer to deactivate (stop) the lathe
+        motor (if it has one)", and the M255 section has no 16A-only note, so an M255 (like a
+        `M253 S0`, since "S0 is the same as turning it off") on a printer without a lathe stops nothing
+        and harms nothing (end-of-job code shared between printers often has one).
     """
     example_bad = "; gclint-test: printer=30m dialect=hyrel\nM253 S75"
-    example_good = "; gclint-test: printer=16a dialect=hyrel\nM253 S75"
-    source = "Gcode page, M253 Turn On Lathe (CW) (catalogue H49)"
-    codes = ("M253", "M254", "M255")
+    example_good = "; gclint-test: printer=30m dialect=hyrel\nM255"
+    source = "Gcode page, M253 Turn On Lathe (CW), M254 Turn On Lathe (CCW), M255 Turn Off Lathe (catalogue H49)"
+    codes = ("M253", "M254")
     families = ("hyrel",)
 
     def check(self, line: Line, cmd: Command) -> None:
         profile = self.ctx.profile
-        if not profile.lathe:
-            message = f"{cmd.code}: the lathe is only available on Hydra 16A models, not the {profile.title}"
-            self.report(line, message, node=cmd)
+        if profile.lathe:
+            return
+        s = cmd.get("S")
+        if s is not None and s == 0:
+            return  # "S0 is the same as turning it off": nothing to turn off on this model
+        self.report(
+            line,
+            f"{cmd.code} turns on the lathe, which is 'Only available on Hydra 16A models'; "
+            f"gclint checked for a {profile.name} ({profile.title}){self.ctx.model_note()}",
+            node=cmd,
+        )

@@ -441,13 +441,20 @@ class AxisNotOnModel(MoveRule):
     explanation = """
         "All Hyrel printers have built-in support for three axes. Hyrel model 16A and EHR printers may be
         expanded to five."  The 30M and ESR have no A or B axis, so A/B words cannot run there (files
-        from Machinekit, where A is the extruder, or from 4th-axis CNC jobs).  Choose the printer with
-        `--printer` (`ehr`, `16a`, `16a-dual` have A/B).
+        from Machinekit, where A is the extruder, or from 4th-axis CNC jobs).  Checked wherever the
+        pages give a code A and B: moves (G0, G1, the arcs), homing (G28 "A0 ensures that the A axis is
+        homed"), G92, G0 speeds (M203 "An is the new speed in the A axis for G0 moves"), fixture offsets
+        (G54-G59 "An is the offset in mm in the A axis"), head offsets (M6 "An is the offset in the A
+        axis") and probing (G38).  Choose the printer with `--printer` (`ehr`, `16a`, `16a-dual` have
+        A/B); the message names the model gclint checked for.
     """
     example_bad = "; gclint-test: printer=30m\nG1 X10 Y10 A90 F1200"
     example_good = "; gclint-test: printer=30m\nG1 X10 Y10 F1200"
-    source = "Gcode page, G0 Rapid Move / G1 Working Move note on axes (catalogue H59)"
-    codes = (*_ARCS, "G28", "G92", "G38")
+    source = (
+        "Gcode page, G0 Rapid Move / G1 Working Move note on axes; G28, G92, M203, G54 - G59, M6 parameters "
+        "(catalogue H59)"
+    )
+    codes = (*_ARCS, "G28", "G92", "G38", "M203", *(f"G{n}" for n in range(54, 60)), "M6")
     slot = "axis_on_model"
 
     def __init__(self, ctx) -> None:

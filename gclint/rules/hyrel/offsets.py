@@ -293,31 +293,33 @@ class OffsetsClearedByG28(Rule):
     code = "HY055"
     name = "offsets-cleared-by-g28"
     severity = Severity.WARNING
-    summary = "G28 clears G92, fixture (G54-G59) and H offsets that the printing after it still relies on"
+    summary = "G28 clears G92, fixture (G54-G59), H and head (M6) offsets that the printing after it still relies on"
     explanation = """
         "After homing, a G28 also resets current offsets to 0 - including any may have been set with a
         G92 or an H (as defined in an M660 and invoked on a G1), performs a G53, and applies a head
         offset of 0 mm (as in an M6 O0)."  A G28 in the middle of a job (re-homing between parts, a
-        homing macro) therefore drops the offsets the job set up, and the printing that follows lands
-        in the wrong place or at the wrong height unless the offsets are set again (G92, G54-G59, H on a
-        G1) before the next printing move.  A G28 at the end of a job is fine.
+        homing macro, or a G28 after the T command that selected the head) therefore drops the offsets
+        the job set up, and the printing that follows lands in the wrong place or at the wrong height
+        unless the offsets are set again before the next printing move: G92, G54-G59, H on a G1, and
+        for the head offsets a T command, which "invoke[s] all flow, prime, unprime, and offset
+        parameters" of the head (or an `M6 T# ... I1`, "when you execute a tool change with T#").
+
+        The head offset counts when a T command selected a head before the G28 and the job does not
+        declare that head's offsets as all zero (`M6 T0 O1 X0 Y0 Z0`, where an offset of 0 mm changes
+        nothing); a job with no T command at all prints with "the only head loaded" and is not
+        reported.  A G28 at the end of a job is fine.
     """
     example_bad = """
-        M660 H2 Z28.2
-        G1 Z0.3 F600 H2
-        G1 X10 Y10 E1
+        T1
         G28 X0 Y0
-        G1 X20 Y10 E1
+        G1 X20 Y10 E1 F1200
     """
     example_good = """
-        M660 H2 Z28.2
-        G1 Z0.3 F600 H2
-        G1 X10 Y10 E1
         G28 X0 Y0
-        G1 Z0.3 H2
-        G1 X20 Y10 E1
+        T1
+        G1 X20 Y10 E1 F1200
     """
-    source = "Gcode page, G28 Send X, Y to Physical Home (catalogue H27)"
+    source = "Gcode page, G28 Send X, Y to Physical Home and T Tool Change; T_v5, Explicit Mode (catalogue H27)"
     codes = ("G28", "G92", *_FIXTURES, "M30")
     families = ("hyrel",)
 
@@ -350,6 +352,14 @@ class OffsetsClearedByG28(Rule):
             cleared["fixture"] = ("the fixture offsets (G54-G59)", self.set_at.get("fixture"))
         if st.applied_height_register is not None:
             cleared["H"] = (f"the tool-height offset H{st.applied_height_register}", st.applied_height_line)
+        head = st.tool
+        if (
+            st.head_reselected_line is not None
+            and head is not None
+            and 0 <= head <= 19
+            and not st.head_offsets_zero(head)
+        ):
+            cleared["head"] = (f"the M6 head offsets of T{head}", st.tool_line)
         self.g28 = line if cleared else None
         self.cleared = cleared
         self.again = {}
@@ -369,17 +379,27 @@ class OffsetsClearedByG28(Rule):
         again = dict(self.again)
         if st.applied_height_register is not None and st.applied_height_line is not None:
             again["H"] = st.applied_height_line
-        lost = []
+        if st.head_reselected_line is not None:
+            again["head"] = st.head_reselected_line
+        lost = {}
         for kind, (what, set_line) in self.cleared.items():
             when = again.get(kind)
             if when is None or when > printed:
-                lost.append(f"{what}{f' (line {set_line})' if set_line else ''}")
-        if lost:
-            self.report(
-                g28,
-                f"G28 resets {', '.join(lost)} to 0, and printing resumes at line {printed} without setting them again",
-                node=g28.commands[0] if g28.commands else None,
+                lost[kind] = f"{what}{f' (line {set_line})' if set_line else ''}"
+        if not lost:
+            return
+        how = ""
+        if "head" in lost:
+            how = (
+                " (G28 'applies a head offset of 0 mm (as in an M6 O0)'; "
+                "a T command before the printing applies the head's offsets again)"
             )
+        self.report(
+            g28,
+            f"G28 resets {', '.join(lost.values())} to 0, and printing resumes at line {printed} without setting them "
+            f"again{how}",
+            node=g28.commands[0] if g28.commands else None,
+        )
 
 
 # -- HY061 ---------------------------------------------------------------------------------------------

@@ -9,7 +9,7 @@ from __future__ import annotations
 
 from gclint.dialects.addressing import BED, GROUP, HEAD, RESERVED, VIRTUAL
 from gclint.dialects.base import Param
-from gclint.rules.base import Rule, Severity, register
+from gclint.rules.base import ANY_T, Rule, Severity, register
 from gclint.rules.dialect import ParamTableRule
 from gclint.rules.hyrel.addressing import reported_as_v4
 from gclint.syntax.nodes import Command, Line
@@ -175,17 +175,20 @@ class WaitRIsATolerance(Rule):
     code = "HY035"
     name = "wait-r-is-a-tolerance"
     severity = Severity.ERROR
-    summary = "M109/M190/M191 R is a tolerance around S, not a target temperature (Marlin)"
+    summary = "M109/M190/M191 R without S: R is a tolerance around the set point, not a target (Marlin)"
     explanation = """
         On Hyrel, "Rn if present, is how close the relative temperature needs to be to the set temp to
         end the pause", and "Sn (optional) is the new set temperature in °C; if omitted, no new target
         temperature is set".  Marlin and RepRapFirmware read `M109 R210` as "set 210 °C and wait, also
         when cooling"; on Hyrel it sets nothing and waits until the head is within ±210 °C of its old
-        target, which is at once.  An R above 50 °C is such a Marlin target (error): write
-        `M109 S210 R5`.
+        target, which is at once.  An R above 50 °C with no S is such a Marlin target (error; the
+        threshold is the catalogue's, research/dialects.md H07, not the page's): write `M109 S210 R5`.
+        With S, R is the tolerance the page describes, whatever its size: the page gives no limit, so
+        `M109 T0 S240 R60` is not reported.
 
         A wait without S on a device that has no temperature set earlier in the job waits for whatever
-        target the machine holds (warning).
+        target the machine holds (warning).  (The page's own "M109 R10", "(no T# - use head with current
+        focus) R10 (to get +/-10°C of set temperature)", is fine after an earlier S.)
     """
     example_bad = "M109 T0 R210"
     example_good = "M109 T0 S210 R5"
@@ -194,22 +197,19 @@ class WaitRIsATolerance(Rule):
     families = ("hyrel",)
 
     def check(self, line: Line, cmd: Command) -> None:
+        if cmd.get("S") is not None:
+            return  # R is the tolerance around S: the page sets no limit on it
         r = cmd.get("R")
-        has_s = cmd.get("S") is not None
         if r is not None and r > 50:
-            if has_s:
-                message = (
-                    f"{cmd.code} R{cmd.params['R']}: R is the tolerance around S (±{r:g} °C), so the wait "
-                    "ends at once; a tolerance of a few degrees (R5) is what the page shows"
-                )
-            else:
-                message = (
-                    f"{cmd.code} R{cmd.params['R']} is a Marlin-style target, but Hyrel's R is a tolerance and "
-                    f"sets nothing: write {cmd.code} S{cmd.params['R']} R5"
-                )
-            self.report(line, message, node=cmd.param("R"))
+            self.report(
+                line,
+                f"{cmd.code} R{cmd.params['R']} is a Marlin-style target, but Hyrel's R is a tolerance and "
+                f"sets nothing ('if omitted, no new target temperature is set'): write "
+                f"{cmd.code} S{cmd.params['R']} R5",
+                node=cmd.param("R"),
+            )
             return
-        if not has_s and _device(self, cmd) not in self.state.targets:
+        if _device(self, cmd) not in self.state.targets:
             self.report(
                 line,
                 f"{cmd.code} has no S and no {_WAITED[str(cmd.code)]} temperature was set earlier in the job: "
@@ -294,9 +294,12 @@ class WaitTargetKind(Rule):
     summary = "M109 addressed to something other than a head, or M190/M191 to something other than a bed/chamber"
     explanation = """
         M109 waits for a head ("T# is the target head"), M190 for a bed and M191 for a chamber ("T# is
-        the target bed / chamber").  In v5, beds and chambers are T24 and T25 and heads T0-T19: `M190
-        T0` or `M109 T24` waits on the wrong kind of device, most often because the T was copied from
-        another line.  (Group addresses are HY003, unknown addresses HY047.)
+        the target bed" / "the target chamber").  In v5, beds and chambers are T24 and T25 ("Bed1 /
+        Chamber1", "Bed2 / Chamber2") and heads T0-T19: `M190 T0` or `M109 T24` waits on the wrong kind
+        of device, most often because the T was copied from another line; the message names the wait
+        for that device.  The 3-phase spindle (T20), the CO2 laser (T21) and the aux ports (T22, T23)
+        are none of these, and the page gives them no temperature to wait for, so no wait command fits
+        them.  (Group addresses are HY003, unknown addresses HY047.)
     """
     example_bad = "M190 T0 S60"
     example_good = "M190 T24 S60"
@@ -316,11 +319,18 @@ class WaitTargetKind(Rule):
         expected = HEAD if cmd.code == "M109" else BED
         if address.kind == expected:
             return
-        hint = "M190 (bed) or M191 (chamber)" if address.kind == BED else "M109"
+        if address.kind == BED:
+            hint = "; for that device use M190 (bed) or M191 (chamber)"
+        elif address.kind == HEAD:
+            hint = "; for a head use M109"
+        else:
+            hint = (
+                ", which is not a head, bed or chamber: the page gives it no temperature to wait for "
+                "(M109 waits for a head, M190 for a bed, M191 for a chamber)"
+            )
         self.report(
             line,
-            f"{cmd.code} waits for a {_WAITED[str(cmd.code)]}, but T{cmd.params['T']} is {address.label}; "
-            f"for that device use {hint}",
+            f"{cmd.code} waits for a {_WAITED[str(cmd.code)]}, but T{cmd.params['T']} is {address.label}{hint}",
             node=cmd.param("T"),
         )
 
@@ -332,17 +342,145 @@ class WaitTargetKind(Rule):
 class NegativeTemperature(ParamTableRule):
     code = "HY051"
     name = "negative-temperature"
-    severity = Severity.ERROR
-    summary = "A head temperature below 0 °C (M104/M109 S)"
+    severity = Severity.INFO
+    summary = "A head set below 0 °C (M104/M109 S): only a chilled (sub-ambient) head goes there"
     explanation = """
-        "Sn is the new set temperature in °C" for the head (M104, M109).  Hyrel has heated and chilled
-        heads, but no head is set below 0 °C: a negative S is a typo or a value from another unit.  The
-        ranges are data in gclint/dialects/hyrel.py (`rule="HY051"`).
+        "Sn is the new set temperature in °C" for the head (M104, M109), and "Remember, we have both
+        heated and chilled (sub-ambient) heads as options."  The page gives no lowest set point, so a
+        set point below 0 °C is not an error: it is right for a chilled head and a typo (or a value in
+        another unit) for a heated one, and a G-code file does not say which head is which.  gclint
+        mentions it (info) so that a heated head set to `S-20` instead of `S20` is noticed; beds and
+        chambers ("heated and chilled (sub-ambient) beds", "chambers") are not reported.  The ranges
+        are data in gclint/dialects/hyrel.py (`rule="HY051"`).
     """
     example_bad = "M104 T0 S-20"
     example_good = "M104 T0 S20"
-    source = "Gcode page, M104 Set Temp (Head) and M109 Wait for Temp (Head) (catalogue H61)"
+    source = (
+        "Gcode page, M104 Set Temp (Head) and M109 Wait for Temp (Head) ('heated and chilled (sub-ambient) "
+        "heads') (catalogue H61)"
+    )
     families = ("hyrel",)
 
     def range_message(self, cmd: Command, p: Param, problem: str) -> str:
-        return f"{cmd.code}: {problem}: a head temperature below 0 °C"
+        return (
+            f"{cmd.code} S{cmd.params.get('S')} sets a head below 0 °C: fine for a chilled (sub-ambient) head, "
+            "a typo for a heated one"
+        )
+
+
+# -- HY063 ---------------------------------------------------------------------------------------------
+
+
+@register
+class HeadPrintsWithoutTemperature(Rule):
+    code = "HY063"
+    name = "head-prints-without-temperature"
+    severity = Severity.WARNING
+    summary = "A head prints after a T command, but no M104/M109 set its temperature (the job heats other heads)"
+    explanation = """
+        A T command changes the head that prints, "invoking the parameters specified in the M6" (flow,
+        prime, unprime, offsets); it does not heat the head.  Temperatures come from the job: "the
+        slicing program generates gcode which dictates temperature and movement commands", M104 "sets
+        the extruder temperature" ("T# is the tool assignment for this temperature command"), and "All
+        parameters are persistent, so once they are set, they will remain in place".  A head that a
+        tool change brings in and that no M104/M109 has set (by its own address, or a group address
+        covering it: T40 "ALL DEVICES", T41-T44 "Yoke n, all Heads", T47 "All non-Bed / non-Chamber
+        devices", a clone squad it belongs to) prints at whatever it holds, cold for a heated head.
+
+        Not every head needs heat, and a file does not say which head is which, so this is a warning
+        and it assumes a heated head.  gclint leaves out what it can recognise: heads enabled with
+        `M620 T# E1` ("The CO_2 and Diode Lasers and the UV Pens require the following enabling
+        codes"), spindle heads (M3/M4), and jobs whose file sets no head temperature at all (other than
+        S0, which footers use to switch heaters off): such a job leaves temperatures to Repetrel (the
+        head settings and header it sends "when you start a job") or runs heads that need none.  A
+        cold paste or bio head at room temperature, or a chilled head ("we have both heated and chilled
+        (sub-ambient) heads as options"), printing beside heated ones is reported: ignore the finding
+        for it (`; noqa: HY063`), or set its temperature in the job.  An M104/M109 without T before the
+        first T command heats the head Repetrel focused at the start, which gclint cannot name, so
+        every head then counts as set.  Each head is reported once, at its first printing move without
+        a temperature.
+    """
+    example_bad = """
+        M109 T0 S215
+        T0
+        G1 X10 Y10 E1 F1200
+        T1
+        G1 X20 Y10 E1
+    """
+    example_good = """
+        M104 T41 S215
+        M109 T0 R5
+        T0
+        G1 X10 Y10 E1 F1200
+        T1
+        M109 R5
+        G1 X20 Y10 E1
+    """
+    source = (
+        "Gcode page, What is GCode?, Controlling Material Flow, M104 Set Temp (Head), T Tool Change, "
+        "Controlling Lasers and UV Pens; T_v5, Chart of Addresses (group addresses)"
+    )
+    codes = (ANY_T, "M104", "M109", "M140", "M141", "M190", "M191", "M30", "M620", "M3", "M4")
+    families = ("hyrel",)
+
+    def __init__(self, ctx) -> None:
+        super().__init__(ctx)
+        self.judged = False  # the printing since the last T command has been looked at
+        self.first_heat: int | None = None  # first M104/M109 with a non-zero S
+        self.candidates: list[tuple[int, int, int | None]] = []  # (first print, head, line of its T command)
+        self.no_heat: set[int] = set()  # heads known to need no heat: lasers/UV pens (M620), spindles
+
+    def check(self, line: Line, cmd: Command) -> None:
+        code = cmd.code
+        interpreter = self.ctx.interpreter
+        if code == "M620":
+            address = interpreter.address(cmd)
+            if address is not None and address.position is not None and cmd.get("E") == 1:
+                self.no_heat.add(address.position)
+            return
+        if code == "M3" or code == "M4":
+            device = interpreter.target(cmd)
+            if device is not None and 0 <= device <= 19:
+                self.no_heat.add(device)
+            return
+        self._settle()
+        if code == "M104" or code == "M109":
+            s = cmd.get("S")
+            if s is not None and s != 0 and self.first_heat is None:
+                self.first_heat = line.number
+        elif code == "M30" or (code is not None and code[0] == "T"):
+            self.judged = False
+
+    def _settle(self) -> None:
+        """Look at the printing since the last T command once: was the printing head set, before it?"""
+        if self.judged:
+            return
+        st = self.state
+        printed = st.first_print_since_tool_line
+        if printed is None:
+            return
+        self.judged = True
+        head = st.tool
+        if head is None or not 0 <= head <= 19 or st.tool_line is None:
+            return  # no T command: the head Repetrel focused at the start (Default Mode)
+        targets = st.targets
+        if head in targets or -1 in targets:
+            return
+        self.candidates.append((printed, head, st.tool_line))
+
+    def finish(self) -> None:
+        self._settle()
+        if self.first_heat is None:
+            return  # the file sets no head temperature: Repetrel's settings, or heads that need none
+        reported: set[int] = set()
+        for printed, head, tool_line in self.candidates:
+            if head in self.no_heat or head in reported:
+                continue
+            reported.add(head)
+            self.report(
+                printed,
+                f"head T{head} (selected at line {tool_line}) prints here, but no M104/M109 before this line "
+                f"set its temperature, while the job does set head temperatures (line {self.first_heat}): a "
+                "heated head prints cold (ignore this for a head that needs no heat: a UV pen, a laser, a "
+                "room-temperature paste or bio head)",
+            )
