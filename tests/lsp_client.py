@@ -163,6 +163,11 @@ class LspClient:
         else:
             self.notifications.append(message)
 
+    def wait_request(self, method: str, timeout: float = 30) -> dict:
+        """The first request ``method`` the server sent (already answered through ``answers``)."""
+        self._pump(lambda: any(r["method"] == method for r in self.requests_from_server), timeout, method)
+        return next(r for r in self.requests_from_server if r["method"] == method)
+
     def drain(self, seconds: float) -> None:
         """Handle whatever arrives for ``seconds``."""
         deadline = time.monotonic() + seconds

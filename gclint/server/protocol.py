@@ -21,6 +21,7 @@ from __future__ import annotations
 import asyncio
 import functools
 import logging
+import os
 import sys
 import threading
 from collections.abc import Callable
@@ -150,10 +151,14 @@ class GclintServer(LanguageServer):
         self.log(f"server error ({getattr(source, '__name__', source)}): {detail}", lsp.MessageType.Error)
 
     def apply_settings(self, raw: object) -> None:
+        """Take the client's settings; open documents are checked again when they change anything."""
         settings, problems = analysis.parse_settings(raw)
         for problem in problems:
             self.log_once(problem)
-        self.settings = settings
+        if settings != self.settings:
+            self.settings = settings
+            for doc in list(self.documents.values()):
+                self.schedule(doc, 0)
 
     # -- checking -----------------------------------------------------------------------------------------
 
@@ -311,11 +316,9 @@ def create_server() -> GclintServer:
     @_guard
     async def did_change_configuration(ls: GclintServer, params: lsp.DidChangeConfigurationParams) -> None:
         if params.settings is None or (ls.pull_configuration and params.settings in ({}, {"gclint": None})):
-            await _pull_settings(ls)
+            await _pull_settings(ls)  # the client says "changed" and expects to be asked
         else:
             ls.apply_settings(params.settings)
-        for doc in list(ls.documents.values()):
-            ls.schedule(doc, 0)
 
     @server.feature(lsp.TEXT_DOCUMENT_DID_OPEN)
     @_guard
@@ -450,6 +453,20 @@ def _warm_up() -> None:
         pass
 
 
+class _OneLine(logging.Formatter):
+    """Log records on standard error (the editor's server log) as one line each: the exception's type
+    and message, not its traceback (GCLINT_DEBUG=1 keeps tracebacks)."""
+
+    def format(self, record: logging.LogRecord) -> str:
+        text = f"gclint server: {record.levelname.lower()}: {record.getMessage()}"
+        if record.exc_info and record.exc_info[1] is not None:
+            exc = record.exc_info[1]
+            if os.environ.get("GCLINT_DEBUG"):
+                return text + "\n" + self.formatException(record.exc_info)
+            text += f" ({type(exc).__name__}: {exc})"
+        return " ".join(text.split())[:2000]
+
+
 class _Input:
     """Standard input for pygls' reader, made safe: a message body that is not valid UTF-8 is repaired
     (bad bytes become U+FFFD) instead of failing to parse, and a huge Content-Length is read in pieces
@@ -491,7 +508,9 @@ def run(stdin: BinaryIO | None = None, stdout: BinaryIO | None = None) -> int:
     if stdout is None:
         sys.stdout = sys.stderr  # a stray print must not corrupt the protocol stream
     if not logging.getLogger().handlers:
-        logging.basicConfig(stream=sys.stderr, level=logging.WARNING, format="gclint server: %(levelname)s %(message)s")
+        handler = logging.StreamHandler(sys.stderr)
+        handler.setFormatter(_OneLine())
+        logging.basicConfig(level=logging.WARNING, handlers=[handler])
     server = create_server()
     try:
         server.start_io(_Input(source), out)  # type: ignore[arg-type]
