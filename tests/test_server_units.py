@@ -287,6 +287,9 @@ def test_settings_shapes_and_bad_values():
     assert settings.dialect is None and settings.printer is None and settings.extend_select == ("SC",)
     assert len(problems) == 2
     assert analysis.parse_settings("nonsense")[1]
+    # what VS Code sends for settings left at their default, and its own keys: nothing set, no warning
+    untouched = {"path": "gclint", "dialect": "", "printer": "", "select": [], "ignore": [], "trace": {"server": "off"}}
+    assert analysis.parse_settings({"gclint": untouched}) == (analysis.Settings(), [])
     assert analysis.parse_settings(None) == (analysis.Settings(), [])
 
 

@@ -29,6 +29,9 @@ from gclint.syntax.source import Source
 # -- settings from the client ---------------------------------------------------------------------------
 
 SETTING_KEYS = ("dialect", "printer", "select", "ignore", "extendSelect", "loaded")
+# Keys an editor extension keeps in the same settings section for itself (VS Code sends the whole
+# "gclint" section): not gclint's business, not worth a warning.
+CLIENT_KEYS = frozenset({"path", "trace", "enable", "args", "command", "interpreter"})
 
 
 @dataclass(frozen=True)
@@ -89,13 +92,15 @@ def parse_settings(raw: object) -> tuple[Settings, list[str]]:
     values: dict = {}
     for key, value in raw.items():
         name = re.sub(r"[-_]([a-z])", lambda m: m.group(1).upper(), str(key))
-        if value is None or value == "":
-            continue
+        if value is None or value == "" or value == [] or name in CLIENT_KEYS:
+            continue  # not set (editors send empty values for settings left at their default)
         try:
             if name == "dialect":
                 if not isinstance(value, str):
                     raise ValueError("'dialect' must be a string")
                 values["dialect"] = "auto" if value.lower() == "auto" else dialects.get(value).name
+            elif name == "printer" and str(value).lower() == "auto":
+                continue  # the configuration file's or the default model
             elif name == "printer":
                 values["printer"] = get_profile(str(value)).name
             elif name in ("select", "ignore"):

@@ -244,7 +244,9 @@ def code_actions(
 
 # -- hover -----------------------------------------------------------------------------------------------
 
-_MD_SPECIAL = re.compile(r"([\\`*_{}\[\]<>()#+\-!|~])")
+# Only what would change the text mid-line (emphasis, code, links, HTML, tables): escaping more shows as
+# backslashes in clients that display the markdown source (Neovim's hover window).
+_MD_SPECIAL = re.compile(r"([\\`*_<\[\]~|])")
 
 
 def _md(text: str) -> str:

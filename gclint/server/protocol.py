@@ -110,7 +110,10 @@ class GclintServer(LanguageServer):
         )
         self.documents: dict[str, Document] = {}
         self.settings = Settings()
+        # Checks in their own threads (two: one long job does not hold up another file); hovers in
+        # another, so that a hover never waits behind a check.
         self.checks = ThreadPoolExecutor(max_workers=2, thread_name_prefix="gclint-check")
+        self.requests = ThreadPoolExecutor(max_workers=1, thread_name_prefix="gclint-request")
         self.shutdown_requested = False
         self.markdown = False
         self.versioned_edits = False
@@ -235,7 +238,7 @@ class GclintServer(LanguageServer):
         cancel = threading.Event()
         loop = asyncio.get_running_loop()
         try:
-            return await loop.run_in_executor(self.checks, functools.partial(func, *args, cancel=cancel))
+            return await loop.run_in_executor(self.requests, functools.partial(func, *args, cancel=cancel))
         except asyncio.CancelledError:
             cancel.set()
             raise
@@ -245,6 +248,7 @@ class GclintServer(LanguageServer):
             if doc.cancel is not None:
                 doc.cancel.set()
         self.checks.shutdown(wait=False, cancel_futures=True)
+        self.requests.shutdown(wait=False, cancel_futures=True)
 
 
 def _analyse(
@@ -383,7 +387,8 @@ def create_server() -> GclintServer:
         encoding = ls.encoding
         line = params.position.line
         char = units_to_char(snapshot.line(line), params.position.character, encoding)
-        done = await ls.current_analysis(doc, HOVER_WAIT)
+        # the dialect of the last check (it rarely changes while typing); wait only when there is none
+        done = doc.analysis if doc.analysis is not None else await ls.current_analysis(doc, HOVER_WAIT)
         options = done.options if done is not None else analysis.document_options(doc.path, ls.settings)[0]
         dialect, reason = _dialect_for(done, options, snapshot, doc.name)
         target = await ls.run_in_thread(analysis.explain_at, snapshot, line, char, dialect, options.loaded)
