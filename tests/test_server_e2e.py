@@ -38,6 +38,12 @@ def _by_code(diagnostics: list[dict]) -> dict[str, dict]:
     return {d["code"]: d for d in diagnostics}
 
 
+def _hover(client: LspClient, uri: str, line: int, character: int) -> dict | None:
+    return client.request(
+        "textDocument/hover", {"textDocument": {"uri": uri}, "position": {"line": line, "character": character}}
+    )
+
+
 def _code_actions(client: LspClient, uri: str, line: int, diagnostics: list[dict] | None = None) -> list[dict]:
     return (
         client.request(
@@ -89,12 +95,12 @@ def test_session_without_client_capabilities(client, tmp_path):
     assert hy003["codeDescription"]["href"].endswith("docs/rules.md#hy003")
 
     # hover: the explain text, plain (the client declared no markdown), with the state of the lines above
-    hover = client.request("textDocument/hover", {"textDocument": {"uri": uri}, "position": {"line": 4, "character": 9}})
+    hover = _hover(client, uri, 4, 9)
     assert hover["contents"]["kind"] == "plaintext"
     assert hover["contents"]["value"].startswith("* M106 (fan / UV LED duty)")
     assert "49.8" in hover["contents"]["value"]  # S127 of the C255 range set on line 4
     assert hover["range"] == {"start": {"line": 4, "character": 8}, "end": {"line": 4, "character": 12}}
-    assert client.request("textDocument/hover", {"textDocument": {"uri": uri}, "position": {"line": 0, "character": 3}}) is None
+    assert _hover(client, uri, 0, 3) is None
 
     # code actions on the checksum line: the fix, noqa, fix all; applying the fix removes the finding
     actions = _code_actions(client, uri, 2, [found["SX004"]])
@@ -110,17 +116,24 @@ def test_session_without_client_capabilities(client, tmp_path):
     [edit] = noqa["edit"]["changes"][uri]
     client.notify(
         "textDocument/didChange",
-        {"textDocument": {"uri": uri, "version": 2}, "contentChanges": [{"range": edit["range"], "text": edit["newText"]}]},
+        {
+            "textDocument": {"uri": uri, "version": 2},
+            "contentChanges": [{"range": edit["range"], "text": edit["newText"]}],
+        },
     )
     after = client.diagnostics(uri, version=2)
     assert "HY003" not in _by_code(after) and "SX004" in _by_code(after)
     # the fix of the new text, then a whole-document change
-    client.notify("textDocument/didChange", {"textDocument": {"uri": uri, "version": 3}, "contentChanges": [{"text": fixed}]})
+    client.notify(
+        "textDocument/didChange", {"textDocument": {"uri": uri, "version": 3}, "contentChanges": [{"text": fixed}]}
+    )
     assert "SX004" not in _by_code(client.diagnostics(uri, version=3))
 
     client.notify("textDocument/didSave", {"textDocument": {"uri": uri}})
     client.notify("textDocument/didClose", {"textDocument": {"uri": uri}})
-    assert client.wait_notification("textDocument/publishDiagnostics", lambda p: p["uri"] == uri and not p["diagnostics"])
+    assert client.wait_notification(
+        "textDocument/publishDiagnostics", lambda p: p["uri"] == uri and not p["diagnostics"]
+    )
     assert client.shutdown_and_exit() == 0
     assert "Traceback" not in client.stderr
 
@@ -157,19 +170,31 @@ def test_configuration_file_and_client_settings(client, tmp_path):
 def test_markdown_hover_and_configuration_pulled_from_the_client(client, tmp_path):
     client.answers["workspace/configuration"] = lambda request: [{"dialect": "marlin"}]
     caps = {
+        "general": {"positionEncodings": ["utf-8", "utf-16"]},
         "textDocument": {"hover": {"contentFormat": ["markdown", "plaintext"]}},
         "workspace": {"configuration": True, "workspaceEdit": {"documentChanges": True}},
     }
-    client.initialize(capabilities=caps)
+    assert client.initialize(capabilities=caps)["capabilities"]["positionEncoding"] == "utf-8"
     uri = (tmp_path / "a.gcode").as_uri()
     request = client.wait_request("workspace/configuration")  # asked after "initialized"
     assert request["params"]["items"] == [{"section": "gclint"}]
     client.open(uri, "M109 R180\n")
     client.diagnostics(uri)
-    hover = client.request("textDocument/hover", {"textDocument": {"uri": uri}, "position": {"line": 0, "character": 6}})
+    hover = _hover(client, uri, 0, 6)
     assert hover["contents"]["kind"] == "markdown"
     value = hover["contents"]["value"]
     assert value.startswith("**M109**") and "dialect: marlin" in value and "`R180` **" in value
+    # positions in UTF-8 bytes, as negotiated: "T40" after "(😀) M109 " is at byte 12 (character 9)
+    other = (tmp_path / "b.gcode").as_uri()
+    client.open(other, f"; gclint: dialect=hyrel\n({EMOJI}) M109 T40 S200\n")
+    hy003 = _by_code(client.diagnostics(other))["HY003"]
+    assert hy003["range"] == {"start": {"line": 1, "character": 12}, "end": {"line": 1, "character": 15}}
+    actions = client.request(
+        "textDocument/codeAction",
+        {"textDocument": {"uri": other}, "range": hy003["range"], "context": {"diagnostics": [hy003]}},
+    )
+    noqa = next(a for a in actions if "noqa" in a["title"])
+    assert noqa["edit"]["documentChanges"][0]["textDocument"] == {"uri": other, "version": 1}
     assert client.shutdown_and_exit() == 0
 
 
@@ -225,16 +250,22 @@ def test_bad_input_never_kills_the_server(client, tmp_path):
     # not JSON at all, then a request for a document nobody opened
     client.send_raw(b"{ this is not json")
     client.send_raw(b"\x00\xff\x00")
-    assert client.request("textDocument/hover", {"textDocument": {"uri": f"{base}/nope.gcode"}, "position": {"line": 0, "character": 0}}) is None
+    assert (
+        client.request(
+            "textDocument/hover",
+            {"textDocument": {"uri": f"{base}/nope.gcode"}, "position": {"line": 0, "character": 0}},
+        )
+        is None
+    )
     # a very long line (20 MB) and a change after it
     long_uri = f"{base}/long.gcode"
     client.open(long_uri, "G1 X1 ; gclint: dialect=hyrel " + "a" * 20_000_000 + "\nM109 T40 S200\n")
     assert "HY003" in _by_code(client.diagnostics(long_uri, timeout=120))
-    assert client.request("textDocument/hover", {"textDocument": {"uri": long_uri}, "position": {"line": 0, "character": 2}}) is None
-    hover = client.request("textDocument/hover", {"textDocument": {"uri": long_uri}, "position": {"line": 1, "character": 0}})
+    assert _hover(client, long_uri, 0, 2) is None
+    hover = _hover(client, long_uri, 1, 0)
     assert hover["contents"]["value"].startswith("* M109")
     # a hover and a code action on positions far outside the text
-    assert client.request("textDocument/hover", {"textDocument": {"uri": long_uri}, "position": {"line": 99, "character": 99}}) is None
+    assert _hover(client, long_uri, 99, 99) is None
     _code_actions(client, long_uri, 500)
     # still serving
     ok = f"{base}/ok.gcode"
@@ -248,7 +279,11 @@ def test_bad_input_never_kills_the_server(client, tmp_path):
 def test_server_without_the_extra_says_so(tmp_path):
     blocker = "import sys; sys.modules['pygls'] = None; from gclint.cli import main; main(['server'])"
     proc = subprocess.run(
-        [sys.executable, "-c", blocker], capture_output=True, text=True, timeout=60, cwd=str(Path(__file__).parent.parent)
+        [sys.executable, "-c", blocker],
+        capture_output=True,
+        text=True,
+        timeout=60,
+        cwd=str(Path(__file__).parent.parent),
     )
     assert proc.returncode == 2
     lines = proc.stderr.strip().splitlines()

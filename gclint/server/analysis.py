@@ -69,7 +69,7 @@ def _codes(value: object, key: str) -> tuple[str, ...]:
     elif isinstance(value, (list, tuple)) and all(isinstance(v, str) for v in value):
         items = list(value)
     else:
-        raise ValueError(f"'{key}' must be a list of rule codes or prefixes such as [\"HY\", \"SX002\"]")
+        raise ValueError(f'\'{key}\' must be a list of rule codes or prefixes such as ["HY", "SX002"]')
     return tuple(v.strip().upper() for v in items if v.strip())
 
 

@@ -52,7 +52,9 @@ class Geometry:
 
     def position(self, line: int, column: int) -> lsp.Position:
         index = self.line_index(line)
-        return lsp.Position(index, char_to_units(self.snapshot.line(index), self.char_index(line, column), self.encoding))
+        return lsp.Position(
+            index, char_to_units(self.snapshot.line(index), self.char_index(line, column), self.encoding)
+        )
 
     def line_end(self, line: int) -> lsp.Position:
         index = self.line_index(line)
