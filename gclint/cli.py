@@ -530,6 +530,22 @@ def explain(file: str | None, expressions: tuple[str, ...], dialect: str | None,
         _fail(str(exc))
 
 
+# -- language server -------------------------------------------------------------------------------------
+
+
+@main.command()
+@click.option("--stdio", is_flag=True, help="Talk over standard input and output (the default; for LSP clients).")
+def server(stdio: bool) -> None:
+    """Language server (LSP) over standard input and output, for editors (docs/editors.md)."""
+    from gclint.server import ServerUnavailable
+    from gclint.server import main as serve
+
+    try:
+        serve()
+    except ServerUnavailable as exc:
+        _fail(str(exc))
+
+
 # -- slicer post-processing ------------------------------------------------------------------------------
 
 

@@ -77,7 +77,7 @@ def test_sarif_validates_against_the_official_schema(jobs):
     rules = {r["id"]: r for r in run["tool"]["driver"]["rules"]}
     assert {"SX001", "SX002", "DL001"} <= set(rules)
     for rule in rules.values():
-        assert rule["helpUri"].endswith(rule["id"])
+        assert rule["helpUri"].endswith("docs/rules.md#" + rule["id"].lower())  # the heading's anchor
         assert rule["help"]["text"] and rule["shortDescription"]["text"]
     results = run["results"]
     by_rule = {r["ruleId"]: r for r in results}

@@ -101,6 +101,17 @@ class Finding:
         return (self.path, self.line, self.column, self.code)
 
 
+# The rule reference (docs/rules.md, generated) in the repository: every link to a rule's documentation
+# (SARIF helpUri, the language server's codeDescription) is made here.  Each rule has a "### CODE"
+# heading there, hence the lower-case anchor.
+RULES_DOC_URL = "https://github.com/gclint/gclint/blob/main/docs/rules.md"
+
+
+def rule_url(code: str) -> str:
+    """The address of a rule's documentation (``rule_url("HY003")`` -> ``.../docs/rules.md#hy003``)."""
+    return f"{RULES_DOC_URL}#{code.lower()}"
+
+
 # Pseudo-codes a rule can listen to besides command codes.
 ANY_T = "T*"  # every T<n> command line
 
@@ -202,7 +213,7 @@ class Rule:
             "listens_to": list(cls.codes),
             "applies_to": list(cls.dialects or cls.families or ["all"]),
             "fixable": cls.fixable,
-            "url": f"https://gclint.dev/rules/{cls.code}",
+            "url": rule_url(cls.code),
         }
 
     @classmethod
