@@ -14,7 +14,7 @@ a file worse.
 from __future__ import annotations
 
 import tempfile
-from collections.abc import Iterator
+from collections.abc import Callable, Iterator
 from dataclasses import dataclass, field
 
 from gclint.engine import FileResult, Linter
@@ -36,62 +36,77 @@ class FixOutcome:
     error: str | None = None
 
 
-def fix_file(result: FileResult, linter: Linter, *, unsafe: bool = False, write: bool = True) -> FixOutcome:
-    """Apply the fixes of ``result`` (the check of ``result.path`` by ``linter``) to the file."""
-    outcome = FixOutcome(result)
+@dataclass
+class FixPlan:
+    """The fixes that can be applied safely, found by checking the fixed text again."""
+
+    fixes: list[Finding] = field(default_factory=list)  # findings whose fix is kept
+    reverted: list[str] = field(default_factory=list)  # fixes taken back, and why
+    checked: FileResult | None = None  # the check of the text with ``fixes`` applied
+    digest: str | None = None  # hash of the original bytes, as read for that check
+
+
+def plan_fixes(result: FileResult, linter: Linter, read: Callable[[], Source], *, unsafe: bool = False) -> FixPlan:
+    """Which of ``result``'s fixes to apply: the safe ones (all with ``unsafe``), minus those after which
+    a finding appears that was not there.  ``read`` opens the text ``result`` was made from."""
+    plan = FixPlan()
     if result.error is not None or any(f.code == "SX001" for f in result.findings):
-        return outcome
+        return plan
     chosen = [f for f in result.findings if f.fix is not None and (f.fix.safe or unsafe)]
-    if not chosen:
-        return outcome
-    if result.digest is None:
-        outcome.error = f"{result.path}: not fixed: the file was not read to the end"
-        return outcome
     before = {(f.line, f.code) for f in result.findings}
     for _ in range(_ROUNDS):
+        if not chosen:
+            return plan
         edits = _edits(chosen)
-        try:
-            checked, digest = _check_fixed(result.path, edits, linter)
-        except (OSError, SourceError, OutputError) as exc:
-            outcome.error = f"{result.path}: not fixed: {exc}"
-            return outcome
-        if digest != result.digest:
-            outcome.error = f"{result.path}: not fixed: the file changed since it was checked; check it again"
-            return outcome
-        new = [f for f in checked.findings if (f.line, f.code) not in before]
+        plan.checked, plan.digest = _check_fixed(read(), result.path, edits, linter)
+        new = [f for f in plan.checked.findings if (f.line, f.code) not in before]
         if not new:
-            break
-        edited = set(edits)
-        blamed = [f for f in chosen if any(e.line in {n.line for n in new} for e in f.fix.edits)]  # type: ignore[union-attr]
-        if not blamed or not edited & {n.line for n in new}:
+            plan.fixes = chosen
+            return plan
+        lines = {n.line for n in new}
+        blamed = [f for f in chosen if any(e.line in lines for e in f.fix.edits)]  # type: ignore[union-attr]
+        if not blamed:
             blamed = chosen  # a new finding away from every edited line: no fix can be trusted
         for f in blamed:
             caused = next((n for n in new if any(e.line == n.line for e in f.fix.edits)), new[0])  # type: ignore[union-attr]
-            outcome.reverted.append(
+            plan.reverted.append(
                 f"{f.path}:{f.line}: {f.code} fix not applied: it would bring {caused.code} "
                 f"at line {caused.line} ({caused.message})"
             )
         chosen = [f for f in chosen if f not in blamed]
-        if not chosen:
-            return outcome
-    else:
-        return outcome  # still not clean after every round: leave the file as it is
-    outcome.fixed = len(chosen)
+    return plan  # still not clean after every round: nothing is applied
+
+
+def fix_file(result: FileResult, linter: Linter, *, unsafe: bool = False, write: bool = True) -> FixOutcome:
+    """Apply the fixes of ``result`` (the check of ``result.path`` by ``linter``) to the file."""
+    outcome = FixOutcome(result)
+    if not any(f.fix is not None and (f.fix.safe or unsafe) for f in result.findings):
+        return outcome
+    if result.digest is None:
+        outcome.error = f"{result.path}: not fixed: the file was not read to the end"
+        return outcome
+    try:
+        plan = plan_fixes(result, linter, lambda: Source.open(result.path), unsafe=unsafe)
+    except (OSError, SourceError, OutputError) as exc:
+        outcome.error = f"{result.path}: not fixed: {exc}"
+        return outcome
+    if plan.digest is not None and plan.digest != result.digest:
+        outcome.error = f"{result.path}: not fixed: the file changed since it was checked; check it again"
+        return outcome
+    outcome.reverted = plan.reverted
+    if not plan.fixes:
+        return outcome
     try:
         if write:
-            _write(result.path, _edits(chosen), result.digest)
+            _write(result.path, _edits(plan.fixes), result.digest)
         else:
-            outcome.diff = "".join(_diff(result.path, _edits(chosen)))
+            outcome.diff = "".join(_diff(result.path, _edits(plan.fixes)))
     except (OSError, SourceError, OutputError) as exc:
-        outcome.fixed = 0
         outcome.error = str(exc) if str(exc).startswith(result.path) else f"{result.path}: not fixed: {exc}"
         return outcome
-    outcome.result = checked
+    outcome.fixed = len(plan.fixes)
+    outcome.result = plan.checked  # type: ignore[assignment]
     return outcome
-
-
-class _Changed(Exception):
-    pass
 
 
 def _edits(findings: list[Finding]) -> dict[int, list[Edit]]:
@@ -112,9 +127,10 @@ def _fixed_lines(source: Source, edits: dict[int, list[Edit]]) -> Iterator[tuple
             yield number, raw, (_edit(raw, line_edits) if line_edits else raw), ending
 
 
-def _check_fixed(path: str, edits: dict[int, list[Edit]], linter: Linter) -> tuple[FileResult, str | None]:
+def _check_fixed(
+    source: Source, path: str, edits: dict[int, list[Edit]], linter: Linter
+) -> tuple[FileResult, str | None]:
     """Check the fixed text (in a temporary file, named as the real one) and hash the original's bytes."""
-    source = Source.open(path)
     with tempfile.TemporaryFile() as scratch:
         scratch.write(source.bom)
         for _, _, text, ending in _fixed_lines(source, edits):
@@ -181,4 +197,4 @@ def _edit(raw: str, edits: list[Edit]) -> str:
     return text
 
 
-__all__ = ["fix_file", "FixOutcome", "Fix"]
+__all__ = ["fix_file", "plan_fixes", "FixOutcome", "FixPlan", "Fix"]

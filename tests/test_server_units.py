@@ -15,7 +15,7 @@ from lsprotocol import types as lsp  # noqa: E402
 
 from gclint import dialects  # noqa: E402
 from gclint.engine import Linter, Options  # noqa: E402
-from gclint.fixes import apply_fixes  # noqa: E402
+from gclint.fixes import fix_file  # noqa: E402
 from gclint.rules.base import Edit, Finding, Fix, Severity, rule_url  # noqa: E402
 from gclint.server import analysis, convert  # noqa: E402
 from gclint.server.text import UTF8, UTF16, UTF32, Snapshot, char_to_units, clean_surrogates, units_to_char  # noqa: E402
@@ -148,7 +148,8 @@ def test_quick_fix_edits_apply_like_check_fix(tmp_path):
     # fix all == gclint check --fix
     job = tmp_path / "job.gcode"
     job.write_text(text)
-    apply_fixes(Linter(Options()).check_path(str(job)))
+    linter = Linter(Options())
+    fix_file(linter.check_path(str(job)), linter)
     assert apply_edits(text, convert.fix_all_edits(result.findings, geo)) == job.read_text()
 
 

@@ -17,8 +17,10 @@ from gclint import dialects
 from gclint.config import ConfigError, find_config, parse_heads
 from gclint.engine import FileResult, Options
 from gclint.explain import Explainer, Explanation
+from gclint.fixes import plan_fixes
 from gclint.machine.profiles import UnknownPrinter, get_profile
 from gclint.machine.state import MachineState
+from gclint.rules.base import Finding
 from gclint.runner import linter_for, options_for
 from gclint.server.text import Snapshot, clean_surrogates
 from gclint.syntax.fastpath import PLAIN_MOVE
@@ -170,6 +172,20 @@ def check_text(text: str, path: str, options: Options, cancel: threading.Event |
     if cancel is not None and cancel.is_set():
         raise Cancelled()
     return result
+
+
+def safe_fix_set(
+    result: FileResult, text: str, options: Options, cancel: threading.Event | None = None
+) -> list[Finding]:
+    """The findings whose fixes "fix all" applies: those ``gclint check --fix`` would keep (safe fixes
+    after which the text is checked again, and none that brings a new finding)."""
+    if not any(f.fix is not None and f.fix.safe for f in result.findings):
+        return []
+    try:
+        plan = plan_fixes(result, linter_for(options), lambda: Source.from_text(clean_surrogates(text), result.path))
+    except Exception:  # a fix that cannot be checked is not offered
+        return []
+    return plan.fixes
 
 
 # -- hover: explain the command under the cursor ---------------------------------------------------------

@@ -13,6 +13,7 @@ from collections.abc import Iterable, Sequence
 
 from lsprotocol import types as lsp
 
+from gclint.engine import _NOQA  # the engine's reading of a noqa comment (one pattern, one place)
 from gclint.rules.base import Edit, Finding, Fix, Severity, rule_url
 from gclint.server.analysis import HoverTarget
 from gclint.server.text import UTF16, Snapshot, char_to_units
@@ -145,8 +146,6 @@ def fix_all_edits(findings: Sequence[Finding], geo: Geometry) -> list[lsp.TextEd
     return [_text_edit(e, geo) for e in _without_overlaps(edits)]
 
 
-# The engine's reading of a noqa comment (gclint/engine.py): "noqa" then optionally ": CODE, CODE".
-_NOQA = re.compile(r"(?i)\bnoqa\b(?:\s*:\s*([A-Za-z]{2}\d{0,3}(?:\s*[,\s]\s*[A-Za-z]{2}\d{0,3})*))?")
 _COMMENT_START = re.compile(r"[;(]")
 
 
@@ -193,6 +192,7 @@ def code_actions(
     last_line: int,
     only: Sequence[str] | None = None,
     version: int | None = None,
+    fix_all: Sequence[Finding] | None = None,
 ) -> list[lsp.CodeAction]:
     """Quick fixes for the findings on lines ``first_line``..``last_line`` (0-based, as in the request):
     each fix, "suppress with noqa" per code and line, and "fix all safe" for the file."""
@@ -233,8 +233,9 @@ def code_actions(
                     edit=workspace_edit([noqa_edit(geo, f.line, f.code)]),
                 )
             )
-    safe = sum(1 for f in findings if f.fix is not None and f.fix.safe)
-    all_edits = fix_all_edits(findings, geo) if safe else []
+    kept = list(findings) if fix_all is None else list(fix_all)  # (fix_all: what --fix keeps, gclint.fixes)
+    safe = sum(1 for f in kept if f.fix is not None and f.fix.safe)
+    all_edits = fix_all_edits(kept, geo) if safe else []
     if all_edits:
         title = f"Fix all safe gclint problems in this file ({safe})"
         if kind_wanted(quick, only) and any(f.fix is not None and f.fix.safe for f in here) and safe > 1:

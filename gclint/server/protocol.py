@@ -37,9 +37,11 @@ from pygls.uris import to_fs_path
 
 from gclint import __version__, dialects
 from gclint.engine import FileResult, Options
+from gclint.runner import linter_for
 from gclint.server import analysis, convert
 from gclint.server.analysis import Cancelled, Settings
-from gclint.server.text import UTF8, UTF16, UTF32, Snapshot, units_to_char
+from gclint.server.text import UTF8, UTF16, UTF32, Snapshot, clean_surrogates, units_to_char
+from gclint.syntax.source import Source
 
 logger = logging.getLogger("gclint.server")
 
@@ -409,6 +411,8 @@ def create_server() -> GclintServer:
         if done is None or done.snapshot is not doc.snapshot:
             return None  # edits computed on other text would land in the wrong places
         only = [str(getattr(k, "value", k)) for k in params.context.only] if params.context.only else None
+        # "fix all" applies what --fix would: the safe fixes that bring no new finding (gclint.fixes)
+        fix_all = await ls.run_in_thread(analysis.safe_fix_set, done.result, done.snapshot.text, done.options)
         actions = convert.code_actions(
             doc.uri,
             done.result.findings,
@@ -417,6 +421,7 @@ def create_server() -> GclintServer:
             params.range.end.line,
             only,
             version=done.snapshot.version if ls.versioned_edits else None,
+            fix_all=fix_all,
         )
         return actions or None
 
@@ -433,9 +438,8 @@ def _dialect_for(
             return dialects.get(done.result.dialect), done.result.dialect_reason
         except dialects.UnknownDialect:
             pass
-    if options.dialect != "auto":
-        return dialects.get(options.dialect), "from the settings"
-    return dialects.detect(snapshot.text[:65536], name)
+    context = linter_for(options).context_of(Source.from_text(clean_surrogates(snapshot.text[:65536]), name))
+    return dialects.get(context.dialect), context.why()
 
 
 async def _pull_settings(ls: GclintServer) -> None:
