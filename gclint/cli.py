@@ -33,7 +33,10 @@ class _Main(click.Group):
             return super().invoke(ctx)
         except (click.exceptions.ClickException, click.exceptions.Abort, click.exceptions.Exit):
             raise
-        except OSError as exc:  # e.g. standard output on a full disk (> /dev/full) or a closed pipe
+        except BrokenPipeError:  # the reader of standard output has gone ("| head"): nothing to say
+            _abandon_stdout()
+            raise click.exceptions.Exit(0) from None
+        except OSError as exc:  # e.g. standard output on a full disk (> /dev/full)
             _abandon_stdout()
             where = exc.filename if exc.filename is not None else "standard output"
             raise UsageFailure(f"{where}: cannot write: {exc.strerror or exc}") from None
@@ -304,7 +307,11 @@ def _apply_fixes(
 
 def _write_report(writer, results: list[FileResult], ctx, output: str | None) -> None:
     if output in (None, "-"):
-        writer(results, sys.stdout, ctx)
+        try:
+            writer(results, sys.stdout, ctx)
+            sys.stdout.flush()
+        except BrokenPipeError:  # the reader has gone ("| head"): say nothing; the exit code still tells
+            _abandon_stdout()
         return
     try:
         with open(output, "w", encoding="utf-8", errors="backslashreplace", newline="\n") as fh:

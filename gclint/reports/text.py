@@ -16,7 +16,13 @@ def write(results: list[FileResult], out: TextIO, ctx) -> None:
 
 
 def _mark(f, ctx) -> str:
-    return " [*]" if (f.fix is not None and f.fix.safe and ctx.show_fixes) else ""
+    """`` [error]`` and, for a safe fix, `` [*]``: what follows the code in the human formats."""
+    fixable = " [*]" if (f.fix is not None and f.fix.safe and ctx.show_fixes) else ""
+    return f" [{f.severity.label}]{fixable}"
+
+
+def _fixable(f, ctx) -> bool:
+    return f.fix is not None and f.fix.safe and ctx.show_fixes
 
 
 def write_summary(results: list[FileResult], out: TextIO, ctx) -> None:
@@ -29,7 +35,7 @@ def write_summary(results: list[FileResult], out: TextIO, ctx) -> None:
             files_with += 1
         for f in result.findings:
             total[f.severity.label] += 1
-            if _mark(f, ctx):
+            if _fixable(f, ctx):
                 fixable += 1
     if ctx.statistics:
         write_statistics(results, out)
