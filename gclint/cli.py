@@ -135,7 +135,11 @@ def main() -> None:
     "--output", "-o", type=click.Path(dir_okay=False, writable=True, allow_dash=True), help="Write the report here."
 )
 @click.option("--exit-zero", is_flag=True, help="Exit 0 even when findings exist.")
-@click.option("--statistics", is_flag=True, help="Show the number of findings per code.")
+@click.option(
+    "--statistics",
+    is_flag=True,
+    help="Show the number of findings per code instead of the findings (JSON with -f json).",
+)
 @click.option("--jobs", "-j", type=click.IntRange(min=1), default=None, help="Parallel processes (default: CPU count).")
 @click.option(
     "--config", "config_file", type=click.Path(dir_okay=False), help="Configuration file (else found upward)."
@@ -143,6 +147,7 @@ def main() -> None:
 @click.option("--fix", is_flag=True, help="Apply the safe fixes in place.")
 @click.option("--unsafe-fixes", is_flag=True, help="With --fix or --diff, apply unsafe fixes too.")
 @click.option("--diff", "show_diff", is_flag=True, help="Print the fixes as a unified diff; write nothing.")
+@click.option("--show-fixes", is_flag=True, help="With --fix: list the fixes applied, per file and code.")
 @click.option("--stdin-filename", metavar="NAME", help="Name to use for the file read from '-'.")
 @click.option("--no-cache", is_flag=True, help="Do not read or write the result cache.")
 @click.option(
@@ -188,6 +193,7 @@ def check(
     verbose: bool = False,
     show_settings: bool = False,
     show_diff: bool = False,
+    show_fixes: bool = False,
 ) -> None:
     """Check G-code files and folders (- for standard input)."""
     from gclint import runner
@@ -225,8 +231,10 @@ def check(
             click.echo(f"gclint: {r.error}", err=True)
         click.echo(show(files, overrides, config_file, stdin_filename or "-"), nl=False)
         sys.exit(2 if problems else 0)
+    if fix and files == ["-"]:  # "--fix -": the fixed text on stdout, the findings left on stderr
+        sys.exit(_fix_stdin(overrides, config_file, stdin_filename or "-", unsafe_fixes, exit_zero))
     if (fix or show_diff) and "-" in files:
-        _fail("--fix and --diff need files, not standard input")
+        _fail("--fix and --diff need files; '--fix -' alone fixes standard input to standard output")
     from gclint import progress as progress_bar
     from gclint.cache import ResultCache
 
@@ -253,7 +261,9 @@ def check(
             bar.close()
     fixed = None
     if fix or show_diff:
-        results, fixed = _apply_fixes(results, overrides, config_file, unsafe=unsafe_fixes, write=not show_diff)
+        results, fixed = _apply_fixes(
+            results, overrides, config_file, unsafe=unsafe_fixes, write=not show_diff, show=show_fixes
+        )
         if show_diff:
             remaining = sum(len(r.findings) for r in results)
             click.echo(f"Would fix {fixed} finding{'s' if fixed != 1 else ''} ({remaining} remaining).", err=True)
@@ -262,8 +272,13 @@ def check(
     for r in results:
         if r.error:
             click.echo(f"gclint: {r.error}", err=True)
-    ctx = ReportContext(tool_version=__version__, statistics=statistics, fixed=fixed)
-    _write_report(writers[fmt], results, ctx, output)
+    ctx = ReportContext(tool_version=__version__, fixed=fixed)
+    writer = writers[fmt]
+    if statistics:  # the counts instead of the findings, as ruff does (JSON with --format json)
+        from gclint.reports import json_report, text
+
+        writer = json_report.write_statistics if fmt == "json" else text.write_statistics_report
+    _write_report(writer, results, ctx, output)
     if verbose or fmt not in MACHINE_FORMATS:  # after the report: a report that cannot be written is one line
         from gclint.reports.common import printable
         from gclint.reports.notes import context_notes
@@ -278,7 +293,13 @@ def check(
 
 
 def _apply_fixes(
-    results: list[FileResult], overrides: dict, config_file: str | None, *, unsafe: bool, write: bool
+    results: list[FileResult],
+    overrides: dict,
+    config_file: str | None,
+    *,
+    unsafe: bool,
+    write: bool,
+    show: bool = False,
 ) -> tuple[list[FileResult], int]:
     """Fix each file (gclint.fixes); with ``write=False`` print the diffs instead.  Returns the results
     as the files are now and the number of findings fixed (or that would be)."""
@@ -298,11 +319,56 @@ def _apply_fixes(
                 click.echo(f"note: {printable(note)}", err=True)
             if outcome.diff:
                 click.echo(outcome.diff, nl=False)
+            if show and outcome.applied:
+                from collections import Counter
+
+                click.echo(f"Fixed in {printable(r.path)}:")
+                names = {f.code: f.name for f in outcome.applied}
+                for code, n in sorted(Counter(f.code for f in outcome.applied).items()):
+                    click.echo(f"  {n} x {code} ({names[code]})")
             r = outcome.result
             if outcome.error is not None:
                 r = FileResult(r.path, r.findings, r.dialect, r.dialect_reason, r.lines, outcome.error, r.context)
         out.append(r)
     return out, fixed
+
+
+def _fix_stdin(overrides: dict, config_file: str | None, name: str, unsafe: bool, exit_zero: bool) -> int:
+    """``gclint check --fix -`` (what editors run): standard input, fixed, to standard output; the
+    findings that remain on standard error.  Returns the exit code."""
+    import shutil
+    import tempfile
+
+    from gclint import runner
+    from gclint.fixes import fix_stream
+    from gclint.reports.text import write as write_text
+    from gclint.syntax.source import Source, SourceError
+
+    options = runner.options_for(name, Options(), overrides, config_file)
+    linter = runner.linter_for(options)
+    with tempfile.SpooledTemporaryFile(max_size=16 << 20) as buffer:  # read twice: check, then fix
+        shutil.copyfileobj(sys.stdin.buffer, buffer)
+
+        def read() -> Source:
+            buffer.seek(0)
+            return Source(buffer, name)
+
+        try:
+            result = linter.check_source(read())
+        except SourceError as exc:
+            result = FileResult(name, error=str(exc))
+        if result.error is not None:
+            click.echo(f"gclint: {result.error}", err=True)
+            buffer.seek(0)
+            shutil.copyfileobj(buffer, sys.stdout.buffer)  # nothing lost: the text goes through unchanged
+            return 2
+        outcome = fix_stream(result, linter, read, sys.stdout.buffer, unsafe=unsafe)
+    sys.stdout.flush()
+    from gclint.reports import ReportContext
+
+    write_text([outcome.result], sys.stderr, ReportContext(fixed=outcome.fixed))
+    worst = max((f.severity for f in outcome.result.findings), default=None)
+    return 1 if not exit_zero and worst is not None and worst >= Severity.WARNING else 0
 
 
 def _write_report(writer, results: list[FileResult], ctx, output: str | None) -> None:
@@ -450,8 +516,8 @@ def rules(code: str | None, fmt: str, show_all: bool) -> None:
     if show_all:
         click.echo("\n".join(r.render_doc() for r in registry.values()), nl=False)
         return
-    for c, r in registry.items():
-        click.echo(f"{c}  {r.name:<34} {r.severity.label:<8} {r.summary}")
+    for c, r in registry.items():  # "[*]": the rule has a fix (gclint check --fix)
+        click.echo(f"{c} {'[*]' if r.fixable else '   '} {r.name:<34} {r.severity.label:<8} {r.summary}")
 
 
 @main.command(name="dialects")
