@@ -136,6 +136,13 @@ def main() -> None:
 )
 @click.option("--exit-zero", is_flag=True, help="Exit 0 even when findings exist.")
 @click.option(
+    "--fail-on",
+    type=click.Choice(["error", "warning", "info"]),
+    default="warning",
+    show_default=True,
+    help="Exit 1 when a finding reaches this level.",
+)
+@click.option(
     "--statistics",
     is_flag=True,
     help="Show the number of findings per code instead of the findings (JSON with -f json).",
@@ -181,6 +188,7 @@ def check(
     fmt: str,
     output: str | None,
     exit_zero: bool,
+    fail_on: str,
     statistics: bool,
     jobs: int | None,
     config_file: str | None,
@@ -232,7 +240,7 @@ def check(
         click.echo(show(files, overrides, config_file, stdin_filename or "-"), nl=False)
         sys.exit(2 if problems else 0)
     if fix and files == ["-"]:  # "--fix -": the fixed text on stdout, the findings left on stderr
-        sys.exit(_fix_stdin(overrides, config_file, stdin_filename or "-", unsafe_fixes, exit_zero))
+        sys.exit(_fix_stdin(overrides, config_file, stdin_filename or "-", unsafe_fixes, exit_zero, fail_on))
     if (fix or show_diff) and "-" in files:
         _fail("--fix and --diff need files; '--fix -' alone fixes standard input to standard output")
     from gclint import progress as progress_bar
@@ -288,7 +296,7 @@ def check(
     if any(r.error for r in results):
         sys.exit(2)
     worst = max((f.severity for r in results for f in r.findings), default=None)
-    if not exit_zero and worst is not None and worst >= Severity.WARNING:
+    if not exit_zero and worst is not None and worst >= Severity.parse(fail_on):
         sys.exit(1)
 
 
@@ -333,7 +341,9 @@ def _apply_fixes(
     return out, fixed
 
 
-def _fix_stdin(overrides: dict, config_file: str | None, name: str, unsafe: bool, exit_zero: bool) -> int:
+def _fix_stdin(
+    overrides: dict, config_file: str | None, name: str, unsafe: bool, exit_zero: bool, fail_on: str = "warning"
+) -> int:
     """``gclint check --fix -`` (what editors run): standard input, fixed, to standard output; the
     findings that remain on standard error.  Returns the exit code."""
     import shutil
@@ -368,7 +378,7 @@ def _fix_stdin(overrides: dict, config_file: str | None, name: str, unsafe: bool
 
     write_text([outcome.result], sys.stderr, ReportContext(fixed=outcome.fixed))
     worst = max((f.severity for f in outcome.result.findings), default=None)
-    return 1 if not exit_zero and worst is not None and worst >= Severity.WARNING else 0
+    return 1 if not exit_zero and worst is not None and worst >= Severity.parse(fail_on) else 0
 
 
 def _write_report(writer, results: list[FileResult], ctx, output: str | None) -> None:

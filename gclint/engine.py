@@ -42,6 +42,7 @@ class Options:
     per_file_ignores: dict[str, list[str]] = field(default_factory=dict)
     env_flavor: str | None = None  # SLIC3R_GCODE_FLAVOR for postprocess
     spindle_max_rpm: float | None = None
+    severity: dict[str, str] = field(default_factory=dict)  # code or prefix -> level (configuration)
     tool_map: dict[int, int] = field(default_factory=dict)
     config_path: str | None = None
 
@@ -59,6 +60,7 @@ class Options:
                 sorted((k, sorted(v)) for k, v in self.per_file_ignores.items()),
                 self.env_flavor,
                 self.spindle_max_rpm,
+                sorted(self.severity.items()),
                 sorted(self.tool_map.items()),
             )
         )
@@ -129,6 +131,17 @@ class FileContext:
         """Whether the rule ``code`` is selected for this run."""
         return code in self.enabled_codes
 
+    def severity_of(self, code: str, default: Severity) -> Severity:
+        """The level of a finding: the configuration's ``severity`` table (the longest matching code or
+        prefix) overrides the rule's."""
+        overrides = self.options.severity
+        if overrides:
+            for length in (5, 4, 3, 2):
+                level = overrides.get(code[:length])
+                if level is not None:
+                    return Severity.parse(level)
+        return default
+
     def model_note(self) -> str:
         """What a finding that rests on the printer model adds when nobody said which model it is."""
         return self.context.model_note()
@@ -154,7 +167,7 @@ class FileContext:
                 line=number,
                 column=max(1, column),
                 code=rule.code,
-                severity=severity if severity is not None else rule.severity,
+                severity=self.severity_of(rule.code, severity if severity is not None else rule.severity),
                 message=message,
                 name=rule.name,
                 fix=fix,

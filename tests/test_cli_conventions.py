@@ -80,3 +80,20 @@ def test_rules_marks_the_fixable_ones() -> None:
     lines = run_cli("rules").stdout.decode().splitlines()
     marked = {line.split()[0] for line in lines if line.split()[1:2] == ["[*]"]}
     assert {"HY008", "SX004", "HY038"} <= marked and "HY003" not in marked
+
+
+def test_fail_on_and_per_rule_severity(tmp_path: Path) -> None:
+    job = tmp_path / "a.gcode"
+    job.write_text("; gclint: dialect=marlin\nG1 X1 F600\nM9999\n")  # DL001 [warning]
+    assert run_cli("check", str(job)).returncode == 1
+    assert run_cli("check", "--fail-on", "error", str(job)).returncode == 0
+    assert run_cli("check", "--fail-on", "info", str(job)).returncode == 1
+    (tmp_path / "gclint.toml").write_text('severity = { DL001 = "error" }\n')
+    proc = run_cli("check", "--fail-on", "error", str(job))
+    assert proc.returncode == 1 and "DL001 [error]" in proc.stdout.decode()
+    (tmp_path / "gclint.toml").write_text('severity = { DL = "info" }\n')
+    proc = run_cli("check", str(job))
+    assert proc.returncode == 0 and "DL001 [info]" in proc.stdout.decode()
+    (tmp_path / "gclint.toml").write_text('severity = { DL001 = "fatal" }\n')
+    proc = run_cli("check", str(job))
+    assert proc.returncode == 2 and b"unknown severity 'fatal'" in proc.stderr
