@@ -239,6 +239,8 @@ def check(
             click.echo(f"gclint: {r.error}", err=True)
         click.echo(show(files, overrides, config_file, stdin_filename or "-"), nl=False)
         sys.exit(2 if problems else 0)
+    if unsafe_fixes and not (fix or show_diff):
+        _fail("--unsafe-fixes goes with --fix or --diff")
     if fix and files == ["-"]:  # "--fix -": the fixed text on stdout, the findings left on stderr
         sys.exit(_fix_stdin(overrides, config_file, stdin_filename or "-", unsafe_fixes, exit_zero, fail_on))
     if (fix or show_diff) and "-" in files:
@@ -570,7 +572,7 @@ def explain(file: str | None, expressions: tuple[str, ...], dialect: str | None,
         _fail("give either FILE or -e LINE, not both")
     if not file and not expressions:
         _fail('nothing to explain: give a FILE or -e "M109 T0 S240"')
-    from gclint.context import infer
+    from gclint.context import infer, infer_source
 
     chosen = _check_dialect(dialect, allow_auto=True) or ("auto" if file else "hyrel")
     if expressions:
@@ -584,7 +586,7 @@ def explain(file: str | None, expressions: tuple[str, ...], dialect: str | None,
         except SourceError as exc:
             _fail(str(exc))
             return
-        context = infer(src.head_text(), file or "", dialect=chosen, complete=src.head_is_whole)
+        context = infer_source(src, file or "", dialect=chosen)
         items = explain_source(src, dialects.get(context.dialect))
         source_name = file or "-"
     found = dialects.get(context.dialect)

@@ -14,7 +14,7 @@ from collections.abc import Callable, Iterable
 from dataclasses import dataclass, field
 
 from gclint import dialects
-from gclint.context import Context, infer
+from gclint.context import Context, infer_source
 from gclint.dialects.base import Dialect
 from gclint.machine.interpreter import Interpreter
 from gclint.machine.profiles import DEFAULT_PROFILE, PrinterProfile, get_profile
@@ -146,6 +146,12 @@ class FileContext:
         """What a finding that rests on the printer model adds when nobody said which model it is."""
         return self.context.model_note()
 
+    def on_every_model(self, test: Callable[[PrinterProfile], bool]) -> bool:
+        """Whether ``test`` holds for every model the job fits (only the model itself when it was given or
+        assumed by default): a finding that rests on the model is not made on a guess between models."""
+        names = self.context.printer_candidates or (self.profile.name,)
+        return all(test(get_profile(name)) for name in names)
+
     def add(
         self,
         rule: Rule | type[Rule],
@@ -268,15 +274,13 @@ class Linter:
     def context_of(self, source: Source) -> Context:
         """What ``source`` is checked as (its head decides; the stream is not consumed)."""
         options = self.options
-        return infer(
-            source.head_text(),
-            source.display,
+        return infer_source(
+            source,
             dialect=options.dialect,
             dialect_origin=options.dialect_origin,
             printer=options.printer,
             printer_origin=options.printer_origin,
             env_flavor=options.env_flavor,
-            complete=source.head_is_whole,
         )
 
     def prepare(self, source: Source) -> tuple[FileContext, FileResult]:

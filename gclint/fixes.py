@@ -14,6 +14,7 @@ a file worse.
 from __future__ import annotations
 
 import tempfile
+from collections import Counter
 from collections.abc import Callable, Iterator
 from dataclasses import dataclass, field
 from typing import BinaryIO
@@ -56,12 +57,16 @@ def plan_fixes(result: FileResult, linter: Linter, read: Callable[[], Source], *
         return plan
     chosen = [f for f in result.findings if f.fix is not None and (f.fix.safe or unsafe)]
     before = {(f.line, f.code) for f in result.findings}
+    counts = Counter(f.code for f in result.findings)
     for _ in range(_ROUNDS):
         if not chosen:
             return plan
         edits = _edits(chosen)
         plan.checked, plan.digest = _check_fixed(read(), result.path, edits, linter)
-        new = [f for f in plan.checked.findings if (f.line, f.code) not in before]
+        # New findings: a rule now reports more than before (a finding that only moved, as the same
+        # mismatch reported at another line once the numbers are right, is not new).
+        grown = {code for code, n in Counter(f.code for f in plan.checked.findings).items() if n > counts[code]}
+        new = [f for f in plan.checked.findings if f.code in grown and (f.line, f.code) not in before]
         if not new:
             plan.fixes = chosen
             return plan
@@ -72,8 +77,8 @@ def plan_fixes(result: FileResult, linter: Linter, read: Callable[[], Source], *
         for f in blamed:
             caused = next((n for n in new if any(e.line == n.line for e in f.fix.edits)), new[0])  # type: ignore[union-attr]
             plan.reverted.append(
-                f"{f.path}:{f.line}: {f.code} fix not applied: it would bring {caused.code} "
-                f"at line {caused.line} ({caused.message})"
+                f"{f.path}:{f.line}: {f.code} fix not applied: in the fixed text, {caused.code} would report "
+                f"line {caused.line} ({caused.message})"
             )
         chosen = [f for f in chosen if f not in blamed]
     return plan  # still not clean after every round: nothing is applied

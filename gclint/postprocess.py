@@ -23,7 +23,7 @@ from dataclasses import dataclass, field, replace
 from typing import TextIO
 
 from gclint import __version__, dialects
-from gclint.context import infer
+from gclint.context import infer_source
 from gclint.dialects.base import Dialect
 from gclint.engine import FileResult, Linter, Options
 from gclint.io import AtomicWriter, OutputError
@@ -100,7 +100,7 @@ def source_dialect(source: Source, path: str, env_flavor: str | None, explicit: 
     slicer's flavour (``SLIC3R_GCODE_FLAVOR``) as header evidence that loses to clear content."""
     if explicit and explicit != "auto":
         return dialects.get(explicit), "--from"
-    context = infer(source.head_text(), path, env_flavor=env_flavor or None, complete=source.head_is_whole)
+    context = infer_source(source, path, env_flavor=env_flavor or None)
     return dialects.get(context.dialect), context.why()
 
 

@@ -178,10 +178,10 @@ def test_hy008_only_where_the_files_addresses_say_v4():
     assert where(hy007) == [(3, "HY007", "error")] and "in v4 numbering T12 was yoke 1, position 2" in hy007[0].message
     # the same numbers in a file whose addresses say v4: all reported; where v5 also has a meaning, the
     # fix is unsafe (M190 T24 is Bed1 in v5)
-    text = "M6 T12 O2\nM221 T12 S1\nM190 T24 S60\nM109 T12 S200\n"
+    text = "M6 T12 O2\nM6 T13 O3\nM221 T12 S1\nM190 T24 S60\nM109 T12 S200\n"
     found = lint(text, codes=("HY008",))
-    assert where(found) == [(n, "HY008", "warning") for n in (1, 2, 3, 4)]
-    assert [f.fix.safe for f in found] == [True, True, False, True]
+    assert where(found) == [(n, "HY008", "warning") for n in (1, 2, 3, 4, 5)]
+    assert [f.fix.safe for f in found] == [True, True, True, False, True]
 
 
 def test_hy008_takes_over_from_the_other_address_rules():

@@ -5,7 +5,7 @@ the user said, the content, the slicer header, the extension) with the reasons k
 the reports all use its ``Context``.
 """
 
-from gclint.context.decide import SLICER_FLAVORS, infer, slicer_flavor
+from gclint.context.decide import SLICER_FLAVORS, infer, infer_source, slicer_flavor
 from gclint.context.model import Context
 
-__all__ = ["Context", "infer", "slicer_flavor", "SLICER_FLAVORS"]
+__all__ = ["Context", "infer", "infer_source", "slicer_flavor", "SLICER_FLAVORS"]

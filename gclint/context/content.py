@@ -20,13 +20,14 @@ _LINE_LIMIT = 2000  # longer lines are not read for clues (they are reported by 
 
 @dataclass(frozen=True)
 class Seen:
-    """Where something was first seen: the line number and the command's text."""
+    """Where something was first seen: the line number (0: in the file's tail, line unknown) and the
+    command's text."""
 
     line: int
     text: str
 
     def __str__(self) -> str:
-        return f"{self.text} at line {self.line}"
+        return f"{self.text} at line {self.line}" if self.line else f"{self.text} near the end of the file"
 
 
 @dataclass
@@ -57,7 +58,8 @@ def candidates() -> tuple[Dialect, ...]:
 _HYREL = get("hyrel")
 # Hyrel codes whose T is an address (a T variable): every code whose parameter table lists T.
 _T_VARIABLE_CODES = frozenset(c for c, spec in _HYREL.codes.items() if spec.params and "T" in spec.params)
-_MOVES = frozenset({"G0", "G1", "G2", "G3", "G28", "G92"})
+# Codes whose A and B are axes on Hyrel (Gcode page: G0/G1 note on axes; G28, G92, M203, G54-G59, M6; G38)
+_AXIS_CODES = frozenset({"G0", "G1", "G2", "G3", "G28", "G92", "M203", "M6", "G38", *(f"G{n}" for n in range(54, 60))})
 _MODEL_AUX = frozenset(f"M{n}" for n in range(670, 690))
 
 
@@ -77,14 +79,22 @@ def _clue_index() -> tuple[dict[str, list[tuple[str, Clue]]], list[tuple[str, Cl
 _BY_CODE, _GENERAL = _clue_index()
 
 
-def read_content(head: str, complete: bool) -> ContentReading:
-    """Read ``head`` (the beginning of a file; ``complete`` when it is the whole file)."""
+def read_content(head: str, complete: bool, tail: str | None = None) -> ContentReading:
+    """Read ``head`` (the beginning of a file; ``complete`` when it is the whole file) and ``tail`` (its
+    end, whole lines; slicers put their end code there)."""
     reading = ContentReading()
     lines = head.splitlines()
     if not complete and lines:
         lines.pop()  # cut short: the last line may be half a line
+    _read_lines(reading, enumerate(lines, 1))
+    if tail:
+        _read_lines(reading, ((0, raw) for raw in tail.splitlines()))
+    return reading
+
+
+def _read_lines(reading: ContentReading, lines) -> None:
     plain = PLAIN_MOVE.fullmatch
-    for number, raw in enumerate(lines, 1):
+    for number, raw in lines:
         stripped = raw.lstrip()
         if not stripped or stripped[0] in ";(" or len(raw) > _LINE_LIMIT:
             continue
@@ -97,7 +107,6 @@ def read_content(head: str, complete: bool) -> ContentReading:
             continue
         for cmd in parse_line(raw).commands:
             _read_command(reading, cmd, number)
-    return reading
 
 
 def _read_command(reading: ContentReading, cmd: Command, number: int) -> None:
@@ -136,7 +145,7 @@ def _read_command(reading: ContentReading, cmd: Command, number: int) -> None:
         reading.lathe = _seen(cmd, number)
     elif code in _MODEL_AUX and code not in reading.aux_codes:
         reading.aux_codes[code] = _seen(cmd, number)
-    if code in _MOVES and reading.rotary_axes is None and ("A" in params or "B" in params):
+    if code in _AXIS_CODES and reading.rotary_axes is None and ("A" in params or "B" in params):
         reading.rotary_axes = _seen(cmd, number)
 
 

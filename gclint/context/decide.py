@@ -3,15 +3,20 @@
 The order of strength (DESIGN.md, "Dialect names"):
 
 1. what the user said: ``--dialect``/``--printer``, the configuration, a ``; gclint: dialect=`` line;
-2. content only one dialect has: clues (``M6 T# O#``, ``M109 H``, ``M109 T40``, O-words, meta commands,
-   ``M109 R215``...) and codes that some dialects' tables have and others' do not;
+2. content only one dialect has: clues (``M6 T# O#``, ``M109 H``, ``M109 T40``, O-words, meta commands...),
+   uses a dialect would never write (Hyrel's ``M109 R215``), and codes that some dialects' tables have
+   and others' do not;
 3. the slicer header (``;FLAVOR:``, ``; gcode_flavor =``, ``SLIC3R_GCODE_FLAVOR``), which loses to clear
    content (and the context says so);
 4. the file extension, only to break a tie (``.gcode`` says nothing: every firmware uses it);
 5. nothing: ``hyrel``, the first target.
 
-Hyrel v4 or v5 comes from the addresses the file uses (a number that fits a command in one numbering
-and not in the other), ``M116`` and ``W0`` (v5 only).  The model comes from what the job says about the
+Dialects that read each other's files are weighed as a group first (content tells a Hyrel job from a
+RepRap-family one from a CNC program clearly), then within the group (Marlin or RepRapFirmware; Machinekit
+or Carvera), where the slicer header and the extension know better than the code tables.
+
+Hyrel v4 or v5 comes from the addresses the file uses (each number votes for the numbering in which it
+fits its commands), ``M116`` and ``W0`` (v5 only).  The model comes from what the job says about the
 machine: declared heads (``M6 T# O#``), a second yoke, A/B axes, the lathe, model-specific aux ports.
 """
 
@@ -20,7 +25,7 @@ from __future__ import annotations
 import re
 
 from gclint import dialects
-from gclint.context.content import ContentReading, Seen, candidates, read_content
+from gclint.context.content import ContentReading, candidates, read_content
 from gclint.context.model import (
     CONFIGURATION,
     CONTENT,
@@ -35,11 +40,11 @@ from gclint.context.model import (
     WEAK,
     Context,
 )
-from gclint.dialects.addressing import HEAD, fits, resolve_v4_command, resolve_v4_variable, resolve_v5
+from gclint.dialects.addressing import HEAD, RESERVED, fits, resolve_v4_command, resolve_v4_variable, resolve_v5
 from gclint.dialects.base import HeadScan
-from gclint.machine.profiles import PROFILES, PrinterProfile
+from gclint.machine.profiles import PROFILES
 
-_DIRECTIVE = re.compile(r"(?im)^[^\n]*[;(]\s*gclint:\s*dialect\s*=\s*([\w.-]+)")
+_DIRECTIVE = re.compile(r"(?im)^[^\n]*[;(]\s*gclint:\s*dialect\s*=\s*([^\s;)]+)")
 
 # PrusaSlicer/SuperSlicer/OrcaSlicer gcode_flavor values (SLIC3R_GCODE_FLAVOR, "; gcode_flavor = ...").
 SLICER_FLAVORS = {
@@ -61,11 +66,17 @@ SLICER_FLAVORS = {
     "hyrel": "hyrel",
 }
 _ENV_WEIGHT = 10
-_DECIDES = 3  # content decides from this score on (a clue, or two codes only one group has)
-_STRONG = 4  # ... and is strong from here, when it leads the runner-up by _LEAD
+_DECIDES = 3  # content decides against the slicer header from this lead on (one clue, two codes...)
+_STRONG = 4  # ... and is strong from here, when it leads the runner-up by _LEAD and nothing disagrees
 _LEAD = 3
-_LEANS = 2  # below _DECIDES, content still beats the default from here (weakly): a bare G28, one odd code
+_LEANS = 2  # less content than this (one weak clue) is as good as none: the extension or the default decide
 MODEL_ORDER = ("30m", "esr", "ehr", "16a", "16a-dual")  # the simplest model that fits the job wins
+
+_GROUP_OF_FAMILY = {"hyrel": "hyrel", "reprap": "reprap", "linuxcnc": "cnc", "smoothie": "cnc"}
+_GROUP_LABEL = {"hyrel": "Hyrel's", "reprap": "Marlin/RepRap-like", "cnc": "a CNC program's"}
+_GENERIC = (".gcode", ".gco")  # every firmware's files: they tell Marlin from RepRapFirmware at most
+
+Evidence = list[tuple[int, int, str]]  # (weight, line, text)
 
 
 def infer(
@@ -78,8 +89,10 @@ def infer(
     printer_origin: str = OPTION,
     env_flavor: str | None = None,
     complete: bool = True,
+    tail: str | None = None,
 ) -> Context:
-    """The context of the file whose beginning is ``head`` (``complete``: the whole file).
+    """The context of the file whose beginning is ``head`` (``complete``: the whole file; ``tail``: the
+    end of a longer file, whole lines).
 
     ``dialect`` is a dialect name or ``auto``; ``printer`` a model name or None (infer it).  The
     ``*_origin`` arguments say where an explicit value came from (``option`` or ``configuration``).
@@ -90,22 +103,25 @@ def infer(
     def content() -> ContentReading:
         nonlocal reading
         if reading is None:
-            reading = read_content(head, complete)
+            reading = read_content(head, complete, tail)
         return reading
 
-    directive = _directive(scan)
+    directive, unknown = _directive(scan)
+    notes = (f"'; gclint: dialect={unknown}' names no dialect: ignored",) if unknown else ()
     if directive is not None:
         name, origin, reasons, strength, conflict = directive, DIRECTIVE, (), EXPLICIT, ""
     elif dialect != "auto":
         name, origin, reasons, strength, conflict = dialects.get(dialect).name, dialect_origin, (), EXPLICIT, ""
     else:
         name, origin, reasons, strength, conflict = _weigh(scan, content(), path, env_flavor)
+    if notes:  # a directive that names nothing is shown, as weak evidence is
+        conflict = "; ".join((*notes, conflict)) if conflict else notes[0]
     if dialects.get(name).family != "hyrel":
         return Context(name, origin, strength, reasons, conflict)
 
     firmware, firmware_origin, firmware_reasons, evidence = _version(content(), name, origin)
     name = "hyrel-v4" if firmware == 4 else "hyrel"
-    model, model_origin, model_reasons = _model(content(), firmware, printer, printer_origin)
+    model, model_origin, model_reasons, fitting = _model(content(), firmware, printer, printer_origin)
     return Context(
         name,
         origin,
@@ -119,31 +135,47 @@ def infer(
         printer=model,
         printer_origin=model_origin,
         printer_reasons=model_reasons,
+        printer_candidates=fitting,
     )
 
 
-def _directive(scan: HeadScan) -> str | None:
+_FAR = 1 << 20  # how far to read when the head is mostly comments (a slicer's thumbnail images)
+
+
+def infer_source(source, path: str | None = None, **options) -> Context:
+    """The context of a ``gclint.syntax.source.Source`` (not consumed): its head, read on past comment
+    blocks such as thumbnails, and the tail of a regular file (slicers' end code, Hyrel's footer)."""
+    head = source.head_text()
+    if not source.head_is_whole and _mostly_comments(head):
+        head = source.head_text(_FAR)
+    return infer(
+        head,
+        source.display if path is None else path,
+        complete=source.head_is_whole,
+        tail=source.tail_text(),
+        **options,
+    )
+
+
+def _mostly_comments(text: str) -> bool:
+    comments = sum(len(line) for line in text.splitlines() if line.lstrip()[:1] in (";", "("))
+    return comments > 0.75 * len(text)
+
+
+def _directive(scan: HeadScan) -> tuple[str | None, str | None]:
+    """(the dialect a ``; gclint: dialect=NAME`` line names, the name when it names none)."""
     if "gclint" not in scan.lowered:
-        return None
+        return None, None
     m = _DIRECTIVE.search(scan.head)
     if m is None:
-        return None
+        return None, None
     try:
-        return dialects.get(m.group(1)).name
+        return dialects.get(m.group(1)).name, None
     except dialects.UnknownDialect:
-        return None
+        return None, m.group(1)[:40]
 
 
 # -- the dialect ---------------------------------------------------------------------------------------
-
-
-# Dialects that read each other's files are weighed as a group first (the content tells Hyrel from a
-# RepRap-family printer from a CNC controller clearly), then within the group, where the slicer header
-# knows better than the content (Marlin and RepRapFirmware share most codes).
-_GROUP_OF_FAMILY = {"hyrel": "hyrel", "reprap": "reprap", "linuxcnc": "cnc", "smoothie": "cnc"}
-_GENERIC = (".gcode", ".gco")  # every firmware's files: they tell Marlin from RepRapFirmware at most
-
-Evidence = list[tuple[int, int, str]]  # (weight, line, text)
 
 
 class _Points:
@@ -184,12 +216,16 @@ class _Points:
                     self.group[g].append((weight, seen.line, f"{seen}: {_who_has(code, groups, self.groups)}"))
             for g in groups:  # ... and within a group
                 members = [m for m in self.names if self.group_of[m] == g]
-                having = [m for m in members if m in knowers]
-                if len(having) < len(members):
-                    for m in having:
-                        self.member[m].append((1, seen.line, f"{seen}: only {m} has {code}"))
+                missing = [m for m in members if m not in knowers]
+                if missing:
+                    for m in members:
+                        if m in knowers:
+                            self.member[m].append(
+                                (1, seen.line, f"{seen}: {code} is not a {' or '.join(missing)} code")
+                            )
 
-    def score(self, evidence: Evidence) -> int:
+    @staticmethod
+    def score(evidence: Evidence) -> int:
         return sum(weight for weight, _, _ in evidence)
 
 
@@ -212,32 +248,38 @@ def _weigh(
     header_group = group_of[header_best] if header_best is not None else None
 
     scores = {g: points.score(points.group[g]) for g in groups}
-    ranked = sorted(groups, key=lambda g: -scores[g])
-    best, runner_up = scores[ranked[0]], scores[ranked[1]]
+    best = max(scores.values())
     top = [g for g in groups if scores[g] == best]
+    lead = best - max((scores[g] for g in groups if g not in top), default=0) if len(top) == 1 else 0
     conflict = ""
-    if best >= _DECIDES and len(top) == 1:
+    if header_group is not None and (header_group in top or lead < _DECIDES):
+        # the slicer header decides among what the content leaves open (content wins only when clear)
+        group, origin = header_group, HEADER
+        reasons = tuple(header_texts[header_best][:2])  # type: ignore[index]
+        agree = best > 0 and header_group in top
+        if agree:
+            reasons += _top_reasons(points.group[group], 2)
+        elif lead > 0:
+            conflict = f"the content leans to {_GROUP_LABEL[top[0]]} ({_top_reasons(points.group[top[0]], 1)[0]}), less than the slicer header"
+        strength = STRONG if (agree and best >= _DECIDES) or (header[header_best] >= 8 and not lead) else WEAK  # type: ignore[index]
+    elif best >= _LEANS and len(top) == 1:
+        # content that leans one way beats the extension and the default: the extension only breaks ties
         group, origin = top[0], CONTENT
         reasons = _top_reasons(points.group[group])
-        if header_group is not None and header_group != group:
+        if header_group is not None:
             conflict = (
                 f"the slicer header says {header_best} ({header_texts[header_best][0]}), but the content is "  # type: ignore[index]
                 f"{_GROUP_LABEL[group]}: content wins"
             )
-        clear = best >= _STRONG and best - runner_up >= _LEAD
-        strength = STRONG if (clear or header_group == group) and not conflict else WEAK
-    elif header_group is not None and (best < _DECIDES or header_group in top):
-        group, origin = header_group, HEADER
-        reasons = tuple(header_texts[header_best][:2])  # type: ignore[index]
-        agree = best >= _DECIDES
-        if agree:
-            reasons += _top_reasons(points.group[group], 2)
-        strength = STRONG if agree or header[header_best] >= 8 else WEAK  # type: ignore[index]
+        strength = STRONG if best >= _STRONG and lead >= _LEAD and not conflict else WEAK
     else:
-        # no content decides (one point is a single code in a table, not a decision): the extension breaks
-        # the tie, and .gcode/.gco, which every firmware uses, say nothing here
+        pool = top if best >= _LEANS else groups  # a tie: the extension may break it, among the tied only
         by_extension = [
-            n for n in names if dialects.get(n).detection.has_extension(path) and not path.lower().endswith(_GENERIC)
+            n
+            for n in names
+            if group_of[n] in pool
+            and dialects.get(n).detection.has_extension(path)
+            and not path.lower().endswith(_GENERIC)
         ]
         if len(by_extension) == 1:
             group, origin = group_of[by_extension[0]], EXTENSION
@@ -249,9 +291,6 @@ def _weigh(
             return "hyrel", DEFAULT, (), NONE, ""
         strength = WEAK
     return _member(points, group, header, header_texts, path, origin, reasons, strength, conflict)
-
-
-_GROUP_LABEL = {"hyrel": "Hyrel's", "reprap": "Marlin/RepRap-like", "cnc": "a CNC program's"}
 
 
 def _member(
@@ -270,7 +309,7 @@ def _member(
     members = [n for n in points.names if points.group_of[n] == group]
     if len(members) == 1:
         return members[0], origin, reasons, strength, conflict
-    clues = {m: sum(w for w, _, text in points.member[m] if " only " not in text) for m in members}
+    clues = {m: sum(w for w, _, text in points.member[m] if " is not a " not in text) for m in members}
     leader = max(members, key=lambda m: clues[m])
     clear_lead = all(clues[leader] - clues[m] >= 3 for m in members if m != leader)
     named = [m for m in members if header[m] > 0]
@@ -280,10 +319,12 @@ def _member(
         return choice, origin, _unique(reasons[:2] + extra + reasons[2:]), strength, conflict
     if clear_lead:
         return leader, origin, _unique(reasons + _top_reasons(points.member[leader], 1)), strength, conflict
-    by_extension = [m for m in members if dialects.get(m).detection.has_extension(path)]
+    own = {m: points.score(points.member[m]) for m in members}
+    best = max(own.values())
+    tied = [m for m in members if own[m] >= best - 1]  # the tables are not exact: a point is a tie
+    by_extension = [m for m in tied if dialects.get(m).detection.has_extension(path)]
     if len(by_extension) == 1:  # (the group's evidence stands: the extension only names the member)
         return by_extension[0], origin, _unique(reasons + (f"the extension {_extension(path)}",)), strength, conflict
-    own = {m: points.score(points.member[m]) for m in members}
     top = max(members, key=lambda m: own[m])
     return top, origin, _unique(reasons + _top_reasons(points.member[top], 1)), WEAK, conflict
 
@@ -293,13 +334,16 @@ def _unique(texts: tuple[str, ...]) -> tuple[str, ...]:
 
 
 def _top_reasons(evidence: Evidence, count: int = 3) -> tuple[str, ...]:
-    """The strongest pieces of evidence, earliest first among equals."""
-    return tuple(text for _, _, text in sorted(evidence, key=lambda e: (-e[0], e[1]))[:count])
+    """The strongest pieces of evidence, earliest first among equals (the file's tail last)."""
+    ranked = sorted(evidence, key=lambda e: (-e[0], e[1] or 1 << 40))
+    return _unique(tuple(text for _, _, text in ranked))[:count]
 
 
-def scores(head: str, path: str = "", env_flavor: str | None = None, complete: bool = True) -> dict[str, dict]:
+def scores(
+    head: str, path: str = "", env_flavor: str | None = None, complete: bool = True, tail: str | None = None
+) -> dict[str, dict]:
     """Every group's and dialect's content points and the header's (for ``gclint check -v`` and tests)."""
-    points = _Points(read_content(head, complete))
+    points = _Points(read_content(head, complete, tail))
     header, texts = _header_scores(HeadScan(head), env_flavor)
     groups = {
         g: {"content": points.score(points.group[g]), "evidence": _top_reasons(points.group[g], 5)}
@@ -339,34 +383,45 @@ def slicer_flavor(name: str) -> str | None:
 
 
 def _version(reading: ContentReading, name: str, origin: str) -> tuple[int, str, tuple[str, ...], int | None]:
-    """(firmware, origin, reasons, what the addresses say) for a Hyrel file."""
-    v4: list[tuple[int, str]] = []
-    v5: list[tuple[int, str]] = []
+    """(firmware, origin, reasons, what the addresses say) for a Hyrel file.
+
+    Each distinct number votes once: for v4 when some command it is used with fits it in v4 numbering
+    and none in v5, for v5 the other way round (one wrong head number on three commands is one vote).
+    """
+    uses: dict[int, list[tuple[bool, bool, str]]] = {}  # number -> (fits v4, fits v5, what)
     for (code, letter, number), seen in reading.addresses.items():
         if letter == "S":  # M703/M704 S: v4 an alias (a device), v5 a squad 30-39 or a head
             old, new = resolve_v4_variable(number).kind == HEAD, 30 <= number <= 39 or _v5_head(number)
         else:
             old, new = fits(code, resolve_v4_variable(number)), _v5_fits(code, number)
-        if old and not new:
-            v4.append((seen.line, f"{seen}: T{number} is a v4 device address"))
-        elif new and not old:
-            v5.append((seen.line, f"{seen}: T{number} is a v5 address"))
+        uses.setdefault(number, []).append(
+            (old, new, f"{seen}: T{number} {'is a v4 device address' if old else 'fits v5'}")
+        )
     for number, seen in reading.tool_commands.items():
-        old, new = resolve_v4_command(number).kind != "reserved", resolve_v5(number).kind != "reserved"
-        if old and not new:
-            v4.append((seen.line, f"{seen}: a v4 tool number"))
-        elif new and not old and number > 9:
-            v5.append((seen.line, f"{seen}: a v5 address"))
+        old = resolve_v4_command(number).kind != RESERVED
+        new = resolve_v5(number).kind != RESERVED and (number > 19 or _v5_head(number))
+        uses.setdefault(number + 1000, []).append(
+            (old, new, f"{seen}: {'a v4 tool number' if old else 'a v5 address'}")
+        )
+    v4: list[tuple[int, str]] = []
+    v5: list[tuple[int, str]] = []
+    for number_uses in uses.values():
+        only_v4 = [what for old, new, what in number_uses if old and not new]
+        only_v5 = [what for old, new, what in number_uses if new and not old]
+        if only_v4 and not only_v5:
+            v4.append((0, only_v4[0]))
+        elif only_v5 and not only_v4:
+            v5.append((0, only_v5[0]))
     for seen, what in ((reading.m116, "M116 exists from v5"), (reading.waits_w0, "W0 exists from v5")):
         if seen is not None:  # "[v5+]" on the Gcode page: worth two addresses each
-            v5.extend([(seen.line, f"{seen}: {what}")] * 2)
+            v5.extend([(0, f"{seen}: {what}")] * 2)
     evidence = 4 if len(v4) > len(v5) else 5 if len(v5) > len(v4) else None
     reasons_of = {4: v4, 5: v5}
     if name == "hyrel-v4" or (name == "hyrel" and origin in (OPTION, CONFIGURATION, DIRECTIVE)):
         firmware = 4 if name == "hyrel-v4" else 5
         return firmware, origin, (), evidence
     firmware = evidence or 5
-    reasons = tuple(dict.fromkeys(text for _, text in sorted(reasons_of[firmware])))[:3]
+    reasons = tuple(dict.fromkeys(text for _, text in reasons_of[firmware]))[:3]
     against = reasons_of[9 - firmware]
     if against:
         reasons += (f"{len(against)} address{'es' if len(against) != 1 else ''} read as v{9 - firmware}",)
@@ -390,9 +445,10 @@ def _v5_fits(code: str, number: int) -> bool:
 
 def _model(
     reading: ContentReading, firmware: int, printer: str | None, printer_origin: str
-) -> tuple[str, str, tuple[str, ...]]:
+) -> tuple[str, str, tuple[str, ...], tuple[str, ...]]:
+    """(model, origin, reasons, every model the job fits) for a Hyrel file."""
     if printer is not None:
-        return printer, printer_origin, ()
+        return printer, printer_origin, (), (printer,)
     needs: list[tuple[str, object]] = []  # (what the job says, test on a profile)
     resolve = resolve_v4_variable if firmware == 4 else resolve_v5
     positions = {
@@ -403,27 +459,39 @@ def _model(
     if positions:
         top = max(positions)
         needs.append((f"{positions[top]}: declares a head at T{top}", lambda p, top=top: top in p.positions))
-    yoke2 = 20 if firmware == 4 else 42
-    for (_code, letter, number), seen in reading.addresses.items():
-        if letter == "T" and number == yoke2:
-            needs.append((f"{seen}: addresses a second yoke", lambda p: p.max_position >= 9))
-            break
+    # a second yoke: its group address (v5 T42, v4 T20), or a head on it (T5-T9) addressed by the job
+    yoke2_group = 20 if firmware == 4 else 42
+    resolve_command = resolve_v4_command if firmware == 4 else resolve_v5
+    yoke2 = [seen for (_code, letter, n), seen in reading.addresses.items() if letter == "T" and n == yoke2_group]
+    yoke2 += [
+        seen
+        for (_code, letter, n), seen in reading.addresses.items()
+        if letter == "T" and 5 <= (resolve(n).position if resolve(n).position is not None else -1) <= 9
+    ]
+    yoke2 += [seen for n, seen in reading.tool_commands.items() if 5 <= (resolve_command(n).position or -1) <= 9]
+    if yoke2:
+        first = min(yoke2, key=lambda s: s.line or 1 << 40)
+        needs.append((f"{first}: addresses a head on a second yoke", lambda p: p.max_position >= 9))
     if reading.rotary_axes is not None:
-        needs.append((f"{reading.rotary_axes}: moves an A/B axis", lambda p: "A" in p.axes))
+        needs.append((f"{reading.rotary_axes}: uses an A/B axis", lambda p: "A" in p.axes))
     if reading.lathe is not None:
         needs.append((f"{reading.lathe}: runs the lathe", lambda p: p.lathe))
     for code, seen in reading.aux_codes.items():
         needs.append((f"{seen}: {code} exists on some models only", lambda p, code=code: code in p.aux_codes))
     if not needs:
-        return MODEL_ORDER[0], DEFAULT, ()
-    profiles: list[PrinterProfile] = [PROFILES[n] for n in MODEL_ORDER]
-    best = max(profiles, key=lambda p: sum(1 for _, test in needs if test(p)))  # type: ignore[operator]
-    met = [what for what, test in needs if test(best)]  # type: ignore[operator]
+        return MODEL_ORDER[0], DEFAULT, (), (MODEL_ORDER[0],)
+    profiles = [PROFILES[n] for n in MODEL_ORDER]
+    met = {p.name: sum(1 for _, test in needs if test(p)) for p in profiles}  # type: ignore[operator]
+    most = max(met.values())
+    fitting = tuple(p.name for p in profiles if met[p.name] == most)
+    best = PROFILES[fitting[0]]
     unmet = [what for what, test in needs if not test(best)]  # type: ignore[operator]
-    reasons = tuple(met[:2])
-    if unmet:
-        reasons += (f"no model fits everything: {unmet[0]}",)
-    return best.name, CONTENT, reasons
+    reasons = tuple(what for what, test in needs if test(best))[:2]  # type: ignore[operator]
+    if unmet:  # no model fits everything the job says: the default, and why
+        return MODEL_ORDER[0], DEFAULT, (f"no model fits everything: {unmet[0]}",), (MODEL_ORDER[0],)
+    if len(fitting) == len(MODEL_ORDER):  # every model fits: the job tells nothing about the model
+        return MODEL_ORDER[0], DEFAULT, (), (MODEL_ORDER[0],)
+    return best.name, CONTENT, reasons, fitting
 
 
-__all__ = ["infer", "slicer_flavor", "SLICER_FLAVORS", "Seen", "NONE", "WEAK", "STRONG"]
+__all__ = ["infer", "infer_source", "slicer_flavor", "scores", "SLICER_FLAVORS"]

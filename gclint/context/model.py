@@ -43,6 +43,7 @@ class Context:
     printer: str | None = None  # Hyrel model (gclint.machine.profiles), None for other dialects
     printer_origin: str = DEFAULT
     printer_reasons: tuple[str, ...] = ()
+    printer_candidates: tuple[str, ...] = ()  # every model the job fits as well (the first is ``printer``)
 
     @property
     def printer_assumed(self) -> bool:
@@ -98,6 +99,13 @@ class Context:
             return f" (printer assumed: {self.printer}, the default; set it with --printer)"
         told = self.printer_reasons[0].split(": ")[0] if self.printer_reasons else "the job"
         return f" (printer assumed: {self.printer}, from {told}; set it with --printer)"
+
+    @property
+    def printer_from(self) -> str:
+        """Where the model came from: ``option``, ``configuration``, ``job`` or ``default``."""
+        if self.printer_origin in (OPTION, CONFIGURATION):
+            return self.printer_origin
+        return "job" if self.printer_origin == CONTENT else "default"
 
     def to_dict(self) -> dict:
         return asdict(self)

@@ -531,13 +531,15 @@ HYREL_DETECTION = Detection(
         ),
         Clue("M106 C: the Hyrel fan range (M106 Set Cooling)", "M106", test=has_all("C")),
         Clue("M620 T# E: Hyrel's enable-emitter command", "M620", test=has_all("T", "E")),
-        # What a Hyrel job never says (marks for the dialects that have the code):
+        # What a Hyrel job never says: marks for the dialects that have the code.  They weigh less than
+        # what only Hyrel has: in a Hyrel job they are the very mistakes gclint is there to find.
         # "R ... is how close the relative temperature needs to be to the set temp" (M109): never a target
         *(
             Clue(
                 f"{c} R as a target temperature (on Hyrel R is a tolerance)",
                 c,
                 test=value_at_least("R", 40, without="S"),
+                weight=2,
                 against=True,
             )
             for c in ("M109", "M190", "M191")
@@ -547,7 +549,7 @@ HYREL_DETECTION = Detection(
             "M106 S above 100 with no C range (a 0-255 fan value)",
             "M106",
             test=value_at_least("S", 101, without="C"),
-            weight=2,
+            weight=1,
             against=True,
         ),
         # "Any axis not homed will have its position remain unchanged" (G28): a bare G28 homes nothing on Hyrel
@@ -555,6 +557,26 @@ HYREL_DETECTION = Detection(
             "G28 with no axis (home all; on Hyrel it homes nothing)",
             "G28",
             test=lambda c: not c.params,
+            weight=2,
+            against=True,
+        ),
+        # "Sn - power (0-100%)" (M3 Turn On Spindle): an rpm is another firmware's spindle speed
+        *(
+            Clue(
+                f"{c} S above 100 (an rpm; Hyrel's S is a percentage)",
+                c,
+                test=value_at_least("S", 101),
+                weight=2,
+                against=True,
+            )
+            for c in ("M3", "M4")
+        ),
+        # "M6 declares that a particular head holds a set of X, Y, and/or Z offsets" (M6): an M6 T1 with
+        # nothing to declare is a CNC tool change
+        Clue(
+            "M6 with no offset (a CNC tool change; Hyrel's M6 declares offsets)",
+            "M6",
+            test=lambda c: not any(k in c.params for k in "OXYZABDIK"),
             weight=2,
             against=True,
         ),

@@ -8,7 +8,7 @@ language is LinuxCNC's RS274NGC: O-words, #parameters, [expressions], user M-cod
 from __future__ import annotations
 
 from gclint.dialects.base import Clue, Detection, Dialect, Param, code, codes, describe, span, table
-from gclint.syntax.nodes import ASSIGNMENT, GCODE, OWORD
+from gclint.syntax.nodes import ASSIGNMENT, GCODE, IMPLICIT, OWORD
 
 P = Param
 
@@ -183,6 +183,8 @@ def _bracket_expression(cmd) -> bool:
 # Content that marks Machinekit/LinuxCNC (research/dialects.md 1.8 [MK, LCNC] and section 2.2's flavour detection).
 # The RS274NGC program language (O-words, # parameters, [expressions]) is Carvera's too.
 NGC_LANGUAGE_CLUES = (
+    # "S10000 M3": a spindle speed written as a word of its own, before the M3 (RS274NGC)
+    Clue("an S word on its own (a spindle speed)", kind=IMPLICIT, test=lambda c: "S" in c.params, weight=2),
     Clue("an O-word (o100 sub/if/while/call)", kind=OWORD, weight=4),
     Clue("a # parameter assignment", kind=ASSIGNMENT, weight=4),
     Clue("a [expression] or #parameter value", test=_bracket_expression, weight=2),
@@ -199,6 +201,9 @@ MACHINEKIT_CLUES = (
         for c in ("M104", "M109", "M140", "M190")
     ),
     # the extruder is the A axis: a working move with A and no E
+    # a C axis: five-axis LinuxCNC machines (Carvera's 4th axis is A, Hyrel's rotary axes A and B; but an
+    # E3D tool changer on RepRapFirmware locks tools with C: weak)
+    *(Clue(f"{c} C#: a C axis", c, test=lambda c: "C" in c.params, weight=1) for c in ("G0", "G1")),
     # (weak: Carvera's 4th axis and Hyrel's A/B axes move A too)
     Clue("G1 A#: extrusion on the A axis", "G1", test=lambda c: "A" in c.params and "E" not in c.params, weight=1),
 )

@@ -333,7 +333,8 @@ class Interpreter:
             st.homed_axes.add(axis)
         if "Z" in homed:
             st.z_homed_line = line.number
-        if homed:
+        st.axes_to_rehome.difference_update(homed)
+        if not st.axes_to_rehome:  # "All axes with homes must be rehomed after an M18" (M18)
             st.motors_off_line = None
         st.moved = True
 
@@ -358,8 +359,11 @@ class Interpreter:
 
     def _motors_off(self, cmd: Command, line: Line) -> None:
         # "All axes with homes must be rehomed after an M18." (Hyrel Gcode page, M18)
-        self.state.motors_off_line = line.number
-        self.state.homed_axes.clear()
+        st = self.state
+        st.motors_off_line = line.number
+        # every axis with a home (G28 homes X Y Z A B; A and B only where the job homed them)
+        st.axes_to_rehome = {"X", "Y", "Z"} | (st.homed_axes & {"A", "B"})
+        st.homed_axes.clear()
 
     # -- heads and tools -----------------------------------------------------------------------------
 
@@ -536,7 +540,8 @@ class Interpreter:
             st.squads_dissolved_line = line.number
         st.squads.clear()
         st.fixture_offsets_active = False
-        st.tool = 0
+        st.tool = 0  # "changes head index to 0"
+        st.tool_line = line.number
 
     def _end_of_program(self, cmd: Command, line: Line) -> None:
         self.state.after_m30 = True

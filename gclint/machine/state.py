@@ -97,7 +97,8 @@ class MachineState:
     # homing and motors
     homed_axes: set[str] = field(default_factory=set)
     z_homed_line: int | None = None
-    motors_off_line: int | None = None  # last M18/M84 not followed by homing
+    motors_off_line: int | None = None  # last M18/M84 while some axis is not homed again since
+    axes_to_rehome: set[str] = field(default_factory=set)  # axes M18/M84 left unhomed (G28 takes them off)
     fixture_offsets_active: bool = False
     g92_offsets_active: bool = False
 

@@ -40,6 +40,7 @@ def build(results: list[FileResult], ctx) -> ET.Element:
                     ET.SubElement(
                         props, "property", name="printer_assumed", value=str(r.context.printer_assumed).lower()
                     )
+                    ET.SubElement(props, "property", name="printer_from", value=r.context.printer_from)
             ET.SubElement(props, "property", name="lines", value=str(r.lines))
         if r.error:
             case = ET.SubElement(suite, "testcase", name="read", classname=path, file=path, time="0")

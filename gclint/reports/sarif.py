@@ -191,5 +191,6 @@ def _context_properties(r) -> dict:
         out["firmware"] = c.firmware
     if c.printer is not None:
         out["printer"] = c.printer
-        out["printerAssumed"] = c.printer_assumed
+        out["printerAssumed"] = c.printer_assumed  # nobody said: read from the job or the default
+        out["printerFrom"] = c.printer_from
     return out

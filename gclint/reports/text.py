@@ -43,7 +43,7 @@ def write_summary(results: list[FileResult], out: TextIO, ctx) -> None:
     n = sum(total.values())
     parts = [f"{total[k]} {k}{'s' if total[k] != 1 else ''}" for k in ("error", "warning", "info") if total[k]]
     files = f" in {files_with} file{'s' if files_with != 1 else ''}" if n else ""
-    if ctx.fixed:  # ruff's "Found 3 errors (2 fixed, 1 remaining)."
+    if ctx.fixed is not None and (ctx.fixed or n):  # --fix: ruff's "Found 3 errors (2 fixed, 1 remaining)."
         found = n + ctx.fixed
         remaining = f"{n} remaining: {', '.join(parts)}" if n else "0 remaining"
         out.write(f"Found {found} finding{'s' if found != 1 else ''} ({ctx.fixed} fixed, {remaining}){files}.\n")
@@ -51,7 +51,7 @@ def write_summary(results: list[FileResult], out: TextIO, ctx) -> None:
         out.write(f"Found {n} finding{'s' if n != 1 else ''} ({', '.join(parts)}){files}.\n")
     elif any(r.error is None for r in results):
         out.write("All checks passed.\n")
-    if n and fixable and not ctx.fixed:
+    if n and fixable and ctx.fixed is None:
         out.write(f"[*] {fixable} fixable with --fix.\n")
     checked_as = read_as_line(results)
     if checked_as:

@@ -100,8 +100,42 @@ class Source:
         return self._head_eof
 
     def head_text(self, limit: int = HEAD) -> str:
-        """The beginning of the file as text (for dialect detection); does not consume the stream."""
+        """The beginning of the file as text (for dialect detection); does not consume the stream.  A
+        ``limit`` beyond what was read at opening reads on (kept for the iteration, which starts from it)."""
+        if limit > len(self._head) and not self._head_eof and not self._consumed:
+            wanted = limit - len(self._head)
+            try:
+                more = self._stream.read(wanted)
+            except OSError as exc:
+                raise SourceError(f"{self.display}: cannot read: {exc.strerror or exc}") from None
+            self._hash.update(more)
+            self._head += more
+            self._head_eof = len(more) < wanted
         data = self._head[:limit]
+        if self.encoding == "utf-8":
+            return data.decode("utf-8", "surrogateescape")
+        return data[: len(data) // 2 * 2].decode(self.encoding, "replace")
+
+    def tail_text(self, limit: int = HEAD) -> str | None:
+        """The end of a regular file beyond the head (whole lines), as text, or None (the head is the
+        whole file, or the stream cannot seek: standard input, a pipe).  Does not move the stream."""
+        if self._head_eof or self._consumed:
+            return None
+        stream = self._stream
+        try:
+            if not stream.seekable():
+                return None
+            here = stream.tell()
+            end = stream.seek(0, io.SEEK_END)
+            start = max(here, end - limit)
+            stream.seek(start)
+            data = stream.read(end - start)
+            stream.seek(here)
+        except (OSError, ValueError):
+            return None
+        if start > here:  # begins mid-line: keep whole lines only
+            cut = max(data.find(b"\n"), data.find(b"\r"))
+            data = data[cut + 1 :] if cut >= 0 else b""
         if self.encoding == "utf-8":
             return data.decode("utf-8", "surrogateescape")
         return data[: len(data) // 2 * 2].decode(self.encoding, "replace")

@@ -240,7 +240,8 @@ class ToolBeyondModel(Rule):
         if address is None or address.kind != HEAD:
             return
         profile = self.ctx.profile
-        if address.position not in profile.positions:
+        position = address.position
+        if self.ctx.on_every_model(lambda p: position not in p.positions):
             hint = v4_hint(self.ctx, int_value(cmd.params.get("T"))) if node is not cmd else ""
             self.report(
                 line,

@@ -185,7 +185,8 @@ class AuxPortNotOnModel(Rule):
 
     def check(self, line: Line, cmd: Command) -> None:
         profile = self.ctx.profile
-        if cmd.code in profile.aux_codes:
+        code = cmd.code
+        if not self.ctx.on_every_model(lambda p: code not in p.aux_codes):
             return
         spec = self.ctx.dialect.spec(cmd.code)  # type: ignore[arg-type]
         what = spec.summary if spec is not None else cmd.code

@@ -302,7 +302,7 @@ class LatheOnNon16A(Rule):
 
     def check(self, line: Line, cmd: Command) -> None:
         profile = self.ctx.profile
-        if profile.lathe:
+        if not self.ctx.on_every_model(lambda p: not p.lathe):
             return
         s = cmd.get("S")
         if s is not None and s == 0:

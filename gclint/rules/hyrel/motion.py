@@ -396,7 +396,8 @@ class MotionAfterMotorsOff(MoveRule):
     explanation = """
         M18 (and M84, which invokes it) cuts power to all motors so the bed and yoke can be pushed by
         hand: "All axes with homes must be rehomed after an M18."  Positions are lost, so a move before
-        `G28 X0 Y0 ...` goes to the wrong place.  Reported once per M18/M84.
+        `G28 X0 Y0 Z0` (every axis: one that is not homed again, Z say, can crash the head while X and Y
+        move) goes to the wrong place.  Reported once per M18/M84.
     """
     example_bad = """
         M18
@@ -404,7 +405,7 @@ class MotionAfterMotorsOff(MoveRule):
     """
     example_good = """
         M18
-        G28 X0 Y0
+        G28 X0 Y0 Z0
         G0 X10 Y10
     """
     source = "Gcode page, M18 Disengage Motors (catalogue H53)"
@@ -420,14 +421,17 @@ class MotionAfterMotorsOff(MoveRule):
             self.move(line, cmd)
 
     def move(self, line: Line, cmd: Command) -> None:
-        off = self.state.motors_off_line
+        st = self.state
+        off = st.motors_off_line
         if off == self.reported_for:
             return
+        # any move until every axis is homed again: a position lost on one axis (Z) is a crash on another
         self.reported_for = off
+        left = " ".join(f"{a}0" for a in sorted(st.axes_to_rehome))
         self.report(
             line,
-            f"{cmd.code} after the motors were disengaged (M18/M84 on line {off}): re-home with G28 "
-            "(X0 Y0 ...) before moving",
+            f"{cmd.code} after the motors were disengaged (M18/M84 on line {off}): 'All axes with homes must "
+            f"be rehomed after an M18'; re-home with G28 {left} before moving",
             node=cmd,
         )
 
@@ -458,7 +462,7 @@ class AxisNotOnModel(MoveRule):
     slot = "axis_on_model"
 
     def __init__(self, ctx) -> None:
-        self.missing = tuple(a for a in ("A", "B") if a not in ctx.profile.axes)
+        self.missing = tuple(a for a in ("A", "B") if ctx.on_every_model(lambda p, a=a: a not in p.axes))
         if not self.missing:
             self.codes = ()  # type: ignore[misc,assignment]  # the model has A and B: nothing to check
         super().__init__(ctx)

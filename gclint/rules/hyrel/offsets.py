@@ -93,7 +93,7 @@ class M660EhrWithoutZHome(Rule):
     families = ("hyrel",)
 
     def check(self, line: Line, cmd: Command) -> None:
-        if self.ctx.profile.needs_z_home_for_m660 and self.state.z_homed_line is None:
+        if self.state.z_homed_line is None and self.ctx.on_every_model(lambda p: p.needs_z_home_for_m660):
             self.report(
                 line,
                 f"M660 on an {self.ctx.profile.name.upper()} needs a G28 Z0 before it "

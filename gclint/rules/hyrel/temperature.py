@@ -12,7 +12,7 @@ from gclint.dialects.base import Param
 from gclint.rules.base import ANY_T, Rule, Severity, register
 from gclint.rules.dialect import ParamTableRule
 from gclint.rules.hyrel.addressing import reported_as_v4
-from gclint.syntax.nodes import Command, Line
+from gclint.syntax.nodes import Command, Line, to_number
 
 _WAITS = ("M109", "M190", "M191")
 _GROUPS = (("H", "C"), ("L", "U"), ("R",))
@@ -209,10 +209,13 @@ class WaitRIsATolerance(Rule):
                 node=cmd.param("R"),
             )
             return
-        if _device(self, cmd) not in self.state.targets:
+        device = _device(self, cmd)
+        if device not in self.state.targets:
+            what = _WAITED[str(cmd.code)]
+            named = f"{what} T{device}" if device >= 0 else f"the focused {what}"
             self.report(
                 line,
-                f"{cmd.code} has no S and no {_WAITED[str(cmd.code)]} temperature was set earlier in the job: "
+                f"{cmd.code} has no S and no temperature was set earlier in the job for {named}: "
                 "it waits for whatever target the machine holds",
                 node=cmd,
                 severity=Severity.WARNING,
@@ -338,6 +341,10 @@ class WaitTargetKind(Rule):
 # -- HY051 ---------------------------------------------------------------------------------------------
 
 
+ABSOLUTE_ZERO = -273.15
+_BED_CODES = ("M140", "M141", "M190", "M191")
+
+
 @register
 class NegativeTemperature(ParamTableRule):
     code = "HY051"
@@ -351,7 +358,8 @@ class NegativeTemperature(ParamTableRule):
         another unit) for a heated one, and a G-code file does not say which head is which.  gclint
         mentions it (info) so that a heated head set to `S-20` instead of `S20` is noticed; beds and
         chambers ("heated and chilled (sub-ambient) beds", "chambers") are not reported.  The ranges
-        are data in gclint/dialects/hyrel.py (`rule="HY051"`).
+        are data in gclint/dialects/hyrel.py (`rule="HY051"`).  A set point below absolute zero
+        (-273.15 °C), for a head, a bed or a chamber, is an error: no device reaches it.
     """
     example_bad = "M104 T0 S-20"
     example_good = "M104 T0 S20"
@@ -360,6 +368,26 @@ class NegativeTemperature(ParamTableRule):
         "heads') (catalogue H61)"
     )
     families = ("hyrel",)
+
+    def __init__(self, ctx) -> None:
+        super().__init__(ctx)
+        # below absolute zero no head, bed or chamber can go (physics, not a limit of the pages): an error
+        self.codes = tuple(dict.fromkeys((*self.codes, *(c for c in _BED_CODES if c in ctx.dialect.codes))))  # type: ignore[misc]
+
+    def trigger_letters(self, code: str) -> frozenset[str] | None:
+        return frozenset("S")
+
+    def check(self, line: Line, cmd: Command) -> None:
+        value = to_number(cmd.params.get("S") or "")
+        if value is not None and value < ABSOLUTE_ZERO:
+            self.report(
+                line,
+                f"{cmd.code} S{cmd.params['S']} is below absolute zero ({ABSOLUTE_ZERO} °C): no device can reach it",
+                node=cmd.param("S") or cmd,
+                severity=Severity.ERROR,
+            )
+        elif cmd.code in self.table:
+            super().check(line, cmd)
 
     def range_message(self, cmd: Command, p: Param, problem: str) -> str:
         return (
