@@ -118,7 +118,11 @@ def main() -> None:
     "--dialect", "-d", metavar="D", help="hyrel, hyrel-v4, marlin, reprap, machinekit, carvera or auto (default)."
 )
 @click.option("--printer", "-p", metavar="MODEL", help=f"Hyrel model: {', '.join(PROFILES)} (default 30m).")
-@click.option("--loaded", metavar="T0,T2", help="Head positions loaded on the yoke (else from the job header).")
+@click.option(
+    "--loaded",
+    metavar="T0,T2",
+    help="Head positions loaded on the yoke, in v5 numbering T0-T19 (else from the job header).",
+)
 @click.option("--select", multiple=True, metavar="CODES", help="Only these rule codes or prefixes (comma separated).")
 @click.option("--ignore", multiple=True, metavar="CODES", help="Skip these rule codes or prefixes.")
 @click.option("--extend-select", multiple=True, metavar="CODES", help="Add these to the selected rules.")
