@@ -67,7 +67,7 @@ def _fail(message: str) -> None:
 def _split(values: tuple[str, ...]) -> list[str]:
     out: list[str] = []
     for v in values:
-        out.extend(x.strip().upper() for x in v.split(",") if x.strip())
+        out.extend(x.strip() for x in v.split(",") if x.strip())
     return out
 
 
@@ -226,12 +226,17 @@ def check(
             overrides["loaded"] = parse_heads(loaded)
     except ConfigError as exc:
         _fail(str(exc))
-    if select:
-        overrides["select"] = _split(select)
-    if ignore:
-        overrides["ignore"] = _split(ignore)
-    if extend_select:
-        overrides["extend_select"] = _split(extend_select)
+    from gclint.rules.base import UnknownSelector, resolve_selectors
+
+    try:
+        if select:
+            overrides["select"] = resolve_selectors(_split(select), "--select: ")
+        if ignore:
+            overrides["ignore"] = resolve_selectors(_split(ignore), "--ignore: ")
+        if extend_select:
+            overrides["extend_select"] = resolve_selectors(_split(extend_select), "--extend-select: ")
+    except (UnknownSelector, RuleError) as exc:
+        _fail(str(exc))
     if config_file is not None and not os.path.isfile(config_file):
         _fail(f"{config_file}: configuration file not found")
 

@@ -75,6 +75,16 @@ def parse_tool_map(value: object, where: str = "--tool-map") -> dict[int, int]:
     return out
 
 
+def _codes(value: object, key: str, path: Path) -> list[str]:
+    """A list of rule codes, prefixes or names, checked (an unknown one is an error, with a hint)."""
+    from gclint.rules.base import UnknownSelector, resolve_selectors
+
+    try:
+        return resolve_selectors(_str_list(value, key, path), f"{path}: '{key}': ")
+    except UnknownSelector as exc:
+        raise ConfigError(str(exc)) from None
+
+
 def _str_list(value: object, key: str, path: Path) -> list[str]:
     if isinstance(value, str):
         return [v for v in re.split(r"[,\s]+", value) if v]
@@ -167,16 +177,16 @@ def apply(options: Options, table: dict, path: Path) -> Options:
     if "loaded" in table:
         changes["loaded"] = parse_heads(table["loaded"], f"{path}: 'loaded'")
     if "select" in table:
-        changes["select"] = _str_list(table["select"], "select", path)
+        changes["select"] = _codes(table["select"], "select", path)
     if "ignore" in table:
-        changes["ignore"] = _str_list(table["ignore"], "ignore", path)
+        changes["ignore"] = _codes(table["ignore"], "ignore", path)
     if "extend-select" in table:
-        changes["extend_select"] = _str_list(table["extend-select"], "extend-select", path)
+        changes["extend_select"] = _codes(table["extend-select"], "extend-select", path)
     if "per-file-ignores" in table:
         pfi = table["per-file-ignores"]
         if not isinstance(pfi, dict):
             raise ConfigError(f"{path}: 'per-file-ignores' must be a table of pattern = [codes]")
-        changes["per_file_ignores"] = {str(k): _str_list(v, f"per-file-ignores.{k}", path) for k, v in pfi.items()}
+        changes["per_file_ignores"] = {str(k): _codes(v, f"per-file-ignores.{k}", path) for k, v in pfi.items()}
     if "tool-map" in table:
         changes["tool_map"] = parse_tool_map(table["tool-map"], f"{path}: 'tool-map'")
     if "severity" in table:
@@ -264,6 +274,7 @@ def parse_severities(table: object, path: Path) -> dict[str, str]:
         raise ConfigError(f"{path}: 'severity' must be a table such as {{ HY029 = \"info\" }}")
     out: dict[str, str] = {}
     for code, level in table.items():
+        _codes([str(code)], f"severity.{code}", path)
         if not isinstance(level, str):
             raise ConfigError(f"{path}: 'severity.{code}' must be error, warning or info")
         try:

@@ -7,13 +7,12 @@ a ``G1`` line only touches the rules that listen to ``G1``.
 
 from __future__ import annotations
 
-import fnmatch
 import os
 import re
 from collections.abc import Callable, Iterable
 from dataclasses import dataclass, field
 
-from gclint import dialects
+from gclint import dialects, globs
 from gclint.context import Context, infer_source
 from gclint.dialects.base import Dialect
 from gclint.machine.interpreter import Interpreter
@@ -292,15 +291,15 @@ class Linter:
         return FileContext(source.display, dialect, profile, self.options, context), result
 
     def per_file_ignores(self, path: str) -> tuple[str, ...]:
-        """The codes ``per-file-ignores`` switches off for ``path``."""
+        """The codes ``per-file-ignores`` switches off for ``path``: patterns (ruff's globs, gclint.globs)
+        are read relative to the folder of the configuration file that names them."""
+        if not self.options.per_file_ignores:
+            return ()
+        config = self.options.config_path
+        rel = globs.relative(path, os.path.dirname(os.path.abspath(config)) if config else os.getcwd())
         out: list[str] = []
-        norm = path.replace(os.sep, "/")
         for pattern, codes in self.options.per_file_ignores.items():
-            if (
-                fnmatch.fnmatch(norm, pattern)
-                or fnmatch.fnmatch(os.path.basename(norm), pattern)
-                or fnmatch.fnmatch(norm, "*/" + pattern)
-            ):
+            if globs.matches(pattern, rel):
                 out.extend(c.upper() for c in codes)
         return tuple(out)
 

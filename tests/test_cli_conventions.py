@@ -97,3 +97,31 @@ def test_fail_on_and_per_rule_severity(tmp_path: Path) -> None:
     (tmp_path / "gclint.toml").write_text('severity = { DL001 = "fatal" }\n')
     proc = run_cli("check", str(job))
     assert proc.returncode == 2 and b"unknown severity 'fatal'" in proc.stderr
+
+
+def test_unknown_rule_selectors_are_errors_with_a_hint(tmp_path: Path) -> None:
+    job = tmp_path / "a.gcode"
+    job.write_text(MARLIN)
+    proc = run_cli("check", "--select", "HY999", str(job))
+    assert proc.returncode == 2 and b"unknown rule code, prefix or name 'HY999' (did you mean" in proc.stderr
+    proc = run_cli("check", "--ignore", "duplicate-wrod", str(job))
+    assert proc.returncode == 2 and b"did you mean duplicate-word?" in proc.stderr
+    # a rule's name works as its code
+    assert run_cli("check", "--select", "duplicate-word", "--exit-zero", str(job)).returncode == 0
+    (tmp_path / "gclint.toml").write_text('select = ["NOPE"]\n')
+    proc = run_cli("check", str(job))
+    assert proc.returncode == 2 and b"gclint.toml: 'select': unknown rule code, prefix or name 'NOPE'" in proc.stderr
+
+
+def test_per_file_ignores_are_relative_to_the_configuration_and_globs_are_rufs(tmp_path: Path) -> None:
+    (tmp_path / "calibration" / "deep").mkdir(parents=True)
+    for name in ("calibration/a.gcode", "calibration/deep/b.gcode"):
+        (tmp_path / name).write_text(MARLIN)
+    (tmp_path / "gclint.toml").write_text('per-file-ignores = { "calibration/*.gcode" = ["SX002", "DL001"] }\n')
+    elsewhere = tmp_path / "calibration" / "deep"  # run from another folder: patterns stay the config's
+    out = json.loads(run_cli("check", "-f", "json", str(tmp_path / "calibration"), cwd=elsewhere).stdout)
+    by_file = {Path(f["path"]).name for f in out}
+    assert by_file == {"b.gcode"}  # "*" does not cross "/": deep/b.gcode keeps its findings
+    (tmp_path / "gclint.toml").write_text('per-file-ignores = { "calibration/**/*.gcode" = ["SX002", "DL001"] }\n')
+    out = json.loads(run_cli("check", "-f", "json", str(tmp_path / "calibration"), cwd=elsewhere).stdout)
+    assert out == []

@@ -314,6 +314,37 @@ def _load_plugins() -> None:
                 raise RuleError(f"{plugin}: {exc}") from None
 
 
+class UnknownSelector(ValueError):
+    """A rule code, prefix or name that matches no rule; the message says what was meant, if it can."""
+
+
+def resolve_selectors(values: Iterable[str], where: str = "") -> list[str]:
+    """Upper-case rule selectors, checked: ``ALL``, a code, a prefix of some code (``HY``, ``HY0``) or a
+    rule's name (``wait-on-group-address``, read as its code).  Anything else is an error with the
+    nearest codes and names, as ruff does (a silently ignored ``--select HY999`` is a green build that
+    checked nothing)."""
+    registry = all_rules()
+    names = {rule.name: code for code, rule in registry.items() if rule.name}
+    out: list[str] = []
+    for value in values:
+        text = value.strip()
+        if not text:
+            continue
+        upper = text.upper()
+        if upper == "ALL" or any(code.startswith(upper) for code in registry):
+            out.append(upper)
+        elif text.lower() in names:
+            out.append(names[text.lower()])
+        else:
+            import difflib
+
+            near = difflib.get_close_matches(upper, list(registry), n=3, cutoff=0.6)
+            near += difflib.get_close_matches(text.lower(), list(names), n=2, cutoff=0.6)
+            hint = f" (did you mean {', '.join(near)}?)" if near else " (see 'gclint rules')"
+            raise UnknownSelector(f"{where}unknown rule code, prefix or name {text!r}{hint}")
+    return out
+
+
 def select_rules(rules: Iterable[type[Rule]], select: Iterable[str] | None, ignore: Iterable[str]) -> list[type[Rule]]:
     """Rules whose code matches ``select`` (default: all rules enabled by default) and not ``ignore``.
 
