@@ -12,7 +12,7 @@ import sys
 import click
 
 from gclint import __version__, dialects
-from gclint.config import ConfigError, parse_heads, parse_tool_map
+from gclint.config import ConfigError, parse_heads, parse_known_codes, parse_tool_map
 from gclint.engine import FileResult, Options
 from gclint.machine.profiles import PROFILES, UnknownPrinter, get_profile
 from gclint.rules.base import RuleError, Severity
@@ -120,6 +120,12 @@ def main() -> None:
 @click.option("--ignore", multiple=True, metavar="CODES", help="Skip these rule codes or prefixes.")
 @click.option("--extend-select", multiple=True, metavar="CODES", help="Add these to the selected rules.")
 @click.option(
+    "--extend-known-codes",
+    multiple=True,
+    metavar="CODES",
+    help="Codes and command names the machine has besides its firmware's (site macros, REMAPs): never DL001.",
+)
+@click.option(
     "--format",
     "-f",
     "fmt",
@@ -170,6 +176,7 @@ def check(
     select: tuple[str, ...],
     ignore: tuple[str, ...],
     extend_select: tuple[str, ...],
+    extend_known_codes: tuple[str, ...],
     fmt: str,
     output: str | None,
     exit_zero: bool,
@@ -203,6 +210,8 @@ def check(
     try:
         if loaded is not None:
             overrides["loaded"] = parse_heads(loaded)
+        if extend_known_codes:
+            overrides["extend_known_codes"] = parse_known_codes(",".join(extend_known_codes))
     except ConfigError as exc:
         _fail(str(exc))
     if select:

@@ -13,13 +13,20 @@ The order of strength (DESIGN.md, "Dialect names"):
 Hyrel v4 or v5 comes from the addresses the file uses (a number that fits a command in one numbering
 and not in the other), ``M116`` and ``W0`` (v5 only).  The model comes from what the job says about the
 machine: declared heads (``M6 T# O#``), a second yoke, A/B axes, the lathe, model-specific aux ports.
+
+The flavour of a Marlin-flavour file (the firmware it was written for: Prusa Buddy, Prusa MK3, Bambu,
+Klipper; gclint.firmware) comes from the slicer's settings, in the head or at the end of the file
+(``; printer_model = MK4S``, ``M862.3 P "MK4S"``, ``; gcode_flavor = klipper``), and from commands only that
+firmware has (Klipper's ``NAME KEY=VALUE``).
 """
 
 from __future__ import annotations
 
 import re
+from collections.abc import Callable
+from functools import cache
 
-from gclint import dialects
+from gclint import dialects, firmware
 from gclint.context.content import ContentReading, Seen, candidates, read_content
 from gclint.context.model import (
     CONFIGURATION,
@@ -78,8 +85,10 @@ def infer(
     printer_origin: str = OPTION,
     env_flavor: str | None = None,
     complete: bool = True,
+    tail: str = "",
 ) -> Context:
-    """The context of the file whose beginning is ``head`` (``complete``: the whole file).
+    """The context of the file whose beginning is ``head`` (``complete``: the whole file) and whose end
+    is ``tail`` (when it is not in the head; only the flavour reads it).
 
     ``dialect`` is a dialect name or ``auto``; ``printer`` a model name or None (infer it).  The
     ``*_origin`` arguments say where an explicit value came from (``option`` or ``configuration``).
@@ -101,7 +110,8 @@ def infer(
     else:
         name, origin, reasons, strength, conflict = _weigh(scan, content(), path, env_flavor)
     if dialects.get(name).family != "hyrel":
-        return Context(name, origin, strength, reasons, conflict)
+        flavor, flavor_reasons = _flavor(scan, HeadScan(tail) if tail else None, content, name)
+        return Context(name, origin, strength, reasons, conflict, flavor=flavor, flavor_reasons=flavor_reasons)
 
     firmware, firmware_origin, firmware_reasons, evidence = _version(content(), name, origin)
     name = "hyrel-v4" if firmware == 4 else "hyrel"
@@ -161,7 +171,7 @@ class _Points:
             for clue, seen in found.items():
                 text = f"{seen}: {clue.says}"
                 if clue.against:  # a mark for every other dialect that has the code
-                    gainers = {self.group_of[m] for m in self.names if m != name and clue.code in table[m].codes}
+                    gainers = {self.group_of[m] for m in self.names if m != name and _has(table[m], clue.code)}
                 else:
                     gainers = {self.group_of[name]}
                     self.member[name].append((clue.weight, seen.line, text))
@@ -176,7 +186,7 @@ class _Points:
                 (2, reading.e_amounts.line, f"{reading.e_amounts}: E amounts with no M229 E1 (Hyrel ignores them)")
             )
         for code, seen in reading.codes.items():
-            knowers = [m for m in self.names if code in table[m].codes]
+            knowers = [m for m in self.names if _has(table[m], code)]
             groups = list(dict.fromkeys(self.group_of[m] for m in knowers))
             if groups and len(groups) < len(self.groups):  # a code some groups have and others do not
                 weight = 2 if len(groups) == 1 else 1
@@ -191,6 +201,17 @@ class _Points:
 
     def score(self, evidence: Evidence) -> int:
         return sum(weight for weight, _, _ in evidence)
+
+
+def _has(dialect: dialects.Dialect, code: str | None) -> bool:
+    """Whether ``dialect`` has ``code``: in its table, or in the inventory of a firmware whose files it
+    reads (Bambu's M620 is a Marlin-flavour code, not only Hyrel's)."""
+    return code in dialect.codes or code in _flavor_codes(dialect.name)
+
+
+@cache
+def _flavor_codes(name: str) -> frozenset[str]:
+    return frozenset().union(*(f.codes for f in firmware.flavors_of(name)))
 
 
 def _who_has(code: str, having: list[str], groups: list[str]) -> str:
@@ -333,6 +354,40 @@ def _extension(path: str) -> str:
 def slicer_flavor(name: str) -> str | None:
     """The dialect name for a slicer's gcode_flavor value, or None."""
     return SLICER_FLAVORS.get(name.strip().lower())
+
+
+# -- the flavour -------------------------------------------------------------------------------------------
+
+_FLAVOR_DECIDES = 4  # one printer_model line (8) decides; BambuStudio's name alone (2) does not
+_AT_END = " (in the settings at the end of the file)"
+
+
+def _flavor(
+    scan: HeadScan, tail: HeadScan | None, content: Callable[[], ContentReading], dialect: str
+) -> tuple[str | None, tuple[str, ...]]:
+    """The firmware the file was written for, among the flavours of ``dialect``, and why: the one whose
+    marks weigh most (a tie decides nothing)."""
+    flavors = firmware.flavors_of(dialect)
+    if not flavors:
+        return None, ()
+    scored: list[tuple[int, str, Evidence]] = []
+    for fw in flavors:
+        evidence: Evidence = []
+        for pattern, weight in fw.detection.patterns:
+            text = scan.found(pattern)
+            if text is None and tail is not None and (text := tail.found(pattern)) is not None:
+                text += _AT_END
+            if text is not None:
+                evidence.append((weight, 0, text))
+        for clue, seen in content().flavor_clues.get(fw.name, {}).items():
+            evidence.append((clue.weight, seen.line, f"{seen}: {clue.says}"))
+        score = sum(weight for weight, _, _ in evidence)
+        if score:
+            scored.append((score, fw.name, evidence))
+    scored.sort(key=lambda s: -s[0])
+    if not scored or scored[0][0] < _FLAVOR_DECIDES or (len(scored) > 1 and scored[1][0] == scored[0][0]):
+        return None, ()
+    return scored[0][1], _top_reasons(scored[0][2], 2)
 
 
 # -- Hyrel v4 or v5 --------------------------------------------------------------------------------------

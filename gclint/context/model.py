@@ -43,6 +43,8 @@ class Context:
     printer: str | None = None  # Hyrel model (gclint.machine.profiles), None for other dialects
     printer_origin: str = DEFAULT
     printer_reasons: tuple[str, ...] = ()
+    flavor: str | None = None  # the firmware a Marlin-flavour file was written for (gclint.firmware)
+    flavor_reasons: tuple[str, ...] = ()
 
     @property
     def printer_assumed(self) -> bool:
@@ -55,8 +57,10 @@ class Context:
         return self.strength in (WEAK, NONE) or bool(self.conflict)
 
     def label(self) -> str:
-        """``hyrel v5, printer 30m (assumed)`` / ``marlin``."""
+        """``hyrel v5, printer 30m (assumed)`` / ``marlin`` / ``marlin (prusa-buddy)``."""
         text = self.dialect
+        if self.flavor is not None:
+            text += f" ({self.flavor})"
         if self.firmware is not None:
             text = f"hyrel v{self.firmware}"
         if self.printer is not None:
@@ -86,6 +90,8 @@ class Context:
             parts.append(self.conflict)
         if self.firmware is not None and self.firmware_origin not in EXPLICIT_ORIGINS and self.firmware_reasons:
             parts.append(f"v{self.firmware}: " + "; ".join(self.firmware_reasons[:3]))
+        if self.flavor is not None and self.flavor_reasons:
+            parts.append(f"{self.flavor}: " + "; ".join(self.flavor_reasons[:2]))
         if self.printer is not None and self.printer_reasons and self.printer_origin not in (OPTION, CONFIGURATION):
             parts.append(f"printer {self.printer}: " + "; ".join(self.printer_reasons[:2]))
         return "; ".join(parts)

@@ -106,6 +106,27 @@ class Source:
             return data.decode("utf-8", "surrogateescape")
         return data[: len(data) // 2 * 2].decode(self.encoding, "replace")
 
+    def tail_text(self, limit: int = HEAD) -> str:
+        """The end of the file as text, from its first whole line: where slicers write their settings
+        (PrusaSlicer's ``; printer_model = MK4S``).  Empty when the head is the whole file (read that),
+        when the stream cannot seek (a pipe) or is not UTF-8.  Does not consume the stream."""
+        if self._head_eof or self._consumed or self.encoding != "utf-8":
+            return ""
+        stream = self._stream
+        try:
+            if not stream.seekable():
+                return ""
+            here = stream.tell()
+            end = stream.seek(0, io.SEEK_END)
+            start = max(here, end - limit)
+            stream.seek(start)
+            data = stream.read(end - start)
+            stream.seek(here)
+        except (OSError, ValueError):
+            return ""
+        newline = data.find(b"\n")
+        return data[newline + 1 :].decode("utf-8", "surrogateescape") if newline >= 0 else ""
+
     @property
     def digest(self) -> str | None:
         """A hash of every byte of the file, once it has been read to the end (else None): what was
