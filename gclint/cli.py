@@ -139,6 +139,11 @@ def main() -> None:
 )
 @click.option("--exit-zero", is_flag=True, help="Exit 0 even when findings exist.")
 @click.option("--statistics", is_flag=True, help="Show the number of findings per code.")
+@click.option(
+    "--no-group",
+    is_flag=True,
+    help="Text formats: show every finding (by default a code's findings in a file after the first 3 are one line).",
+)
 @click.option("--jobs", "-j", type=click.IntRange(min=1), default=None, help="Parallel processes (default: CPU count).")
 @click.option(
     "--config", "config_file", type=click.Path(dir_okay=False), help="Configuration file (else found upward)."
@@ -181,6 +186,7 @@ def check(
     output: str | None,
     exit_zero: bool,
     statistics: bool,
+    no_group: bool,
     jobs: int | None,
     config_file: str | None,
     fix: bool,
@@ -268,7 +274,7 @@ def check(
     for r in results:
         if r.error:
             click.echo(f"gclint: {r.error}", err=True)
-    ctx = ReportContext(tool_version=__version__, statistics=statistics, fixed=fixed)
+    ctx = ReportContext(tool_version=__version__, statistics=statistics, fixed=fixed, group=not no_group)
     _write_report(writers[fmt], results, ctx, output)
     if verbose or fmt not in MACHINE_FORMATS:  # after the report: a report that cannot be written is one line
         from gclint.reports.common import printable

@@ -12,6 +12,8 @@ Adding a firmware is adding one module that builds a ``Firmware`` and listing it
 
 from __future__ import annotations
 
+from collections.abc import Iterable
+
 from gclint.firmware.bambu import BAMBU
 from gclint.firmware.base import Firmware, code_set, normal_code
 from gclint.firmware.klipper import KLIPPER
@@ -37,10 +39,11 @@ def get(name: str) -> Firmware:
 
 
 def flavors_of(dialect: str) -> tuple[Firmware, ...]:
-    """The firmware whose files are read in ``dialect`` and that a file's marks can select."""
-    return tuple(f for f in _ALL if f.dialect == dialect)
+    """The flavours of ``dialect``: firmware whose files it reads and that a file's marks can select."""
+    return tuple(f for f in _ALL if f.flavor and f.dialect == dialect)
 
 
-def documenting(code: str) -> tuple[Firmware, ...]:
-    """Every firmware whose inventory has ``code`` (for messages: "M74 is a Prusa Buddy firmware code")."""
-    return tuple(f for f in _ALL if f.knows(code))
+def documenting(code: str, dialects: Iterable[str] | None = None) -> tuple[Firmware, ...]:
+    """Every firmware whose inventory has ``code`` (read in one of ``dialects``, when given)."""
+    wanted = None if dialects is None else set(dialects)
+    return tuple(f for f in _ALL if (wanted is None or f.dialect in wanted) and f.knows(code))

@@ -32,10 +32,11 @@ _WORDS = frozenset({"SYNC"})
 
 BAMBU = Firmware(
     name="bambu",
-    title="Bambu Lab firmware (as its profiles use it)",
+    title="Bambu Lab firmware",
     codes=code_set(_G, _M),
     words=_WORDS,
     dialect="marlin",
+    flavor=True,
     detection=Detection(
         patterns=(
             # BambuStudio's settings block (in the head): the printer, not the slicer, decides (BambuStudio

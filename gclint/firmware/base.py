@@ -20,18 +20,19 @@ from gclint.syntax.nodes import normalize_code
 class Firmware:
     """One firmware's inventory.
 
-    ``dialect`` is the dialect whose files can be written for this firmware (a "flavour" of it: Prusa,
-    Bambu and Klipper read Marlin-flavour files), or None for an inventory a dialect's table is built
-    from (RepRapFirmware, LinuxCNC, Smoothieware).  ``detection`` holds the marks gclint.context weighs
-    to decide the flavour: slicer settings in the head or at the end of the file (``patterns``) and
-    commands in the content (``clues``).
+    ``dialect`` is the dialect gclint reads the firmware's files in.  A ``flavor`` is a firmware whose
+    files are that dialect's with codes of its own (Prusa, Bambu and Klipper read Marlin-flavour files):
+    ``detection`` holds the marks gclint.context weighs to decide it, slicer settings in the head or at
+    the end of the file (``patterns``) and commands in the content (``clues``).  The other inventories
+    (RepRapFirmware, LinuxCNC, Smoothieware) are what their dialect's table is built from.
     """
 
     name: str
     title: str
     codes: frozenset[str]
+    dialect: str
     words: frozenset[str] = frozenset()  # command words that are not G/M codes, upper case
-    dialect: str | None = None
+    flavor: bool = False
     detection: Detection = Detection()
     source: str = ""
 

@@ -25,5 +25,6 @@ LINUXCNC = Firmware(
     name="linuxcnc",
     title="LinuxCNC",
     codes=code_set(G_CODES, M_CODES),
+    dialect="machinekit",
     source="research/firmware_codes.md section 7 (LinuxCNC @ 5c41560e)",
 )

@@ -34,9 +34,10 @@ MODELS = r"(?:MK4|MK3\.5|MK3\.9|MINI|XL|CORE ?ONE|IX)"
 
 PRUSA_BUDDY = Firmware(
     name="prusa-buddy",
-    title="Prusa Buddy firmware (MK4, MK3.5/3.9, MINI, XL, CORE One)",
+    title="Prusa Buddy firmware",
     codes=code_set(_G, _M, _OTHER),
     dialect="marlin",
+    flavor=True,
     detection=Detection(
         patterns=(
             # PrusaSlicer's settings (the top block from 2.8, the end of every file) and the start G-code's

@@ -33,10 +33,11 @@ MODELS = r"(?:MK3(?![.\d])|MK2\.5)"
 
 PRUSA_MK3 = Firmware(
     name="prusa-mk3",
-    title="Prusa MK3/MK3S/MK2.5 firmware",
+    title="Prusa MK3 firmware",
     codes=code_set(_G, _M, _D),
     words=_WORDS,
     dialect="marlin",
+    flavor=True,
     detection=Detection(
         patterns=(
             (rf"(?i)^;\s*printer_model\s*=\s*{MODELS}[\w.]*\s*$", 8),

@@ -36,6 +36,7 @@ REPRAPFIRMWARE = Firmware(
     name="reprapfirmware",
     title="RepRapFirmware 3.5",
     codes=code_set(_G, _M),
+    dialect="reprap",
     words=frozenset(w.upper() for w in META_COMMANDS),
     source="research/firmware_codes.md section 6 (RepRapFirmware @ fc1cd16c)",
 )

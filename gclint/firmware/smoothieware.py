@@ -35,6 +35,7 @@ SMOOTHIEWARE = Firmware(
     name="smoothieware",
     title="Smoothieware",
     codes=code_set(_G, _M),
+    dialect="carvera",
     words=frozenset(w.upper() for w in CONSOLE_COMMANDS),
     source="research/firmware_codes.md section 8 (Smoothieware @ bb41e992)",
 )

@@ -7,7 +7,7 @@ in the Hyrel table subclass it, so the range lives once, as data.
 
 from __future__ import annotations
 
-from gclint import firmware
+from gclint import dialects, firmware
 from gclint.dialects.base import Param
 from gclint.rules.base import Rule, Severity, register
 from gclint.syntax.nodes import EXTENDED, GCODE, IMPLICIT, META, OWORD, TEXT, WORD_LETTERS, Command, Line, to_number
@@ -57,7 +57,7 @@ class UnknownCode(Rule):
         severity = Severity.parse(dialect.unknown_severity)
         kind = cmd.kind
         if kind in (GCODE, TEXT):
-            message = f"{code} is not a {self._checked_against()} code{_documented_by(code)}"
+            message = f"{code} is not a {self._checked_against()} code{self._documented_elsewhere(code)}"
         elif kind == EXTENDED:
             message = f"{code}: {dialect.title} has no Klipper-style extended commands"
         elif kind == META:
@@ -77,13 +77,15 @@ class UnknownCode(Rule):
         title = self.ctx.dialect.title
         return title if self.flavor is None else f"{title.split(' (')[0]} or {self.flavor.title}"
 
-
-def _documented_by(code: str) -> str:
-    """" (a Prusa Buddy firmware code)" when another firmware's inventory has the code: what to declare."""
-    others = [f.title for f in firmware.documenting(code) if f.dialect is not None]
-    if not others:
-        return ""
-    return f" (it is a {' and '.join(others)} code: is the file for that firmware?)"
+    def _documented_elsewhere(self, code: str) -> str:
+        """" (Prusa Buddy firmware has it)" when a firmware whose files are read like this file's has the
+        code: the file may be for that firmware (what its header would say, or extend-known-codes)."""
+        family = self.ctx.dialect.family
+        related = [d.name for d in dialects.all_dialects() if d.family == family]
+        others = [f.title for f in firmware.documenting(code, related) if f is not self.flavor]
+        if not others:
+            return ""
+        return f" ({' and '.join(others)} {'has' if len(others) == 1 else 'have'} it)"
 
 
 class ParamTableRule(Rule):
