@@ -127,7 +127,11 @@ CARVERA = Dialect(
     open_codes=_open,
     unknown_severity="warning",
     description="Carvera desktop CNC: milling with ATC, laser, 4th axis.",
-    sources=("seeds/carvera-mcodes.md", "research/dialects.md section 1.8 [CV]", "research/firmware_codes.md section 8"),
+    sources=(
+        "seeds/carvera-mcodes.md",
+        "research/dialects.md section 1.8 [CV]",
+        "research/firmware_codes.md section 8",
+    ),
     extras={"max_rpm": 15000},
 )
 

@@ -66,4 +66,3 @@ def code_set(*groups: str | Iterable[str]) -> frozenset[str]:
         for token in group.split() if isinstance(group, str) else group:
             out.add(normalize_code(token[0], token[1:]))
     return frozenset(out)
-

@@ -40,4 +40,3 @@ REPRAPFIRMWARE = Firmware(
     words=frozenset(w.upper() for w in META_COMMANDS),
     source="research/firmware_codes.md section 6 (RepRapFirmware @ fc1cd16c)",
 )
-

@@ -23,13 +23,12 @@ _M = (
     " M601 M665 M666 M670 M906 M907 M909 M909.1 M911 M911.1 M911.2 M911.3 M957 M958 M999 M1000"
 )
 # Console commands (SimpleShell.cpp's command table and modules): a lower-case first word.
-CONSOLE_COMMANDS = frozenset(
-    """
+_CONSOLE = """
     ls cd pwd cat echo rm mv mkdir upload reset dfu break help version mem get set_temp switch net load save
     remount calc_thermistor thermistors md5sum test config-get config-set config-load play progress abort
     suspend resume fire
-    """.split()
-)
+"""
+CONSOLE_COMMANDS = frozenset(_CONSOLE.split())
 
 SMOOTHIEWARE = Firmware(
     name="smoothieware",

@@ -78,8 +78,8 @@ class UnknownCode(Rule):
         return title if self.flavor is None else f"{title.split(' (')[0]} or {self.flavor.title}"
 
     def _documented_elsewhere(self, code: str) -> str:
-        """" (Prusa Buddy firmware has it)" when a firmware whose files are read like this file's has the
-        code: the file may be for that firmware (what its header would say, or extend-known-codes)."""
+        """Names the firmware that has ``code`` (" (Prusa Buddy firmware has it)") when its files are read
+        like this one's: the file may be for it (what its header would say, or extend-known-codes)."""
         family = self.ctx.dialect.family
         related = [d.name for d in dialects.all_dialects() if d.family == family]
         others = [f.title for f in firmware.documenting(code, related) if f is not self.flavor]
