@@ -33,7 +33,10 @@ class _Main(click.Group):
             return super().invoke(ctx)
         except (click.exceptions.ClickException, click.exceptions.Abort, click.exceptions.Exit):
             raise
-        except OSError as exc:  # e.g. standard output on a full disk (> /dev/full) or a closed pipe
+        except BrokenPipeError:  # the reader of standard output has gone ("| head"): nothing to say
+            _abandon_stdout()
+            raise click.exceptions.Exit(0) from None
+        except OSError as exc:  # e.g. standard output on a full disk (> /dev/full)
             _abandon_stdout()
             where = exc.filename if exc.filename is not None else "standard output"
             raise UsageFailure(f"{where}: cannot write: {exc.strerror or exc}") from None
@@ -138,7 +141,18 @@ def main() -> None:
     "--output", "-o", type=click.Path(dir_okay=False, writable=True, allow_dash=True), help="Write the report here."
 )
 @click.option("--exit-zero", is_flag=True, help="Exit 0 even when findings exist.")
-@click.option("--statistics", is_flag=True, help="Show the number of findings per code.")
+@click.option(
+    "--fail-on",
+    type=click.Choice(["error", "warning", "info"]),
+    default="warning",
+    show_default=True,
+    help="Exit 1 when a finding reaches this level.",
+)
+@click.option(
+    "--statistics",
+    is_flag=True,
+    help="Show the number of findings per code instead of the findings (JSON with -f json).",
+)
 @click.option(
     "--no-group",
     is_flag=True,
@@ -151,6 +165,7 @@ def main() -> None:
 @click.option("--fix", is_flag=True, help="Apply the safe fixes in place.")
 @click.option("--unsafe-fixes", is_flag=True, help="With --fix or --diff, apply unsafe fixes too.")
 @click.option("--diff", "show_diff", is_flag=True, help="Print the fixes as a unified diff; write nothing.")
+@click.option("--show-fixes", is_flag=True, help="With --fix: list the fixes applied, per file and code.")
 @click.option("--stdin-filename", metavar="NAME", help="Name to use for the file read from '-'.")
 @click.option("--no-cache", is_flag=True, help="Do not read or write the result cache.")
 @click.option(
@@ -185,6 +200,7 @@ def check(
     fmt: str,
     output: str | None,
     exit_zero: bool,
+    fail_on: str,
     statistics: bool,
     no_group: bool,
     jobs: int | None,
@@ -198,6 +214,7 @@ def check(
     verbose: bool = False,
     show_settings: bool = False,
     show_diff: bool = False,
+    show_fixes: bool = False,
 ) -> None:
     """Check G-code files and folders (- for standard input)."""
     from gclint import runner
@@ -237,8 +254,10 @@ def check(
             click.echo(f"gclint: {r.error}", err=True)
         click.echo(show(files, overrides, config_file, stdin_filename or "-"), nl=False)
         sys.exit(2 if problems else 0)
+    if fix and files == ["-"]:  # "--fix -": the fixed text on stdout, the findings left on stderr
+        sys.exit(_fix_stdin(overrides, config_file, stdin_filename or "-", unsafe_fixes, exit_zero, fail_on))
     if (fix or show_diff) and "-" in files:
-        _fail("--fix and --diff need files, not standard input")
+        _fail("--fix and --diff need files; '--fix -' alone fixes standard input to standard output")
     from gclint import progress as progress_bar
     from gclint.cache import ResultCache
 
@@ -265,7 +284,9 @@ def check(
             bar.close()
     fixed = None
     if fix or show_diff:
-        results, fixed = _apply_fixes(results, overrides, config_file, unsafe=unsafe_fixes, write=not show_diff)
+        results, fixed = _apply_fixes(
+            results, overrides, config_file, unsafe=unsafe_fixes, write=not show_diff, show=show_fixes
+        )
         if show_diff:
             remaining = sum(len(r.findings) for r in results)
             click.echo(f"Would fix {fixed} finding{'s' if fixed != 1 else ''} ({remaining} remaining).", err=True)
@@ -274,8 +295,13 @@ def check(
     for r in results:
         if r.error:
             click.echo(f"gclint: {r.error}", err=True)
-    ctx = ReportContext(tool_version=__version__, statistics=statistics, fixed=fixed, group=not no_group)
-    _write_report(writers[fmt], results, ctx, output)
+    ctx = ReportContext(tool_version=__version__, fixed=fixed, group=not no_group)
+    writer = writers[fmt]
+    if statistics:  # the counts instead of the findings, as ruff does (JSON with --format json)
+        from gclint.reports import json_report, text
+
+        writer = json_report.write_statistics if fmt == "json" else text.write_statistics_report
+    _write_report(writer, results, ctx, output)
     if verbose or fmt not in MACHINE_FORMATS:  # after the report: a report that cannot be written is one line
         from gclint.reports.common import printable
         from gclint.reports.notes import context_notes
@@ -285,12 +311,18 @@ def check(
     if any(r.error for r in results):
         sys.exit(2)
     worst = max((f.severity for r in results for f in r.findings), default=None)
-    if not exit_zero and worst is not None and worst >= Severity.WARNING:
+    if not exit_zero and worst is not None and worst >= Severity.parse(fail_on):
         sys.exit(1)
 
 
 def _apply_fixes(
-    results: list[FileResult], overrides: dict, config_file: str | None, *, unsafe: bool, write: bool
+    results: list[FileResult],
+    overrides: dict,
+    config_file: str | None,
+    *,
+    unsafe: bool,
+    write: bool,
+    show: bool = False,
 ) -> tuple[list[FileResult], int]:
     """Fix each file (gclint.fixes); with ``write=False`` print the diffs instead.  Returns the results
     as the files are now and the number of findings fixed (or that would be)."""
@@ -310,6 +342,13 @@ def _apply_fixes(
                 click.echo(f"note: {printable(note)}", err=True)
             if outcome.diff:
                 click.echo(outcome.diff, nl=False)
+            if show and outcome.applied:
+                from collections import Counter
+
+                click.echo(f"Fixed in {printable(r.path)}:")
+                names = {f.code: f.name for f in outcome.applied}
+                for code, n in sorted(Counter(f.code for f in outcome.applied).items()):
+                    click.echo(f"  {n} x {code} ({names[code]})")
             r = outcome.result
             if outcome.error is not None:
                 r = FileResult(r.path, r.findings, r.dialect, r.dialect_reason, r.lines, outcome.error, r.context)
@@ -317,9 +356,53 @@ def _apply_fixes(
     return out, fixed
 
 
+def _fix_stdin(
+    overrides: dict, config_file: str | None, name: str, unsafe: bool, exit_zero: bool, fail_on: str = "warning"
+) -> int:
+    """``gclint check --fix -`` (what editors run): standard input, fixed, to standard output; the
+    findings that remain on standard error.  Returns the exit code."""
+    import shutil
+    import tempfile
+
+    from gclint import runner
+    from gclint.fixes import fix_stream
+    from gclint.reports.text import write as write_text
+    from gclint.syntax.source import Source, SourceError
+
+    options = runner.options_for(name, Options(), overrides, config_file)
+    linter = runner.linter_for(options)
+    with tempfile.SpooledTemporaryFile(max_size=16 << 20) as buffer:  # read twice: check, then fix
+        shutil.copyfileobj(sys.stdin.buffer, buffer)
+
+        def read() -> Source:
+            buffer.seek(0)
+            return Source(buffer, name)
+
+        try:
+            result = linter.check_source(read())
+        except SourceError as exc:
+            result = FileResult(name, error=str(exc))
+        if result.error is not None:
+            click.echo(f"gclint: {result.error}", err=True)
+            buffer.seek(0)
+            shutil.copyfileobj(buffer, sys.stdout.buffer)  # nothing lost: the text goes through unchanged
+            return 2
+        outcome = fix_stream(result, linter, read, sys.stdout.buffer, unsafe=unsafe)
+    sys.stdout.flush()
+    from gclint.reports import ReportContext
+
+    write_text([outcome.result], sys.stderr, ReportContext(fixed=outcome.fixed))
+    worst = max((f.severity for f in outcome.result.findings), default=None)
+    return 1 if not exit_zero and worst is not None and worst >= Severity.parse(fail_on) else 0
+
+
 def _write_report(writer, results: list[FileResult], ctx, output: str | None) -> None:
     if output in (None, "-"):
-        writer(results, sys.stdout, ctx)
+        try:
+            writer(results, sys.stdout, ctx)
+            sys.stdout.flush()
+        except BrokenPipeError:  # the reader has gone ("| head"): say nothing; the exit code still tells
+            _abandon_stdout()
         return
     try:
         with open(output, "w", encoding="utf-8", errors="backslashreplace", newline="\n") as fh:
@@ -458,8 +541,8 @@ def rules(code: str | None, fmt: str, show_all: bool) -> None:
     if show_all:
         click.echo("\n".join(r.render_doc() for r in registry.values()), nl=False)
         return
-    for c, r in registry.items():
-        click.echo(f"{c}  {r.name:<34} {r.severity.label:<8} {r.summary}")
+    for c, r in registry.items():  # "[*]": the rule has a fix (gclint check --fix)
+        click.echo(f"{c} {'[*]' if r.fixable else '   '} {r.name:<34} {r.severity.label:<8} {r.summary}")
 
 
 @main.command(name="dialects")

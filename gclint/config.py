@@ -104,6 +104,7 @@ def _str_list(value: object, key: str, path: Path) -> list[str]:
 
 
 _KEYS = {
+    "severity",
     "dialect",
     "printer",
     "loaded",
@@ -201,6 +202,8 @@ def apply(options: Options, table: dict, path: Path) -> Options:
         changes["extend_known_codes"] = parse_known_codes(table["extend-known-codes"], f"{path}: 'extend-known-codes'")
     if "tool-map" in table:
         changes["tool_map"] = parse_tool_map(table["tool-map"], f"{path}: 'tool-map'")
+    if "severity" in table:
+        changes["severity"] = parse_severities(table["severity"], path)
     if "spindle-max-rpm" in table:
         rpm = table["spindle-max-rpm"]
         if not isinstance(rpm, (int, float)) or rpm <= 0:
@@ -274,3 +277,20 @@ def config_for(path: str, explicit: str | None = None) -> tuple[Path | None, dic
     if found is None:
         return None, {}
     return found, load_file(found)
+
+
+def parse_severities(table: object, path: Path) -> dict[str, str]:
+    """``severity = { HY029 = "info", SX = "error" }``: a level for rule codes or prefixes."""
+    from gclint.rules.base import Severity
+
+    if not isinstance(table, dict):
+        raise ConfigError(f"{path}: 'severity' must be a table such as {{ HY029 = \"info\" }}")
+    out: dict[str, str] = {}
+    for code, level in table.items():
+        if not isinstance(level, str):
+            raise ConfigError(f"{path}: 'severity.{code}' must be error, warning or info")
+        try:
+            out[str(code).strip().upper()] = Severity.parse(level).label
+        except ValueError as exc:
+            raise ConfigError(f"{path}: 'severity.{code}': {exc}") from None
+    return out

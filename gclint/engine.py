@@ -43,6 +43,7 @@ class Options:
     extend_known_codes: tuple[str, ...] = ()  # codes and command words DL001 accepts (site macros, REMAPs)
     env_flavor: str | None = None  # SLIC3R_GCODE_FLAVOR for postprocess
     spindle_max_rpm: float | None = None
+    severity: dict[str, str] = field(default_factory=dict)  # code or prefix -> level (configuration)
     tool_map: dict[int, int] = field(default_factory=dict)
     config_path: str | None = None
 
@@ -61,6 +62,7 @@ class Options:
                 sorted(self.extend_known_codes),
                 self.env_flavor,
                 self.spindle_max_rpm,
+                sorted(self.severity.items()),
                 sorted(self.tool_map.items()),
             )
         )
@@ -131,6 +133,17 @@ class FileContext:
         """Whether the rule ``code`` is selected for this run."""
         return code in self.enabled_codes
 
+    def severity_of(self, code: str, default: Severity) -> Severity:
+        """The level of a finding: the configuration's ``severity`` table (the longest matching code or
+        prefix) overrides the rule's."""
+        overrides = self.options.severity
+        if overrides:
+            for length in (5, 4, 3, 2):
+                level = overrides.get(code[:length])
+                if level is not None:
+                    return Severity.parse(level)
+        return default
+
     def model_note(self) -> str:
         """What a finding that rests on the printer model adds when nobody said which model it is."""
         return self.context.model_note()
@@ -156,7 +169,7 @@ class FileContext:
                 line=number,
                 column=max(1, column),
                 code=rule.code,
-                severity=severity if severity is not None else rule.severity,
+                severity=self.severity_of(rule.code, severity if severity is not None else rule.severity),
                 message=message,
                 name=rule.name,
                 fix=fix,

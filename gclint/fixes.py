@@ -16,6 +16,7 @@ from __future__ import annotations
 import tempfile
 from collections.abc import Callable, Iterator
 from dataclasses import dataclass, field
+from typing import BinaryIO
 
 from gclint.engine import FileResult, Linter
 from gclint.io import AtomicWriter, OutputError
@@ -31,6 +32,7 @@ class FixOutcome:
 
     result: FileResult  # the findings of the file as it is now (fixed or not)
     fixed: int = 0  # findings whose fix was applied
+    applied: list[Finding] = field(default_factory=list)  # those findings (for --show-fixes)
     reverted: list[str] = field(default_factory=list)  # fixes taken back, and why
     diff: str = ""  # with write=False: the changes as a unified diff
     error: str | None = None
@@ -104,8 +106,27 @@ def fix_file(result: FileResult, linter: Linter, *, unsafe: bool = False, write:
     except (OSError, SourceError, OutputError) as exc:
         outcome.error = str(exc) if str(exc).startswith(result.path) else f"{result.path}: not fixed: {exc}"
         return outcome
-    outcome.fixed = len(plan.fixes)
+    outcome.fixed, outcome.applied = len(plan.fixes), plan.fixes
     outcome.result = plan.checked  # type: ignore[assignment]
+    return outcome
+
+
+def fix_stream(
+    result: FileResult, linter: Linter, read: Callable[[], Source], out: BinaryIO, *, unsafe: bool = False
+) -> FixOutcome:
+    """``--fix -``: write the text ``read`` opens, fixed, to ``out`` (the text unchanged when no fix
+    can be applied), as editors use it."""
+    outcome = FixOutcome(result)
+    plan = plan_fixes(result, linter, read, unsafe=unsafe)
+    outcome.reverted = plan.reverted
+    edits = _edits(plan.fixes)
+    source = read()
+    out.write(source.bom)
+    for _, _, text, ending in _fixed_lines(source, edits):
+        out.write(source.encode(text + ending))
+    if plan.fixes:
+        outcome.fixed, outcome.applied = len(plan.fixes), plan.fixes
+        outcome.result = plan.checked  # type: ignore[assignment]
     return outcome
 
 
@@ -197,4 +218,4 @@ def _edit(raw: str, edits: list[Edit]) -> str:
     return text
 
 
-__all__ = ["fix_file", "plan_fixes", "FixOutcome", "FixPlan", "Fix"]
+__all__ = ["fix_file", "fix_stream", "plan_fixes", "FixOutcome", "FixPlan", "Fix"]

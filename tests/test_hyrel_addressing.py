@@ -157,7 +157,9 @@ def test_hy008_rewrites_with_the_certain_map(line, v5):
 
 def test_hy008_aux_map_is_uncertain():
     # hyrel_v4.md: aux T16 "high for v4; mapping to v5 Aux1 is I - medium": no fix, and the message says so
-    found = lint("M104 T16 S0\n", printer="16a-dual", codes=("HY008",))
+    # (in a file whose addresses say v4: M6 T12 O2, M109 T12 are v4 heads)
+    found = lint("M6 T12 O2\nM109 T12 S200\nM104 T16 S0\n", printer="16a-dual", codes=("HY008",))
+    found = [f for f in found if f.line == 3]
     assert len(found) == 1 and found[0].fix is None
     assert "uncertain" in found[0].message
 

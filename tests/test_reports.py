@@ -44,8 +44,8 @@ def jobs(tmp_path: Path) -> dict[str, Path]:
     return {"bad": bad, "good": good, "missing": tmp_path / "missing.gcode", "dir": tmp_path}
 
 
-def check(*args: str, cwd: Path | None = None) -> subprocess.CompletedProcess:
-    return run_cli("check", "--no-cache", *args, cwd=cwd)
+def check(*args: str, cwd: Path | None = None, env: dict | None = None) -> subprocess.CompletedProcess:
+    return run_cli("check", "--no-cache", *args, cwd=cwd, env=env)
 
 
 # -- SARIF ---------------------------------------------------------------------------------------------
@@ -77,8 +77,13 @@ def test_sarif_validates_against_the_official_schema(jobs):
     rules = {r["id"]: r for r in run["tool"]["driver"]["rules"]}
     assert {"SX001", "SX002", "DL001"} <= set(rules)
     for rule in rules.values():
-        assert rule["helpUri"].endswith("docs/rules.md#" + rule["id"].lower())  # the heading's anchor
+        assert "helpUri" not in rule  # no published address is known: no invented link (GCLINT_DOCS_URL sets one)
         assert rule["help"]["text"] and rule["shortDescription"]["text"]
+    published = check(
+        "bad job.gcode", "--format", "sarif", cwd=jobs["dir"], env={"GCLINT_DOCS_URL": "https://x.example/rules.md"}
+    )
+    for rule in json.loads(published.stdout)["runs"][0]["tool"]["driver"]["rules"]:
+        assert rule["helpUri"] == "https://x.example/rules.md#" + rule["id"].lower()  # the heading's anchor
     results = run["results"]
     by_rule = {r["ruleId"]: r for r in results}
     sx002 = by_rule["SX002"]

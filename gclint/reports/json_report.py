@@ -21,3 +21,11 @@ def write(results: list[FileResult], out: TextIO, ctx) -> None:
     out.write("[\n  ")
     out.write(",\n  ".join(findings))
     out.write("\n]\n")
+
+
+def write_statistics(results: list[FileResult], out: TextIO, ctx) -> None:
+    """``--statistics --format json``: one JSON array of per-code counts (as ruff)."""
+    from gclint.reports.text import statistics
+
+    json.dump(statistics(results), out, ensure_ascii=False, indent=2)
+    out.write("\n")

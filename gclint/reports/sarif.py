@@ -63,12 +63,13 @@ def _rule_descriptor(code: str, doc: dict | None, finding: Finding | None) -> di
         "shortDescription": {"text": doc["summary"] or code},
         "fullDescription": {"text": doc["explanation"] or doc["summary"] or code},
         "help": {"text": "\n".join(help_parts), "markdown": "\n".join(markdown)},
-        "helpUri": doc["url"],
         "defaultConfiguration": {"level": _DOC_LEVELS.get(doc["severity"], "warning")},
         "properties": {"tags": [code[:2], *doc["applies_to"]], "kebab-name": doc["name"]},
     }
     if doc["source"]:
         descriptor["properties"]["source"] = doc["source"]
+    if doc["url"] and doc["url"].startswith(("https://", "http://")):  # a link code scanning can follow
+        descriptor["helpUri"] = doc["url"]
     return descriptor
 
 

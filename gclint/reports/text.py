@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 from collections import Counter
+from dataclasses import replace
 from typing import TextIO
 
 from gclint.engine import FileResult
@@ -20,7 +21,13 @@ def write(results: list[FileResult], out: TextIO, ctx) -> None:
 
 
 def _mark(f, ctx) -> str:
-    return " [*]" if (f.fix is not None and f.fix.safe and ctx.show_fixes) else ""
+    """`` [error]`` and, for a safe fix, `` [*]``: what follows the code in the human formats."""
+    fixable = " [*]" if (f.fix is not None and f.fix.safe and ctx.show_fixes) else ""
+    return f" [{f.severity.label}]{fixable}"
+
+
+def _fixable(f, ctx) -> bool:
+    return f.fix is not None and f.fix.safe and ctx.show_fixes
 
 
 def write_summary(results: list[FileResult], out: TextIO, ctx) -> None:
@@ -33,7 +40,7 @@ def write_summary(results: list[FileResult], out: TextIO, ctx) -> None:
             files_with += 1
         for f in result.findings:
             total[f.severity.label] += 1
-            if _mark(f, ctx):
+            if _fixable(f, ctx):
                 fixable += 1
     if ctx.statistics:
         write_statistics(results, out)
@@ -66,19 +73,40 @@ def read_as_line(results: list[FileResult]) -> str:
     return "Checked as: " + "; ".join(parts) + "."
 
 
-def write_statistics(results: list[FileResult], out: TextIO) -> None:
-    """Counts per code, most frequent first, like ``ruff --statistics``."""
-    counts: Counter = Counter()
-    names: dict[str, tuple[str, str]] = {}
-    first: dict[str, str] = {}
+def statistics(results: list[FileResult]) -> list[dict]:
+    """Counts per code, most frequent first (``ruff --statistics``): code, name, severity, count,
+    fixable (how many have a safe fix), first (where the first one is)."""
+    rows: dict[str, dict] = {}
     for result in results:
         for f in result.findings:
-            counts[f.code] += 1
-            names[f.code] = (f.name, f.severity.label)
-            first.setdefault(f.code, f"{f.path}:{f.line}")
-    for code, n in sorted(counts.items(), key=lambda kv: (-kv[1], kv[0])):
-        name, severity = names[code]
-        out.write(f"{n:>7}  {code}  {name:<32} [{severity}]  first at {first[code]}\n")
+            row = rows.get(f.code)
+            if row is None:
+                row = rows[f.code] = {
+                    "code": f.code,
+                    "name": f.name,
+                    "severity": f.severity.label,
+                    "count": 0,
+                    "fixable": 0,
+                    "first": f"{f.path}:{f.line}",
+                }
+            row["count"] += 1
+            if f.fix is not None and f.fix.safe:
+                row["fixable"] += 1
+    return sorted(rows.values(), key=lambda r: (-r["count"], r["code"]))
+
+
+def write_statistics(results: list[FileResult], out: TextIO) -> None:
+    """The statistics table (``--statistics``), ``[*]`` on codes with safe fixes."""
+    for row in statistics(results):
+        mark = " [*]" if row["fixable"] else ""
+        out.write(
+            f"{row['count']:>7}  {row['code']}{mark:<4} {row['name']:<32} [{row['severity']}]  first at {row['first']}\n"
+        )
+
+
+def write_statistics_report(results: list[FileResult], out: TextIO, ctx) -> None:
+    """``--statistics`` in the human formats: the table and the totals, not every finding."""
+    write_summary(results, out, replace(ctx, statistics=True))
 
 
 def write_full(results: list[FileResult], out: TextIO, ctx) -> None:

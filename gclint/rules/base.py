@@ -12,10 +12,13 @@ a module (importing it registers its rules) or a ``Rule`` subclass.
 
 from __future__ import annotations
 
+import os
 import textwrap
 from collections.abc import Iterable
 from dataclasses import dataclass, field
 from enum import IntEnum
+from functools import cache
+from pathlib import Path
 from typing import TYPE_CHECKING, ClassVar
 
 from gclint.syntax.nodes import Command, Comment, Line, Node
@@ -101,15 +104,36 @@ class Finding:
         return (self.path, self.line, self.column, self.code)
 
 
-# The rule reference (docs/rules.md, generated) in the repository: every link to a rule's documentation
-# (SARIF helpUri, the language server's codeDescription) is made here.  Each rule has a "### CODE"
-# heading there, hence the lower-case anchor.
-RULES_DOC_URL = "https://github.com/gclint/gclint/blob/main/docs/rules.md"
+# Every link to a rule's documentation (SARIF helpUri, the language server's codeDescription) is made
+# here.  The rule reference is docs/rules.md (generated; each rule has a "### CODE" heading, hence the
+# lower-case anchor).  Where it is published comes from the package's metadata ([project.urls]
+# "Documentation" in pyproject.toml, or GCLINT_DOCS_URL); no address is invented: without one, a source
+# checkout links to its own docs/rules.md, and an installed package gives no link.
+_RULES_DOC = Path(__file__).resolve().parents[2] / "docs" / "rules.md"
 
 
-def rule_url(code: str) -> str:
+@cache
+def rules_doc_base() -> str | None:
+    """The address of the rule reference (without the anchor), or None when none is known."""
+    configured = os.environ.get("GCLINT_DOCS_URL")
+    if configured:
+        return configured
+    try:
+        from importlib.metadata import PackageNotFoundError, metadata
+
+        for entry in metadata("gclint").get_all("Project-URL") or ():
+            label, _, url = entry.partition(",")
+            if label.strip().lower() == "documentation" and url.strip():
+                return url.strip()
+    except (ImportError, PackageNotFoundError):
+        pass
+    return _RULES_DOC.as_uri() if _RULES_DOC.is_file() else None
+
+
+def rule_url(code: str) -> str | None:
     """The address of a rule's documentation (``rule_url("HY003")`` -> ``.../docs/rules.md#hy003``)."""
-    return f"{RULES_DOC_URL}#{code.lower()}"
+    base = rules_doc_base()
+    return f"{base}#{code.lower()}" if base else None
 
 
 # Pseudo-codes a rule can listen to besides command codes.

@@ -86,12 +86,13 @@ def finding_range(f: Finding, geo: Geometry) -> lsp.Range:
 
 
 def to_diagnostic(f: Finding, geo: Geometry) -> lsp.Diagnostic:
+    url = rule_url(f.code)
     return lsp.Diagnostic(
         range=finding_range(f, geo),
         message=f.message,
         severity=SEVERITIES.get(f.severity, lsp.DiagnosticSeverity.Warning),
         code=f.code,
-        code_description=lsp.CodeDescription(href=rule_url(f.code)),
+        code_description=lsp.CodeDescription(href=url) if url else None,
         source=SOURCE,
     )
 
