@@ -12,7 +12,7 @@ import sys
 import click
 
 from gclint import __version__, dialects
-from gclint.config import ConfigError, parse_heads, parse_tool_map
+from gclint.config import ConfigError, parse_heads, parse_known_codes, parse_tool_map
 from gclint.engine import FileResult, Options
 from gclint.machine.profiles import PROFILES, UnknownPrinter, get_profile
 from gclint.rules.base import RuleError, Severity
@@ -127,6 +127,12 @@ def main() -> None:
 @click.option("--ignore", multiple=True, metavar="CODES", help="Skip these rule codes or prefixes.")
 @click.option("--extend-select", multiple=True, metavar="CODES", help="Add these to the selected rules.")
 @click.option(
+    "--extend-known-codes",
+    multiple=True,
+    metavar="CODES",
+    help="Codes and command names the machine has besides its firmware's (site macros, REMAPs): never DL001.",
+)
+@click.option(
     "--format",
     "-f",
     "fmt",
@@ -150,6 +156,11 @@ def main() -> None:
     "--statistics",
     is_flag=True,
     help="Show the number of findings per code instead of the findings (JSON with -f json).",
+)
+@click.option(
+    "--no-group",
+    is_flag=True,
+    help="Text formats: show every finding (by default a code's findings in a file after the first 3 are one line).",
 )
 @click.option("--jobs", "-j", type=click.IntRange(min=1), default=None, help="Parallel processes (default: CPU count).")
 @click.option(
@@ -189,11 +200,13 @@ def check(
     select: tuple[str, ...],
     ignore: tuple[str, ...],
     extend_select: tuple[str, ...],
+    extend_known_codes: tuple[str, ...],
     fmt: str,
     output: str | None,
     exit_zero: bool,
     fail_on: str,
     statistics: bool,
+    no_group: bool,
     jobs: int | None,
     config_file: str | None,
     fix: bool,
@@ -224,6 +237,8 @@ def check(
     try:
         if loaded is not None:
             overrides["loaded"] = parse_heads(loaded)
+        if extend_known_codes:
+            overrides["extend_known_codes"] = parse_known_codes(",".join(extend_known_codes))
     except ConfigError as exc:
         _fail(str(exc))
     from gclint.rules.base import UnknownSelector, resolve_selectors
@@ -291,7 +306,7 @@ def check(
     for r in results:
         if r.error:
             click.echo(f"gclint: {r.error}", err=True)
-    ctx = ReportContext(tool_version=__version__, fixed=fixed)
+    ctx = ReportContext(tool_version=__version__, fixed=fixed, group=not no_group)
     writer = writers[fmt]
     if statistics:  # the counts instead of the findings, as ruff does (JSON with --format json)
         from gclint.reports import json_report, text

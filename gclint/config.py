@@ -10,6 +10,7 @@ wrong types are errors that name the file and the key.
     ignore = ["HY029"]
     extend-select = []
     per-file-ignores = { "calibration/*.gcode" = ["HY006"] }
+    extend-known-codes = ["M900", "PRINT_START"]
     tool-map = { 0 = "T2", 1 = "T3" }
     spindle-max-rpm = 24000
 """
@@ -23,6 +24,7 @@ from dataclasses import replace
 from pathlib import Path
 
 from gclint.engine import Options
+from gclint.firmware import normal_code
 
 CONFIG_NAMES = ("gclint.toml", ".gclint.toml", "pyproject.toml")
 
@@ -85,6 +87,24 @@ def _codes(value: object, key: str, path: Path) -> list[str]:
         raise ConfigError(str(exc)) from None
 
 
+def parse_known_codes(value: object, where: str = "--extend-known-codes") -> tuple[str, ...]:
+    """``"M900, PRINT_START"`` or ``["M900", "print_start"]`` -> ``("M900", "PRINT_START")``: codes and
+    command words DL001 accepts (normalised as a file's commands are: ``M0900`` is ``M900``)."""
+    if isinstance(value, str):
+        items = [v for v in re.split(r"[,\s]+", value.strip()) if v]
+    elif isinstance(value, list) and all(isinstance(v, str) for v in value):
+        items = list(value)
+    else:
+        raise ConfigError(f"{where}: expected a list of codes or command names such as M900, PRINT_START")
+    out = []
+    for item in items:
+        code = normal_code(item)
+        if code is None:
+            raise ConfigError(f"{where}: {item!r} is not a code (M900, G29.1) or a command name (PRINT_START)")
+        out.append(code)
+    return tuple(dict.fromkeys(out))
+
+
 def _str_list(value: object, key: str, path: Path) -> list[str]:
     if isinstance(value, str):
         return [v for v in re.split(r"[,\s]+", value) if v]
@@ -102,6 +122,7 @@ _KEYS = {
     "ignore",
     "extend-select",
     "per-file-ignores",
+    "extend-known-codes",
     "tool-map",
     "spindle-max-rpm",
 }
@@ -187,6 +208,8 @@ def apply(options: Options, table: dict, path: Path) -> Options:
         if not isinstance(pfi, dict):
             raise ConfigError(f"{path}: 'per-file-ignores' must be a table of pattern = [codes]")
         changes["per_file_ignores"] = {str(k): _codes(v, f"per-file-ignores.{k}", path) for k, v in pfi.items()}
+    if "extend-known-codes" in table:
+        changes["extend_known_codes"] = parse_known_codes(table["extend-known-codes"], f"{path}: 'extend-known-codes'")
     if "tool-map" in table:
         changes["tool_map"] = parse_tool_map(table["tool-map"], f"{path}: 'tool-map'")
     if "severity" in table:

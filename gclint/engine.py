@@ -39,6 +39,7 @@ class Options:
     ignore: list[str] = field(default_factory=list)
     extend_select: list[str] = field(default_factory=list)
     per_file_ignores: dict[str, list[str]] = field(default_factory=dict)
+    extend_known_codes: tuple[str, ...] = ()  # codes and command words DL001 accepts (site macros, REMAPs)
     env_flavor: str | None = None  # SLIC3R_GCODE_FLAVOR for postprocess
     spindle_max_rpm: float | None = None
     severity: dict[str, str] = field(default_factory=dict)  # code or prefix -> level (configuration)
@@ -57,6 +58,7 @@ class Options:
                 sorted(self.ignore),
                 sorted(self.extend_select),
                 sorted((k, sorted(v)) for k, v in self.per_file_ignores.items()),
+                sorted(self.extend_known_codes),
                 self.env_flavor,
                 self.spindle_max_rpm,
                 sorted(self.severity.items()),

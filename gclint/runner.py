@@ -62,6 +62,8 @@ def options_for(path: str, base: Options, overrides: dict, explicit_config: str 
     options = base
     if config_path is not None:
         options = apply(options, table, config_path)
+    if overrides and overrides.get("extend_known_codes"):  # adds to the configuration's codes
+        overrides = {**overrides, "extend_known_codes": options.extend_known_codes + overrides["extend_known_codes"]}
     return replace(options, **overrides) if overrides else options
 
 

@@ -45,6 +45,8 @@ def show(files: list[str], overrides: dict, config_file: str | None, stdin_name:
             out.append(
                 f"  loaded heads: {heads + ' (--loaded or configuration)' if heads else 'from the job (M6 T# O...)'}"
             )
+        if options.extend_known_codes:
+            out.append(f"  extend-known-codes: {', '.join(options.extend_known_codes)}")
         selected = sorted(cls.code for cls in linter.rule_classes)
         out.append(f"  rules selected: {len(selected)} ({_families(selected)})")
         if options.select is not None:

@@ -295,7 +295,6 @@ AMBIGUOUS = {
     "marlin/displaylayerprogress/prusaslicer-2_line_comment.gcode",  # moves and comments only
     "marlin/printrun-testfiles/layer-detect.gcode",
     "marlin/printrun-testfiles/quick-test.gcode",
-    "reprap/MillenniumOS/example.gcode",  # Marlin and RRF codes only
     "reprap/e3d-toolchanger/rrf3.x/macros/Coupler - Lock",  # M400 and moves
     "reprap/e3d-toolchanger/rrf3.x/macros/Coupler - Unlock",
     "reprap/e3d-toolchanger/rrf3.x/gcodes/ToolChanger - Calibration.gcode",  # Simplify3D output

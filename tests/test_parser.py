@@ -75,6 +75,19 @@ def roundtrip(raw: str) -> None:
         ("M307 H1 R4.446 K0.738:0.000", ["M307"]),  # RRF drive lists
         ("M708 A0x0b X5", ["M708"]),  # Prusa hex register
         ("T?", ["T?"]),  # Prusa MMU query
+        # a G/M word that cannot be a code (sign, more than 3 digits after the point) is a parameter
+        ("M900 K0.02 M0.125481", ["M900"]),  # PrusaSlicer/BambuStudio
+        ("G1 X1 M-1", ["G1"]),
+        ("G1 X1 M0.5", ["G1", "M0.5"]),  # (could be a sub-code: a command)
+        ("G28.140 D0 M0.0001", ["G28.14"]),
+        # ... and so is a letter the command takes by the firmware docs (firmware_codes.md section 9)
+        ("M900 L1000.0 M1.0", ["M900"]),  # Bambu: not M900 then an M1 stop
+        ("M1006 A0 B0 L0 C0 D0 M100 E0 F0 N0", ["M1006"]),
+        ("M970 Q1 A7 B30 C80 H15 K0 M20 O3", ["M970"]),
+        ("M959 KM G1", ["M959"]),  # Prusa Buddy
+        ("G80 M5", ["G80", "M5"]),  # CNC: two commands
+        ("G91 G1 Z5 G90", ["G91", "G1", "G90"]),
+        ("M3 S1000 M8", ["M3", "M8"]),
     ],
 )
 def test_grammar_accepts(raw, codes):

@@ -11,6 +11,7 @@ from dataclasses import dataclass, field
 
 from gclint.dialects import Dialect, all_dialects, get
 from gclint.dialects.base import Clue
+from gclint.firmware import all_firmware
 from gclint.syntax.fastpath import PLAIN_MOVE
 from gclint.syntax.nodes import GCODE, TEXT, Command
 from gclint.syntax.parse import parse_line
@@ -36,6 +37,7 @@ class ContentReading:
 
     codes: dict[str, Seen] = field(default_factory=dict)  # G/M codes -> first use
     clues: dict[str, dict[Clue, Seen]] = field(default_factory=dict)  # candidate -> clue -> first match
+    flavor_clues: dict[str, dict[Clue, Seen]] = field(default_factory=dict)  # firmware -> clue -> first match
     # Hyrel: (code, letter, number) of each T variable (and M703/M704 S) -> first use
     addresses: dict[tuple[str, str, int], Seen] = field(default_factory=dict)
     tool_commands: dict[int, Seen] = field(default_factory=dict)  # T<n> lines
@@ -63,12 +65,12 @@ _AXIS_CODES = frozenset({"G0", "G1", "G2", "G3", "G28", "G92", "M203", "M6", "G3
 _MODEL_AUX = frozenset(f"M{n}" for n in range(670, 690))
 
 
-def _clue_index() -> tuple[dict[str, list[tuple[str, Clue]]], list[tuple[str, Clue]]]:
+def _clue_index(owners) -> tuple[dict[str, list[tuple[str, Clue]]], list[tuple[str, Clue]]]:
     by_code: dict[str, list[tuple[str, Clue]]] = {}
     general: list[tuple[str, Clue]] = []
-    for dialect in candidates():
-        for clue in dialect.detection.clues:
-            entry = (dialect.name, clue)
+    for owner in owners:
+        for clue in owner.detection.clues:
+            entry = (owner.name, clue)
             if clue.code is not None:
                 by_code.setdefault(clue.code, []).append(entry)
             else:
@@ -76,7 +78,9 @@ def _clue_index() -> tuple[dict[str, list[tuple[str, Clue]]], list[tuple[str, Cl
     return by_code, general
 
 
-_BY_CODE, _GENERAL = _clue_index()
+_BY_CODE, _GENERAL = _clue_index(candidates())
+# the marks of a firmware flavour in the content (Klipper's extended commands), read in the same pass
+_FLAVOR_BY_CODE, _FLAVOR_GENERAL = _clue_index(all_firmware())
 
 
 def read_content(head: str, complete: bool, tail: str | None = None) -> ContentReading:
@@ -116,6 +120,10 @@ def _read_command(reading: ContentReading, cmd: Command, number: int) -> None:
         seen = _match(reading, candidate, clue, cmd, number, seen)
     for candidate, clue in _GENERAL:
         seen = _match(reading, candidate, clue, cmd, number, seen)
+    for firmware, clue in _FLAVOR_BY_CODE.get(code, ()) if code is not None else ():  # type: ignore[arg-type]
+        seen = _match(reading, firmware, clue, cmd, number, seen, reading.flavor_clues)
+    for firmware, clue in _FLAVOR_GENERAL:
+        seen = _match(reading, firmware, clue, cmd, number, seen, reading.flavor_clues)
     if code is None or cmd.kind not in (GCODE, TEXT):
         return
     params = cmd.params
@@ -150,9 +158,15 @@ def _read_command(reading: ContentReading, cmd: Command, number: int) -> None:
 
 
 def _match(
-    reading: ContentReading, candidate: str, clue: Clue, cmd: Command, number: int, seen: Seen | None
+    reading: ContentReading,
+    candidate: str,
+    clue: Clue,
+    cmd: Command,
+    number: int,
+    seen: Seen | None,
+    into: dict[str, dict[Clue, Seen]] | None = None,
 ) -> Seen | None:
-    found = reading.clues.setdefault(candidate, {})
+    found = (reading.clues if into is None else into).setdefault(candidate, {})
     if clue in found:
         return seen
     try:

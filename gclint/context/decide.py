@@ -18,13 +18,20 @@ or Carvera), where the slicer header and the extension know better than the code
 Hyrel v4 or v5 comes from the addresses the file uses (each number votes for the numbering in which it
 fits its commands), ``M116`` and ``W0`` (v5 only).  The model comes from what the job says about the
 machine: declared heads (``M6 T# O#``), a second yoke, A/B axes, the lathe, model-specific aux ports.
+
+The flavour of a Marlin-flavour file (the firmware it was written for: Prusa Buddy, Prusa MK3, Bambu,
+Klipper; gclint.firmware) comes from the slicer's settings, in the head or at the end of the file
+(``; printer_model = MK4S``, ``M862.3 P "MK4S"``, ``; gcode_flavor = klipper``), and from commands only that
+firmware has (Klipper's ``NAME KEY=VALUE``).
 """
 
 from __future__ import annotations
 
 import re
+from collections.abc import Callable
+from functools import cache
 
-from gclint import dialects
+from gclint import dialects, firmware
 from gclint.context.content import ContentReading, candidates, read_content
 from gclint.context.model import (
     CONFIGURATION,
@@ -92,7 +99,7 @@ def infer(
     tail: str | None = None,
 ) -> Context:
     """The context of the file whose beginning is ``head`` (``complete``: the whole file; ``tail``: the
-    end of a longer file, whole lines).
+    end of a longer file, whole lines; the flavour reads it too).
 
     ``dialect`` is a dialect name or ``auto``; ``printer`` a model name or None (infer it).  The
     ``*_origin`` arguments say where an explicit value came from (``option`` or ``configuration``).
@@ -113,11 +120,14 @@ def infer(
     elif dialect != "auto":
         name, origin, reasons, strength, conflict = dialects.get(dialect).name, dialect_origin, (), EXPLICIT, ""
     else:
-        name, origin, reasons, strength, conflict = _weigh(scan, content(), path, env_flavor)
+        name, origin, reasons, strength, conflict = _weigh(
+            scan, content(), path, env_flavor, HeadScan(tail) if tail else None
+        )
     if notes:  # a directive that names nothing is shown, as weak evidence is
         conflict = "; ".join((*notes, conflict)) if conflict else notes[0]
     if dialects.get(name).family != "hyrel":
-        return Context(name, origin, strength, reasons, conflict)
+        flavor, flavor_reasons = _flavor(scan, HeadScan(tail) if tail else None, content, name)
+        return Context(name, origin, strength, reasons, conflict, flavor=flavor, flavor_reasons=flavor_reasons)
 
     firmware, firmware_origin, firmware_reasons, evidence = _version(content(), name, origin)
     name = "hyrel-v4" if firmware == 4 else "hyrel"
@@ -193,7 +203,7 @@ class _Points:
             for clue, seen in found.items():
                 text = f"{seen}: {clue.says}"
                 if clue.against:  # a mark for every other dialect that has the code
-                    gainers = {self.group_of[m] for m in self.names if m != name and clue.code in table[m].codes}
+                    gainers = {self.group_of[m] for m in self.names if m != name and _has(table[m], clue.code)}
                 else:
                     gainers = {self.group_of[name]}
                     self.member[name].append((clue.weight, seen.line, text))
@@ -208,7 +218,7 @@ class _Points:
                 (2, reading.e_amounts.line, f"{reading.e_amounts}: E amounts with no M229 E1 (Hyrel ignores them)")
             )
         for code, seen in reading.codes.items():
-            knowers = [m for m in self.names if code in table[m].codes]
+            knowers = [m for m in self.names if _has(table[m], code)]
             groups = list(dict.fromkeys(self.group_of[m] for m in knowers))
             if groups and len(groups) < len(self.groups):  # a code some groups have and others do not
                 weight = 2 if len(groups) == 1 else 1
@@ -229,6 +239,17 @@ class _Points:
         return sum(weight for weight, _, _ in evidence)
 
 
+def _has(dialect: dialects.Dialect, code: str | None) -> bool:
+    """Whether ``dialect`` has ``code``: in its table, or in the inventory of a firmware whose files it
+    reads (Bambu's M620 is a Marlin-flavour code, not only Hyrel's)."""
+    return code in dialect.codes or code in _flavor_codes(dialect.name)
+
+
+@cache
+def _flavor_codes(name: str) -> frozenset[str]:
+    return frozenset().union(*(f.codes for f in firmware.flavors_of(name) if f.marks_dialect))
+
+
 def _who_has(code: str, having: list[str], groups: list[str]) -> str:
     label = {"hyrel": "Hyrel", "reprap": "Marlin/RepRap", "cnc": "CNC (Machinekit/LinuxCNC, Carvera)"}
     if len(having) == 1:
@@ -238,12 +259,12 @@ def _who_has(code: str, having: list[str], groups: list[str]) -> str:
 
 
 def _weigh(
-    scan: HeadScan, reading: ContentReading, path: str, env_flavor: str | None
+    scan: HeadScan, reading: ContentReading, path: str, env_flavor: str | None, tail: HeadScan | None = None
 ) -> tuple[str, str, tuple[str, ...], str, str]:
     """(dialect, origin, reasons, strength, conflict) when nobody said which dialect."""
     points = _Points(reading)
     names, groups, group_of = points.names, points.groups, points.group_of
-    header, header_texts = _header_scores(scan, env_flavor)
+    header, header_texts = _header_scores(scan, env_flavor, tail)
     header_best = max(names, key=lambda n: header[n]) if any(header.values()) else None
     header_group = group_of[header_best] if header_best is not None else None
 
@@ -355,11 +376,18 @@ def scores(
     return {"groups": groups, "dialects": members}
 
 
-def _header_scores(scan: HeadScan, env_flavor: str | None) -> tuple[dict[str, int], dict[str, list[str]]]:
+def _header_scores(
+    scan: HeadScan, env_flavor: str | None, tail: HeadScan | None = None
+) -> tuple[dict[str, int], dict[str, list[str]]]:
+    """The slicer's word on the dialect: header patterns in the head, or in the settings slicers write at
+    the end of the file (PrusaSlicer's ``; gcode_flavor = marlin2``), and SLIC3R_GCODE_FLAVOR."""
     scores: dict[str, int] = {}
     texts: dict[str, list[str]] = {}
     for dialect in candidates():
         score, found = dialect.detection.header(scan)
+        if not score and tail is not None:
+            score, found = dialect.detection.header(tail)
+            found = [text + _AT_END for text in found]
         scores[dialect.name], texts[dialect.name] = score, found
     if env_flavor:
         mapped = SLICER_FLAVORS.get(env_flavor.strip().lower())
@@ -377,6 +405,40 @@ def _extension(path: str) -> str:
 def slicer_flavor(name: str) -> str | None:
     """The dialect name for a slicer's gcode_flavor value, or None."""
     return SLICER_FLAVORS.get(name.strip().lower())
+
+
+# -- the flavour -------------------------------------------------------------------------------------------
+
+_FLAVOR_DECIDES = 4  # one printer_model line (8) decides; BambuStudio's name alone (2) does not
+_AT_END = " (in the settings at the end of the file)"
+
+
+def _flavor(
+    scan: HeadScan, tail: HeadScan | None, content: Callable[[], ContentReading], dialect: str
+) -> tuple[str | None, tuple[str, ...]]:
+    """The firmware the file was written for, among the flavours of ``dialect``, and why: the one whose
+    marks weigh most (a tie decides nothing)."""
+    flavors = firmware.flavors_of(dialect)
+    if not flavors:
+        return None, ()
+    scored: list[tuple[int, str, Evidence]] = []
+    for fw in flavors:
+        evidence: Evidence = []
+        for pattern, weight in fw.detection.patterns:
+            text = scan.found(pattern)
+            if text is None and tail is not None and (text := tail.found(pattern)) is not None:
+                text += _AT_END
+            if text is not None:
+                evidence.append((weight, 0, text))
+        for clue, seen in content().flavor_clues.get(fw.name, {}).items():
+            evidence.append((clue.weight, seen.line, f"{seen}: {clue.says}"))
+        score = sum(weight for weight, _, _ in evidence)
+        if score:
+            scored.append((score, fw.name, evidence))
+    scored.sort(key=lambda s: -s[0])
+    if not scored or scored[0][0] < _FLAVOR_DECIDES or (len(scored) > 1 and scored[1][0] == scored[0][0]):
+        return None, ()
+    return scored[0][1], _top_reasons(scored[0][2], 2)
 
 
 # -- Hyrel v4 or v5 --------------------------------------------------------------------------------------

@@ -44,6 +44,8 @@ class Context:
     printer_origin: str = DEFAULT
     printer_reasons: tuple[str, ...] = ()
     printer_candidates: tuple[str, ...] = ()  # every model the job fits as well (the first is ``printer``)
+    flavor: str | None = None  # the firmware a Marlin-flavour file was written for (gclint.firmware)
+    flavor_reasons: tuple[str, ...] = ()
 
     @property
     def printer_assumed(self) -> bool:
@@ -56,8 +58,10 @@ class Context:
         return self.strength in (WEAK, NONE) or bool(self.conflict)
 
     def label(self) -> str:
-        """``hyrel v5, printer 30m (assumed)`` / ``marlin``."""
+        """``hyrel v5, printer 30m (assumed)`` / ``marlin`` / ``marlin (prusa-buddy)``."""
         text = self.dialect
+        if self.flavor is not None:
+            text += f" ({self.flavor})"
         if self.firmware is not None:
             text = f"hyrel v{self.firmware}"
         if self.printer is not None:
@@ -87,6 +91,8 @@ class Context:
             parts.append(self.conflict)
         if self.firmware is not None and self.firmware_origin not in EXPLICIT_ORIGINS and self.firmware_reasons:
             parts.append(f"v{self.firmware}: " + "; ".join(self.firmware_reasons[:3]))
+        if self.flavor is not None and self.flavor_reasons:
+            parts.append(f"{self.flavor}: " + "; ".join(self.flavor_reasons[:2]))
         if self.printer is not None and self.printer_reasons and self.printer_origin not in (OPTION, CONFIGURATION):
             parts.append(f"printer {self.printer}: " + "; ".join(self.printer_reasons[:2]))
         return "; ".join(parts)

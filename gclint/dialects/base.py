@@ -295,7 +295,9 @@ class Dialect:
 
     ``family`` groups dialects that share semantics (``"hyrel"``, ``"reprap"``, ``"linuxcnc"``).
     ``extended_commands`` accepts Klipper-style ``NAME KEY=VALUE`` commands; ``meta_commands`` accepts
-    RepRapFirmware's ``if``/``var``/``echo``...; ``owords`` accepts LinuxCNC O-words and ``#`` parameters.
+    RepRapFirmware's ``if``/``var``/``echo``...; ``owords`` accepts LinuxCNC O-words and ``#`` parameters;
+    ``words`` are command words the dialect accepts without having those (Smoothieware's console ``echo``
+    on Carvera), upper case.
     ``open_codes`` is a predicate for codes the dialect accepts without listing them (user M-codes,
     macros).  ``unknown_severity`` is how serious an unknown code is on this firmware.
     """
@@ -309,6 +311,7 @@ class Dialect:
     extended_commands: bool = False
     meta_commands: bool = False
     owords: bool = False
+    words: frozenset[str] = frozenset()
     open_codes: Callable[[str], bool] | None = None
     unknown_severity: str = "warning"
     description: str = ""
@@ -320,9 +323,9 @@ class Dialect:
         if kind in ("gcode", "text"):
             return code is not None and self.knows(code)
         if kind == "extended":
-            return self.extended_commands
+            return self.extended_commands or (code is not None and code.upper() in self.words)
         if kind == "meta":
-            return self.meta_commands
+            return self.meta_commands or (code is not None and code.upper() in self.words)
         if kind in ("oword", "assignment"):
             return self.owords
         return True

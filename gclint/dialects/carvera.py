@@ -1,13 +1,17 @@
 """Makera Carvera (Smoothieware-based community firmware): milling, laser and 4th-axis jobs.
 
 Inventory from ../shared/seeds/carvera-mcodes.md and research/dialects.md section 1.8 [CV].  Carvera runs
-in grbl mode: G4 P is seconds; M3 S is RPM; M6 T is an automatic tool change; M7/M9 are air.
+in grbl mode: G4 P is seconds; M3 S is RPM; M6 T is an automatic tool change; M7/M9 are air.  The firmware
+is built on Smoothieware, whose console commands (``echo``, ``play``...) a Carvera file may hold
+(research/firmware_codes.md section 8, gclint/firmware/smoothieware.py): CarveraController's own test
+programs print their progress with ``echo``.
 """
 
 from __future__ import annotations
 
 from gclint.dialects.base import Clue, Detection, Dialect, codes, describe, span, table
 from gclint.dialects.machinekit import NGC_LANGUAGE_CLUES
+from gclint.firmware.smoothieware import SMOOTHIEWARE
 
 _G = (
     "G0 G1 G2 G3 G4 G10 G17 G18 G19 G20 G21 G28 G28.1 G29 G30 G31 G32 G33 G38.2 G38.3 G38.4 G38.5 G53 G54 G55"
@@ -119,10 +123,15 @@ CARVERA = Dialect(
         clues=(*NGC_LANGUAGE_CLUES, Clue("an echo command (RepRapFirmware or Carvera console)", "echo", weight=1)),
     ),
     owords=True,
+    words=SMOOTHIEWARE.words,
     open_codes=_open,
     unknown_severity="warning",
     description="Carvera desktop CNC: milling with ATC, laser, 4th axis.",
-    sources=("seeds/carvera-mcodes.md", "research/dialects.md section 1.8 [CV]"),
+    sources=(
+        "seeds/carvera-mcodes.md",
+        "research/dialects.md section 1.8 [CV]",
+        "research/firmware_codes.md section 8",
+    ),
     extras={"max_rpm": 15000},
 )
 

@@ -1,9 +1,11 @@
 """Marlin 2.x (and the Marlin-like flavours of slicers: Prusa firmware, Bambu, Creality, Klipper hosts).
 
-Inventory from the Marlin G-code reference (marlinfw.org, research/dialects.md section 1 [MAR]) plus
-the codes Prusa and Bambu firmware add, as found in the corpus.  Parameters are not catalogued: Marlin
+Inventory from the Marlin G-code reference (marlinfw.org, research/dialects.md section 1 [MAR]) and
+Marlin's own dispatch (research/firmware_codes.md section 5).  Parameters are not catalogued: Marlin
 ignores letters it does not use.  Klipper extended commands (``SET_FAN_SPEED ...``) are accepted because
-Klipper hosts read Marlin-flavour files.
+Klipper hosts read Marlin-flavour files.  What Prusa, Bambu and Klipper firmware add is in their own
+inventories (gclint/firmware/): a file written for one of them (``Context.flavor``) is checked against
+Marlin and that firmware.
 """
 
 from __future__ import annotations
@@ -28,12 +30,11 @@ _M = (
     " M808 M851 M852 M860 M861 M862 M863 M864 M865 M866 M867 M868 M869 M871 M876 M900 M906 M907 M908 M909"
     " M910 M911 M912 M913 M914 M915 M916 M917 M918 M919 M928 M951 M993 M994 M995 M997 M999 M7219"
 )
-# Prusa firmware (MK3/MINI/MMU) and Bambu Lab / Creality additions seen in slicer output.
-_VENDOR = (
-    "G80 G81 G162 M73.2 M115 M142 M221 M591 M593 M601 M602 M603 M708 M709 M860 M862.1 M862.2 M862.3 M862.4"
-    " M862.5 M862.6 M900 M913 M914 M915 M916 M917 M975 M981 M982 M983 M991 M1002 M1003 M1006 M1007 M620"
-    " M620.1 M620.3 M620.10 M620.11 M621 M622 M622.1 M623 M624 M625 M630 M960 M970 M970.3 M971 M974 M976"
-    " M400 G29.1 G29.2 G39 G150 G383 G392 M190 M106 M104 M109"
+# In Marlin's dispatch (firmware_codes.md section 5, Marlin @ 005ec919) but not in the reference: the
+# MMU3 codes, internal and board-specific ones.
+_SOURCE = (
+    "G800 M12 M293 M294 M309 M414 M485 M552 M553 M554 M704 M705 M706 M707 M708 M709 M800 M936 M1000 M1001"
+    " M1002 M1003 M1004 M3426"
 )
 
 # What the common codes do, for ``gclint explain`` (Marlin G-code reference, marlinfw.org; dialects.md 1 [MAR]).
@@ -174,8 +175,6 @@ _DESCRIPTIONS = {
     "M502": "reset settings to factory defaults",
     "M503": "report settings",
     "M600": "filament change (pause, unload, load)",
-    "M862.1": ("check nozzle diameter (Prusa)", {"P": "diameter, mm"}),
-    "M862.3": ("check printer model (Prusa)", {"P": "model name"}),
     "M900": ("linear advance", {"K": "advance factor"}),
 }
 
@@ -192,7 +191,7 @@ MARLIN = Dialect(
     name="marlin",
     title="Marlin 2.x (Marlin-flavour slicer output, Prusa, Bambu, Klipper hosts)",
     family="reprap",
-    codes=describe(table(codes(_G), codes(_M), codes(_VENDOR), codes(span("M", 810, 819))), _DESCRIPTIONS),
+    codes=describe(table(codes(_G), codes(_M), codes(_SOURCE), codes(span("M", 810, 819))), _DESCRIPTIONS),
     aliases=("marlin2", "prusa", "klipper"),
     detection=Detection(
         patterns=(

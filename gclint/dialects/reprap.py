@@ -1,12 +1,14 @@
 """RepRapFirmware 3.x (Duet): G/M codes, meta commands (if, var, echo...), {expressions}, macros.
 
-Inventory from the Duet G-code dictionary (research/dialects.md section 1 [RRF]).  RepRapFirmware runs
+Inventory from the Duet G-code dictionary (research/dialects.md section 1 [RRF]) and the codes the
+firmware's source has built in (research/firmware_codes.md section 6, gclint/firmware/reprapfirmware.py).  RepRapFirmware runs
 a macro file for a code it does not know (sys/M<n>.g, sys/G<n>.g), so unknown codes are only a warning.
 """
 
 from __future__ import annotations
 
 from gclint.dialects.base import Clue, Detection, Dialect, codes, describe, span, table
+from gclint.firmware.reprapfirmware import REPRAPFIRMWARE
 from gclint.syntax.nodes import META, is_number
 
 _G = (
@@ -181,12 +183,14 @@ REPRAP = Dialect(
     name="reprap",
     title="RepRapFirmware 3.x (Duet)",
     family="reprap",
-    codes=describe(table(codes(_G), codes(_M)), _DESCRIPTIONS),
+    codes=describe(table(codes(_G), codes(_M), codes(sorted(REPRAPFIRMWARE.codes))), _DESCRIPTIONS),
     aliases=("rrf", "reprapfirmware", "duet"),
     detection=Detection(
         patterns=(
             (r"(?i)^;\s*gcode_flavor\s*=\s*reprapfirmware", 12),
             (r"(?i)^;\s*FLAVOR:\s*RepRap\s*\(RepRap\)", 8),
+            # a post-processor or macro that names its firmware ("generated to target ... RRF")
+            (r"(?i)^[;(].*\b(?:RepRapFirmware|RRF|Duet ?[23W]\w*)\b", 4),
         ),
         extensions=(".g",),
         clues=REPRAP_CLUES,

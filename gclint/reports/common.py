@@ -9,7 +9,9 @@ its own way (HTML autoescape, XML escaping, GitHub command escaping); these help
 from __future__ import annotations
 
 import re
-from collections.abc import Callable
+from collections import Counter
+from collections.abc import Callable, Iterator
+from dataclasses import dataclass
 
 from gclint.engine import FileResult
 from gclint.rules.base import Finding
@@ -91,3 +93,36 @@ def totals(results: list[FileResult]) -> dict[str, int]:
         for f in r.findings:
             out[f.severity.label] += 1
     return out
+
+
+# -- grouping repeated findings (human formats) -------------------------------------------------------------
+
+SHOWN_PER_CODE = 3  # findings of one code shown per file before "... and N more like this"
+
+
+@dataclass(frozen=True)
+class Elided:
+    """Stands for the findings of one code in one file after the first few (text, full, grouped)."""
+
+    path: str
+    code: str
+    count: int
+
+    def __str__(self) -> str:
+        return f"... and {self.count} more like this ({self.code})"
+
+
+def grouped(findings: list[Finding], group: bool = True, shown: int = SHOWN_PER_CODE) -> Iterator[Finding | Elided]:
+    """One file's ``findings`` (in order) as the human formats show them: with ``group``, each code's
+    first ``shown`` findings, then one ``Elided`` for the rest of that code (``--no-group``: every one)."""
+    if not group:
+        yield from findings
+        return
+    total = Counter(f.code for f in findings)
+    seen: Counter = Counter()
+    for f in findings:
+        seen[f.code] += 1
+        if seen[f.code] <= shown:
+            yield f
+            if seen[f.code] == shown and total[f.code] > shown:
+                yield Elided(f.path, f.code, total[f.code] - shown)

@@ -189,6 +189,8 @@ def _context_properties(r) -> dict:
         out["conflict"] = clean(c.conflict)
     if c.firmware is not None:
         out["firmware"] = c.firmware
+    if c.flavor is not None:
+        out["flavor"] = c.flavor
     if c.printer is not None:
         out["printer"] = c.printer
         out["printerAssumed"] = c.printer_assumed  # nobody said: read from the job or the default

@@ -7,11 +7,15 @@ from dataclasses import replace
 from typing import TextIO
 
 from gclint.engine import FileResult
+from gclint.reports.common import Elided, grouped
 
 
 def write(results: list[FileResult], out: TextIO, ctx) -> None:
     for result in results:
-        for f in result.findings:
+        for f in grouped(result.findings, ctx.group):
+            if isinstance(f, Elided):
+                out.write(f"{f.path}: {f}\n")
+                continue
             out.write(f"{f.path}:{f.line}:{f.column}: {f.code}{_mark(f, ctx)} {f.message}\n")
     write_summary(results, out, ctx)
 
@@ -110,7 +114,10 @@ def write_full(results: list[FileResult], out: TextIO, ctx) -> None:
     from gclint.reports.common import message, source_line
 
     for result in results:
-        for f in result.findings:
+        for f in grouped(result.findings, ctx.group):
+            if isinstance(f, Elided):
+                out.write(f"{f.path}: {f}\n\n")
+                continue
             out.write(f"{f.path}:{f.line}:{f.column}: {f.code}{_mark(f, ctx)} {message(f)}\n")
             line = source_line(f)
             if line is not None:
@@ -135,7 +142,10 @@ def write_grouped(results: list[FileResult], out: TextIO, ctx) -> None:
             continue
         out.write(f"{result.path}:\n")
         width = max(len(f"{f.line}:{f.column}") for f in result.findings)
-        for f in result.findings:
+        for f in grouped(result.findings, ctx.group):
+            if isinstance(f, Elided):
+                out.write(f"  {'':<{width}} {f}\n")
+                continue
             where = f"{f.line}:{f.column}"
             out.write(f"  {where:<{width}} {f.code}{_mark(f, ctx)} {message(f)}\n")
         out.write("\n")

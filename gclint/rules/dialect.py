@@ -7,6 +7,7 @@ in the Hyrel table subclass it, so the range lives once, as data.
 
 from __future__ import annotations
 
+from gclint import dialects, firmware
 from gclint.dialects.base import Param
 from gclint.rules.base import Rule, Severity, register
 from gclint.syntax.nodes import EXTENDED, GCODE, IMPLICIT, META, OWORD, TEXT, WORD_LETTERS, Command, Line, to_number
@@ -23,22 +24,47 @@ class UnknownCode(Rule):
         "Unknown command"); on Hyrel, Repetrel reuses many numbers for other things (M204, M205, M220...
         mean something else there), and LinuxCNC stops the program.  The severity follows the dialect:
         error on Hyrel and Machinekit/LinuxCNC, warning elsewhere.
+
+        A Marlin-flavour file written for Prusa (Buddy or MK3), Bambu Lab or Klipper firmware, as its
+        slicer settings say (`; printer_model = MK4S`, `M862.3 P "MK4S"`, `; gcode_flavor = klipper`),
+        is checked against Marlin and that firmware's inventory: `M74` is not unknown in a job for an
+        MK4S.  Codes your machine has besides its firmware's (site macros, Klipper `[gcode_macro]`s,
+        LinuxCNC `REMAP=` codes) are declared with `extend-known-codes` in the configuration.
     """
     example_bad = "; gclint: dialect=hyrel\nM204 S1000"
     example_good = "; gclint: dialect=hyrel\nM203 X6000 Y6000"
-    source = "dialect inventories (research/dialects.md 1.8; Hyrel Gcode page, Code_Chart)"
+    source = (
+        "dialect inventories (research/dialects.md 1.8; Hyrel Gcode page, Code_Chart); firmware inventories "
+        "(research/firmware_codes.md)"
+    )
     on_unknown_code = True
 
+    def __init__(self, ctx) -> None:
+        super().__init__(ctx)
+        flavor = ctx.context.flavor
+        self.flavor = firmware.get(flavor) if flavor is not None else None
+        self.declared = frozenset(ctx.options.extend_known_codes)
+
     def check(self, line: Line, cmd: Command) -> None:
+        code = cmd.code
+        if code is not None and (
+            code in self.declared
+            or code.upper() in self.declared
+            or (self.flavor is not None and self.flavor.knows(code))
+        ):
+            return
         dialect = self.ctx.dialect
         severity = Severity.parse(dialect.unknown_severity)
         kind = cmd.kind
         if kind in (GCODE, TEXT):
-            message = f"{cmd.code} is not a {dialect.title} code"
+            message = f"{code} is not a {self._checked_against()} code{self._documented_elsewhere(code)}"
         elif kind == EXTENDED:
-            message = f"{cmd.code}: {dialect.title} has no Klipper-style extended commands"
+            message = f"{code}: {dialect.title} has no Klipper-style extended commands"
         elif kind == META:
-            message = f"'{cmd.code}': {dialect.title} has no RepRapFirmware meta commands"
+            if code == "echo":  # also Smoothieware's console (Carvera's firmware)
+                message = f"'echo': {dialect.title} has no RepRapFirmware meta commands or Smoothieware console"
+            else:
+                message = f"'{code}': {dialect.title} has no RepRapFirmware meta commands"
         elif kind == OWORD:
             message = f"O-word: {dialect.title} has no LinuxCNC O-word subroutines or control flow"
         elif kind == IMPLICIT:
@@ -46,6 +72,20 @@ class UnknownCode(Rule):
         else:
             message = f"'#' parameters: {dialect.title} has no LinuxCNC parameters"
         self.report(line, message, node=cmd, severity=severity)
+
+    def _checked_against(self) -> str:
+        title = self.ctx.dialect.title
+        return title if self.flavor is None else f"{title.split(' (')[0]} or {self.flavor.title}"
+
+    def _documented_elsewhere(self, code: str) -> str:
+        """Names the firmware that has ``code`` (" (Prusa Buddy firmware has it)") when its files are read
+        like this one's: the file may be for it (what its header would say, or extend-known-codes)."""
+        family = self.ctx.dialect.family
+        related = [d.name for d in dialects.all_dialects() if d.family == family]
+        others = [f.title for f in firmware.documenting(code, related) if f is not self.flavor]
+        if not others:
+            return ""
+        return f" ({' and '.join(others)} {'has' if len(others) == 1 else 'have'} it)"
 
 
 class ParamTableRule(Rule):

@@ -235,6 +235,12 @@ def _file_argument(code: str, rest: str, cmd: Command | None) -> str | None:
     return argument.strip('"')
 
 
+def _reprap_configuration(path: str) -> bool:
+    """Whether ``path`` is a RepRapFirmware system or macro file: ``.g``, or under ``sys/`` or ``macros/``."""
+    parts = path.replace("\\", "/").lower().split("/")
+    return parts[-1].endswith(".g") or "sys" in parts[:-1] or "macros" in parts[:-1]
+
+
 @register
 class RunsFile(_SecurityRule):
     code = "SC004"
@@ -246,16 +252,25 @@ class RunsFile(_SecurityRule):
         M23 (select a file for M24) make the firmware run a file that is not in this job.  What runs is
         whatever that file holds on the machine at print time, which this check cannot see; on a shared or
         networked printer it may have been changed.  Prefer self-contained jobs; when a macro is
-        intended (homing macros on RepRapFirmware), silence this code for those files with
-        per-file-ignores or "; noqa: SC004".
+        intended, silence this code for those files with per-file-ignores or "; noqa: SC004".
+
+        RepRapFirmware's own configuration is macros calling macros: the firmware runs homeall.g for G28,
+        tpre0.g for T0, M<n>.g for a code it does not have, and these files call each other with M98
+        (research/firmware_codes.md section 6).  So M98 in a RepRapFirmware system or macro file (a `.g`
+        file, or a file in a `sys/` or `macros/` folder, checked as RepRapFirmware) is not reported: it
+        runs another part of the same configuration.  A job that calls a macro still is.
     """
     example_bad = 'M98 P"0:/macros/prime.g"'
     example_good = "M98 P100 L2"
     source = "RepRap G-code page (M23, M32, M98); Carvera M-code table (M98, M98.1, M32, M23)"
     codes = ("M98", "M98.1", "M32", "M23")
 
+    def __init__(self, ctx) -> None:
+        super().__init__(ctx)
+        self.configuration = ctx.dialect.name == "reprap" and _reprap_configuration(ctx.path)
+
     def inspect(self, line: Line, code: str, rest: str, column: int, cmd: Command | None) -> None:
-        if not _starts_line(line, cmd):
+        if not _starts_line(line, cmd) or (code == "M98" and self.configuration):
             return
         name = _file_argument(code, rest, cmd)
         if name is None:

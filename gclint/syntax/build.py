@@ -86,6 +86,40 @@ def code_of(word: Word) -> str:
     return word.letter + (word.value or "")
 
 
+# Commands that take G or M as a parameter letter, by the firmware docs (research/firmware_codes.md:
+# section 9 "Letter M used as a parameter", and the parameter lists of sections 1 and 3): Bambu
+# "M900 K0.02 M1.0", "M1006 A0 B0 L0 C0 D0 M100", "M970 Q1 A7 ... M20", "M983.1 M1", "G151 P M",
+# "G383 O0 M2 T140", "M9711 M E Z...", "M9712 E M"; Prusa Buddy "M863 M L P E R", "M959 ... G ... K M",
+# "M960 ... G ... M", "M46 M".  (Prusa MK3's "G80 ... M" is left out: in a CNC program "G80 M5" is two
+# commands.)
+LETTER_PARAMETERS = {
+    "M900": "M",
+    "M1006": "M",
+    "M970": "M",
+    "M983.1": "M",
+    "G151": "M",
+    "G383": "M",
+    "M9711": "M",
+    "M9712": "M",
+    "M863": "M",
+    "M959": "GM",
+    "M960": "GM",
+    "M46": "M",
+}
+# A code's number: no sign, and at most three digits after the point (the longest sub-codes any
+# inventory lists are three digits: Bambu's G28.140).  "M0.125481" cannot be a code.
+_CODE_NUMBER = re.compile(r"\d+(?:\.\d{0,3})?")
+
+
+def _parameter_of(current: Command | None, piece: Word) -> bool:
+    """Whether the G or M word ``piece`` is a parameter of the command ``current`` rather than a command."""
+    if current is None or current.kind != GCODE or piece.letter not in "GM" or piece.value is None:
+        return False
+    if piece.letter in LETTER_PARAMETERS.get(current.code, ""):  # type: ignore[arg-type]
+        return True
+    return piece.kind == NUMBER and not _CODE_NUMBER.fullmatch(piece.value)
+
+
 def assemble(
     pieces: list,
     block_delete: BlockDelete | None = None,
@@ -128,8 +162,9 @@ def assemble(
                     )
             # G and M words start a command; so does a T that starts the line or follows another T
             # command (T2M6, T1 T2).  A G, M or T with no value after a command is a flag parameter
-            # (Bambu "M620 M", Marlin "M20 T", RepRapFirmware "T T{expr}").
-            if letter in "GMT" and (piece.value is not None or current is None):
+            # (Bambu "M620 M", Marlin "M20 T", RepRapFirmware "T T{expr}"), and so is a G or M word
+            # after a command when it cannot be a code or the command takes that letter (see below).
+            if letter in "GMT" and (piece.value is not None or current is None) and not _parameter_of(current, piece):
                 starts = (
                     letter != "T"
                     or current is None
