@@ -150,6 +150,7 @@ def main() -> None:
 @click.option(
     "--progress/--no-progress", default=None, help="Progress bar on stderr (default: on a terminal, for many files)."
 )
+@click.option("--show-settings", is_flag=True, help="Print the settings each file is checked with, then exit.")
 def check(
     paths: tuple[str, ...],
     dialect: str | None,
@@ -170,6 +171,7 @@ def check(
     no_cache: bool,
     cache_dir: str | None,
     progress: bool | None,
+    show_settings: bool = False,
 ) -> None:
     """Check G-code files and folders (- for standard input)."""
     from gclint import runner
@@ -200,6 +202,15 @@ def check(
     files, problems = runner.collect(paths or (".",))
     if fix and "-" in files:
         _fail("--fix cannot rewrite standard input")
+    from gclint import settings
+
+    if show_settings:
+        click.echo(settings.show_settings(files, overrides, config_file, cache_dir), nl=False)
+        return
+    suppressions = settings.security_suppressions(files, overrides, config_file)
+    for note in suppressions:
+        if note.from_config:
+            click.echo(f"gclint: note: {note.describe()}", err=True)
     from gclint import progress as progress_bar
     from gclint.cache import ResultCache
 
@@ -239,7 +250,9 @@ def check(
     for r in results:
         if r.error:
             click.echo(f"gclint: {r.error}", err=True)
-    ctx = ReportContext(tool_version=__version__, statistics=statistics)
+    ctx = ReportContext(
+        tool_version=__version__, statistics=statistics, suppressions=[n.describe() for n in suppressions]
+    )
     _write_report(writers[fmt], results, ctx, output)
     if any(r.error for r in results):
         sys.exit(2)

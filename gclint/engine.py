@@ -77,7 +77,15 @@ class FileResult:
         return out
 
 
-_NOQA = re.compile(r"(?i)\bnoqa\b(?:\s*:\s*([A-Za-z]{2}\d{0,3}(?:\s*[,\s]\s*[A-Za-z]{2}\d{0,3})*))?")
+# "noqa" starts a comment or follows a ";" inside one ("; SAY hi ; noqa: HY029"): a word or a path that merely
+# contains it ("SHELL C:\\tools\\noqa.exe") is text, not a suppression.
+_NOQA = re.compile(
+    r"(?i)(?:^|[;(])[ \t]*+noqa\b(?:\s*:\s*([A-Za-z]{2}\d{0,3}(?:\s*[,\s]\s*[A-Za-z]{2}\d{0,3})*))?"
+)
+# Findings a job can never silence itself (noqa, gclint: disable): the security rules.  A hostile job would
+# otherwise write "; noqa: SC001" after its own "M792 ; SHELL ...".  They are suppressed only from the
+# configuration or the command line (--ignore, per-file-ignores), where the suppression is visible.
+INLINE_UNSUPPRESSIBLE = ("SC",)
 _DIRECTIVE = re.compile(
     r"(?i)\bgclint:\s*(disable|enable)\b(?:\s*=\s*([A-Za-z]{2}\d{0,3}(?:\s*,\s*[A-Za-z]{2}\d{0,3})*))?"
 )
@@ -163,6 +171,8 @@ class FileContext:
             self._plain_comments.add(raw)
 
     def suppressed(self, finding: Finding) -> bool:
+        if finding.code.startswith(INLINE_UNSUPPRESSIBLE):
+            return False
         codes = self.noqa.get(finding.line)
         if codes and _matches(finding.code, codes):
             return True

@@ -106,8 +106,65 @@ def test_findings_point_at_the_action() -> None:
     assert '"C:\\x.exe"' in f.message
 
 
-def test_noqa_silences_a_security_finding() -> None:
-    assert _sc('M98 P"homeall.g" ; noqa: SC004\n') == []
+# -- a job never silences its own SC findings (issue 12, item 5) ---------------------------------------------------
+
+SELF_SILENCED = [
+    "M792 ; SHELL C:\\x.exe ; noqa: SC001",
+    "M792 ; SHELL C:\\x.exe ; noqa",
+    "M792 ; SHELL C:\\x.exe ; NOQA: SC",
+    "M792 (SHELL x.exe) (noqa: SC001)",
+    "M792 ; SHELL C:\\tools\\noqa.exe",
+    "; gclint: disable=SC\nM792 ; SHELL C:\\x.exe",
+    "; gclint: disable=SC001\nM792 ; SHELL C:\\x.exe",
+    "; gclint: disable\nM792 ; SHELL C:\\x.exe",
+    "(gclint: disable=SC)\nM0 ; SHELL C:\\x.exe",
+]
+
+
+@pytest.mark.parametrize("text", SELF_SILENCED)
+def test_a_job_cannot_silence_its_own_security_findings(text: str) -> None:
+    assert "SC001" in {f.code for f in _sc(text + "\n")}
+
+
+def test_noqa_does_not_silence_a_security_finding() -> None:
+    # Before issue 12 a job could write "; noqa: SC004" after its own macro call; SC findings are now
+    # suppressed only from the configuration or the command line.
+    assert [f.code for f in _sc('M98 P"homeall.g" ; noqa: SC004\n')] == ["SC004"]
+
+
+def test_noqa_inside_a_path_is_not_a_suppression() -> None:
+    # "noqa" must start a comment (or follow a ";"): a path or a word that merely contains it is text.
+    text = "G1 X1 X2 ; C:\\tools\\noqa.exe\nG1 X1 X2 ; see noqa.txt\nG1 X1 X2 ; noqa: SX002\n"
+    findings = Linter(Options(dialect="marlin")).check_text(text, "job.gcode").findings
+    assert [(f.line, f.code) for f in findings if f.code == "SX002"] == [(1, "SX002"), (2, "SX002")]
+
+
+def test_security_findings_are_suppressed_from_the_command_line_and_configuration(tmp_path: Path) -> None:
+    job = tmp_path / "job.gcode"
+    job.write_text("; gclint: dialect=hyrel\n; gclint: disable=SC\nM792 ; SHELL C:\\x.exe ; noqa: SC001\n")
+    proc = run_cli("check", "--no-cache", "--format", "json", str(job))
+    assert proc.returncode == 1 and [f["code"] for f in json.loads(proc.stdout)] == ["SC001"]
+    proc = run_cli("check", "--no-cache", "--format", "json", "--ignore", "SC001", str(job))
+    assert proc.returncode == 0 and json.loads(proc.stdout) == []
+    (tmp_path / "gclint.toml").write_text('per-file-ignores = { "job.gcode" = ["SC"] }\n')
+    proc = run_cli("check", "--no-cache", "--format", "json", str(job))
+    assert proc.returncode == 0 and json.loads(proc.stdout) == []
+    # ... and such a suppression is visible: a note on stderr, in --statistics and in --show-settings
+    stderr = proc.stderr.decode()
+    assert "SC" in stderr and "gclint.toml" in stderr, stderr
+    proc = run_cli("check", "--no-cache", "--statistics", str(job))
+    assert "SC001" in proc.stdout.decode() and "gclint.toml" in proc.stdout.decode(), proc.stdout
+    proc = run_cli("check", "--show-settings", str(job))
+    shown = proc.stdout.decode()
+    assert proc.returncode == 0 and "gclint.toml" in shown and "SC001" in shown and "job.gcode" in shown, shown
+
+
+def test_postprocess_stops_a_job_that_silences_itself(tmp_path: Path) -> None:
+    job = tmp_path / "job.gcode"
+    job.write_text("; gclint: disable=SC\nG28\nM792 ; SHELL C:\\tools\\noqa.exe ; noqa: SC001\n")
+    proc = run_cli("postprocess", "--fail-on", "error", str(job))
+    assert proc.returncode == 1, proc.stderr
+    assert "SC001" in proc.stderr.decode()
 
 
 # -- secrets -----------------------------------------------------------------------------------------------------

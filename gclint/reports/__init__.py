@@ -19,6 +19,7 @@ class ReportContext:
     show_fixes: bool = True
     color: bool = False
     rules: dict = field(default_factory=dict)  # code -> rule class, for formats that describe rules
+    suppressions: list[str] = field(default_factory=list)  # security rules switched off, and by what
 
 
 Writer = Callable[[list[FileResult], TextIO, ReportContext], None]

@@ -33,6 +33,8 @@ def write_summary(results: list[FileResult], out: TextIO, ctx) -> None:
                 fixable += 1
     if ctx.statistics:
         write_statistics(results, out)
+        for note in ctx.suppressions:
+            out.write(f"{'-':>7}  {note}\n")
     n = sum(total.values())
     if n:
         parts = [f"{total[k]} {k}{'s' if total[k] != 1 else ''}" for k in ("error", "warning", "info") if total[k]]
