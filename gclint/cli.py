@@ -110,7 +110,7 @@ def main() -> None:
 
 
 @main.command()
-@click.argument("paths", nargs=-1, type=click.Path(allow_dash=True))
+@click.argument("paths", nargs=-1, type=click.Path(allow_dash=True, readable=False))
 @click.option(
     "--dialect", "-d", metavar="D", help="hyrel, hyrel-v4, marlin, reprap, machinekit, carvera or auto (default)."
 )
@@ -145,7 +145,7 @@ def main() -> None:
     "--cache-dir",
     type=click.Path(file_okay=False),
     envvar="GCLINT_CACHE_DIR",
-    help="Cache folder (default .gclint_cache).",
+    help="Cache folder (default: gclint's folder in the user cache folder, per project).",
 )
 @click.option(
     "--progress/--no-progress", default=None, help="Progress bar on stderr (default: on a terminal, for many files)."
@@ -199,9 +199,15 @@ def check(
     if config_file is not None and not os.path.isfile(config_file):
         _fail(f"{config_file}: configuration file not found")
 
-    files, problems = runner.collect(paths or (".",))
+    walk_notes: list[str] = []
+    files, problems = runner.collect(paths or (".",), walk_notes)
+    for note in walk_notes:
+        click.echo(f"gclint: note: {note}", err=True)
     if fix and "-" in files:
         _fail("--fix cannot rewrite standard input")
+    if output not in (None, "-") and (checked := _same_file(output, files)) is not None:
+        _fail(f"{output}: is {checked}, one of the files to check: the report would overwrite it")
+    jobs = _cap_jobs(jobs)
     from gclint import settings
 
     if show_settings:
@@ -215,6 +221,7 @@ def check(
     from gclint.cache import ResultCache
 
     bar = progress_bar.ProgressBar(files) if progress_bar.wanted(progress, fmt, files) else None
+    cache = None if (no_cache or fix) else ResultCache(cache_dir)
     try:
         from gclint.rules.base import all_rules
 
@@ -227,7 +234,7 @@ def check(
             jobs=jobs or (runner.default_jobs() if len(files) > 1 else 1),
             stdin_name=stdin_filename or "-",
             progress=bar.advance if bar is not None else None,
-            cache=None if (no_cache or fix) else ResultCache(cache_dir),
+            cache=cache,
         )
     except RuleError as exc:
         _fail(str(exc))
@@ -247,6 +254,8 @@ def check(
             fixed.append(r)
         results = fixed
     results = problems + results
+    for note in cache.notes if cache is not None else ():
+        click.echo(f"gclint: note: {note}", err=True)
     for r in results:
         if r.error:
             click.echo(f"gclint: {r.error}", err=True)
@@ -259,6 +268,35 @@ def check(
     worst = max((f.severity for r in results for f in r.findings), default=None)
     if not exit_zero and worst is not None and worst >= Severity.WARNING:
         sys.exit(1)
+
+
+def _same_file(output: str, files: list[str]) -> str | None:
+    """The file among ``files`` that ``output`` names (the same file, by any name), or None."""
+    try:
+        target = os.stat(output)
+    except OSError:
+        return None
+    for path in files:
+        try:
+            if path != "-" and os.path.samestat(target, os.stat(path)):
+                return path
+        except OSError:
+            continue
+    return None
+
+
+MAX_JOBS = 64
+
+
+def _cap_jobs(jobs: int | None) -> int | None:
+    """``--jobs`` beyond what the computer can use (4 processes per CPU, at most 64) is capped, with a note."""
+    from gclint import runner
+
+    cap = min(MAX_JOBS, 4 * runner.default_jobs())
+    if jobs is not None and jobs > cap:
+        click.echo(f"gclint: note: --jobs {jobs} is more than this computer can use; using {cap}", err=True)
+        return cap
+    return jobs
 
 
 def _write_report(writer, results: list[FileResult], ctx, output: str | None) -> None:
@@ -413,6 +451,39 @@ def list_dialects() -> None:
         aliases = f" (also: {', '.join(d.aliases)})" if d.aliases else ""
         click.echo(f"{d.name:<11} {d.title}{aliases}")
     click.echo(f"{'auto':<11} detect from the file (directive, slicer header, codes); default {dialects.DEFAULT.name}")
+
+
+# -- clean -----------------------------------------------------------------------------------------------
+
+
+@main.command()
+@click.argument("paths", nargs=-1, type=click.Path(readable=False))
+@click.option("--all", "everything", is_flag=True, help="Remove the result cache of every project.")
+@click.option(
+    "--cache-dir",
+    type=click.Path(file_okay=False),
+    envvar="GCLINT_CACHE_DIR",
+    help="Remove this cache folder's results instead (as given to 'check').",
+)
+def clean(paths: tuple[str, ...], everything: bool, cache_dir: str | None) -> None:
+    """Remove the result cache of the project of PATHS (default: the current folder)."""
+    from pathlib import Path
+
+    from gclint import cache
+
+    if cache_dir:
+        folders = [Path(cache_dir)]
+    elif everything:
+        folders = [cache.user_cache_root() / "projects"]
+    else:
+        root = cache.user_cache_root()
+        folders = sorted({cache.project_folder(root, cache.project_root(p)) for p in paths or (".",)})
+    for folder in folders:
+        removed = cache.clean(folder)
+        if removed:
+            click.echo(f"removed {removed} cached result{'s' if removed != 1 else ''} from {folder}")
+        else:
+            click.echo(f"no cached results in {folder}")
 
 
 # -- explain ---------------------------------------------------------------------------------------------

@@ -97,6 +97,16 @@ def _codes(text: str | None) -> tuple[str, ...]:
     return tuple(c.upper() for c in re.split(r"[,\s]+", text.strip()) if c)
 
 
+# Findings stay bounded whatever the input (a 3 MB line of "X1" once gave a million findings and 1.1 GB):
+# findings of one code on one line are one finding with a count, at most MAX_FINDINGS are kept per file
+# (later ones are counted on the last kept finding of their code), and a finding keeps at most
+# SOURCE_LIMIT characters of its line for the reports.
+MAX_FINDINGS = 50_000
+SOURCE_LIMIT = 2048
+_MAX_MERGED_EDITS = 64  # fixes merged into one finding (the rest is fixed by running --fix again)
+_REMEMBERED_LINE = 1024  # comment lines longer than this are not remembered as "no directive"
+
+
 class FileContext:
     """The per-file world a rule sees: dialect, printer, options, machine state, and the findings."""
 
@@ -114,6 +124,8 @@ class FileContext:
         self.noqa: dict[int, tuple[str, ...]] = {}
         self.directives: list[tuple[int, str, tuple[str, ...]]] = []
         self._plain_comments: set[str] = set()  # lines whose comments hold no noqa or gclint directive
+        # code -> [its latest finding, that finding's own message, more on its line, more later in the file]
+        self._latest: dict[str, list] = {}
 
     def enabled(self, code: str) -> bool:
         """Whether the rule ``code`` is selected for this run."""
@@ -132,22 +144,49 @@ class FileContext:
     ) -> None:
         if isinstance(line, Line):
             number, text = line.number, line.raw
+            if len(text) > SOURCE_LIMIT:
+                text = text[:SOURCE_LIMIT] + "..."
         else:
             number, text = line, None
-        self.findings.append(
-            Finding(
-                path=self.path,
-                line=number,
-                column=max(1, column),
-                code=rule.code,
-                severity=severity if severity is not None else rule.severity,
-                message=message,
-                name=rule.name,
-                fix=fix,
-                end_column=end_column,
-                source=text,
-            )
+        code = rule.code
+        severity = severity if severity is not None else rule.severity
+        latest = self._latest.get(code)
+        if latest is not None and (latest[0].line == number or len(self.findings) >= MAX_FINDINGS):
+            self._count(latest, number, severity, fix)
+            return
+        finding = Finding(
+            path=self.path,
+            line=number,
+            column=max(1, column),
+            code=code,
+            severity=severity,
+            message=message,
+            name=rule.name,
+            fix=fix,
+            end_column=end_column,
+            source=text,
         )
+        self.findings.append(finding)
+        self._latest[code] = [finding, message, 0, 0]
+
+    @staticmethod
+    def _count(latest: list, number: int, severity: Severity, fix: Fix | None) -> None:
+        """Count a finding into the latest one of its code: "(and N more on this line)"."""
+        kept: Finding = latest[0]
+        if kept.line == number:
+            latest[2] += 1
+            if fix is not None and kept.fix is not None and len(kept.fix.edits) < _MAX_MERGED_EDITS:
+                kept.fix = Fix(kept.fix.message, kept.fix.edits + fix.edits, kept.fix.safe and fix.safe)
+        else:
+            latest[3] += 1
+        if severity > kept.severity:
+            kept.severity = severity  # counting never lowers the worst severity (the exit code)
+        message = latest[1]
+        if latest[2]:
+            message += f" (and {latest[2]:,} more on this line)"
+        if latest[3]:
+            message += f" (and {latest[3]:,} more {kept.code} findings later in the file, not listed)"
+        kept.message = message
 
     # -- suppression ------------------------------------------------------------------------------------
 
@@ -165,7 +204,8 @@ class FileContext:
                     self.noqa[line.number] = self.noqa.get(line.number, ()) + _codes(m.group(1))
                 for d in _DIRECTIVE.finditer(body):
                     self.directives.append((line.number, d.group(1).lower(), _codes(d.group(2))))
-        if not found:  # comment lines repeat (";TYPE:Perimeter"): remember the ones with no directive
+        if not found and len(raw) <= _REMEMBERED_LINE:
+            # comment lines repeat (";TYPE:Perimeter"): remember the ones with no directive
             if len(self._plain_comments) >= 8192:
                 self._plain_comments.clear()
             self._plain_comments.add(raw)

@@ -81,7 +81,8 @@ class _SecurityRule(Rule):
         """Report with the message and the source line masked (no secret reaches any output)."""
         self.report(line, secrets.mask(message), column=column, severity=severity)
         finding = self.ctx.findings[-1]
-        finding.source = secrets.mask(line.raw)
+        if finding.line == line.number and finding.source is not None:
+            finding.source = secrets.mask(finding.source)  # (the line, or its beginning for a very long one)
 
 
 # -- Repetrel host actions (Hyrel M0 / M792) ------------------------------------------------------------
@@ -247,7 +248,8 @@ class RunsFile(_SecurityRule):
         whatever that file holds on the machine at print time, which this check cannot see; on a shared or
         networked printer it may have been changed.  Prefer self-contained jobs; when a macro is
         intended (homing macros on RepRapFirmware), silence this code for those files with
-        per-file-ignores or "; noqa: SC004".
+        per-file-ignores in the configuration.  A job cannot silence SC findings itself: "; noqa: SC004"
+        and "; gclint: disable=SC" are ignored for the security rules.
     """
     example_bad = 'M98 P"0:/macros/prime.g"'
     example_good = "M98 P100 L2"
@@ -336,7 +338,7 @@ class LeakedSecret(_SecurityRule):
         if text in self._clean:  # comments repeat (";TYPE:Perimeter", ";WIDTH:0.45")
             return
         found = secrets.find(text)
-        if not found:
+        if not found and len(text) <= 1024:  # (long texts are not remembered: memory stays bounded)
             if len(self._clean) >= 8192:
                 self._clean.clear()
             self._clean.add(text)
