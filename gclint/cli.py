@@ -23,6 +23,11 @@ DIALECT_CHOICES = sorted(set(dialects.names()) | {"auto"})
 class UsageFailure(click.ClickException):
     exit_code = 2
 
+    def __init__(self, message: str) -> None:
+        from gclint.textsafe import human
+
+        super().__init__(human(message))  # file names and file text: no control character reaches stderr
+
 
 class _Main(click.Group):
     """The command group: whatever escapes a command becomes one line on stderr and exit code 2, never a
@@ -202,7 +207,7 @@ def check(
     walk_notes: list[str] = []
     files, problems = runner.collect(paths or (".",), walk_notes)
     for note in walk_notes:
-        click.echo(f"gclint: note: {note}", err=True)
+        _note(note)
     if fix and "-" in files:
         _fail("--fix cannot rewrite standard input")
     if output not in (None, "-") and (checked := _same_file(output, files)) is not None:
@@ -216,7 +221,7 @@ def check(
     suppressions = settings.security_suppressions(files, overrides, config_file)
     for note in suppressions:
         if note.from_config:
-            click.echo(f"gclint: note: {note.describe()}", err=True)
+            _note(note.describe())
     from gclint import progress as progress_bar
     from gclint.cache import ResultCache
 
@@ -255,10 +260,10 @@ def check(
         results = fixed
     results = problems + results
     for note in cache.notes if cache is not None else ():
-        click.echo(f"gclint: note: {note}", err=True)
+        _note(note)
     for r in results:
         if r.error:
-            click.echo(f"gclint: {r.error}", err=True)
+            _error(r.error)
     ctx = ReportContext(
         tool_version=__version__, statistics=statistics, suppressions=[n.describe() for n in suppressions]
     )
@@ -268,6 +273,18 @@ def check(
     worst = max((f.severity for r in results for f in r.findings), default=None)
     if not exit_zero and worst is not None and worst >= Severity.WARNING:
         sys.exit(1)
+
+
+def _note(text: str) -> None:
+    from gclint.textsafe import human
+
+    click.echo(f"gclint: note: {human(text)}", err=True)
+
+
+def _error(text: str) -> None:
+    from gclint.textsafe import human
+
+    click.echo(f"gclint: {human(text)}", err=True)
 
 
 def _same_file(output: str, files: list[str]) -> str | None:
@@ -294,7 +311,7 @@ def _cap_jobs(jobs: int | None) -> int | None:
 
     cap = min(MAX_JOBS, 4 * runner.default_jobs())
     if jobs is not None and jobs > cap:
-        click.echo(f"gclint: note: --jobs {jobs} is more than this computer can use; using {cap}", err=True)
+        _note(f"--jobs {jobs} is more than this computer can use; using {cap}")
         return cap
     return jobs
 
@@ -530,23 +547,23 @@ def explain(file: str | None, expressions: tuple[str, ...], dialect: str | None,
         found = chosen or dialects.detect(src.head_text(), file or "")[0]
         items = explain_source(src, found)
         source_name = file or "-"
+    from gclint.textsafe import human, json_safe
+
     try:
         if fmt == "json":
-            click.echo(
-                json.dumps(
-                    {"dialect": found.name, "source": source_name, "commands": [e.to_dict() for e in items]},
-                    indent=2,
-                    ensure_ascii=False,
-                )
-            )
+            commands = [e.masked().to_dict() for e in items]
+            payload = {"dialect": found.name, "source": human(source_name), "commands": commands}
+            click.echo(json_safe(json.dumps(payload, indent=2, ensure_ascii=False)))
             return
         click.echo(f"; dialect: {found.name} ({found.title})")
         last = None
         for e in items:
+            e = e.masked()
             if e.line != last:
-                click.echo(f"\n{e.line}: {e.source.strip()}" if source_name != "-e" else f"\n{e.source.strip()}")
+                shown = human(e.source.strip())
+                click.echo(f"\n{e.line}: {shown}" if source_name != "-e" else f"\n{shown}")
                 last = e.line
-            click.echo(e.render())
+            click.echo("\n".join(human(line) for line in e.render().split("\n")))
     except SourceError as exc:
         _fail(str(exc))
 

@@ -323,3 +323,111 @@ def test_json_report_of_security_findings(tmp_path: Path) -> None:
     assert finding["code"] == "SC001" and finding["severity"] == "error" and finding["name"] == "host-runs-program"
     assert proc.returncode == 1
     assert os.path.basename(finding["path"]) == "job.gcode"
+
+
+# -- whole values masked everywhere (issue 12, item 7) --------------------------------------------------------------
+
+MULTIWORD = "correct horse battery staple"
+MORE_SECRETS = (
+    "; gclint: dialect=hyrel\n"
+    f"; printhost_password = {MULTIWORD}\n"
+    "; printhost_apikey =            FarAwayKey987654321\n"
+    "M0 ; SAY the password=Sesame0pen4me is on the wall\n"
+    "M117 token=abc123def456 ghi789\n"
+    "M104 S200 S210 ; password: trailing words here\n"
+)
+MORE_VALUES = ["horse", "battery", "staple", "FarAwayKey987654321", "Sesame0pen4me", "abc123def456", "ghi789", "trailing"]
+
+
+@pytest.mark.parametrize(
+    "line,value",
+    [
+        (f"; printhost_password = {MULTIWORD}", MULTIWORD),
+        ("; printhost_apikey =            FarAwayKey987654321", "FarAwayKey987654321"),
+        ("; password          =   spaced out value  ", "spaced out value"),
+        ('; password = "unterminated quote and more', '"unterminated quote and more'),
+    ],
+)
+def test_secrets_are_masked_whole(line: str, value: str) -> None:
+    masked = secrets.mask(line)
+    assert value not in masked and not any(w in masked for w in value.split() if len(w) > 3), masked
+    assert len(masked) == len(line)
+
+
+@pytest.mark.parametrize("fmt", sorted(formats()))
+def test_no_output_format_shows_any_word_of_a_secret(tmp_path: Path, fmt: str) -> None:
+    job = tmp_path / "job.gcode"
+    job.write_text(MORE_SECRETS)
+    out = tmp_path / f"report.{fmt}"
+    proc = run_cli("check", "--no-cache", "--select", "ALL", "--format", fmt, "--output", str(out), str(job))
+    assert proc.returncode == 1, proc.stderr
+    text = out.read_text(encoding="utf-8", errors="replace") + proc.stderr.decode("utf-8", "replace")
+    for value in MORE_VALUES:
+        assert value not in text, f"{fmt}: {value} shown"
+
+
+def test_explain_and_postprocess_mask_secrets(tmp_path: Path) -> None:
+    job = tmp_path / "job.gcode"
+    job.write_text(MORE_SECRETS + 'M587 S"net" P"wifi secret words"\n')
+    shown = ""
+    for fmt in ("text", "json"):
+        proc = run_cli("explain", "--all-lines", "--format", fmt, str(job))
+        assert proc.returncode == 0, proc.stderr
+        shown += proc.stdout.decode()
+    proc = run_cli("explain", "-e", "M587 S\"net\" P\"wifi secret words\"", "-d", "reprap")
+    shown += proc.stdout.decode()
+    report = tmp_path / "report.txt"
+    proc = run_cli("postprocess", "--fail-on", "never", "--report", str(report), str(job))
+    shown += proc.stderr.decode() + report.read_text()
+    for value in [*MORE_VALUES, "wifi secret words"]:
+        assert value not in shown, value
+
+
+# -- control characters never reach a terminal (issue 12, item 6) ---------------------------------------------------
+
+ESC_JOB = (
+    "; gclint: dialect=hyrel\n"
+    "M117 \x1b[2J\x1b[1;1Hall good\x07\n"
+    "M792 ; SHELL C:\\x.exe \x1b[8mhidden\x1b[0m\u202e\n"
+    "G1 X1 X2 ; \x1b]0;title\x07 \x9b31m\n"
+)
+RAW_CONTROLS = ("\x1b", "\x07", "\x9b", "\u202e")
+
+
+def _no_controls(text: str, where: str) -> None:
+    for c in RAW_CONTROLS:
+        assert c not in text, f"{where}: raw {c!r} in output"
+    assert "\r" not in text, where
+
+
+@pytest.mark.parametrize("fmt", ["text", "full", "grouped", "github", "concise"])
+def test_human_formats_escape_control_characters(tmp_path: Path, fmt: str) -> None:
+    job = tmp_path / "job\x1b[2K\nx.gcode"
+    job.write_bytes(ESC_JOB.encode())
+    proc = run_cli("check", "--no-cache", "--format", fmt, "--statistics", str(job))
+    assert proc.returncode == 1, proc.stderr
+    out = proc.stdout.decode() + proc.stderr.decode()
+    _no_controls(out, fmt)
+    assert "SC001" in out
+    assert all(line.count(".gcode") <= 1 for line in out.splitlines()), "a newline in the file name split a line"
+
+
+def test_error_lines_explain_and_postprocess_escape_control_characters(tmp_path: Path) -> None:
+    script = tmp_path / "run\x1b[31m.gcode"
+    script.write_bytes(b"#!/bin/sh \x1b[2J\x1b]0;pwned\x07\nrm -rf /\n")
+    proc = run_cli("check", "--no-cache", str(script))
+    assert proc.returncode == 2
+    _no_controls(proc.stderr.decode(), "#! refusal")
+    proc = run_cli("translate", "--from", "marlin", "--to", "hyrel", str(tmp_path / "missing\x1b[2J.gcode"))
+    assert proc.returncode == 2
+    _no_controls(proc.stderr.decode(), "translate error")
+    job = tmp_path / "job.gcode"
+    job.write_bytes(ESC_JOB.encode())
+    for args in (("explain", str(job)), ("explain", "-e", "M117 \x1b[2Jhi"), ("explain", "--format", "json", str(job))):
+        proc = run_cli(*args)
+        assert proc.returncode == 0, proc.stderr
+        _no_controls(proc.stdout.decode(), " ".join(args[:2]))
+    report = tmp_path / "report.txt"
+    proc = run_cli("postprocess", "--fail-on", "error", "--report", str(report), str(job))
+    assert proc.returncode == 1
+    _no_controls(proc.stderr.decode() + report.read_text(), "postprocess")

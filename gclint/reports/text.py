@@ -6,12 +6,14 @@ from collections import Counter
 from typing import TextIO
 
 from gclint.engine import FileResult
+from gclint.reports.common import human, message
 
 
 def write(results: list[FileResult], out: TextIO, ctx) -> None:
     for result in results:
+        path = human(result.path)
         for f in result.findings:
-            out.write(f"{f.path}:{f.line}:{f.column}: {f.code}{_mark(f, ctx)} {f.message}\n")
+            out.write(f"{path}:{f.line}:{f.column}: {f.code}{_mark(f, ctx)} {message(f)}\n")
     write_summary(results, out, ctx)
 
 
@@ -34,7 +36,7 @@ def write_summary(results: list[FileResult], out: TextIO, ctx) -> None:
     if ctx.statistics:
         write_statistics(results, out)
         for note in ctx.suppressions:
-            out.write(f"{'-':>7}  {note}\n")
+            out.write(f"{'-':>7}  {human(note)}\n")
     n = sum(total.values())
     if n:
         parts = [f"{total[k]} {k}{'s' if total[k] != 1 else ''}" for k in ("error", "warning", "info") if total[k]]
@@ -56,7 +58,7 @@ def write_statistics(results: list[FileResult], out: TextIO) -> None:
         for f in result.findings:
             counts[f.code] += 1
             names[f.code] = (f.name, f.severity.label)
-            first.setdefault(f.code, f"{f.path}:{f.line}")
+            first.setdefault(f.code, f"{human(f.path)}:{f.line}")
     for code, n in sorted(counts.items(), key=lambda kv: (-kv[1], kv[0])):
         name, severity = names[code]
         out.write(f"{n:>7}  {code}  {name:<32} [{severity}]  first at {first[code]}\n")
@@ -64,11 +66,12 @@ def write_statistics(results: list[FileResult], out: TextIO) -> None:
 
 def write_full(results: list[FileResult], out: TextIO, ctx) -> None:
     """``--format full``: each finding with its source line and a caret under the columns it covers."""
-    from gclint.reports.common import message, source_line
+    from gclint.reports.common import source_line
 
     for result in results:
+        path = human(result.path)
         for f in result.findings:
-            out.write(f"{f.path}:{f.line}:{f.column}: {f.code}{_mark(f, ctx)} {message(f)}\n")
+            out.write(f"{path}:{f.line}:{f.column}: {f.code}{_mark(f, ctx)} {message(f)}\n")
             line = source_line(f)
             if line is not None:
                 gutter = " " * len(str(f.line))
@@ -78,19 +81,18 @@ def write_full(results: list[FileResult], out: TextIO, ctx) -> None:
                 width = max(1, len(line[: end_column - 1].expandtabs(4)) - start)
                 out.write(f" {gutter} |\n {f.line} | {shown}\n {gutter} | {' ' * start}{'^' * width}\n")
             if f.fix is not None and ctx.show_fixes:
-                out.write(f" {' ' * len(str(f.line))} = fix{'' if f.fix.safe else ' (unsafe)'}: {f.fix.message}\n")
+                fix = human(f.fix.message)
+                out.write(f" {' ' * len(str(f.line))} = fix{'' if f.fix.safe else ' (unsafe)'}: {fix}\n")
             out.write("\n")
     write_summary(results, out, ctx)
 
 
 def write_grouped(results: list[FileResult], out: TextIO, ctx) -> None:
     """``--format grouped``: findings under their file's name, like ``ruff --output-format grouped``."""
-    from gclint.reports.common import message
-
     for result in results:
         if not result.findings:
             continue
-        out.write(f"{result.path}:\n")
+        out.write(f"{human(result.path)}:\n")
         width = max(len(f"{f.line}:{f.column}") for f in result.findings)
         for f in result.findings:
             where = f"{f.line}:{f.column}"

@@ -43,15 +43,15 @@ def run_translate(
         )
         translator = translator_for(source, target, options)
     except UnsupportedPair as exc:
-        click.echo(f"gclint: {exc}", err=True)
+        _error(exc)
         return 2
     except ValueError as exc:
-        click.echo(f"gclint: {exc}", err=True)
+        _error(exc)
         return 2
     try:
         src = Source.open(input_path)
     except SourceError as exc:
-        click.echo(f"gclint: {exc}", err=True)
+        _error(exc)
         return 2
     result = TranslationResult(src.display, source.name, target.name)
     target_path = output if output not in (None, "-") else None
@@ -72,15 +72,21 @@ def run_translate(
                 if _refused(result, unsupported):
                     out.discard()
     except SourceError as exc:
-        click.echo(f"gclint: {exc}", err=True)
+        _error(exc)
         return 2
     except OutputError as exc:
-        click.echo(f"gclint: {exc}", err=True)
+        _error(exc)
         return 2
     _report(result, unsupported)
     if _refused(result, unsupported):
         return 1
     return 0
+
+
+def _error(exc: Exception) -> None:
+    from gclint.textsafe import human  # file names and file text: no control character reaches stderr
+
+    click.echo(f"gclint: {human(str(exc))}", err=True)
 
 
 def _collect(src: Source, translator, result: TranslationResult) -> bytes:
@@ -97,13 +103,13 @@ def _refused(result: TranslationResult, unsupported: str) -> bool:
 def _report(result: TranslationResult, unsupported: str) -> None:
     if unsupported == "ignore":
         return
-    from gclint.reports.common import message  # masks secrets quoted from the file
+    from gclint.reports.common import human, message  # masks secrets, escapes file text
 
     for f in result.findings:
-        click.echo(f"{f.path}:{f.line}:{f.column}: {f.code} {message(f)}", err=True)
+        click.echo(f"{human(f.path)}:{f.line}:{f.column}: {f.code} {message(f)}", err=True)
     if unsupported == "error" and _refused(result, unsupported):
         click.echo(
-            f"gclint: {result.path}: not translated: {len(result.findings)} construct(s) cannot be translated "
+            f"gclint: {human(result.path)}: not translated: {len(result.findings)} construct(s) cannot be translated "
             "exactly (--unsupported error)",
             err=True,
         )
