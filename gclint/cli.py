@@ -182,6 +182,13 @@ def check(
     from gclint import runner
     from gclint.reports import ReportContext, formats
 
+    if os.environ.get("PRE_COMMIT") == "1" and paths and "--" not in sys.argv[1:]:
+        # pre-commit appends file names after the hook's args: without "--", a committed file named
+        # "--config=x.gcode" would be read as an option (.pre-commit-hooks.yaml)
+        _fail(
+            "as a pre-commit hook, gclint needs '--' before the file names: end the hook's args with '--'"
+            " (args: [--printer, 30m, --]) so that a file name is never read as an option"
+        )
     writers = formats()
     if fmt not in writers:
         _fail(f"unknown format {fmt!r} (known: {', '.join(sorted(writers))})")
