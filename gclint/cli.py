@@ -324,14 +324,15 @@ def _cap_jobs(jobs: int | None) -> int | None:
 
 
 def _write_report(writer, results: list[FileResult], ctx, output: str | None) -> None:
+    from gclint.io import OutputError, write_text
+
     if output in (None, "-"):
         writer(results, sys.stdout, ctx)
         return
     try:
-        with open(output, "w", encoding="utf-8", errors="backslashreplace", newline="\n") as fh:
-            writer(results, fh, ctx)
-    except OSError as exc:
-        _fail(f"{output}: cannot write the report: {exc.strerror or exc}")
+        write_text(output, lambda out: writer(results, out, ctx))  # atomically, never through a link
+    except OutputError as exc:
+        _fail(f"{exc} (the report was not written)")
 
 
 # -- translate -------------------------------------------------------------------------------------------
@@ -399,6 +400,8 @@ def translate(
         _fail("use either --output or --in-place")
     if in_place and input_path == "-":
         _fail("--in-place needs a file, not standard input")
+    if output not in (None, "-") and input_path != "-" and _same_file(output, [input_path]) is not None:
+        _fail(f"{output}: is the input file; use --in-place to rewrite it")
     try:
         mapping = parse_tool_map(tool_map) if tool_map else None
     except ConfigError as exc:
@@ -657,8 +660,13 @@ def cura_script(folder: str | None, to_stdout: bool) -> None:
     if to_stdout:
         click.echo(cs.render(), nl=False)
         return
+    from gclint.io import OutputError
+
     try:
         path = cs.write(folder or ".")
+    except OutputError as exc:
+        _fail(str(exc))
+        return
     except OSError as exc:
         _fail(f"{folder or '.'}: cannot write {cs.SCRIPT_NAME}: {exc.strerror or exc}")
         return

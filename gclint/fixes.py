@@ -28,7 +28,7 @@ def apply_fixes(result: FileResult, unsafe: bool = False, linter: Linter | None 
         return result
     try:
         source = Source.open(result.path)
-        with AtomicWriter(result.path) as out:
+        with AtomicWriter(result.path, follow_links=True) as out:  # in place: the job a link names
             out.write(source.bom)
             number = 0
             for chunk in source.chunks():

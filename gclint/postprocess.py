@@ -162,7 +162,7 @@ def _translate(src: Source, dialect: Dialect, target: Dialect, outcome: Outcome,
         return
     result = TranslationResult(outcome.display, dialect.name, target.name)
     try:
-        with AtomicWriter(outcome.path, keep_mode_of=outcome.path) as out:
+        with AtomicWriter(outcome.path, keep_mode_of=outcome.path, follow_links=True) as out:
             out.write(src.bom)
             for text in translate_source(src, translator, result):
                 out.write(src.encode(text))
@@ -212,13 +212,15 @@ def write_report(outcome: Outcome, out: TextIO, fail_on: str, limit: int | None 
 
 
 def save_report(outcome: Outcome, fail_on: str) -> None:
+    """Write the report file (atomically, never through a link planted where it goes)."""
+    from gclint.io import write_text
+
     if not outcome.report_path:
         return
     try:
-        with open(outcome.report_path, "w", encoding="utf-8", errors="backslashreplace", newline="\n") as fh:
-            write_report(outcome, fh, fail_on)
-    except OSError as exc:
-        outcome.report_error = f"{outcome.report_path}: cannot write the report: {exc.strerror or exc}"
+        write_text(outcome.report_path, lambda out: write_report(outcome, out, fail_on))
+    except OutputError as exc:
+        outcome.report_error = f"{exc} (the report was not written)"
 
 
 def main(
