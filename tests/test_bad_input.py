@@ -263,6 +263,13 @@ def test_one_bad_file_among_good_ones(tmp_path: Path) -> None:
         (("translate", "--from", "marlin", "--to", "klingon", "x.gcode"), "unknown dialect"),
         (("translate", "--from", "marlin", "--to", "marlin", "--in-place", "-"), "standard input"),
         (("translate", "--from", "marlin", "--to", "marlin", "--tool-map", "zero=T2", "x.gcode"), "zero"),
+        # only ASCII digits are numbers (issue 12, item 15)
+        (("check", "--loaded", "T\u00b2", "x.gcode"), "--loaded"),
+        (("check", "--loaded", "T\u0661", "x.gcode"), "--loaded"),
+        (("check", "--loaded", "T" + "9" * 5000, "x.gcode"), "--loaded"),
+        (("translate", "--from", "marlin", "--to", "hyrel", "--tool-map", "0=T\u00b2", "x.gcode"), "--tool-map"),
+        (("translate", "--from", "marlin", "--to", "hyrel", "--tool-map", "\u0661=T2", "x.gcode"), "--tool-map"),
+        (("translate", "--from", "marlin", "--to", "hyrel", "--tool-map", "9" * 5000 + "=T2", "x.gcode"), "--tool-map"),
     ],
 )
 def test_usage_errors_exit_2_in_one_line(args, message, tmp_path: Path) -> None:
@@ -303,3 +310,39 @@ def test_check_survives_absurd_numbers_in_every_dialect(tmp_path: Path, dialect:
     assert "Traceback" not in stderr and "internal error" not in stderr, stderr
     assert proc.returncode in (0, 1), stderr
     json.loads(proc.stdout)
+
+
+NINES = "9" * 308
+
+
+@pytest.mark.parametrize(
+    "text",
+    [
+        f"G1 X{NINES} Y1\nG1 X-{NINES} Y-{NINES}\nG1 X1 (unclosed\n",
+        f"G1 X{'9' * 400} Y1\nG1 X-{'9' * 400} Y-1\nG1 X1 (unclosed\n",
+        f"G91\nG1 X{NINES} Y{NINES}\nG1 X{NINES} Y{NINES}\nG1 X{NINES}\nG1 X1 (unclosed\n",
+        f"G1 X0 Y0\nG2 X1 Y0 I{NINES} J{NINES}\nG20\nG1 X{NINES} Y1\nG1 X1 (unclosed\n",
+    ],
+    ids=["opposite extremes", "overflow to infinity", "relative sum overflows", "arcs and inches"],
+)
+def test_every_report_survives_extreme_coordinates(tmp_path: Path, text: str) -> None:
+    job = tmp_path / "extreme.gcode"
+    job.write_text(text)
+    for fmt in ("html", "sarif", "json", "junit", "full"):
+        proc = run_cli("check", "--no-cache", "--format", fmt, str(job), timeout=LIMIT * 3)
+        stderr = proc.stderr.decode()
+        assert proc.returncode == 1 and "internal error" not in stderr and "Traceback" not in stderr, (fmt, stderr)
+
+
+def test_undecodable_file_name_in_every_format(tmp_path: Path) -> None:
+    import os
+
+    name = os.fsdecode(b"caf\xe9 \xff.gcode")
+    job = tmp_path / name
+    job.write_text("G1 X1 (unclosed\n")
+    for fmt in ("text", "full", "grouped", "json", "sarif", "github", "junit", "html"):
+        proc = run_cli("check", "--no-cache", "--format", fmt, str(job), timeout=LIMIT * 3)
+        stderr = proc.stderr.decode()
+        assert proc.returncode == 1 and "internal error" not in stderr and "Traceback" not in stderr, (fmt, stderr)
+        if fmt in ("json", "sarif"):
+            json.loads(proc.stdout)

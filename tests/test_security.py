@@ -268,6 +268,15 @@ BAD_CONFIGS = {
     "invalid TOML": ("ignore = [\n", "invalid TOML"),
     "deeply nested": ("dialect = " + "[" * 50_000 + "]" * 50_000 + "\n", "invalid TOML"),
     "binary": (bytes(range(256)), "invalid TOML"),
+    # values are validated, not only typed (issue 12, item 10)
+    "nan rpm": ("spindle-max-rpm = nan\n", "'spindle-max-rpm'"),
+    "inf rpm": ("spindle-max-rpm = inf\n", "'spindle-max-rpm'"),
+    "negative rpm": ("spindle-max-rpm = -5\n", "'spindle-max-rpm'"),
+    "absurd rpm": ("spindle-max-rpm = 1e300\n", "'spindle-max-rpm'"),
+    "boolean rpm": ("spindle-max-rpm = true\n", "'spindle-max-rpm'"),
+    "unicode digit head": ('loaded = ["T\u0661"]\n', "'loaded'"),
+    "superscript tool map": ('tool-map = { 0 = "T\u00b2" }\n', "'tool-map'"),
+    "huge tool index": ('tool-map = { 0 = "T' + "9" * 5000 + '" }\n', "'tool-map'"),
 }
 
 
@@ -431,3 +440,13 @@ def test_error_lines_explain_and_postprocess_escape_control_characters(tmp_path:
     proc = run_cli("postprocess", "--fail-on", "error", "--report", str(report), str(job))
     assert proc.returncode == 1
     _no_controls(proc.stderr.decode() + report.read_text(), "postprocess")
+
+
+def test_nan_rpm_never_reaches_the_output(tmp_path: Path) -> None:
+    (tmp_path / "gclint.toml").write_text("spindle-max-rpm = nan\n")
+    job = tmp_path / "job.gcode"
+    job.write_text("G21\nM3 S12000\nG1 X1 F100\nM5\n")
+    proc = run_cli("translate", "--from", "carvera", "--to", "hyrel", str(job), cwd=tmp_path)
+    assert proc.returncode == 2 and b"nan" not in proc.stdout.lower(), proc.stdout
+    lines = [line for line in proc.stderr.decode().splitlines() if line.strip()]
+    assert len(lines) == 1 and "gclint.toml" in lines[0] and "spindle-max-rpm" in lines[0], lines

@@ -8,6 +8,7 @@ script carries a per-report nonce that its Content-Security-Policy requires.
 
 from __future__ import annotations
 
+import math
 import secrets as _random
 from dataclasses import dataclass, field
 from datetime import UTC, datetime
@@ -62,6 +63,8 @@ def build_plot(toolpath: Toolpath, result: FileResult) -> Plot | None:
     min_x, min_y, max_x, max_y = bounds
     span_x = max(max_x - min_x, 1e-9)
     span_y = max(max_y - min_y, 1e-9)
+    if not all(math.isfinite(v) for v in (*bounds, span_x, span_y)):
+        return None  # coordinates beyond what a float can scale (X999...9): no plot, the findings still show
     inner_w, inner_h = PLOT_WIDTH - 2 * PLOT_MARGIN, PLOT_HEIGHT - 2 * PLOT_MARGIN
     scale = min(inner_w / span_x, inner_h / span_y)
     if max_x == min_x and max_y == min_y:

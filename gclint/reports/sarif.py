@@ -35,12 +35,17 @@ def artifact_uri(path: str) -> tuple[str, str | None]:
         return "stdin", None
     windows = PureWindowsPath(path)
     if windows.drive and windows.is_absolute():
-        return "file:///" + quote(windows.as_posix(), safe="/:"), None
+        return "file:///" + quote(_raw(windows.as_posix()), safe="/:"), None
     posix = path.replace(os.sep, "/") if os.sep != "/" else path
     if posix.startswith("/"):
-        return "file://" + quote(posix, safe="/"), None
+        return "file://" + quote(_raw(posix), safe="/"), None
     parts = [p for p in PurePosixPath(posix).parts if p != "."]
-    return quote("/".join(parts), safe="/"), "%SRCROOT%"
+    return quote(_raw("/".join(parts)), safe="/"), "%SRCROOT%"
+
+
+def _raw(path: str) -> bytes:
+    """The file name's bytes (a Latin-1 name that is not UTF-8 is kept as it is on disk, percent-encoded)."""
+    return path.encode("utf-8", "surrogateescape")
 
 
 def _rule_descriptor(code: str, doc: dict | None, finding: Finding | None) -> dict:
