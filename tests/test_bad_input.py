@@ -346,3 +346,46 @@ def test_undecodable_file_name_in_every_format(tmp_path: Path) -> None:
         assert proc.returncode == 1 and "internal error" not in stderr and "Traceback" not in stderr, (fmt, stderr)
         if fmt in ("json", "sarif"):
             json.loads(proc.stdout)
+
+
+# -- every row through the result cache and every report format (issue 12) -----------------------------------------
+
+HUMAN_FORMATS = ("text", "concise", "full", "grouped", "github")
+
+
+@pytest.mark.parametrize("case", CASES, ids=[c.name for c in CASES])
+def test_cache_and_every_report(case: Case, tmp_path: Path) -> None:
+    """The cache gives back exactly what a check gives, for every bad input, and every report renders it: no
+    exception, machine formats parse, human formats carry no raw control character."""
+    import io
+    import xml.etree.ElementTree as ET
+
+    from gclint import runner
+    from gclint.cache import ResultCache
+    from gclint.engine import Options
+    from gclint.reports import ReportContext, formats
+
+    path = case.make(tmp_path)
+    files, problems = runner.collect([str(path)])
+    cache = ResultCache(str(tmp_path / "cache"))
+    first = problems + runner.run(files, Options(), {}, cache=cache)
+    second = problems + runner.run(files, Options(), {}, cache=cache)
+
+    def key(results):
+        return [
+            (r.path, r.error, [(f.line, f.column, f.code, f.severity, f.message) for f in r.findings]) for r in results
+        ]
+
+    assert key(second) == key(first)
+    cacheable = [r for r in first if r.error is None and r.path in files]
+    assert cache.hits == len(cacheable), (cache.hits, len(cacheable))
+    for name, writer in formats().items():
+        out = io.StringIO()
+        writer(second, out, ReportContext(tool_version="0", statistics=True))
+        text = out.getvalue()
+        if name in ("json", "sarif"):
+            json.loads(text)
+        elif name == "junit":
+            ET.fromstring(text.split("\n", 1)[1])
+        elif name in HUMAN_FORMATS:
+            assert not any(c in text for c in "\x1b\x07\x00\x0c\x9b"), f"{case.name}: raw control character in {name}"
