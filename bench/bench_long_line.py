@@ -86,7 +86,7 @@ def main(argv: list[str]) -> None:
                 f"peak {r['peak_mb']:6.1f} MB  exit {r['exit']}  {r['findings']} findings {r['codes']}",
                 flush=True,
             )
-        for (a, ra), (b, rb) in zip(rows, rows[1:]):
+        for (a, ra), (b, rb) in zip(rows, rows[1:], strict=False):
             print(f"  net time {b}/{a} MiB: {rb['net'] / ra['net']:.2f}x (linear: {b / a:.1f}x)")
         path = word_line(folder)
         r = measure(path)

@@ -390,13 +390,13 @@ def clean(folder: Path) -> int:
         if sub.is_dir(follow_symlinks=False) and _SUB_NAME.fullmatch(sub.name):
             with os.scandir(sub.path) as inner:
                 for item in list(inner):
-                    if item.is_file(follow_symlinks=False) or item.is_symlink():
-                        if _ENTRY_NAME.fullmatch(item.name) or item.name.startswith(".tmp-"):
-                            try:
-                                os.unlink(item.path)
-                                removed += _ENTRY_NAME.fullmatch(item.name) is not None
-                            except OSError:
-                                pass
+                    ours = _ENTRY_NAME.fullmatch(item.name) or item.name.startswith(".tmp-")
+                    if ours and (item.is_file(follow_symlinks=False) or item.is_symlink()):
+                        try:
+                            os.unlink(item.path)
+                            removed += _ENTRY_NAME.fullmatch(item.name) is not None
+                        except OSError:
+                            pass
             _rmdir(sub.path)
         elif sub.name == ".gitignore" and sub.is_file(follow_symlinks=False):
             try:

@@ -79,9 +79,7 @@ class FileResult:
 
 # "noqa" starts a comment or follows a ";" inside one ("; SAY hi ; noqa: HY029"): a word or a path that merely
 # contains it ("SHELL C:\\tools\\noqa.exe") is text, not a suppression.
-_NOQA = re.compile(
-    r"(?i)(?:^|[;(])[ \t]*+noqa\b(?:\s*:\s*([A-Za-z]{2}\d{0,3}(?:\s*[,\s]\s*[A-Za-z]{2}\d{0,3})*))?"
-)
+_NOQA = re.compile(r"(?i)(?:^|[;(])[ \t]*+noqa\b(?:\s*:\s*([A-Za-z]{2}\d{0,3}(?:\s*[,\s]\s*[A-Za-z]{2}\d{0,3})*))?")
 # Findings a job can never silence itself (noqa, gclint: disable): the security rules.  A hostile job would
 # otherwise write "; noqa: SC001" after its own "M792 ; SHELL ...".  They are suppressed only from the
 # configuration or the command line (--ignore, per-file-ignores), where the suppression is visible.

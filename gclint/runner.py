@@ -100,7 +100,9 @@ def _walk(top: str, found: list[str], problems: list[FileResult], notes: list[st
                         subfolders.append(entry.path)
                     continue
                 if entry.is_symlink() and entry.is_dir():
-                    notes.append(f"{entry.path}: a symbolic link to a folder, not followed (name the folder to check it)")
+                    notes.append(
+                        f"{entry.path}: a symbolic link to a folder, not followed (name the folder to check it)"
+                    )
                     continue
             except OSError:
                 pass

@@ -46,7 +46,9 @@ def printable(text: str) -> str:
 # would forge a line of its own) and the invisible bidirectional and line-separator characters (they
 # reorder or split what a terminal or a browser shows).  Tabs stay.
 _HUMAN = re.compile("[\x00-\x08\x0a-\x1f\x7f-\x9f\u061c\u200e\u200f\u2028-\u202e\u2066-\u2069\ufffe\uffff]")
-_HUMAN_LINES = re.compile("[\x00-\x08\x0b\x0c\x0e-\x1f\x7f-\x9f\u061c\u200e\u200f\u2028-\u202e\u2066-\u2069\ufffe\uffff]")
+_HUMAN_LINES = re.compile(
+    "[\x00-\x08\x0b\x0c\x0e-\x1f\x7f-\x9f\u061c\u200e\u200f\u2028-\u202e\u2066-\u2069\ufffe\uffff]"
+)
 # In JSON text (a machine format) such characters are written as \u escapes: the same data, nothing raw.
 _JSON_UNSAFE = re.compile("[\x7f-\x9f\u061c\u200e\u200f\u2028-\u202e\u2066-\u2069]")
 
@@ -73,5 +75,3 @@ def json_safe(text: str) -> str:
     if _JSON_UNSAFE.search(text):
         text = _JSON_UNSAFE.sub(lambda m: f"\\u{ord(m.group()):04x}", text)
     return text
-
-

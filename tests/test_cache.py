@@ -306,7 +306,7 @@ def test_malformed_entries_never_crash_any_format(tmp_path, payload):
     entry.write_bytes(cache._sign(body))
     results = run([path], Options(), {}, cache=cache)
     assert _key(results) == expected and cache.hits == 0
-    for name, writer in formats().items():
+    for writer in formats().values():
         writer(results, io.StringIO(), ReportContext())
 
 

@@ -381,8 +381,11 @@ def test_cura_script_does_not_follow_a_planted_link(tmp_path: Path, victim: Path
 def test_output_options_do_not_follow_a_planted_link(job: Path, victim: Path, command: str) -> None:
     out = job.parent / "out.txt"
     out.symlink_to(victim)
-    args = ("check", str(job), "-o", str(out)) if command == "check" else (
-        "translate", "--from", "marlin", "--to", "hyrel", str(job), "-o", str(out))
+    args = (
+        ("check", str(job), "-o", str(out))
+        if command == "check"
+        else ("translate", "--from", "marlin", "--to", "hyrel", str(job), "-o", str(out))
+    )
     proc = run_cli(*args)
     assert proc.returncode == 2 and "symbolic link" in proc.stderr.decode(), proc.stderr
     assert victim.read_text() == "precious\n" and out.is_symlink()
@@ -395,8 +398,11 @@ def test_output_to_dev_stdout_still_works(job: Path) -> None:
 
 @pytest.mark.parametrize("command", ["check", "translate"])
 def test_output_onto_the_input_is_refused(job: Path, command: str) -> None:
-    args = ("check", str(job), "-o", str(job)) if command == "check" else (
-        "translate", "--from", "marlin", "--to", "hyrel", str(job), "-o", str(job))
+    args = (
+        ("check", str(job), "-o", str(job))
+        if command == "check"
+        else ("translate", "--from", "marlin", "--to", "hyrel", str(job), "-o", str(job))
+    )
     proc = run_cli(*args)
     assert proc.returncode == 2 and job.name in proc.stderr.decode(), proc.stderr
     assert job.read_bytes() == JOB

@@ -345,7 +345,16 @@ MORE_SECRETS = (
     "M117 token=abc123def456 ghi789\n"
     "M104 S200 S210 ; password: trailing words here\n"
 )
-MORE_VALUES = ["horse", "battery", "staple", "FarAwayKey987654321", "Sesame0pen4me", "abc123def456", "ghi789", "trailing"]
+MORE_VALUES = [
+    "horse",
+    "battery",
+    "staple",
+    "FarAwayKey987654321",
+    "Sesame0pen4me",
+    "abc123def456",
+    "ghi789",
+    "trailing",
+]
 
 
 @pytest.mark.parametrize(
@@ -383,7 +392,7 @@ def test_explain_and_postprocess_mask_secrets(tmp_path: Path) -> None:
         proc = run_cli("explain", "--all-lines", "--format", fmt, str(job))
         assert proc.returncode == 0, proc.stderr
         shown += proc.stdout.decode()
-    proc = run_cli("explain", "-e", "M587 S\"net\" P\"wifi secret words\"", "-d", "reprap")
+    proc = run_cli("explain", "-e", 'M587 S"net" P"wifi secret words"', "-d", "reprap")
     shown += proc.stdout.decode()
     report = tmp_path / "report.txt"
     proc = run_cli("postprocess", "--fail-on", "never", "--report", str(report), str(job))

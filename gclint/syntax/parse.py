@@ -43,7 +43,9 @@ def parse_slow(raw: str) -> ParsedLine:
         size = f"{length:,} bytes" if length is not None else f"{len(raw):,} characters"
         return ParsedLine(
             extra=(Unparsed(raw, 1),),
-            issues=(Issue("SX001", 1, f"line is {size} long; lines over {_LARK_LINE_LIMIT:,} characters are not parsed"),),
+            issues=(
+                Issue("SX001", 1, f"line is {size} long; lines over {_LARK_LINE_LIMIT:,} characters are not parsed"),
+            ),
             kind="error",
         )
     from gclint.syntax.larkparse import parse_with_lark  # imported on first use: most files never need lark

@@ -92,9 +92,7 @@ class Source:
     UTF-16 variant found; ``bom`` is the byte order mark to write back (may be empty).
     """
 
-    def __init__(
-        self, stream: BinaryIO, display: str, *, close: bool = False, cut_long_lines: bool = False
-    ) -> None:
+    def __init__(self, stream: BinaryIO, display: str, *, close: bool = False, cut_long_lines: bool = False) -> None:
         self.display = display
         self._stream = stream
         self._close = close

@@ -97,7 +97,7 @@ def _collect(src: Source, translator, result: TranslationResult) -> tempfile.Spo
     """The whole translation, held in memory up to 8 MiB and in a temporary file beyond: nothing reaches
     standard output before the input was read to its end (an unreadable line or --unsupported error
     would otherwise leave half a job there), and memory does not grow with the job."""
-    spool = tempfile.SpooledTemporaryFile(max_size=8 << 20)
+    spool = tempfile.SpooledTemporaryFile(max_size=8 << 20)  # noqa: SIM115 (returned open)
     try:
         spool.write(src.bom)
         for text in translate_source(src, translator, result):
