@@ -96,9 +96,11 @@ def _codes(text: str | None) -> tuple[str, ...]:
 
 
 # Findings stay bounded whatever the input (a 3 MB line of "X1" once gave a million findings and 1.1 GB):
-# findings of one code on one line are one finding with a count, at most MAX_FINDINGS are kept per file
-# (later ones are counted on the last kept finding of their code), and a finding keeps at most
-# SOURCE_LIMIT characters of its line for the reports.
+# at most PER_LINE findings of one code are listed for one line and the rest are counted on the last one
+# listed ("(and N more on this line)"; a few distinct findings on one line, such as one per head left on
+# at M30, stay visible), at most MAX_FINDINGS are kept per file (later ones are counted on the last kept
+# finding of their code), and a finding keeps at most SOURCE_LIMIT characters of its line for the reports.
+PER_LINE = 10
 MAX_FINDINGS = 50_000
 SOURCE_LIMIT = 2048
 _MAX_MERGED_EDITS = 64  # fixes merged into one finding (the rest is fixed by running --fix again)
@@ -122,7 +124,8 @@ class FileContext:
         self.noqa: dict[int, tuple[str, ...]] = {}
         self.directives: list[tuple[int, str, tuple[str, ...]]] = []
         self._plain_comments: set[str] = set()  # lines whose comments hold no noqa or gclint directive
-        # code -> [its latest finding, that finding's own message, more on its line, more later in the file]
+        # code -> [its latest finding, that finding's own message, more on its line, more later in the file,
+        #          findings of the code listed on that line]
         self._latest: dict[str, list] = {}
 
     def enabled(self, code: str) -> bool:
@@ -149,7 +152,8 @@ class FileContext:
         code = rule.code
         severity = severity if severity is not None else rule.severity
         latest = self._latest.get(code)
-        if latest is not None and (latest[0].line == number or len(self.findings) >= MAX_FINDINGS):
+        same_line = latest is not None and latest[0].line == number
+        if latest is not None and ((same_line and latest[4] >= PER_LINE) or len(self.findings) >= MAX_FINDINGS):
             self._count(latest, number, severity, fix)
             return
         finding = Finding(
@@ -165,7 +169,7 @@ class FileContext:
             source=text,
         )
         self.findings.append(finding)
-        self._latest[code] = [finding, message, 0, 0]
+        self._latest[code] = [finding, message, 0, 0, latest[4] + 1 if same_line else 1]  # type: ignore[index]
 
     @staticmethod
     def _count(latest: list, number: int, severity: Severity, fix: Fix | None) -> None:

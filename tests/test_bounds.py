@@ -16,7 +16,7 @@ from pathlib import Path
 
 import pytest
 
-from gclint.engine import MAX_FINDINGS, Linter, Options
+from gclint.engine import MAX_FINDINGS, PER_LINE, Linter, Options
 from gclint.syntax import source as source_mod
 
 from .conftest import run_cli
@@ -29,17 +29,20 @@ def _findings(text: str, **options) -> list:
 # -- floods -----------------------------------------------------------------------------------------------------
 
 
-def test_findings_of_one_kind_on_one_line_are_one_finding_with_a_count() -> None:
+def test_findings_of_one_kind_on_one_line_are_counted() -> None:
     line = "G1" + " X1" * 30_000  # 90,002 characters: parsed, 29,999 repeated words
     findings = [f for f in _findings(line + "\n", dialect="marlin") if f.code == "SX002"]
-    assert len(findings) == 1, len(findings)
-    assert findings[0].column == 7 and "(and 29,998 more on this line)" in findings[0].message
+    assert len(findings) == PER_LINE, len(findings)
+    assert findings[0].column == 7 and "more on this line" not in findings[0].message
+    assert f"(and {29_999 - PER_LINE:,} more on this line)" in findings[-1].message
 
 
 def test_counting_never_lowers_the_severity() -> None:
     # SX002: a letter repeated with the same value is a warning, with another value an error
-    [finding] = [f for f in _findings("G1 X1 X1 X2\n", dialect="marlin") if f.code == "SX002"]
-    assert finding.severity.label == "error" and "(and 1 more on this line)" in finding.message
+    line = "G1" + " X1" * (PER_LINE + 1) + " X2\n"  # the error comes after PER_LINE warnings
+    findings = [f for f in _findings(line, dialect="marlin") if f.code == "SX002"]
+    assert len(findings) == PER_LINE and "(and 1 more on this line)" in findings[-1].message
+    assert findings[-1].severity.label == "error"
 
 
 def test_findings_per_file_are_capped() -> None:
@@ -49,9 +52,9 @@ def test_findings_per_file_are_capped() -> None:
     assert "(and 500 more SX002 findings later in the file, not listed)" in findings[-1].message
 
 
-def test_a_3_mb_line_of_repeated_words_is_small_in_every_sense(tmp_path: Path) -> None:
+def test_a_6_mb_line_of_repeated_words_is_small_in_every_sense(tmp_path: Path) -> None:
     job = tmp_path / "flood.gcode"
-    job.write_text("G28\nG1" + " X1" * 1_000_000 + "\nG1 X1 X1\n")
+    job.write_text("G28\nG1" + " X1" * 2_000_000 + "\nG1 X1 X1\n")
     proc = run_cli("check", "--no-cache", "--format", "json", str(job))
     assert proc.returncode == 1, proc.stderr
     findings = json.loads(proc.stdout)
@@ -82,7 +85,7 @@ def test_writers_refuse_a_line_they_cannot_hold(monkeypatch) -> None:
         list(source.lines())
 
 
-BIG = 3 * (1 << 20)
+BIG = 5 * (1 << 20)
 
 
 def _huge_job(tmp_path: Path) -> tuple[Path, bytes]:

@@ -34,7 +34,7 @@ from typing import BinaryIO
 
 CHUNK = 1 << 20
 HEAD = 1 << 16
-LINE_LIMIT = 1 << 20  # bytes (characters for UTF-16/32) of one line held in memory
+LINE_LIMIT = 4 << 20  # bytes (characters for UTF-16/32) of one line held in memory
 UTF8_BOM = b"\xef\xbb\xbf"
 # (BOM, codec), UTF-32 first: its little-endian BOM starts with UTF-16's.
 _DECODED_BOMS = (
