@@ -45,9 +45,10 @@ _KEYWORDS = re.compile(
 )
 # After a keyword: the rest of the key name, an optional closing quote, "=" or ":", then the value: quoted,
 # or else the rest of the line (a password may hold spaces: "; printhost_password = my secret phrase"; the
-# whole value is masked, never only its first word).  Blank runs are possessive (linear on any line).
+# whole value is masked, never only its first word).  Blank runs are possessive (linear on any line).  The
+# key name has no "." so that a file name ("secret.gcode: permission denied") is not a key.
 _AFTER_KEYWORD = re.compile(
-    r"""[A-Za-z0-9_.-]{0,40}+["']?[ \t]*+[=:][ \t]*+"""
+    r"""[A-Za-z0-9_-]{0,40}+["']?[ \t]*+[=:][ \t]*+"""
     r"""(?:"([^"\r\n]{1,512})"|'([^'\r\n]{1,512})'|([^\s][^\r\n]*+))"""
 )
 _URL_CREDENTIALS = re.compile(r"(?i)\b[a-z][a-z0-9+.-]{0,20}://[^\s/@:;\"'<>]{1,256}:([^\s/@;\"'<>]{1,256})@")
