@@ -19,7 +19,6 @@ import os
 import subprocess
 import sys
 import tempfile
-import time
 
 MEASURE = r"""
 import json, resource, subprocess, sys, time
@@ -58,10 +57,12 @@ def word_line(folder: str, words: int = 1_000_000) -> str:
     return path
 
 
-def sparse(folder: str, size: int = 2 << 30) -> str:
-    path = os.path.join(folder, "sparse.gcode")
+def sparse(folder: str, size: int = 2 << 30, text: int = 0) -> str:
+    """``size`` bytes: a G-code header, ``text`` more bytes of G-code lines, then NUL bytes (a hole) as one line."""
+    path = os.path.join(folder, f"sparse-{text}.gcode")
     with open(path, "wb") as fh:
         fh.write(b"; gclint: dialect=hyrel\nG28\nG1 X10 Y10\n")
+        fh.write(b"G1 X10 Y10 F1800\n" * (text // 17))
         fh.truncate(size)
     return path
 
@@ -93,10 +94,16 @@ def main(argv: list[str]) -> None:
         print(f"million-word line: {r['seconds']:.2f} s  peak {r['peak_mb']:.1f} MB  {r['findings']} findings")
         if "--no-sparse" not in argv:
             path = sparse(folder)
-            start = time.perf_counter()
             r = measure(path)
-            print(f"2 GiB sparse file: {r['seconds']:.2f} s  peak {r['peak_mb']:.1f} MB  exit {r['exit']}")
-            del start
+            print(f"2 GiB sparse file: {r['seconds']:.2f} s  peak {r['peak_mb']:.1f} MB  exit {r['exit']} (binary)")
+            os.unlink(path)
+            # the same after 100 kB of G-code: the NUL bytes are past the binary test, read as one 2 GiB line
+            path = sparse(folder, text=100_000)
+            r = measure(path)
+            print(
+                f"2 GiB sparse file after 100 kB of G-code: {r['seconds']:.2f} s  peak {r['peak_mb']:.1f} MB  "
+                f"exit {r['exit']}  {r['codes']}"
+            )
 
 
 if __name__ == "__main__":
