@@ -124,6 +124,10 @@ CASES = [
         ("SX005",),
     ),
     Case("1e309", _file("exp.gcode", "G1 X1e309 Y1\n"), (0, 1), (0,)),
+    Case(
+        "hex values (fuzz)", _file("hex.gcode", "; gclint: dialect=hyrel\nM229 E0x0 D1\nM229 E0x1 D0x1\n"), (0, 1), (0,)
+    ),
+    Case("hex addresses", _file("hex_t.gcode", "M104 T0x1 S200\nT0x1\nM6 T0x2 O1\n"), (0, 1), (0,)),
     Case("NaN", _file("nan.gcode", "G1 XNaN Y1\nG1 X1 YNaN\n"), (0, 1), (0,)),
     Case("--1", _file("minus.gcode", "G1 X--1 Y1\n"), (1,), (0,), "not a number", ("SX006",)),
     Case(
@@ -389,3 +393,12 @@ def test_cache_and_every_report(case: Case, tmp_path: Path) -> None:
             ET.fromstring(text.split("\n", 1)[1])
         elif name in HUMAN_FORMATS:
             assert not any(c in text for c in "\x1b\x07\x00\x0c\x9b"), f"{case.name}: raw control character in {name}"
+
+
+@pytest.mark.parametrize("source", ["hyrel-v4", "marlin", "reprap"])
+def test_translate_survives_hex_values(tmp_path: Path, source: str) -> None:
+    path = tmp_path / "hex.gcode"
+    path.write_text("M104 T0x1 S200\nT0x1\nM6 T0x2 O1\nM229 E0x1 D0x1\nM106 S0xff\n")
+    proc = run_cli("translate", "--from", source, "--to", "hyrel", str(path), timeout=LIMIT * 3)
+    stderr = proc.stderr.decode()
+    assert proc.returncode in (0, 1) and "internal error" not in stderr, stderr
