@@ -223,7 +223,9 @@ def check(
     from gclint import settings
 
     if show_settings:
-        click.echo(settings.show_settings(files, overrides, config_file, cache_dir), nl=False)
+        click.echo(
+            settings.show_settings(files, overrides, config_file, _cache_where(files, cache_dir, no_cache)), nl=False
+        )
         return
     suppressions = settings.security_suppressions(files, overrides, config_file)
     for note in suppressions:
@@ -280,6 +282,17 @@ def check(
     worst = max((f.severity for r in results for f in r.findings), default=None)
     if not exit_zero and worst is not None and worst >= Severity.WARNING:
         sys.exit(1)
+
+
+def _cache_where(files: list[str], cache_dir: str | None, no_cache: bool) -> str:
+    """Where the result cache of these files lives (for --show-settings)."""
+    from gclint.cache import ResultCache
+
+    if no_cache:
+        return "(not used: --no-cache)"
+    cache = ResultCache(cache_dir)
+    folders = sorted({str(cache.folder_for(f)) for f in files if f != "-"})
+    return ", ".join(folders) if folders else "(nothing to cache)"
 
 
 def _note(text: str) -> None:

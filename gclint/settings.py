@@ -16,6 +16,7 @@ from pathlib import Path
 from gclint.config import ConfigError, apply, config_for
 from gclint.engine import Linter, Options
 from gclint.rules.base import all_rules
+from gclint.textsafe import human
 
 SECURITY = "SC"
 
@@ -142,5 +143,5 @@ def show_settings(files: list[str], overrides: dict, explicit_config: str | None
         lines.extend(f"  {s.describe()}" for s in suppressions)
     else:
         lines.append("Security rules switched off: none")
-    lines.append(f"Result cache: {cache_folder or '(not used)'}")
-    return "\n".join(lines) + "\n"
+    lines.append(f"Result cache: {cache_folder}")
+    return "\n".join(human(line) for line in lines) + "\n"  # file names are file text: escaped

@@ -136,3 +136,21 @@ def test_links_to_folders_are_not_followed_and_said_so(tmp_path: Path) -> None:
     proc = run_cli("check", "--no-cache", str(jobs), timeout=60)
     stderr = proc.stderr.decode()
     assert proc.returncode == 1 and "linked" in stderr and "not followed" in stderr, stderr
+
+
+def test_jobs_are_capped_with_a_note(tmp_path: Path) -> None:
+    from .conftest import run_cli
+
+    jobs = _tree(tmp_path)
+    proc = run_cli("check", "--no-cache", "--jobs", "100000", str(jobs), timeout=120)
+    stderr = proc.stderr.decode()
+    assert proc.returncode == 1 and "--jobs 100000" in stderr and "using" in stderr, stderr
+
+
+def test_show_settings_says_where_the_cache_is(tmp_path: Path) -> None:
+    from .conftest import run_cli
+
+    jobs = _tree(tmp_path)
+    proc = run_cli("check", "--show-settings", str(jobs), env={"XDG_CACHE_HOME": str(tmp_path / "xdg")})
+    shown = proc.stdout.decode()
+    assert proc.returncode == 0 and f"Result cache: {tmp_path / 'xdg' / 'gclint' / 'projects'}" in shown, shown
