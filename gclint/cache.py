@@ -170,7 +170,11 @@ class ResultCache:
     def folder_for(self, path: str) -> Path:
         if self.folder is not None:
             return self.folder
-        return project_folder(self.root, project_root(path))
+        try:
+            project = project_root(path)
+        except Exception:  # a broken configuration on the way up: the file's own folder
+            project = Path(os.path.dirname(os.path.abspath(path)))
+        return project_folder(self.root, project)
 
     def _entry(self, path: str) -> Path:
         name = hashlib.sha256(os.fsencode(os.path.abspath(path))).hexdigest()[:32]
@@ -330,7 +334,7 @@ class ResultCache:
                 except OSError:
                     pass
                 raise
-        except (OSError, ValueError):
+        except Exception:  # the cache never stops a check (an unreadable configuration, a full disk...)
             return
 
 

@@ -223,9 +223,11 @@ def check(
     from gclint import settings
 
     if show_settings:
-        click.echo(
-            settings.show_settings(files, overrides, config_file, _cache_where(files, cache_dir, no_cache)), nl=False
-        )
+        try:
+            shown = settings.show_settings(files, overrides, config_file, _cache_where(files, cache_dir, no_cache))
+        except ConfigError as exc:
+            _fail(str(exc))
+        click.echo(shown, nl=False)
         return
     suppressions = settings.security_suppressions(files, overrides, config_file)
     for note in suppressions:

@@ -459,3 +459,12 @@ def test_nan_rpm_never_reaches_the_output(tmp_path: Path) -> None:
     assert proc.returncode == 2 and b"nan" not in proc.stdout.lower(), proc.stdout
     lines = [line for line in proc.stderr.decode().splitlines() if line.strip()]
     assert len(lines) == 1 and "gclint.toml" in lines[0] and "spindle-max-rpm" in lines[0], lines
+
+
+def test_show_settings_with_a_broken_configuration_is_one_line(tmp_path: Path) -> None:
+    (tmp_path / "gclint.toml").write_text("x = [\n")
+    job = tmp_path / "job.gcode"
+    job.write_text("G28\n")
+    proc = run_cli("check", "--show-settings", str(job))
+    stderr = proc.stderr.decode()
+    assert proc.returncode == 2 and "internal error" not in stderr and "gclint.toml" in stderr, stderr
