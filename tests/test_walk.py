@@ -103,6 +103,15 @@ def test_unreadable_folder_and_file_through_the_command_line(tmp_path: Path) -> 
     assert "locked" in lines[0] and "Permission denied" in lines[0], lines
     assert "secret.gcode" in lines[1] and "permission denied" in lines[1].lower(), lines
     assert "SC001" in {f["code"] for f in json.loads(proc.stdout)}, "the readable files were not all checked"
+    for f in (jobs / "a.gcode", jobs / "sub" / "b.gcode"):
+        f.write_text(CLEAN + "M30\n")
+    locked.chmod(0o700 if prefix else 0o000)
+    try:
+        proc = _run_unprivileged(prefix, str(jobs), cwd=tmp_path)
+    finally:
+        locked.chmod(0o755)
+    assert proc.returncode == 2 and b"All checks passed" not in proc.stdout, proc.stdout
+    assert b"could not be checked" in proc.stdout
 
 
 def test_hidden_folders_are_walked_and_tool_folders_are_not(tmp_path: Path) -> None:

@@ -45,7 +45,15 @@ def write_summary(results: list[FileResult], out: TextIO, ctx) -> None:
         )
         if fixable:
             out.write(f"[*] {fixable} fixable with --fix.\n")
-    elif any(r.error is None for r in results):
+    elif any(r.error is not None for r in results):
+        # never "All checks passed" when something was not checked (an unreadable file or folder)
+        unread = sum(1 for r in results if r.error is not None)
+        checked = len(results) - unread
+        out.write(
+            f"No findings in the {checked} file{'s' if checked != 1 else ''} checked; {unread} "
+            f"{'paths' if unread != 1 else 'path'} could not be checked (see above).\n"
+        )
+    elif results:
         out.write("All checks passed.\n")
 
 
