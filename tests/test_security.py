@@ -468,3 +468,17 @@ def test_show_settings_with_a_broken_configuration_is_one_line(tmp_path: Path) -
     proc = run_cli("check", "--show-settings", str(job))
     stderr = proc.stderr.decode()
     assert proc.returncode == 2 and "internal error" not in stderr and "gclint.toml" in stderr, stderr
+
+
+def test_sarif_fingerprints_are_not_hashes_of_secrets(tmp_path: Path) -> None:
+    import hashlib
+
+    job = tmp_path / "job.gcode"
+    line = "M104 S200 S210 ; password=hunter2"
+    job.write_text(line + "\n")
+    proc = run_cli("check", "--no-cache", "--format", "sarif", str(job))
+    results = json.loads(proc.stdout)["runs"][0]["results"]
+    prints = {r["partialFingerprints"]["gclint/v1"] for r in results}
+    for code in {r["ruleId"] for r in results}:
+        raw = "\0".join((code, str(job), line)).encode()
+        assert hashlib.sha256(raw).hexdigest()[:32] not in prints

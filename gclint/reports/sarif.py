@@ -16,7 +16,7 @@ from typing import TextIO
 from urllib.parse import quote
 
 from gclint.engine import FileResult
-from gclint.reports.common import clean, codes_in, message, rule_docs, source_line
+from gclint.reports.common import clean, codes_in, mask, message, rule_docs, source_line
 from gclint.rules.base import Finding, Severity
 
 SCHEMA = "https://docs.oasis-open.org/sarif/sarif/v2.1.0/errata01/os/schemas/sarif-schema-2.1.0.json"
@@ -84,7 +84,8 @@ def _pascal(kebab: str) -> str:
 
 def _fingerprint(f: Finding) -> str:
     # Stable across runs and insertions above the line: the code, the file and the line's text.
-    text = f.source if f.source is not None else str(f.line)
+    # masked: a hash of a line that holds a short password could be reversed by trying passwords
+    text = mask(f.source) if f.source is not None else str(f.line)
     data = "\0".join((f.code, f.path, text.strip())).encode("utf-8", "surrogateescape")
     return hashlib.sha256(data).hexdigest()[:32]
 
