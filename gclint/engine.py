@@ -101,7 +101,7 @@ def _codes(text: str | None) -> tuple[str, ...]:
 # at M30, stay visible), at most MAX_FINDINGS are kept per file (later ones are counted on the last kept
 # finding of their code), and a finding keeps at most SOURCE_LIMIT characters of its line for the reports.
 PER_LINE = 10
-MAX_FINDINGS = 50_000
+MAX_FINDINGS = 20_000
 SOURCE_LIMIT = 2048
 _MAX_MERGED_EDITS = 64  # fixes merged into one finding (the rest is fixed by running --fix again)
 _REMEMBERED_LINE = 1024  # comment lines longer than this are not remembered as "no directive"

@@ -173,7 +173,8 @@ class AtomicWriter:
         source = self.keep_mode_of or self._target
         try:
             st = os.stat(source)
-        except OSError:
+        except OSError:  # a new file: the mode any new file gets (mkstemp makes it private)
+            os.chmod(tmp, 0o666 & ~_umask())
             return
         if hasattr(os, "chown") and hasattr(os, "getuid"):
             own = os.stat(tmp)
@@ -195,6 +196,12 @@ class AtomicWriter:
                 pass
             _LIVE.discard(self._tmp)
             self._tmp = None
+
+
+def _umask() -> int:
+    mask = os.umask(0o022)
+    os.umask(mask)
+    return mask
 
 
 class TextOutput:

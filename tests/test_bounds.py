@@ -147,3 +147,14 @@ def test_memory_stays_bounded_on_a_huge_line(tmp_path: Path) -> None:
     code, peak_mb = map(int, out.stdout.split())
     assert code == 1 and peak_mb < 100, (code, peak_mb)
     assert resource.getrusage(resource.RUSAGE_SELF).ru_maxrss > 0
+
+
+def test_html_lists_a_bounded_number_of_findings(tmp_path: Path) -> None:
+    from gclint.reports.html import HTML_FINDINGS
+
+    job = tmp_path / "many.gcode"
+    job.write_text("G1 X1 X2\n" * (HTML_FINDINGS + 10))
+    proc = run_cli("check", "--no-cache", "--dialect", "marlin", "--format", "html", str(job))
+    assert proc.returncode == 1, proc.stderr
+    page = proc.stdout.decode()
+    assert page.count('<tr class="f-') == HTML_FINDINGS and "10 more findings not listed" in page

@@ -476,3 +476,17 @@ def test_utf32_is_read_as_utf32(tmp_path: Path) -> None:
         out = tmp_path / f"{codec}.out.gcode"
         proc = run_cli("translate", "--from", "marlin", "--to", "marlin", str(path), "-o", str(out))
         assert proc.returncode == 0 and out.read_bytes() == data, proc.stderr
+
+
+@pytest.mark.skipif(os.name == "nt", reason="POSIX modes")
+def test_new_output_files_get_the_usual_mode(job: Path) -> None:
+    old = os.umask(0o022)
+    try:
+        report = job.parent / "report.json"
+        run_cli("check", str(job), "--format", "json", "-o", str(report))
+        out = job.parent / "out.gcode"
+        run_cli("translate", "--from", "marlin", "--to", "marlin", str(job), "-o", str(out))
+    finally:
+        os.umask(old)
+    assert stat.S_IMODE(report.stat().st_mode) == 0o644
+    assert stat.S_IMODE(out.stat().st_mode) == 0o640  # translate keeps the input's mode

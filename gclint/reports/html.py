@@ -143,11 +143,17 @@ class FileView:
     plot: Plot | None
     plot_error: str | None
     dialect_reason: str
+    omitted: int = 0  # findings not listed on the page (see HTML_FINDINGS)
+
+
+# Findings listed per file: a page that a browser can open, and memory that stays bounded (the machine
+# formats list them all).
+HTML_FINDINGS = 2000
 
 
 def _file_view(index: int, result: FileResult, plot_budget: int) -> FileView:
     findings = []
-    for f in result.findings:
+    for f in result.findings[:HTML_FINDINGS]:
         line = source_line(f)
         start = max(0, f.column - 1)
         end = f.end_column - 1 if f.end_column is not None and f.end_column > f.column else start + 1
@@ -184,6 +190,7 @@ def _file_view(index: int, result: FileResult, plot_budget: int) -> FileView:
         plot=plot,
         plot_error=plot_error,
         dialect_reason=printable(result.dialect_reason),
+        omitted=max(0, len(result.findings) - HTML_FINDINGS),
     )
 
 
