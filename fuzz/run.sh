@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Run the atheris fuzz targets for a bounded time each (not part of the test suite).
 #
-#   fuzz/run.sh [SECONDS_PER_TARGET] [TARGET...]      default: 120 s, targets "parser check"
+#   fuzz/run.sh [SECONDS_PER_TARGET] [TARGET...]      default: 120 s, targets "parser check reports"
 #
 # Needs atheris (pip install "gclint[fuzz]" or pip install atheris).  The working corpus and any crash
 # files go to $GCLINT_FUZZ_DIR (default: $TMPDIR/gclint-fuzz); the shared corpus (../shared/corpus, or
@@ -13,7 +13,7 @@ here="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
 root="$(dirname "$here")"
 seconds="${1:-120}"
 shift || true
-targets=("${@:-parser check}")
+targets=("${@:-parser check reports}")
 read -r -a targets <<< "${targets[*]}"
 python="${PYTHON:-python3}"
 work="${GCLINT_FUZZ_DIR:-${TMPDIR:-/tmp}/gclint-fuzz}"

@@ -23,6 +23,11 @@ DIALECT_CHOICES = sorted(set(dialects.names()) | {"auto"})
 class UsageFailure(click.ClickException):
     exit_code = 2
 
+    def __init__(self, message: str) -> None:
+        from gclint.textsafe import human
+
+        super().__init__(human(message))  # file names and file text: no control character reaches stderr
+
 
 class _Main(click.Group):
     """The command group: whatever escapes a command becomes one line on stderr and exit code 2, never a
@@ -113,7 +118,7 @@ def main() -> None:
 
 
 @main.command()
-@click.argument("paths", nargs=-1, type=click.Path(allow_dash=True))
+@click.argument("paths", nargs=-1, type=click.Path(allow_dash=True, readable=False))
 @click.option(
     "--dialect", "-d", metavar="D", help="hyrel, hyrel-v4, marlin, reprap, machinekit, carvera or auto (default)."
 )
@@ -176,7 +181,7 @@ def main() -> None:
     "--cache-dir",
     type=click.Path(file_okay=False),
     envvar="GCLINT_CACHE_DIR",
-    help="Cache folder (default .gclint_cache).",
+    help="Cache folder (default: gclint's folder in the user cache folder, per project).",
 )
 @click.option(
     "--progress/--no-progress", default=None, help="Progress bar on stderr (default: on a terminal, for many files)."
@@ -190,7 +195,7 @@ def main() -> None:
 @click.option(
     "--show-settings",
     is_flag=True,
-    help="Print what each file would be checked as, and the settings that apply to it, then exit.",
+    help="Print the settings each file is checked with and what it would be checked as, then exit.",
 )
 def check(
     paths: tuple[str, ...],
@@ -224,6 +229,13 @@ def check(
     from gclint import runner
     from gclint.reports import MACHINE_FORMATS, ReportContext, formats
 
+    if os.environ.get("PRE_COMMIT") == "1" and paths and "--" not in sys.argv[1:]:
+        # pre-commit appends file names after the hook's args: without "--", a committed file named
+        # "--config=x.gcode" would be read as an option (.pre-commit-hooks.yaml)
+        _fail(
+            "as a pre-commit hook, gclint needs '--' before the file names: end the hook's args with '--'"
+            " (args: [--printer, 30m, --]) so that a file name is never read as an option"
+        )
     writers = formats()
     if fmt not in writers:
         _fail(f"unknown format {fmt!r} (known: {', '.join(sorted(writers))})")
@@ -255,13 +267,23 @@ def check(
     if config_file is not None and not os.path.isfile(config_file):
         _fail(f"{config_file}: configuration file not found")
 
-    files, problems = runner.collect(paths or (".",))
-    if show_settings:
-        from gclint.settings import show
+    walk_notes: list[str] = []
+    files, problems = runner.collect(paths or (".",), walk_notes)
+    for note in walk_notes:
+        _note(note)
+    if output not in (None, "-") and (checked := _same_file(output, files)) is not None:
+        _fail(f"{output}: is {checked}, one of the files to check: the report would overwrite it")
+    jobs = _cap_jobs(jobs)
+    from gclint import settings
 
+    if show_settings:
         for r in problems:
-            click.echo(f"gclint: {r.error}", err=True)
-        click.echo(show(files, overrides, config_file, stdin_filename or "-"), nl=False)
+            _error(r.error or "")
+        try:
+            shown = settings.show_settings(files, overrides, config_file, _cache_where(files, cache_dir, no_cache))
+        except ConfigError as exc:
+            _fail(str(exc))
+        click.echo(shown, nl=False)
         sys.exit(2 if problems else 0)
     if unsafe_fixes and not (fix or show_diff):
         _fail("--unsafe-fixes goes with --fix or --diff")
@@ -269,10 +291,15 @@ def check(
         sys.exit(_fix_stdin(overrides, config_file, stdin_filename or "-", unsafe_fixes, exit_zero, fail_on))
     if (fix or show_diff) and "-" in files:
         _fail("--fix and --diff need files; '--fix -' alone fixes standard input to standard output")
+    suppressions = settings.security_suppressions(files, overrides, config_file)
+    for note in suppressions:
+        if note.from_config:
+            _note(note.describe())
     from gclint import progress as progress_bar
     from gclint.cache import ResultCache
 
     bar = progress_bar.ProgressBar(files) if progress_bar.wanted(progress, fmt, files) else None
+    cache = None if (no_cache or fix or show_diff) else ResultCache(cache_dir)
     try:
         from gclint.rules.base import all_rules
 
@@ -285,7 +312,7 @@ def check(
             jobs=jobs or (runner.default_jobs() if len(files) > 1 else 1),
             stdin_name=stdin_filename or "-",
             progress=bar.advance if bar is not None else None,
-            cache=None if (no_cache or fix or show_diff) else ResultCache(cache_dir),
+            cache=cache,
         )
     except RuleError as exc:
         _fail(str(exc))
@@ -303,10 +330,17 @@ def check(
             click.echo(f"Would fix {fixed} finding{'s' if fixed != 1 else ''} ({remaining} remaining).", err=True)
             sys.exit(2 if any(r.error for r in results + problems) else 1 if fixed else 0)
     results = problems + results
+    for note in cache.notes if cache is not None else ():
+        _note(note)
     for r in results:
         if r.error:
-            click.echo(f"gclint: {r.error}", err=True)
-    ctx = ReportContext(tool_version=__version__, fixed=fixed, group=not no_group)
+            _error(r.error)
+    ctx = ReportContext(
+        tool_version=__version__,
+        fixed=fixed,
+        group=not no_group,
+        suppressions=[n.describe() for n in suppressions],
+    )
     writer = writers[fmt]
     if statistics:  # the counts instead of the findings, as ruff does (JSON with --format json)
         from gclint.reports import json_report, text
@@ -314,11 +348,11 @@ def check(
         writer = json_report.write_statistics if fmt == "json" else text.write_statistics_report
     _write_report(writer, results, ctx, output)
     if verbose or fmt not in MACHINE_FORMATS:  # after the report: a report that cannot be written is one line
-        from gclint.reports.common import printable
         from gclint.reports.notes import context_notes
+        from gclint.textsafe import human
 
         for note in context_notes(results, verbose=verbose):
-            click.echo(f"note: {printable(note)}", err=True)
+            click.echo(f"note: {human(note)}", err=True)
     if any(r.error for r in results):
         sys.exit(2)
     worst = max((f.severity for r in results for f in r.findings), default=None)
@@ -407,7 +441,61 @@ def _fix_stdin(
     return 1 if not exit_zero and worst is not None and worst >= Severity.parse(fail_on) else 0
 
 
+def _cache_where(files: list[str], cache_dir: str | None, no_cache: bool) -> str:
+    """Where the result cache of these files lives (for --show-settings)."""
+    from gclint.cache import ResultCache
+
+    if no_cache:
+        return "(not used: --no-cache)"
+    cache = ResultCache(cache_dir)
+    folders = sorted({str(cache.folder_for(f)) for f in files if f != "-"})
+    return ", ".join(folders) if folders else "(nothing to cache)"
+
+
+def _note(text: str) -> None:
+    from gclint.textsafe import human
+
+    click.echo(f"gclint: note: {human(text)}", err=True)
+
+
+def _error(text: str) -> None:
+    from gclint.textsafe import human
+
+    click.echo(f"gclint: {human(text)}", err=True)
+
+
+def _same_file(output: str, files: list[str]) -> str | None:
+    """The file among ``files`` that ``output`` names (the same file, by any name), or None."""
+    try:
+        target = os.stat(output)
+    except OSError:
+        return None
+    for path in files:
+        try:
+            if path != "-" and os.path.samestat(target, os.stat(path)):
+                return path
+        except OSError:
+            continue
+    return None
+
+
+MAX_JOBS = 64
+
+
+def _cap_jobs(jobs: int | None) -> int | None:
+    """``--jobs`` beyond what the computer can use (4 processes per CPU, at most 64) is capped, with a note."""
+    from gclint import runner
+
+    cap = min(MAX_JOBS, 4 * runner.default_jobs())
+    if jobs is not None and jobs > cap:
+        _note(f"--jobs {jobs} is more than this computer can use; using {cap}")
+        return cap
+    return jobs
+
+
 def _write_report(writer, results: list[FileResult], ctx, output: str | None) -> None:
+    from gclint.io import OutputError, write_text
+
     if output in (None, "-"):
         try:
             writer(results, sys.stdout, ctx)
@@ -416,10 +504,9 @@ def _write_report(writer, results: list[FileResult], ctx, output: str | None) ->
             _abandon_stdout()
         return
     try:
-        with open(output, "w", encoding="utf-8", errors="backslashreplace", newline="\n") as fh:
-            writer(results, fh, ctx)
-    except OSError as exc:
-        _fail(f"{output}: cannot write the report: {exc.strerror or exc}")
+        write_text(output, lambda out: writer(results, out, ctx))  # atomically, never through a link
+    except OutputError as exc:
+        _fail(f"{exc} (the report was not written)")
 
 
 # -- translate -------------------------------------------------------------------------------------------
@@ -487,6 +574,8 @@ def translate(
         _fail("use either --output or --in-place")
     if in_place and input_path == "-":
         _fail("--in-place needs a file, not standard input")
+    if output not in (None, "-") and input_path != "-" and _same_file(output, [input_path]) is not None:
+        _fail(f"{output}: is the input file; use --in-place to rewrite it")
     try:
         mapping = parse_tool_map(tool_map) if tool_map else None
     except ConfigError as exc:
@@ -569,6 +658,39 @@ def list_dialects() -> None:
     )
 
 
+# -- clean -----------------------------------------------------------------------------------------------
+
+
+@main.command()
+@click.argument("paths", nargs=-1, type=click.Path(readable=False))
+@click.option("--all", "everything", is_flag=True, help="Remove the result cache of every project.")
+@click.option(
+    "--cache-dir",
+    type=click.Path(file_okay=False),
+    envvar="GCLINT_CACHE_DIR",
+    help="Remove this cache folder's results instead (as given to 'check').",
+)
+def clean(paths: tuple[str, ...], everything: bool, cache_dir: str | None) -> None:
+    """Remove the result cache of the project of PATHS (default: the current folder)."""
+    from pathlib import Path
+
+    from gclint import cache
+
+    if cache_dir:
+        folders = [Path(cache_dir)]
+    elif everything:
+        folders = [cache.user_cache_root() / "projects"]
+    else:
+        root = cache.user_cache_root()
+        folders = sorted({cache.project_folder(root, cache.project_root(p)) for p in paths or (".",)})
+    for folder in folders:
+        removed = cache.clean(folder)
+        if removed:
+            click.echo(f"removed {removed} cached result{'s' if removed != 1 else ''} from {folder}")
+        else:
+            click.echo(f"no cached results in {folder}")
+
+
 # -- explain ---------------------------------------------------------------------------------------------
 
 
@@ -613,16 +735,14 @@ def explain(file: str | None, expressions: tuple[str, ...], dialect: str | None,
         context = infer_source(src, file or "", dialect=chosen)
         items = explain_source(src, dialects.get(context.dialect))
         source_name = file or "-"
+    from gclint.textsafe import human, json_safe
+
     found = dialects.get(context.dialect)
     try:
         if fmt == "json":
-            click.echo(
-                json.dumps(
-                    {"dialect": found.name, "source": source_name, "commands": [e.to_dict() for e in items]},
-                    indent=2,
-                    ensure_ascii=False,
-                )
-            )
+            commands = [e.masked().to_dict() for e in items]
+            payload = {"dialect": found.name, "source": human(source_name), "commands": commands}
+            click.echo(json_safe(json.dumps(payload, indent=2, ensure_ascii=False)))
             return
         click.echo(f"; dialect: {found.name} ({found.title})")
         if context.origin not in ("option", "configuration", "directive"):
@@ -631,10 +751,12 @@ def explain(file: str | None, expressions: tuple[str, ...], dialect: str | None,
             click.echo(f"; read as {context.label()}: {printable(context.why())}")
         last = None
         for e in items:
+            e = e.masked()
             if e.line != last:
-                click.echo(f"\n{e.line}: {e.source.strip()}" if source_name != "-e" else f"\n{e.source.strip()}")
+                shown = human(e.source.strip())
+                click.echo(f"\n{e.line}: {shown}" if source_name != "-e" else f"\n{shown}")
                 last = e.line
-            click.echo(e.render())
+            click.echo("\n".join(human(line) for line in e.render().split("\n")))
     except SourceError as exc:
         _fail(str(exc))
 
@@ -737,8 +859,13 @@ def cura_script(folder: str | None, to_stdout: bool) -> None:
     if to_stdout:
         click.echo(cs.render(), nl=False)
         return
+    from gclint.io import OutputError
+
     try:
         path = cs.write(folder or ".")
+    except OutputError as exc:
+        _fail(str(exc))
+        return
     except OSError as exc:
         _fail(f"{folder or '.'}: cannot write {cs.SCRIPT_NAME}: {exc.strerror or exc}")
         return

@@ -17,6 +17,7 @@ wrong types are errors that name the file and the key.
 
 from __future__ import annotations
 
+import math
 import os
 import re
 import tomllib
@@ -47,10 +48,23 @@ def parse_heads(value: object, where: str = "--loaded") -> frozenset[int]:
         text = str(item).strip().upper()
         if text.startswith("T"):
             text = text[1:]
-        if not text.isdigit() or not 0 <= int(text) <= 19:
+        if not _DIGITS.fullmatch(text) or not 0 <= int(text) <= 19:
             raise ConfigError(f"{where}: {item!r} is not a head position (T0-T19)")
         heads.add(int(text))
     return frozenset(heads)
+
+
+# ASCII digits only ("T²" and "T١" are not numbers here), and few of them (int() of 5,000 digits fails)
+_DIGITS = re.compile(r"[0-9]{1,6}")
+
+
+def _number(value: object, key: str, path: Path, low: float, high: float) -> float:
+    """A configuration number: finite and in range (a NaN would reach the output as "Snan")."""
+    if isinstance(value, bool) or not isinstance(value, (int, float)) or not math.isfinite(value):
+        raise ConfigError(f"{path}: '{key}' must be a number from {low:,g} to {high:,g} (got {value!r})")
+    if not low <= value <= high:
+        raise ConfigError(f"{path}: '{key}' must be a number from {low:,g} to {high:,g} (got {value:g})")
+    return float(value)
 
 
 def parse_tool_map(value: object, where: str = "--tool-map") -> dict[int, int]:
@@ -71,7 +85,7 @@ def parse_tool_map(value: object, where: str = "--tool-map") -> dict[int, int]:
     out: dict[int, int] = {}
     for k, v in pairs:
         ks, vs = str(k).strip().upper().lstrip("T"), str(v).strip().upper().lstrip("T")
-        if not ks.isdigit() or not vs.isdigit() or int(vs) > 48:
+        if not _DIGITS.fullmatch(ks) or not _DIGITS.fullmatch(vs) or int(vs) > 48:
             raise ConfigError(f"{where}: {k}={v} is not a tool index and a Hyrel address (0=T2)")
         out[int(ks)] = int(vs)
     return out
@@ -215,10 +229,7 @@ def apply(options: Options, table: dict, path: Path) -> Options:
     if "severity" in table:
         changes["severity"] = parse_severities(table["severity"], path)
     if "spindle-max-rpm" in table:
-        rpm = table["spindle-max-rpm"]
-        if not isinstance(rpm, (int, float)) or rpm <= 0:
-            raise ConfigError(f"{path}: 'spindle-max-rpm' must be a positive number")
-        changes["spindle_max_rpm"] = float(rpm)
+        changes["spindle_max_rpm"] = _number(table["spindle-max-rpm"], "spindle-max-rpm", path, 1, 1_000_000)
     return replace(options, **changes)
 
 

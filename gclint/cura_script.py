@@ -27,8 +27,10 @@ def template() -> str:
 
 
 def default_command() -> list[str]:
-    """How Cura should start gclint: this interpreter running the gclint module."""
-    return [sys.executable, "-m", "gclint"]
+    """How Cura should start gclint: this interpreter running the gclint module.  ``-P`` keeps the current
+    folder (wherever Cura runs the script from) out of the import path, so a ``gclint/`` folder planted
+    there is never imported instead of gclint."""
+    return [sys.executable, "-P", "-m", "gclint"]
 
 
 def render(command: list[str] | None = None) -> str:
@@ -61,8 +63,11 @@ def _version_key(name: str) -> tuple:
 
 def write(folder: str | os.PathLike, command: list[str] | None = None) -> Path:
     """Write ``Gclint.py`` into ``folder`` (created if missing); returns its path."""
+    from gclint.io import AtomicWriter
+
     target = Path(folder)
     target.mkdir(parents=True, exist_ok=True)
     path = target / SCRIPT_NAME
-    path.write_text(render(command), encoding="utf-8", newline="\n")
+    with AtomicWriter(str(path)) as out:  # never through a link planted where the script goes
+        out.write(render(command).encode("utf-8"))
     return path

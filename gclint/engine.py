@@ -78,7 +78,7 @@ class FileResult:
     lines: int = 0
     error: str | None = None  # the file could not be read (exit code 2)
     context: Context | None = None  # what the file was read as, and why (gclint.context)
-    digest: str | None = None  # hash of the bytes checked (Source.digest), for --fix
+    digest: str | None = None  # SHA-256 of the bytes checked (Source.sha256), for --fix and the cache
 
     @property
     def read_as(self) -> str:
@@ -94,7 +94,13 @@ class FileResult:
         return out
 
 
-_NOQA = re.compile(r"(?i)\bnoqa\b(?:\s*:\s*([A-Za-z]{2}\d{0,3}(?:\s*[,\s]\s*[A-Za-z]{2}\d{0,3})*))?")
+# "noqa" starts a comment or follows a ";" inside one ("; SAY hi ; noqa: HY029"): a word or a path that merely
+# contains it ("SHELL C:\\tools\\noqa.exe") is text, not a suppression.
+_NOQA = re.compile(r"(?i)(?:^|[;(])[ \t]*+noqa\b(?:\s*:\s*([A-Za-z]{2}\d{0,3}(?:\s*[,\s]\s*[A-Za-z]{2}\d{0,3})*))?")
+# Findings a job can never silence itself (noqa, gclint: disable): the security rules.  A hostile job would
+# otherwise write "; noqa: SC001" after its own "M792 ; SHELL ...".  They are suppressed only from the
+# configuration or the command line (--ignore, per-file-ignores), where the suppression is visible.
+INLINE_UNSUPPRESSIBLE = ("SC",)
 _DIRECTIVE = re.compile(
     r"(?i)\bgclint:\s*(disable|enable)\b(?:\s*=\s*([A-Za-z]{2}\d{0,3}(?:\s*,\s*[A-Za-z]{2}\d{0,3})*))?"
 )
@@ -104,6 +110,18 @@ def _codes(text: str | None) -> tuple[str, ...]:
     if not text:
         return ("ALL",)
     return tuple(c.upper() for c in re.split(r"[,\s]+", text.strip()) if c)
+
+
+# Findings stay bounded whatever the input (a 3 MB line of "X1" once gave a million findings and 1.1 GB):
+# at most PER_LINE findings of one code are listed for one line and the rest are counted on the last one
+# listed ("(and N more on this line)"; a few distinct findings on one line, such as one per head left on
+# at M30, stay visible), at most MAX_FINDINGS are kept per file (later ones are counted on the last kept
+# finding of their code), and a finding keeps at most SOURCE_LIMIT characters of its line for the reports.
+PER_LINE = 10
+MAX_FINDINGS = 20_000
+SOURCE_LIMIT = 2048
+_MAX_MERGED_EDITS = 64  # fixes merged into one finding (the rest is fixed by running --fix again)
+_REMEMBERED_LINE = 1024  # comment lines longer than this are not remembered as "no directive"
 
 
 class FileContext:
@@ -127,6 +145,9 @@ class FileContext:
         self.noqa: dict[int, tuple[str, ...]] = {}
         self.directives: list[tuple[int, str, tuple[str, ...]]] = []
         self._plain_comments: set[str] = set()  # lines whose comments hold no noqa or gclint directive
+        # code -> [its latest finding, that finding's own message, more on its line, more later in the file,
+        #          findings of the code listed on that line]
+        self._latest: dict[str, list] = {}
 
     def enabled(self, code: str) -> bool:
         """Whether the rule ``code`` is selected for this run."""
@@ -166,22 +187,50 @@ class FileContext:
     ) -> None:
         if isinstance(line, Line):
             number, text = line.number, line.raw
+            if len(text) > SOURCE_LIMIT:
+                text = text[:SOURCE_LIMIT] + "..."
         else:
             number, text = line, None
-        self.findings.append(
-            Finding(
-                path=self.path,
-                line=number,
-                column=max(1, column),
-                code=rule.code,
-                severity=self.severity_of(rule.code, severity if severity is not None else rule.severity),
-                message=message,
-                name=rule.name,
-                fix=fix,
-                end_column=end_column,
-                source=text,
-            )
+        code = rule.code
+        severity = self.severity_of(code, severity if severity is not None else rule.severity)
+        latest = self._latest.get(code)
+        same_line = latest is not None and latest[0].line == number
+        if latest is not None and ((same_line and latest[4] >= PER_LINE) or len(self.findings) >= MAX_FINDINGS):
+            self._count(latest, number, severity, fix)
+            return
+        finding = Finding(
+            path=self.path,
+            line=number,
+            column=max(1, column),
+            code=code,
+            severity=severity,
+            message=message,
+            name=rule.name,
+            fix=fix,
+            end_column=end_column,
+            source=text,
         )
+        self.findings.append(finding)
+        self._latest[code] = [finding, message, 0, 0, latest[4] + 1 if same_line else 1]  # type: ignore[index]
+
+    @staticmethod
+    def _count(latest: list, number: int, severity: Severity, fix: Fix | None) -> None:
+        """Count a finding into the latest one of its code: "(and N more on this line)"."""
+        kept: Finding = latest[0]
+        if kept.line == number:
+            latest[2] += 1
+            if fix is not None and kept.fix is not None and len(kept.fix.edits) < _MAX_MERGED_EDITS:
+                kept.fix = Fix(kept.fix.message, kept.fix.edits + fix.edits, kept.fix.safe and fix.safe)
+        else:
+            latest[3] += 1
+        if severity > kept.severity:
+            kept.severity = severity  # counting never lowers the worst severity (the exit code)
+        message = latest[1]
+        if latest[2]:
+            message += f" (and {latest[2]:,} more on this line)"
+        if latest[3]:
+            message += f" (and {latest[3]:,} more {kept.code} findings later in the file, not listed)"
+        kept.message = message
 
     # -- suppression ------------------------------------------------------------------------------------
 
@@ -199,12 +248,15 @@ class FileContext:
                     self.noqa[line.number] = self.noqa.get(line.number, ()) + _codes(m.group(1))
                 for d in _DIRECTIVE.finditer(body):
                     self.directives.append((line.number, d.group(1).lower(), _codes(d.group(2))))
-        if not found:  # comment lines repeat (";TYPE:Perimeter"): remember the ones with no directive
+        if not found and len(raw) <= _REMEMBERED_LINE:
+            # comment lines repeat (";TYPE:Perimeter"): remember the ones with no directive
             if len(self._plain_comments) >= 8192:
                 self._plain_comments.clear()
             self._plain_comments.add(raw)
 
     def suppressed(self, finding: Finding) -> bool:
+        if finding.code.startswith(INLINE_UNSUPPRESSIBLE):
+            return False
         codes = self.noqa.get(finding.line)
         if codes and _matches(finding.code, codes):
             return True
@@ -240,14 +292,14 @@ class Linter:
 
     def check_path(self, path: str) -> FileResult:
         try:
-            source = Source.open(path)
+            source = Source.open(path, digest=True, cut_long_lines=True)
         except SourceError as exc:
             return FileResult(path, error=str(exc))
         return self.check_source(source)
 
     def check_text(self, text: str, path: str = "<text>") -> FileResult:
         try:
-            source = Source.from_text(text, path)
+            source = Source.from_text(text, path, cut_long_lines=True)
         except SourceError as exc:  # binary text (NUL bytes): a result with an error, as for check_path
             return FileResult(path, error=str(exc))
         return self.check_source(source)
@@ -264,7 +316,7 @@ class Linter:
         except SourceError as exc:
             result.error = str(exc)
             return result
-        result.digest = source.digest
+        result.digest = source.sha256
         ignored = self.per_file_ignores(path)
         result.findings = [
             f for f in ctx.findings if not ctx.suppressed(f) and not (ignored and _matches(f.code, ignored))

@@ -63,6 +63,22 @@ class Explanation:
     def warn(self, text: str) -> None:
         self.items.append(Item("", text, warning=True))
 
+    def masked(self) -> Explanation:
+        """A copy with every secret of the source line (a password, a key) masked wherever it is quoted."""
+        from gclint import secrets
+
+        values = sorted({self.source[s.start : s.end] for s in secrets.find(self.source)}, key=len, reverse=True)
+        if not values:
+            return self
+
+        def hide(text: str) -> str:
+            for value in values:
+                text = text.replace(value, secrets.MASK_CHAR * len(value))
+            return secrets.mask(text)
+
+        items = [Item(hide(i.word), hide(i.text), warning=i.warning) for i in self.items]
+        return Explanation(self.line, hide(self.source), self.code, hide(self.title), items)
+
     def to_dict(self) -> dict:
         return {
             "line": self.line,

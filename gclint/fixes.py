@@ -93,7 +93,7 @@ def fix_file(result: FileResult, linter: Linter, *, unsafe: bool = False, write:
         outcome.error = f"{result.path}: not fixed: the file was not read to the end"
         return outcome
     try:
-        plan = plan_fixes(result, linter, lambda: Source.open(result.path), unsafe=unsafe)
+        plan = plan_fixes(result, linter, lambda: Source.open(result.path, digest=True), unsafe=unsafe)
     except (OSError, SourceError, OutputError) as exc:
         outcome.error = f"{result.path}: not fixed: {exc}"
         return outcome
@@ -163,16 +163,16 @@ def _check_fixed(
             scratch.write(source.encode(text + ending))
         scratch.seek(0)
         checked = linter.check_source(Source(scratch, path))
-    return checked, source.digest
+    return checked, source.sha256
 
 
 def _write(path: str, edits: dict[int, list[Edit]], digest: str) -> None:
-    source = Source.open(path)
-    with AtomicWriter(path) as out:
+    source = Source.open(path, digest=True)
+    with AtomicWriter(path, follow_links=True) as out:  # in place: the job a link names
         out.write(source.bom)
         for _, _, text, ending in _fixed_lines(source, edits):
             out.write(source.encode(text + ending))
-        if source.digest != digest:  # changed while being fixed: keep what is there
+        if source.sha256 != digest:  # changed while being fixed: keep what is there
             out.discard()
             raise OutputError(f"{path}: not fixed: the file changed while it was being fixed")
 

@@ -166,7 +166,7 @@ def _translate(src: Source, dialect: Dialect, target: Dialect, outcome: Outcome,
         return
     result = TranslationResult(outcome.display, dialect.name, target.name)
     try:
-        with AtomicWriter(outcome.path, keep_mode_of=outcome.path) as out:
+        with AtomicWriter(outcome.path, keep_mode_of=outcome.path, follow_links=True) as out:
             out.write(src.bom)
             for text in translate_source(src, translator, result):
                 out.write(src.encode(text))
@@ -181,24 +181,24 @@ def _translate(src: Source, dialect: Dialect, target: Dialect, outcome: Outcome,
 
 def write_report(outcome: Outcome, out: TextIO, fail_on: str, limit: int | None = None) -> None:
     """The text report: what was done, then ``name:line:col: CODE message`` per finding."""
-    from gclint.reports.common import message
+    from gclint.reports.common import human, message
 
-    out.write(f"gclint {__version__} postprocess: {outcome.display}\n")
+    out.write(f"gclint {__version__} postprocess: {human(outcome.display)}\n")
     if outcome.error:
-        out.write(f"error: {outcome.error}\n")
+        out.write(f"error: {human(outcome.error)}\n")
         return
-    out.write(f"source dialect: {outcome.source_dialect} ({outcome.source_reason})\n")
+    out.write(f"source dialect: {outcome.source_dialect} ({human(outcome.source_reason)})\n")
     if outcome.translated:
         out.write(f"translated to: {outcome.target_dialect}\n")
     elif outcome.translation_note:
-        out.write(f"not translated: {outcome.translation_note}\n")
+        out.write(f"not translated: {human(outcome.translation_note)}\n")
     findings = outcome.findings
     shown = findings if limit is None else findings[:limit]
     for f in shown:
-        out.write(f"{f.path}:{f.line}:{f.column}: {f.code} [{f.severity.label}] {message(f)}\n")
+        out.write(f"{human(f.path)}:{f.line}:{f.column}: {f.code} [{f.severity.label}] {message(f)}\n")
     if limit is not None and len(findings) > limit:
         out.write(f"... and {len(findings) - limit} more")
-        out.write(f" (see {outcome.report_path})\n" if outcome.report_path else "\n")
+        out.write(f" (see {human(outcome.report_path)})\n" if outcome.report_path else "\n")
     counts = {k: 0 for k in ("error", "warning", "info")}
     for f in findings:
         counts[f.severity.label] += 1
@@ -216,13 +216,15 @@ def write_report(outcome: Outcome, out: TextIO, fail_on: str, limit: int | None 
 
 
 def save_report(outcome: Outcome, fail_on: str) -> None:
+    """Write the report file (atomically, never through a link planted where it goes)."""
+    from gclint.io import write_text
+
     if not outcome.report_path:
         return
     try:
-        with open(outcome.report_path, "w", encoding="utf-8", errors="backslashreplace", newline="\n") as fh:
-            write_report(outcome, fh, fail_on)
-    except OSError as exc:
-        outcome.report_error = f"{outcome.report_path}: cannot write the report: {exc.strerror or exc}"
+        write_text(outcome.report_path, lambda out: write_report(outcome, out, fail_on))
+    except OutputError as exc:
+        outcome.report_error = f"{exc} (the report was not written)"
 
 
 def main(
@@ -242,13 +244,15 @@ def main(
     outcome = run(path, to=to, source=source, printer=printer, loaded=loaded, report=report)
     if no_report:
         outcome.report_path = None
+    from gclint.textsafe import human
+
     if outcome.error:
-        err.write(f"gclint: {outcome.error}\n")
+        err.write(f"gclint: {human(outcome.error)}\n")
         return 2
     save_report(outcome, fail_on)
     write_report(outcome, err, fail_on, limit=STDERR_LIMIT)
     if outcome.report_error:
-        err.write(f"gclint: {outcome.report_error}\n")
+        err.write(f"gclint: {human(outcome.report_error)}\n")
     elif outcome.report_path:
-        err.write(f"report: {outcome.report_path}\n")
+        err.write(f"report: {human(outcome.report_path)}\n")
     return outcome.exit_code(fail_on, untranslatable_fails=True)

@@ -4,6 +4,7 @@ to each file, spread the work over processes, and return results in a stable ord
 from __future__ import annotations
 
 import os
+import stat
 from collections.abc import Callable, Iterable, Iterator
 from concurrent.futures import ProcessPoolExecutor
 from dataclasses import replace
@@ -20,10 +21,36 @@ if TYPE_CHECKING:
 GCODE_EXTENSIONS = (".gcode", ".gco", ".g", ".nc", ".ngc", ".cnc", ".tap")
 
 
-def collect(paths: Iterable[str]) -> tuple[list[str], list[FileResult]]:
-    """Expand folders into their G-code files (sorted, hidden folders skipped).
+# Folders a walk never enters, without a word (like ruff's default excludes): version control and tool folders.
+SKIPPED_FOLDERS = frozenset(
+    {
+        ".git",
+        ".hg",
+        ".svn",
+        ".bzr",
+        ".jj",
+        ".venv",
+        "venv",
+        ".tox",
+        ".nox",
+        "node_modules",
+        "__pycache__",
+        ".mypy_cache",
+        ".pytest_cache",
+        ".ruff_cache",
+        ".gclint_cache",
+        "site-packages",
+    }
+)
 
-    Returns the files to check and results for the paths that cannot be checked (missing, empty folder).
+
+def collect(paths: Iterable[str], notes: list[str] | None = None) -> tuple[list[str], list[FileResult]]:
+    """Expand folders into their G-code files (sorted; hidden folders included, version-control and tool
+    folders skipped, symbolic links to folders not followed: as ruff does).
+
+    Returns the files to check and results for the paths that cannot be checked (missing, empty or
+    unreadable folder, a pipe or device found in a folder).  ``notes`` receives what was left out on purpose
+    (links to folders), for the user.
     """
     files: list[str] = []
     problems: list[FileResult] = []
@@ -33,13 +60,10 @@ def collect(paths: Iterable[str]) -> tuple[list[str], list[FileResult]]:
             files.append(path)
             continue
         if os.path.isdir(path):
-            found = []
-            for folder, subdirs, names in os.walk(path):
-                subdirs[:] = sorted(d for d in subdirs if not d.startswith("."))
-                for name in sorted(names):
-                    if name.lower().endswith(GCODE_EXTENSIONS):
-                        found.append(os.path.join(folder, name))
-            if not found:
+            found: list[str] = []
+            before = len(problems)
+            _walk(path, found, problems, notes if notes is not None else [])
+            if not found and len(problems) == before:
                 problems.append(
                     FileResult(path, error=f"{path}: no G-code files in this folder ({' '.join(GCODE_EXTENSIONS)})")
                 )
@@ -47,13 +71,67 @@ def collect(paths: Iterable[str]) -> tuple[list[str], list[FileResult]]:
                 if f not in seen:
                     seen.add(f)
                     files.append(f)
-        elif os.path.exists(path):
+        elif os.path.lexists(path):
             if path not in seen:
                 seen.add(path)
                 files.append(path)
         else:
             problems.append(FileResult(path, error=f"{path}: no such file or folder"))
     return files, problems
+
+
+def _walk(top: str, found: list[str], problems: list[FileResult], notes: list[str]) -> None:
+    """Depth first, files of a folder before its sub-folders, each sorted by name.  A folder that cannot be
+    read is a problem (exit 2), never skipped in silence; links to folders are not followed (no loops)."""
+    stack = [top]
+    while stack:
+        folder = stack.pop()
+        try:
+            with os.scandir(folder) as listing:
+                entries = sorted(listing, key=lambda e: e.name)
+        except OSError as exc:
+            problems.append(FileResult(folder, error=f"{folder}: cannot read this folder: {exc.strerror or exc}"))
+            continue
+        subfolders = []
+        for entry in entries:
+            try:
+                if entry.is_dir(follow_symlinks=False):
+                    if entry.name not in SKIPPED_FOLDERS:
+                        subfolders.append(entry.path)
+                    continue
+                if entry.is_symlink() and entry.is_dir():
+                    notes.append(
+                        f"{entry.path}: a symbolic link to a folder, not followed (name the folder to check it)"
+                    )
+                    continue
+            except OSError:
+                pass
+            if not entry.name.lower().endswith(GCODE_EXTENSIONS):
+                continue
+            kind = _not_regular(entry.path)
+            if kind is not None:
+                problems.append(FileResult(entry.path, error=f"{entry.path}: not a regular file ({kind}): not read"))
+                continue
+            found.append(entry.path)
+        stack.extend(reversed(subfolders))
+
+
+def _not_regular(path: str) -> str | None:
+    """What ``path`` is when it is not a regular file (or a link to one): opening a pipe found in a folder
+    would wait forever for a writer.  A dangling link counts as a file (checking it says "no such file")."""
+    try:
+        mode = os.stat(path).st_mode
+    except OSError:
+        return None
+    if stat.S_ISREG(mode):
+        return None
+    if stat.S_ISFIFO(mode):
+        return "a named pipe"
+    if stat.S_ISCHR(mode) or stat.S_ISBLK(mode):
+        return "a device"
+    if stat.S_ISSOCK(mode):
+        return "a socket"
+    return "not a file"
 
 
 def options_for(path: str, base: Options, overrides: dict, explicit_config: str | None) -> Options:
@@ -85,21 +163,35 @@ def _linter(options: Options) -> Linter:
 
 def check_one(path: str, options: Options) -> FileResult:
     """Check one file with its options; never raises for a bad file."""
+    return check_file(path, options)[0]
+
+
+def check_file(path: str, options: Options) -> tuple[FileResult, str | None]:
+    """Check one file; also returns the SHA-256 of exactly the bytes that were checked (None for pipes,
+    devices and files not read to the end), which is what the result cache may store the result under.
+
+    A line too long to hold is reported (SX001), not read whole: checking never needs the whole line."""
     try:
-        return _linter(options).check_path(path)
+        source = Source.open(path, digest=True, cut_long_lines=True)
     except SourceError as exc:
-        return FileResult(path, error=str(exc))
+        return FileResult(path, error=str(exc)), None
+    try:
+        return _linter(options).check_source(source), source.sha256
+    except SourceError as exc:
+        return FileResult(path, error=str(exc)), None
     except RecursionError:
-        return FileResult(path, error=f"{path}: nesting too deep to check")
+        return FileResult(path, error=f"{path}: nesting too deep to check"), None
     except MemoryError:
-        return FileResult(path, error=f"{path}: out of memory while checking")
+        return FileResult(path, error=f"{path}: out of memory while checking"), None
     except Exception as exc:  # a bug in gclint itself: name the file, keep going with the others
         detail = f"{type(exc).__name__}: {exc}".splitlines()[0][:200]
-        return FileResult(path, error=f"{path}: internal error while checking ({detail}); please report this")
+        return FileResult(path, error=f"{path}: internal error while checking ({detail}); please report this"), None
+    finally:
+        source.close()
 
 
-def _check_task(args: tuple[str, Options]) -> FileResult:
-    return check_one(*args)
+def _check_task(args: tuple[str, Options]) -> tuple[FileResult, str | None]:
+    return check_file(*args)
 
 
 def run(
@@ -130,7 +222,7 @@ def run(
         if path == "-":
             linter = _linter(options)
             try:
-                results[index] = linter.check_source(Source(_stdin(), stdin_name))
+                results[index] = linter.check_source(Source(_stdin(), stdin_name, cut_long_lines=True))
             except SourceError as exc:
                 results[index] = FileResult(stdin_name, error=str(exc))
             except Exception as exc:  # a bug in gclint itself: one line, no traceback
@@ -149,16 +241,16 @@ def run(
             keys[index] = key
         tasks.append((path, options))
     order = [i for i in range(len(files)) if i not in results]
-    for index, result in zip(order, _map(tasks, jobs), strict=True):
+    for index, (result, digest) in zip(order, _map(tasks, jobs), strict=True):
         results[index] = result
-        if cache is not None and index in keys:
-            cache.put(files[index], keys[index], result)
+        if cache is not None and index in keys and digest is not None:
+            cache.put(files[index], keys[index], result, digest)
         if progress is not None:
             progress(result)
     return [results[i] for i in range(len(files))]
 
 
-def _map(tasks: list[tuple[str, Options]], jobs: int) -> Iterator[FileResult]:
+def _map(tasks: list[tuple[str, Options]], jobs: int) -> Iterator[tuple[FileResult, str | None]]:
     if jobs <= 1 or len(tasks) <= 1:
         for task in tasks:
             yield _check_task(task)

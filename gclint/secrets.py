@@ -43,11 +43,13 @@ _KEYWORDS = re.compile(
     r"(?i)api[_-]?key|apikey|api[_-]?token|access[_-]?token|auth[_-]?token|refresh[_-]?token"
     r"|client[_-]?secret|private[_-]?key|secret|password|passwd|passphrase|pwd|token"
 )
-# After a keyword: the rest of the key name, an optional closing quote, "=" or ":", then the value
-# (quoted, or up to whitespace, ';', a quote, ',' or ')').  Every repetition is bounded.
+# After a keyword: the rest of the key name, an optional closing quote, "=" or ":", then the value: quoted,
+# or else the rest of the line (a password may hold spaces: "; printhost_password = my secret phrase"; the
+# whole value is masked, never only its first word).  Blank runs are possessive (linear on any line).  The
+# key name has no "." so that a file name ("secret.gcode: permission denied") is not a key.
 _AFTER_KEYWORD = re.compile(
-    r"""[A-Za-z0-9_.-]{0,40}+["']?[ \t]{0,8}+[=:][ \t]{0,8}+"""
-    r"""(?:"([^"\r\n]{1,512})"|'([^'\r\n]{1,512})'|([^\s;"',)]{1,512}))"""
+    r"""[A-Za-z0-9_-]{0,40}+["']?[ \t]*+[=:][ \t]*+"""
+    r"""(?:"([^"\r\n]{1,512})"|'([^'\r\n]{1,512})'|([^\s][^\r\n]*+))"""
 )
 _URL_CREDENTIALS = re.compile(r"(?i)\b[a-z][a-z0-9+.-]{0,20}://[^\s/@:;\"'<>]{1,256}:([^\s/@;\"'<>]{1,256})@")
 _BEARER = re.compile(r"(?i)\bbearer[ \t]{1,8}+([A-Za-z0-9._~+/=-]{8,512}+)")
@@ -168,8 +170,9 @@ def find(text: str) -> list[Secret]:
                 continue
             group = 1 if m.group(1) is not None else 2 if m.group(2) is not None else 3
             value = m.group(group)
+            end = m.start(group) + len(value.rstrip(" \t"))
             if not _placeholder(value):
-                found.append(Secret(m.start(group), m.end(group), _kind(k.group(0))))
+                found.append(Secret(m.start(group), end, _kind(k.group(0))))
             pos = m.end()
         if "://" in text and "@" in text:
             for m in _URL_CREDENTIALS.finditer(text):

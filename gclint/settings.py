@@ -1,66 +1,179 @@
-"""``gclint check --show-settings``: what each file would be checked as, and the settings that apply to it
-(the configuration file found for it, the rule selection, suppressions), without checking it."""
+"""What the settings of a run switch off, said out loud: ``--show-settings``, the ``--statistics`` lines and
+the stderr note when a configuration file turns security rules off.
+
+A job can never silence its own SC findings (``engine.INLINE_UNSUPPRESSIBLE``); the configuration and the
+command line can.  A configuration file travels with the jobs (a pull request can add one), so whenever
+it switches security rules off, gclint says which, where and how: a suppression that is not shown would
+be a way around the gate.
+"""
 
 from __future__ import annotations
 
-import sys
+from collections.abc import Iterable
+from dataclasses import dataclass, replace
+from pathlib import Path
 
-from gclint.config import ConfigError
+from gclint.config import ConfigError, apply, config_for
 from gclint.engine import Linter, Options
-from gclint.syntax.source import Source, SourceError
+from gclint.rules.base import all_rules
+from gclint.textsafe import human
+
+SECURITY = "SC"
 
 
-def show(files: list[str], overrides: dict, config_file: str | None, stdin_name: str = "-") -> str:
-    from gclint import runner
-    from gclint.reports.common import printable
+@dataclass(frozen=True)
+class Suppression:
+    """Security rules ``codes`` switched off by ``origin`` (a configuration file or "the command line")
+    through ``how`` (``ignore``, ``select``, ``per-file-ignores 'pattern'``), for ``files`` files."""
 
-    out: list[str] = []
+    codes: tuple[str, ...]
+    origin: str
+    how: str
+    files: int
+    from_config: bool
+
+    def describe(self) -> str:
+        what = f"security rule{'s' if len(self.codes) != 1 else ''} {', '.join(self.codes)}"
+        count = f"{self.files} file{'s' if self.files != 1 else ''}"
+        return f"{self.origin} switches off {what} ({self.how}) for {count}"
+
+
+def _security_codes() -> list[str]:
+    return [code for code in all_rules() if code.startswith(SECURITY)]
+
+
+def _selected(options: Options) -> set[str]:
+    return {rule.code for rule in Linter(options).rule_classes}
+
+
+def _how(options: Options) -> str:
+    parts = []
+    if options.select is not None:
+        parts.append("select")
+    if options.extend_select:
+        parts.append("extend-select")
+    if options.ignore:
+        parts.append("ignore")
+    return "/".join(parts) or "select"
+
+
+def security_suppressions(
+    files: Iterable[str], overrides: dict, explicit_config: str | None = None
+) -> list[Suppression]:
+    """Every way the configuration files and the command line switch security rules off for ``files``."""
+    security = _security_codes()
+    groups: dict[str | None, tuple[Options, list[str]]] = {}
     for path in files:
-        name = stdin_name if path == "-" else path
-        out.append(printable(name))
         try:
-            options = runner.options_for(path, Options(), overrides, config_file)
-        except ConfigError as exc:
-            out.append(f"  error: {printable(str(exc))}")
+            config_path, table = config_for(path, explicit_config)
+        except ConfigError:  # reported by the check itself
             continue
-        try:
-            source = Source(sys.stdin.buffer, name) if path == "-" else Source.open(path)
-        except SourceError as exc:
-            out.append(f"  error: {printable(str(exc))}")
-            continue
+        key = str(config_path) if config_path is not None else None
+        if key not in groups:
+            try:
+                options = apply(Options(), table, config_path) if config_path is not None else Options()
+            except ConfigError:
+                continue
+            groups[key] = (options, [])
+        groups[key][1].append(path)
+    out: list[Suppression] = []
+    for key, (config_options, paths) in groups.items():
+        origin = _display(key) if key is not None else "the command line"
+        options = replace(config_options, **overrides) if overrides else config_options
+        off = set(security) - _selected(options)
+        by_config = sorted(off - _selected(config_options)) if key is not None else []
+        if by_config:
+            out.append(Suppression(tuple(by_config), origin, _how(config_options), len(paths), True))
+        by_cli = sorted(off - set(by_config))
+        if by_cli:
+            out.append(Suppression(tuple(by_cli), "the command line", _how(options), len(paths), False))
+        for pattern, codes in options.per_file_ignores.items():
+            off = [c for c in security if any(c.startswith(s.strip().upper()) for s in codes)]
+            single = Linter(replace(options, per_file_ignores={pattern: codes}))
+            matched = sum(1 for p in paths if _hit(single, p, off)) if off else 0
+            if matched:
+                out.append(Suppression(tuple(off), origin, f"per-file-ignores {pattern!r}", matched, key is not None))
+    return out
+
+
+def _hit(linter: Linter, path: str, codes: list[str]) -> bool:
+    ignored = linter.per_file_ignores(path)
+    return any(code.startswith(s) for code in codes for s in ignored)
+
+
+def _display(path: str) -> str:
+    try:
+        return str(Path(path).relative_to(Path.cwd()))
+    except ValueError:
+        return path
+
+
+def show_settings(files: list[str], overrides: dict, explicit_config: str | None, cache_folder: str | None) -> str:
+    """The settings each file is checked with (one block per configuration), as ``--show-settings`` prints."""
+    from gclint.runner import options_for
+
+    blocks: dict[str, tuple[Options, list[str]]] = {}
+    for path in files:
+        options = options_for(path, Options(), overrides, explicit_config)
+        blocks.setdefault(options.cache_key() + repr(options.config_path), (options, []))[1].append(path)
+    suppressions = security_suppressions(files, overrides, explicit_config)
+    lines: list[str] = []
+    for options, paths in blocks.values():
         linter = Linter(options)
-        try:
-            context = linter.context_of(source)
-        finally:
-            source.close()
-        out.append(f"  configuration: {printable(options.config_path) if options.config_path else 'none found'}")
-        out.append(f"  checked as: {context.label()} ({context.strength} evidence)")
-        out.append(f"  dialect: {context.dialect}, {printable(context.why())}")
-        if context.printer is not None:
-            how = {"option": "--printer", "configuration": "the configuration"}.get(context.printer_origin)
-            told = how or ("read from the job" if context.printer_origin == "content" else "the default")
-            out.append(f"  printer: {context.printer} ({told})")
-            loaded = options.loaded
-            heads = ", ".join(f"T{h}" for h in sorted(loaded)) if loaded is not None else None
-            out.append(
-                f"  loaded heads: {heads + ' (--loaded or configuration)' if heads else 'from the job (M6 T# O...)'}"
-            )
-        if options.extend_known_codes:
-            out.append(f"  extend-known-codes: {', '.join(options.extend_known_codes)}")
-        selected = sorted(cls.code for cls in linter.rule_classes)
-        out.append(f"  rules selected: {len(selected)} ({_families(selected)})")
-        if options.select is not None:
-            out.append(f"  select: {', '.join(options.select)}")
-        if options.ignore:
-            out.append(f"  ignore: {', '.join(options.ignore)}")
-        matching = linter.per_file_ignores(name)
-        if matching:
-            out.append(f"  per-file-ignores: {', '.join(matching)}")
-    return "\n".join(out) + "\n"
+        extra = f" (and {len(paths) - 1} more with the same settings)" if len(paths) > 1 else ""
+        lines.append(f"Settings for {paths[0]}{extra}:")
+        lines.append(f"  configuration file: {options.config_path or '(none)'}")
+        lines.append(
+            f"  dialect: {options.dialect}"
+            + (" (each file's is decided from its content)" if options.dialect == "auto" else "")
+        )
+        lines.append(f"  printer: {options.printer or '(read from each Hyrel job, else 30m)'}")
+        loaded = "from the job header" if options.loaded is None else ",".join(f"T{h}" for h in sorted(options.loaded))
+        lines.append(f"  loaded heads: {loaded}")
+        lines.append(f"  select: {', '.join(options.select) if options.select is not None else '(default rules)'}")
+        lines.append(f"  extend-select: {', '.join(options.extend_select) or '(none)'}")
+        lines.append(f"  ignore: {', '.join(options.ignore) or '(none)'}")
+        pfi = "; ".join(f"{k} = {', '.join(v)}" for k, v in options.per_file_ignores.items()) or "(none)"
+        lines.append(f"  per-file-ignores: {pfi}")
+        if options.spindle_max_rpm is not None:
+            lines.append(f"  spindle-max-rpm: {options.spindle_max_rpm:g}")
+        if options.tool_map:
+            lines.append("  tool-map: " + ", ".join(f"{k}=T{v}" for k, v in sorted(options.tool_map.items())))
+        lines.append(f"  rules: {len(linter.rule_classes)} selected")
+        lines.append("")
+    lines.append("Checked as:")
+    for path in files:
+        lines.append(f"  {path}: {_checked_as(path, overrides, explicit_config)}")
+    lines.append("")
+    if suppressions:
+        lines.append("Security rules switched off:")
+        lines.extend(f"  {s.describe()}" for s in suppressions)
+    else:
+        lines.append("Security rules switched off: none")
+    lines.append(f"Result cache: {cache_folder}")
+    return "\n".join(human(line) for line in lines) + "\n"  # file names are file text: escaped
 
 
-def _families(codes: list[str]) -> str:
-    counts: dict[str, int] = {}
-    for code in codes:
-        counts[code[:2]] = counts.get(code[:2], 0) + 1
-    return ", ".join(f"{family} {n}" for family, n in counts.items())
+def _checked_as(path: str, overrides: dict, explicit_config: str | None) -> str:
+    """What ``path`` would be checked as, and why (gclint.context), without checking it."""
+    from gclint.runner import options_for
+    from gclint.syntax.source import Source, SourceError
+
+    if path == "-":
+        return "(standard input: decided when it is read)"
+    options = options_for(path, Options(), overrides, explicit_config)
+    try:
+        source = Source.open(path)
+    except SourceError as exc:
+        return str(exc)
+    try:
+        context = Linter(options).context_of(source)
+    except SourceError as exc:
+        return str(exc)
+    finally:
+        source.close()
+    printer = ""
+    if context.printer is not None:
+        how = {"option": "--printer", "configuration": "the configuration", "job": "read from the job"}
+        printer = f"; printer {context.printer}: {how.get(context.printer_from, 'the default')}"
+    return f"{context.label()} ({context.strength} evidence): {context.why()}{printer}"

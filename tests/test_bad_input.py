@@ -124,6 +124,10 @@ CASES = [
         ("SX005",),
     ),
     Case("1e309", _file("exp.gcode", "G1 X1e309 Y1\n"), (0, 1), (0,)),
+    Case(
+        "hex values (fuzz)", _file("hex.gcode", "; gclint: dialect=hyrel\nM229 E0x0 D1\nM229 E0x1 D0x1\n"), (0, 1), (0,)
+    ),
+    Case("hex addresses", _file("hex_t.gcode", "M104 T0x1 S200\nT0x1\nM6 T0x2 O1\n"), (0, 1), (0,)),
     Case("NaN", _file("nan.gcode", "G1 XNaN Y1\nG1 X1 YNaN\n"), (0, 1), (0,)),
     Case("--1", _file("minus.gcode", "G1 X--1 Y1\n"), (1,), (0,), "not a number", ("SX006",)),
     Case(
@@ -263,6 +267,13 @@ def test_one_bad_file_among_good_ones(tmp_path: Path) -> None:
         (("translate", "--from", "marlin", "--to", "klingon", "x.gcode"), "unknown dialect"),
         (("translate", "--from", "marlin", "--to", "marlin", "--in-place", "-"), "standard input"),
         (("translate", "--from", "marlin", "--to", "marlin", "--tool-map", "zero=T2", "x.gcode"), "zero"),
+        # only ASCII digits are numbers (issue 12, item 15)
+        (("check", "--loaded", "T\u00b2", "x.gcode"), "--loaded"),
+        (("check", "--loaded", "T\u0661", "x.gcode"), "--loaded"),
+        (("check", "--loaded", "T" + "9" * 5000, "x.gcode"), "--loaded"),
+        (("translate", "--from", "marlin", "--to", "hyrel", "--tool-map", "0=T\u00b2", "x.gcode"), "--tool-map"),
+        (("translate", "--from", "marlin", "--to", "hyrel", "--tool-map", "\u0661=T2", "x.gcode"), "--tool-map"),
+        (("translate", "--from", "marlin", "--to", "hyrel", "--tool-map", "9" * 5000 + "=T2", "x.gcode"), "--tool-map"),
     ],
 )
 def test_usage_errors_exit_2_in_one_line(args, message, tmp_path: Path) -> None:
@@ -303,3 +314,91 @@ def test_check_survives_absurd_numbers_in_every_dialect(tmp_path: Path, dialect:
     assert "Traceback" not in stderr and "internal error" not in stderr, stderr
     assert proc.returncode in (0, 1), stderr
     json.loads(proc.stdout)
+
+
+NINES = "9" * 308
+
+
+@pytest.mark.parametrize(
+    "text",
+    [
+        f"G1 X{NINES} Y1\nG1 X-{NINES} Y-{NINES}\nG1 X1 (unclosed\n",
+        f"G1 X{'9' * 400} Y1\nG1 X-{'9' * 400} Y-1\nG1 X1 (unclosed\n",
+        f"G91\nG1 X{NINES} Y{NINES}\nG1 X{NINES} Y{NINES}\nG1 X{NINES}\nG1 X1 (unclosed\n",
+        f"G1 X0 Y0\nG2 X1 Y0 I{NINES} J{NINES}\nG20\nG1 X{NINES} Y1\nG1 X1 (unclosed\n",
+    ],
+    ids=["opposite extremes", "overflow to infinity", "relative sum overflows", "arcs and inches"],
+)
+def test_every_report_survives_extreme_coordinates(tmp_path: Path, text: str) -> None:
+    job = tmp_path / "extreme.gcode"
+    job.write_text(text)
+    for fmt in ("html", "sarif", "json", "junit", "full"):
+        proc = run_cli("check", "--no-cache", "--format", fmt, str(job), timeout=LIMIT * 3)
+        stderr = proc.stderr.decode()
+        assert proc.returncode == 1 and "internal error" not in stderr and "Traceback" not in stderr, (fmt, stderr)
+
+
+def test_undecodable_file_name_in_every_format(tmp_path: Path) -> None:
+    import os
+
+    name = os.fsdecode(b"caf\xe9 \xff.gcode")
+    job = tmp_path / name
+    job.write_text("G1 X1 (unclosed\n")
+    for fmt in ("text", "full", "grouped", "json", "sarif", "github", "junit", "html"):
+        proc = run_cli("check", "--no-cache", "--format", fmt, str(job), timeout=LIMIT * 3)
+        stderr = proc.stderr.decode()
+        assert proc.returncode == 1 and "internal error" not in stderr and "Traceback" not in stderr, (fmt, stderr)
+        if fmt in ("json", "sarif"):
+            json.loads(proc.stdout)
+
+
+# -- every row through the result cache and every report format (issue 12) -----------------------------------------
+
+HUMAN_FORMATS = ("text", "concise", "full", "grouped", "github")
+
+
+@pytest.mark.parametrize("case", CASES, ids=[c.name for c in CASES])
+def test_cache_and_every_report(case: Case, tmp_path: Path) -> None:
+    """The cache gives back exactly what a check gives, for every bad input, and every report renders it: no
+    exception, machine formats parse, human formats carry no raw control character."""
+    import io
+    import xml.etree.ElementTree as ET
+
+    from gclint import runner
+    from gclint.cache import ResultCache
+    from gclint.engine import Options
+    from gclint.reports import ReportContext, formats
+
+    path = case.make(tmp_path)
+    files, problems = runner.collect([str(path)])
+    cache = ResultCache(str(tmp_path / "cache"))
+    first = problems + runner.run(files, Options(), {}, cache=cache)
+    second = problems + runner.run(files, Options(), {}, cache=cache)
+
+    def key(results):
+        return [
+            (r.path, r.error, [(f.line, f.column, f.code, f.severity, f.message) for f in r.findings]) for r in results
+        ]
+
+    assert key(second) == key(first)
+    cacheable = [r for r in first if r.error is None and r.path in files]
+    assert cache.hits == len(cacheable), (cache.hits, len(cacheable))
+    for name, writer in formats().items():
+        out = io.StringIO()
+        writer(second, out, ReportContext(tool_version="0", statistics=True))
+        text = out.getvalue()
+        if name in ("json", "sarif"):
+            json.loads(text)
+        elif name == "junit":
+            ET.fromstring(text.split("\n", 1)[1])
+        elif name in HUMAN_FORMATS:
+            assert not any(c in text for c in "\x1b\x07\x00\x0c\x9b"), f"{case.name}: raw control character in {name}"
+
+
+@pytest.mark.parametrize("source", ["hyrel-v4", "marlin", "reprap"])
+def test_translate_survives_hex_values(tmp_path: Path, source: str) -> None:
+    path = tmp_path / "hex.gcode"
+    path.write_text("M104 T0x1 S200\nT0x1\nM6 T0x2 O1\nM229 E0x1 D0x1\nM106 S0xff\n")
+    proc = run_cli("translate", "--from", source, "--to", "hyrel", str(path), timeout=LIMIT * 3)
+    stderr = proc.stderr.decode()
+    assert proc.returncode in (0, 1) and "internal error" not in stderr, stderr

@@ -239,8 +239,8 @@ def test_verbose_and_show_settings(tmp_path: Path) -> None:
     out = settings.stdout.decode()
     assert (
         settings.returncode == 0
-        and "printer: 16a-dual (read from the job)" in out
-        and "configuration: none found" in out
+        and "printer 16a-dual: read from the job" in out
+        and "configuration file: (none)" in out
     )
 
 

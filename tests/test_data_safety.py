@@ -342,3 +342,151 @@ def test_check_reads_every_encoding(tmp_path: Path, name: str) -> None:
 
     findings = json.loads(proc.stdout)
     assert [f["code"] for f in findings] == ["SX002"], findings
+
+
+# -- writes never follow planted links; owner kept; SIGTERM; -o onto the input (issue 12, items 13 and 15) ---------
+
+
+@pytest.fixture
+def victim(tmp_path: Path) -> Path:
+    path = tmp_path / "victim.txt"
+    path.write_text("precious\n")
+    return path
+
+
+def test_postprocess_report_does_not_follow_a_planted_link(job: Path, victim: Path) -> None:
+    report = job.with_name(job.name + ".gclint.txt")
+    report.symlink_to(victim)
+    proc = run_cli("postprocess", "--fail-on", "never", str(job))
+    assert proc.returncode == 0, proc.stderr
+    assert victim.read_text() == "precious\n"
+    assert "symbolic link" in proc.stderr.decode()
+    # and a dangling link is not a way to create a file elsewhere
+    report.unlink()
+    report.symlink_to(job.parent / "created-elsewhere.txt")
+    run_cli("postprocess", "--fail-on", "never", str(job))
+    assert not (job.parent / "created-elsewhere.txt").exists()
+
+
+def test_cura_script_does_not_follow_a_planted_link(tmp_path: Path, victim: Path) -> None:
+    folder = tmp_path / "scripts"
+    folder.mkdir()
+    (folder / "Gclint.py").symlink_to(victim)
+    proc = run_cli("cura-script", "--output", str(folder))
+    assert proc.returncode == 2 and "symbolic link" in proc.stderr.decode(), proc.stderr
+    assert victim.read_text() == "precious\n"
+
+
+@pytest.mark.parametrize("command", ["check", "translate"])
+def test_output_options_do_not_follow_a_planted_link(job: Path, victim: Path, command: str) -> None:
+    out = job.parent / "out.txt"
+    out.symlink_to(victim)
+    args = (
+        ("check", str(job), "-o", str(out))
+        if command == "check"
+        else ("translate", "--from", "marlin", "--to", "hyrel", str(job), "-o", str(out))
+    )
+    proc = run_cli(*args)
+    assert proc.returncode == 2 and "symbolic link" in proc.stderr.decode(), proc.stderr
+    assert victim.read_text() == "precious\n" and out.is_symlink()
+
+
+def test_output_to_dev_stdout_still_works(job: Path) -> None:
+    proc = run_cli("check", str(job), "--format", "json", "-o", "/dev/stdout")
+    assert proc.returncode in (0, 1) and proc.stdout.startswith(b"["), proc.stderr
+
+
+@pytest.mark.parametrize("command", ["check", "translate"])
+def test_output_onto_the_input_is_refused(job: Path, command: str) -> None:
+    args = (
+        ("check", str(job), "-o", str(job))
+        if command == "check"
+        else ("translate", "--from", "marlin", "--to", "hyrel", str(job), "-o", str(job))
+    )
+    proc = run_cli(*args)
+    assert proc.returncode == 2 and job.name in proc.stderr.decode(), proc.stderr
+    assert job.read_bytes() == JOB
+
+
+@pytest.mark.skipif(not hasattr(os, "chown") or os.geteuid() != 0, reason="needs root to give files away")
+def test_rewrite_keeps_owner_and_group(job: Path) -> None:
+    os.chown(job, 4321, 4322)
+    proc = run_cli("translate", "--from", "marlin", "--to", "hyrel", "--in-place", str(job))
+    assert proc.returncode in (0, 1), proc.stderr
+    st = job.stat()
+    assert (st.st_uid, st.st_gid) == (4321, 4322) and stat.S_IMODE(st.st_mode) == 0o640
+
+
+@pytest.mark.skipif(os.name == "nt", reason="POSIX signals")
+def test_sigterm_mid_write_leaves_no_temporary_file(tmp_path: Path) -> None:
+    import signal
+    import time
+
+    big = tmp_path / "big.gcode"
+    with open(big, "wb") as fh:
+        line = b"G1 X1.234 Y5.678 E0.01234 F1800 ; a comment that makes the job bigger\n"
+        fh.write(line * 600_000)
+    out = tmp_path / "out" / "big.hyrel.gcode"
+    out.parent.mkdir()
+    env = {k: v for k, v in os.environ.items() if k != "GCLINT_CACHE_DIR"}
+    proc = subprocess.Popen(
+        [sys.executable, "-m", "gclint", "translate", "--from", "marlin", "--to", "hyrel", str(big), "-o", str(out)],
+        stdout=subprocess.DEVNULL,
+        stderr=subprocess.PIPE,
+        env=env,
+    )
+    deadline = time.monotonic() + 60
+    while time.monotonic() < deadline and not _temporaries(out.parent) and proc.poll() is None:
+        time.sleep(0.02)
+    assert _temporaries(out.parent), "the translation never started writing"
+    time.sleep(0.2)
+    proc.send_signal(signal.SIGTERM)
+    proc.wait(timeout=60)
+    assert proc.returncode != 0
+    assert _temporaries(out.parent) == [] and not out.exists()
+
+
+MEMORY_CHILD = r"""
+import resource, subprocess, sys
+proc = subprocess.run([sys.executable, "-m", "gclint", "translate", "--from", "marlin", "--to", "marlin", sys.argv[1]],
+                      stdout=subprocess.DEVNULL, stderr=subprocess.PIPE)
+print(proc.returncode, resource.getrusage(resource.RUSAGE_CHILDREN).ru_maxrss // 1024)
+"""
+
+
+@pytest.mark.skipif(sys.platform != "linux", reason="ru_maxrss in KiB")
+def test_translate_to_standard_output_streams(tmp_path: Path) -> None:
+    big = tmp_path / "big.gcode"
+    with open(big, "wb") as fh:
+        fh.write(b"G1 X1.234 Y5.678 E0.01234 F1800 ; " + b"c" * 400 + b"\n" * 1)
+        fh.write((b"; " + b"x" * 1000 + b"\n") * 150_000)
+    out = subprocess.run([sys.executable, "-c", MEMORY_CHILD, str(big)], capture_output=True, timeout=600, check=True)
+    code, peak_mb = map(int, out.stdout.split())
+    assert code == 0 and peak_mb < 100, (code, peak_mb)
+
+
+def test_utf32_is_read_as_utf32(tmp_path: Path) -> None:
+    text = "G28\r\nG1 X1 ; \u00e9\r\nM792 ; SHELL C:\\x.exe\r\n"
+    for bom, codec in ((codecs.BOM_UTF32_LE, "utf-32-le"), (codecs.BOM_UTF32_BE, "utf-32-be")):
+        path = tmp_path / f"{codec}.gcode"
+        data = bom + text.encode(codec)
+        path.write_bytes(data)
+        proc = run_cli("check", "--no-cache", "--format", "json", "--dialect", "hyrel", str(path))
+        assert proc.returncode == 1 and b"SC001" in proc.stdout, proc.stderr
+        out = tmp_path / f"{codec}.out.gcode"
+        proc = run_cli("translate", "--from", "marlin", "--to", "marlin", str(path), "-o", str(out))
+        assert proc.returncode == 0 and out.read_bytes() == data, proc.stderr
+
+
+@pytest.mark.skipif(os.name == "nt", reason="POSIX modes")
+def test_new_output_files_get_the_usual_mode(job: Path) -> None:
+    old = os.umask(0o022)
+    try:
+        report = job.parent / "report.json"
+        run_cli("check", str(job), "--format", "json", "-o", str(report))
+        out = job.parent / "out.gcode"
+        run_cli("translate", "--from", "marlin", "--to", "marlin", str(job), "-o", str(out))
+    finally:
+        os.umask(old)
+    assert stat.S_IMODE(report.stat().st_mode) == 0o644
+    assert stat.S_IMODE(out.stat().st_mode) == 0o640  # translate keeps the input's mode

@@ -82,7 +82,7 @@ def test_clean_job_passes_and_is_left_byte_for_byte(tmp_path):
     assert proc.returncode == 0, proc.stderr.decode()
     assert pp.read_text() == HYREL_JOB
     report = Path(str(final) + ".gclint.txt").read_text()
-    assert "source dialect: hyrel (content: M6 T0 O1" in report and "no findings" in report
+    assert "source dialect: hyrel (" in report and "M6 T0 O1" in report and "no findings" in report
 
 
 def test_errors_stop_the_export(tmp_path):
@@ -149,3 +149,25 @@ def test_usage_errors_exit_2(tmp_path, args):
         [sys.executable, "-m", "gclint", "postprocess", *args, str(pp)], capture_output=True, timeout=120
     )
     assert proc.returncode == 2 and b"Traceback" not in proc.stderr
+
+
+def test_the_configured_line_ends_the_options(tmp_path: Path) -> None:
+    """The README's line ends with "--": a path the slicer appends is never an option, whatever its name."""
+    job = tmp_path / "--no-report.gcode"
+    job.write_text("; gclint: dialect=hyrel\nM792 ; SHELL C:\\x.exe\n")
+    proc = subprocess.run(
+        [sys.executable, "-m", "gclint", "postprocess", "--fail-on", "error", "--", job.name],
+        cwd=tmp_path,
+        capture_output=True,
+        timeout=120,
+    )
+    assert proc.returncode == 1 and b"SC001" in proc.stderr, proc.stderr
+    assert (tmp_path / "--no-report.gcode.gclint.txt").is_file()
+
+
+def test_cura_runs_gclint_without_the_current_folder_on_the_import_path() -> None:
+    from gclint import cura_script
+
+    command = cura_script.default_command()
+    assert command[1:] == ["-P", "-m", "gclint"]
+    assert repr(command) in cura_script.render()

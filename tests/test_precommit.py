@@ -127,3 +127,62 @@ def test_hook_definition_matches_gcode_names():
         assert pattern.search(name), name
     for name in ("a.gcode.bak", "notes.txt", "g.py"):
         assert not pattern.search(name), name
+
+
+# -- file names are never options (issue 12, item 4) --------------------------------------------------------------
+
+EVIL = "; gclint: dialect=hyrel\nM792 ; SHELL C:\\x.exe\n"
+
+
+def _hostile_names(repo: Path) -> None:
+    (repo / "cfg.gcode").write_text('select = ["XX999"]\n')  # a "configuration" that switches every rule off
+    (repo / "--config=cfg.gcode").write_text(EVIL)
+    (repo / "--output=good.gcode").write_text(EVIL)
+    (repo / "good.gcode").write_text(GOOD)
+    (repo / "-o").mkdir()
+    (repo / "-o" / "x.gcode").write_text(GOOD)
+
+
+def test_file_names_are_never_options_through_the_exact_hook_entry(tmp_path):
+    """pre-commit runs ``entry + args + file names``; the hook's own args end the options."""
+    import shlex
+
+    _pre_commit()
+    import yaml
+
+    hook = {h["id"]: h for h in yaml.safe_load((ROOT / ".pre-commit-hooks.yaml").read_text())}["gclint"]
+    _hostile_names(tmp_path)
+    names = ["--config=cfg.gcode", "--output=good.gcode", "cfg.gcode", "good.gcode"]
+    command = [sys.executable, "-m", "gclint", *shlex.split(hook["entry"])[1:], *hook.get("args", []), *names]
+    env = dict(os.environ, PRE_COMMIT="1")
+    env.pop("GCLINT_CACHE_DIR", None)
+    proc = subprocess.run(command, cwd=tmp_path, capture_output=True, env=env, timeout=120)
+    output = proc.stdout.decode() + proc.stderr.decode()
+    assert proc.returncode == 1 and "--config=cfg.gcode:2:" in output and "SC001" in output, output
+    assert (tmp_path / "good.gcode").read_text() == GOOD, "a file name was read as --output"
+    # user args that forget to end the options: refused (the hook fails), never a pass
+    command = [sys.executable, "-m", "gclint", *shlex.split(hook["entry"])[1:], "--printer", "30m", *names]
+    proc = subprocess.run(command, cwd=tmp_path, capture_output=True, env=env, timeout=120)
+    assert proc.returncode == 2 and b"'--'" in proc.stderr, proc.stderr
+    assert (tmp_path / "good.gcode").read_text() == GOOD
+
+
+def test_file_names_are_never_options_through_real_pre_commit(tmp_path, hook_repo, pre_commit_home):
+    _pre_commit()
+    repo = _jobs_repo(tmp_path, hook_repo)
+    _hostile_names(repo)
+    _git("add", "-A", cwd=repo)
+    proc = _run(repo, pre_commit_home)
+    output = proc.stdout.decode() + proc.stderr.decode()
+    assert proc.returncode == 1 and "SC001" in output and "--config=cfg.gcode" in output, output
+    assert (repo / "good.gcode").read_text() == GOOD
+    # args given by the user, ended with "--" as the README says
+    src, rev = hook_repo
+    (repo / ".pre-commit-config.yaml").write_text(
+        f"repos:\n  - repo: {src.as_posix()}\n    rev: {rev}\n    hooks:\n      - id: gclint\n"
+        "        args: [--printer, 30m, --]\n"
+    )
+    proc = _run(repo, pre_commit_home)
+    output = proc.stdout.decode() + proc.stderr.decode()
+    assert proc.returncode == 1 and "SC001" in output, output
+    assert (repo / "good.gcode").read_text() == GOOD

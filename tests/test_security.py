@@ -106,8 +106,65 @@ def test_findings_point_at_the_action() -> None:
     assert '"C:\\x.exe"' in f.message
 
 
-def test_noqa_silences_a_security_finding() -> None:
-    assert _sc('M98 P"homeall.g" ; noqa: SC004\n') == []
+# -- a job never silences its own SC findings (issue 12, item 5) ---------------------------------------------------
+
+SELF_SILENCED = [
+    "M792 ; SHELL C:\\x.exe ; noqa: SC001",
+    "M792 ; SHELL C:\\x.exe ; noqa",
+    "M792 ; SHELL C:\\x.exe ; NOQA: SC",
+    "M792 (SHELL x.exe) (noqa: SC001)",
+    "M792 ; SHELL C:\\tools\\noqa.exe",
+    "; gclint: disable=SC\nM792 ; SHELL C:\\x.exe",
+    "; gclint: disable=SC001\nM792 ; SHELL C:\\x.exe",
+    "; gclint: disable\nM792 ; SHELL C:\\x.exe",
+    "(gclint: disable=SC)\nM0 ; SHELL C:\\x.exe",
+]
+
+
+@pytest.mark.parametrize("text", SELF_SILENCED)
+def test_a_job_cannot_silence_its_own_security_findings(text: str) -> None:
+    assert "SC001" in {f.code for f in _sc(text + "\n")}
+
+
+def test_noqa_does_not_silence_a_security_finding() -> None:
+    # Before issue 12 a job could write "; noqa: SC004" after its own macro call; SC findings are now
+    # suppressed only from the configuration or the command line.
+    assert [f.code for f in _sc('M98 P"homeall.g" ; noqa: SC004\n')] == ["SC004"]
+
+
+def test_noqa_inside_a_path_is_not_a_suppression() -> None:
+    # "noqa" must start a comment (or follow a ";"): a path or a word that merely contains it is text.
+    text = "G1 X1 X2 ; C:\\tools\\noqa.exe\nG1 X1 X2 ; see noqa.txt\nG1 X1 X2 ; noqa: SX002\n"
+    findings = Linter(Options(dialect="marlin")).check_text(text, "job.gcode").findings
+    assert [(f.line, f.code) for f in findings if f.code == "SX002"] == [(1, "SX002"), (2, "SX002")]
+
+
+def test_security_findings_are_suppressed_from_the_command_line_and_configuration(tmp_path: Path) -> None:
+    job = tmp_path / "job.gcode"
+    job.write_text("; gclint: dialect=hyrel\n; gclint: disable=SC\nM792 ; SHELL C:\\x.exe ; noqa: SC001\n")
+    proc = run_cli("check", "--no-cache", "--format", "json", str(job))
+    assert proc.returncode == 1 and [f["code"] for f in json.loads(proc.stdout)] == ["SC001"]
+    proc = run_cli("check", "--no-cache", "--format", "json", "--ignore", "SC001", str(job))
+    assert proc.returncode == 0 and json.loads(proc.stdout) == []
+    (tmp_path / "gclint.toml").write_text('per-file-ignores = { "job.gcode" = ["SC"] }\n')
+    proc = run_cli("check", "--no-cache", "--format", "json", str(job))
+    assert proc.returncode == 0 and json.loads(proc.stdout) == []
+    # ... and such a suppression is visible: a note on stderr, in --statistics and in --show-settings
+    stderr = proc.stderr.decode()
+    assert "SC" in stderr and "gclint.toml" in stderr, stderr
+    proc = run_cli("check", "--no-cache", "--statistics", str(job))
+    assert "SC001" in proc.stdout.decode() and "gclint.toml" in proc.stdout.decode(), proc.stdout
+    proc = run_cli("check", "--show-settings", str(job))
+    shown = proc.stdout.decode()
+    assert proc.returncode == 0 and "gclint.toml" in shown and "SC001" in shown and "job.gcode" in shown, shown
+
+
+def test_postprocess_stops_a_job_that_silences_itself(tmp_path: Path) -> None:
+    job = tmp_path / "job.gcode"
+    job.write_text("; gclint: disable=SC\nG28\nM792 ; SHELL C:\\tools\\noqa.exe ; noqa: SC001\n")
+    proc = run_cli("postprocess", "--fail-on", "error", str(job))
+    assert proc.returncode == 1, proc.stderr
+    assert "SC001" in proc.stderr.decode()
 
 
 # -- secrets -----------------------------------------------------------------------------------------------------
@@ -211,6 +268,15 @@ BAD_CONFIGS = {
     "invalid TOML": ("ignore = [\n", "invalid TOML"),
     "deeply nested": ("dialect = " + "[" * 50_000 + "]" * 50_000 + "\n", "invalid TOML"),
     "binary": (bytes(range(256)), "invalid TOML"),
+    # values are validated, not only typed (issue 12, item 10)
+    "nan rpm": ("spindle-max-rpm = nan\n", "'spindle-max-rpm'"),
+    "inf rpm": ("spindle-max-rpm = inf\n", "'spindle-max-rpm'"),
+    "negative rpm": ("spindle-max-rpm = -5\n", "'spindle-max-rpm'"),
+    "absurd rpm": ("spindle-max-rpm = 1e300\n", "'spindle-max-rpm'"),
+    "boolean rpm": ("spindle-max-rpm = true\n", "'spindle-max-rpm'"),
+    "unicode digit head": ('loaded = ["T\u0661"]\n', "'loaded'"),
+    "superscript tool map": ('tool-map = { 0 = "T\u00b2" }\n', "'tool-map'"),
+    "huge tool index": ('tool-map = { 0 = "T' + "9" * 5000 + '" }\n', "'tool-map'"),
 }
 
 
@@ -266,3 +332,153 @@ def test_json_report_of_security_findings(tmp_path: Path) -> None:
     assert finding["code"] == "SC001" and finding["severity"] == "error" and finding["name"] == "host-runs-program"
     assert proc.returncode == 1
     assert os.path.basename(finding["path"]) == "job.gcode"
+
+
+# -- whole values masked everywhere (issue 12, item 7) --------------------------------------------------------------
+
+MULTIWORD = "correct horse battery staple"
+MORE_SECRETS = (
+    "; gclint: dialect=hyrel\n"
+    f"; printhost_password = {MULTIWORD}\n"
+    "; printhost_apikey =            FarAwayKey987654321\n"
+    "M0 ; SAY the password=Sesame0pen4me is on the wall\n"
+    "M117 token=abc123def456 ghi789\n"
+    "M104 S200 S210 ; password: trailing words here\n"
+)
+MORE_VALUES = [
+    "horse",
+    "battery",
+    "staple",
+    "FarAwayKey987654321",
+    "Sesame0pen4me",
+    "abc123def456",
+    "ghi789",
+    "trailing",
+]
+
+
+@pytest.mark.parametrize(
+    "line,value",
+    [
+        (f"; printhost_password = {MULTIWORD}", MULTIWORD),
+        ("; printhost_apikey =            FarAwayKey987654321", "FarAwayKey987654321"),
+        ("; password          =   spaced out value  ", "spaced out value"),
+        ('; password = "unterminated quote and more', '"unterminated quote and more'),
+    ],
+)
+def test_secrets_are_masked_whole(line: str, value: str) -> None:
+    masked = secrets.mask(line)
+    assert value not in masked and not any(w in masked for w in value.split() if len(w) > 3), masked
+    assert len(masked) == len(line)
+
+
+@pytest.mark.parametrize("fmt", sorted(formats()))
+def test_no_output_format_shows_any_word_of_a_secret(tmp_path: Path, fmt: str) -> None:
+    job = tmp_path / "job.gcode"
+    job.write_text(MORE_SECRETS)
+    out = tmp_path / f"report.{fmt}"
+    proc = run_cli("check", "--no-cache", "--select", "ALL", "--format", fmt, "--output", str(out), str(job))
+    assert proc.returncode == 1, proc.stderr
+    text = out.read_text(encoding="utf-8", errors="replace") + proc.stderr.decode("utf-8", "replace")
+    for value in MORE_VALUES:
+        assert value not in text, f"{fmt}: {value} shown"
+
+
+def test_explain_and_postprocess_mask_secrets(tmp_path: Path) -> None:
+    job = tmp_path / "job.gcode"
+    job.write_text(MORE_SECRETS + 'M587 S"net" P"wifi secret words"\n')
+    shown = ""
+    for fmt in ("text", "json"):
+        proc = run_cli("explain", "--all-lines", "--format", fmt, str(job))
+        assert proc.returncode == 0, proc.stderr
+        shown += proc.stdout.decode()
+    proc = run_cli("explain", "-e", 'M587 S"net" P"wifi secret words"', "-d", "reprap")
+    shown += proc.stdout.decode()
+    report = tmp_path / "report.txt"
+    proc = run_cli("postprocess", "--fail-on", "never", "--report", str(report), str(job))
+    shown += proc.stderr.decode() + report.read_text()
+    for value in [*MORE_VALUES, "wifi secret words"]:
+        assert value not in shown, value
+
+
+# -- control characters never reach a terminal (issue 12, item 6) ---------------------------------------------------
+
+ESC_JOB = (
+    "; gclint: dialect=hyrel\n"
+    "M117 \x1b[2J\x1b[1;1Hall good\x07\n"
+    "M792 ; SHELL C:\\x.exe \x1b[8mhidden\x1b[0m\u202e\n"
+    "G1 X1 X2 ; \x1b]0;title\x07 \x9b31m\n"
+)
+RAW_CONTROLS = ("\x1b", "\x07", "\x9b", "\u202e")
+
+
+def _no_controls(text: str, where: str) -> None:
+    for c in RAW_CONTROLS:
+        assert c not in text, f"{where}: raw {c!r} in output"
+    assert "\r" not in text, where
+
+
+@pytest.mark.parametrize("fmt", ["text", "full", "grouped", "github", "concise"])
+def test_human_formats_escape_control_characters(tmp_path: Path, fmt: str) -> None:
+    job = tmp_path / "job\x1b[2K\nx.gcode"
+    job.write_bytes(ESC_JOB.encode())
+    proc = run_cli("check", "--no-cache", "--format", fmt, "--statistics", str(job))
+    assert proc.returncode == 1, proc.stderr
+    out = proc.stdout.decode() + proc.stderr.decode()
+    _no_controls(out, fmt)
+    assert "SC001" in out
+    assert all(line.count(".gcode") <= 1 for line in out.splitlines()), "a newline in the file name split a line"
+
+
+def test_error_lines_explain_and_postprocess_escape_control_characters(tmp_path: Path) -> None:
+    script = tmp_path / "run\x1b[31m.gcode"
+    script.write_bytes(b"#!/bin/sh \x1b[2J\x1b]0;pwned\x07\nrm -rf /\n")
+    proc = run_cli("check", "--no-cache", str(script))
+    assert proc.returncode == 2
+    _no_controls(proc.stderr.decode(), "#! refusal")
+    proc = run_cli("translate", "--from", "marlin", "--to", "hyrel", str(tmp_path / "missing\x1b[2J.gcode"))
+    assert proc.returncode == 2
+    _no_controls(proc.stderr.decode(), "translate error")
+    job = tmp_path / "job.gcode"
+    job.write_bytes(ESC_JOB.encode())
+    for args in (("explain", str(job)), ("explain", "-e", "M117 \x1b[2Jhi"), ("explain", "--format", "json", str(job))):
+        proc = run_cli(*args)
+        assert proc.returncode == 0, proc.stderr
+        _no_controls(proc.stdout.decode(), " ".join(args[:2]))
+    report = tmp_path / "report.txt"
+    proc = run_cli("postprocess", "--fail-on", "error", "--report", str(report), str(job))
+    assert proc.returncode == 1
+    _no_controls(proc.stderr.decode() + report.read_text(), "postprocess")
+
+
+def test_nan_rpm_never_reaches_the_output(tmp_path: Path) -> None:
+    (tmp_path / "gclint.toml").write_text("spindle-max-rpm = nan\n")
+    job = tmp_path / "job.gcode"
+    job.write_text("G21\nM3 S12000\nG1 X1 F100\nM5\n")
+    proc = run_cli("translate", "--from", "carvera", "--to", "hyrel", str(job), cwd=tmp_path)
+    assert proc.returncode == 2 and b"nan" not in proc.stdout.lower(), proc.stdout
+    lines = [line for line in proc.stderr.decode().splitlines() if line.strip()]
+    assert len(lines) == 1 and "gclint.toml" in lines[0] and "spindle-max-rpm" in lines[0], lines
+
+
+def test_show_settings_with_a_broken_configuration_is_one_line(tmp_path: Path) -> None:
+    (tmp_path / "gclint.toml").write_text("x = [\n")
+    job = tmp_path / "job.gcode"
+    job.write_text("G28\n")
+    proc = run_cli("check", "--show-settings", str(job))
+    stderr = proc.stderr.decode()
+    assert proc.returncode == 2 and "internal error" not in stderr and "gclint.toml" in stderr, stderr
+
+
+def test_sarif_fingerprints_are_not_hashes_of_secrets(tmp_path: Path) -> None:
+    import hashlib
+
+    job = tmp_path / "job.gcode"
+    line = "M104 S200 S210 ; password=hunter2"
+    job.write_text(line + "\n")
+    proc = run_cli("check", "--no-cache", "--format", "sarif", str(job))
+    results = json.loads(proc.stdout)["runs"][0]["results"]
+    prints = {r["partialFingerprints"]["gclint/v1"] for r in results}
+    for code in {r["ruleId"] for r in results}:
+        raw = "\0".join((code, str(job), line)).encode()
+        assert hashlib.sha256(raw).hexdigest()[:32] not in prints

@@ -13,7 +13,7 @@ from functools import partial
 from gclint.dialects.addressing import GROUP_MEMBERS, Address, resolve_v5
 from gclint.dialects.base import Dialect
 from gclint.machine.state import EVALUES, NATIVE, MachineState
-from gclint.syntax.nodes import GCODE, IMPLICIT, Command, Line, is_number
+from gclint.syntax.nodes import GCODE, IMPLICIT, Command, Line, is_number, to_number
 
 Handler = Callable[[Command, Line], None]
 
@@ -25,8 +25,8 @@ def _int(text: str | None) -> int | None:
     """An integer parameter value (``"12"``, ``"12.0"``), or None."""
     if text is None or not is_number(text) or len(text) > 12:
         return None
-    value = float(text)
-    return int(value) if value == int(value) else None
+    value = to_number(text)  # (hex such as "0x0b" included; None when not finite)
+    return int(value) if value is not None and value == int(value) else None
 
 
 class Interpreter:

@@ -21,6 +21,7 @@ class ReportContext:
     rules: dict = field(default_factory=dict)  # code -> rule class, for formats that describe rules
     fixed: int | None = None  # with --fix: how many findings were fixed
     group: bool = True  # text, full, grouped: one code's findings in a file after the first few as one line
+    suppressions: list[str] = field(default_factory=list)  # security rules switched off, and by what
 
 
 Writer = Callable[[list[FileResult], TextIO, ReportContext], None]

@@ -8,68 +8,25 @@ its own way (HTML autoescape, XML escaping, GitHub command escaping); these help
 
 from __future__ import annotations
 
-import re
 from collections import Counter
-from collections.abc import Callable, Iterator
+from collections.abc import Iterator
 from dataclasses import dataclass
 
 from gclint.engine import FileResult
 from gclint.rules.base import Finding
-
-_MASK: Callable[[str], str] | None = None
-
-
-def mask(text: str) -> str:
-    """``text`` with credentials masked, by ``gclint.secrets.mask`` when that module exists."""
-    global _MASK
-    if _MASK is None:
-        try:
-            from gclint import secrets  # written by the security work; optional here
-
-            _MASK = getattr(secrets, "mask", None) or _identity
-        except ImportError:
-            _MASK = _identity
-    return _MASK(text)
-
-
-def _identity(text: str) -> str:
-    return text
-
-
-_SURROGATES = re.compile("[\ud800-\udfff]")
-
-
-def clean(text: str) -> str:
-    """Undecodable bytes (lone surrogates) shown as ``\\xNN``, so any encoder can write the text."""
-    if not _SURROGATES.search(text):
-        return text
-    return _SURROGATES.sub(
-        lambda m: f"\\x{ord(m.group()) - 0xDC00:02x}" if ord(m.group()) >= 0xDC80 else "\ufffd", text
-    )
-
-
-# C0 controls except tab, DEL, C1 controls: they would drive a terminal (ESC sequences) or break XML.
-_CONTROLS = re.compile("[\x00-\x08\x0b-\x1f\x7f-\x9f\ufffe\uffff]")
-
-
-def printable(text: str) -> str:
-    """``clean(text)`` with control characters shown as ``\\xNN`` (safe on a terminal and in XML 1.0)."""
-    text = clean(text)
-    if _CONTROLS.search(text):
-        text = _CONTROLS.sub(lambda m: f"\\x{ord(m.group()):02x}", text)
-    return text
+from gclint.textsafe import clean, human, json_safe, mask, printable  # noqa: F401  (re-exported)
 
 
 def source_line(finding: Finding) -> str | None:
     """The finding's line as a report may show it: secrets masked, control characters escaped."""
     if finding.source is None:
         return None
-    return printable(mask(finding.source))
+    return human(finding.source)
 
 
 def message(finding: Finding) -> str:
     """The finding's message, safe to print (messages may quote file text)."""
-    return printable(mask(finding.message))
+    return human(finding.message)
 
 
 def rule_docs(codes: set[str] | None = None) -> dict[str, dict]:

@@ -12,7 +12,7 @@ from __future__ import annotations
 from typing import TextIO
 
 from gclint.engine import FileResult
-from gclint.reports.common import clean, message
+from gclint.reports.common import human
 from gclint.rules.base import Severity
 
 COMMANDS = {Severity.ERROR: "error", Severity.WARNING: "warning", Severity.INFO: "notice"}
@@ -33,14 +33,15 @@ def _command(kind: str, properties: dict[str, object], text: str) -> str:
 
 def write(results: list[FileResult], out: TextIO, ctx) -> None:
     for r in results:
-        path = clean(r.path)
+        path = human(r.path)
         if r.error:
-            out.write(_command("error", {"file": path, "title": "gclint"}, clean(r.error)) + "\n")
+            out.write(_command("error", {"file": path, "title": "gclint"}, human(r.error)) + "\n")
             continue
         for f in r.findings:
             props: dict[str, object] = {"file": path, "line": f.line, "col": f.column}
             if f.end_column is not None and f.end_column > f.column:
                 props["endColumn"] = f.end_column
             props["title"] = f.code
-            text = f"{message(f)} ({f.name})" if f.name else message(f)
+            shown = human(f.message, keep_line_breaks=True)  # escape_data encodes line breaks as %0A
+            text = f"{shown} ({f.name})" if f.name else shown
             out.write(_command(COMMANDS[f.severity], props, text) + "\n")

@@ -8,6 +8,7 @@ script carries a per-report nonce that its Content-Security-Policy requires.
 
 from __future__ import annotations
 
+import math
 import secrets as _random
 from dataclasses import dataclass, field
 from datetime import UTC, datetime
@@ -62,6 +63,8 @@ def build_plot(toolpath: Toolpath, result: FileResult) -> Plot | None:
     min_x, min_y, max_x, max_y = bounds
     span_x = max(max_x - min_x, 1e-9)
     span_y = max(max_y - min_y, 1e-9)
+    if not all(math.isfinite(v) for v in (*bounds, span_x, span_y)):
+        return None  # coordinates beyond what a float can scale (X999...9): no plot, the findings still show
     inner_w, inner_h = PLOT_WIDTH - 2 * PLOT_MARGIN, PLOT_HEIGHT - 2 * PLOT_MARGIN
     scale = min(inner_w / span_x, inner_h / span_y)
     if max_x == min_x and max_y == min_y:
@@ -142,11 +145,17 @@ class FileView:
     dialect_reason: str
     read_as: str
     weak: bool
+    omitted: int = 0  # findings not listed on the page (see HTML_FINDINGS)
+
+
+# Findings listed per file: a page that a browser can open, and memory that stays bounded (the machine
+# formats list them all).
+HTML_FINDINGS = 2000
 
 
 def _file_view(index: int, result: FileResult, plot_budget: int) -> FileView:
     findings = []
-    for f in result.findings:
+    for f in result.findings[:HTML_FINDINGS]:
         line = source_line(f)
         start = max(0, f.column - 1)
         end = f.end_column - 1 if f.end_column is not None and f.end_column > f.column else start + 1
@@ -185,6 +194,7 @@ def _file_view(index: int, result: FileResult, plot_budget: int) -> FileView:
         dialect_reason=printable(result.dialect_reason),
         read_as=printable(result.read_as),
         weak=result.context is not None and result.context.weak,
+        omitted=max(0, len(result.findings) - HTML_FINDINGS),
     )
 
 

@@ -10,11 +10,12 @@ import json
 from typing import TextIO
 
 from gclint.engine import FileResult
+from gclint.reports.common import json_safe, mask
 
 
 def write(results: list[FileResult], out: TextIO, ctx) -> None:
     encode = json.JSONEncoder(ensure_ascii=False).encode
-    findings = [encode(f.to_dict()) for r in results for f in r.findings]
+    findings = [json_safe(encode(_masked(f.to_dict()))) for r in results for f in r.findings]
     if not findings:
         out.write("[]\n")
         return
@@ -29,3 +30,8 @@ def write_statistics(results: list[FileResult], out: TextIO, ctx) -> None:
 
     json.dump(statistics(results), out, ensure_ascii=False, indent=2)
     out.write("\n")
+
+
+def _masked(data: dict) -> dict:
+    data["message"] = mask(data["message"])  # messages may quote file text
+    return data

@@ -16,7 +16,7 @@ from typing import TextIO
 from urllib.parse import quote
 
 from gclint.engine import FileResult
-from gclint.reports.common import clean, codes_in, message, rule_docs, source_line
+from gclint.reports.common import clean, codes_in, mask, message, rule_docs, source_line
 from gclint.rules.base import Finding, Severity
 
 SCHEMA = "https://docs.oasis-open.org/sarif/sarif/v2.1.0/errata01/os/schemas/sarif-schema-2.1.0.json"
@@ -35,12 +35,17 @@ def artifact_uri(path: str) -> tuple[str, str | None]:
         return "stdin", None
     windows = PureWindowsPath(path)
     if windows.drive and windows.is_absolute():
-        return "file:///" + quote(windows.as_posix(), safe="/:"), None
+        return "file:///" + quote(_raw(windows.as_posix()), safe="/:"), None
     posix = path.replace(os.sep, "/") if os.sep != "/" else path
     if posix.startswith("/"):
-        return "file://" + quote(posix, safe="/"), None
+        return "file://" + quote(_raw(posix), safe="/"), None
     parts = [p for p in PurePosixPath(posix).parts if p != "."]
-    return quote("/".join(parts), safe="/"), "%SRCROOT%"
+    return quote(_raw("/".join(parts)), safe="/"), "%SRCROOT%"
+
+
+def _raw(path: str) -> bytes:
+    """The file name's bytes (a Latin-1 name that is not UTF-8 is kept as it is on disk, percent-encoded)."""
+    return path.encode("utf-8", "surrogateescape")
 
 
 def _rule_descriptor(code: str, doc: dict | None, finding: Finding | None) -> dict:
@@ -80,7 +85,8 @@ def _pascal(kebab: str) -> str:
 
 def _fingerprint(f: Finding) -> str:
     # Stable across runs and insertions above the line: the code, the file and the line's text.
-    text = f.source if f.source is not None else str(f.line)
+    # masked: a hash of a line that holds a short password could be reversed by trying passwords
+    text = mask(f.source) if f.source is not None else str(f.line)
     data = "\0".join((f.code, f.path, text.strip())).encode("utf-8", "surrogateescape")
     return hashlib.sha256(data).hexdigest()[:32]
 

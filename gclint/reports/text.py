@@ -7,16 +7,17 @@ from dataclasses import replace
 from typing import TextIO
 
 from gclint.engine import FileResult
-from gclint.reports.common import Elided, grouped
+from gclint.reports.common import Elided, grouped, human, message
 
 
 def write(results: list[FileResult], out: TextIO, ctx) -> None:
     for result in results:
+        path = human(result.path)
         for f in grouped(result.findings, ctx.group):
             if isinstance(f, Elided):
-                out.write(f"{f.path}: {f}\n")
+                out.write(f"{path}: {f}\n")
                 continue
-            out.write(f"{f.path}:{f.line}:{f.column}: {f.code}{_mark(f, ctx)} {f.message}\n")
+            out.write(f"{path}:{f.line}:{f.column}: {f.code}{_mark(f, ctx)} {message(f)}\n")
     write_summary(results, out, ctx)
 
 
@@ -44,6 +45,8 @@ def write_summary(results: list[FileResult], out: TextIO, ctx) -> None:
                 fixable += 1
     if ctx.statistics:
         write_statistics(results, out)
+        for note in ctx.suppressions:
+            out.write(f"{'-':>7}  {human(note)}\n")
     n = sum(total.values())
     parts = [f"{total[k]} {k}{'s' if total[k] != 1 else ''}" for k in ("error", "warning", "info") if total[k]]
     files = f" in {files_with} file{'s' if files_with != 1 else ''}" if n else ""
@@ -53,7 +56,15 @@ def write_summary(results: list[FileResult], out: TextIO, ctx) -> None:
         out.write(f"Found {found} finding{'s' if found != 1 else ''} ({ctx.fixed} fixed, {remaining}){files}.\n")
     elif n:
         out.write(f"Found {n} finding{'s' if n != 1 else ''} ({', '.join(parts)}){files}.\n")
-    elif any(r.error is None for r in results):
+    elif any(r.error is not None for r in results):
+        # never "All checks passed" when something was not checked (an unreadable file or folder)
+        unread = sum(1 for r in results if r.error is not None)
+        checked = len(results) - unread
+        out.write(
+            f"No findings in the {checked} file{'s' if checked != 1 else ''} checked; {unread} "
+            f"{'paths' if unread != 1 else 'path'} could not be checked (see above).\n"
+        )
+    elif results:
         out.write("All checks passed.\n")
     if n and fixable and ctx.fixed is None:
         out.write(f"[*] {fixable} fixable with --fix.\n")
@@ -100,7 +111,7 @@ def write_statistics(results: list[FileResult], out: TextIO) -> None:
     for row in statistics(results):
         mark = " [*]" if row["fixable"] else ""
         out.write(
-            f"{row['count']:>7}  {row['code']}{mark:<4} {row['name']:<32} [{row['severity']}]  first at {row['first']}\n"
+            f"{row['count']:>7}  {row['code']}{mark:<4} {row['name']:<32} [{row['severity']}]  first at {human(row['first'])}\n"
         )
 
 
@@ -111,14 +122,15 @@ def write_statistics_report(results: list[FileResult], out: TextIO, ctx) -> None
 
 def write_full(results: list[FileResult], out: TextIO, ctx) -> None:
     """``--format full``: each finding with its source line and a caret under the columns it covers."""
-    from gclint.reports.common import message, source_line
+    from gclint.reports.common import source_line
 
     for result in results:
+        path = human(result.path)
         for f in grouped(result.findings, ctx.group):
             if isinstance(f, Elided):
-                out.write(f"{f.path}: {f}\n\n")
+                out.write(f"{path}: {f}\n\n")
                 continue
-            out.write(f"{f.path}:{f.line}:{f.column}: {f.code}{_mark(f, ctx)} {message(f)}\n")
+            out.write(f"{path}:{f.line}:{f.column}: {f.code}{_mark(f, ctx)} {message(f)}\n")
             line = source_line(f)
             if line is not None:
                 gutter = " " * len(str(f.line))
@@ -128,19 +140,18 @@ def write_full(results: list[FileResult], out: TextIO, ctx) -> None:
                 width = max(1, len(line[: end_column - 1].expandtabs(4)) - start)
                 out.write(f" {gutter} |\n {f.line} | {shown}\n {gutter} | {' ' * start}{'^' * width}\n")
             if f.fix is not None and ctx.show_fixes:
-                out.write(f" {' ' * len(str(f.line))} = fix{'' if f.fix.safe else ' (unsafe)'}: {f.fix.message}\n")
+                fix = human(f.fix.message)
+                out.write(f" {' ' * len(str(f.line))} = fix{'' if f.fix.safe else ' (unsafe)'}: {fix}\n")
             out.write("\n")
     write_summary(results, out, ctx)
 
 
 def write_grouped(results: list[FileResult], out: TextIO, ctx) -> None:
     """``--format grouped``: findings under their file's name, like ``ruff --output-format grouped``."""
-    from gclint.reports.common import message
-
     for result in results:
         if not result.findings:
             continue
-        out.write(f"{result.path}:\n")
+        out.write(f"{human(result.path)}:\n")
         width = max(len(f"{f.line}:{f.column}") for f in result.findings)
         for f in grouped(result.findings, ctx.group):
             if isinstance(f, Elided):

@@ -81,7 +81,8 @@ class _SecurityRule(Rule):
         """Report with the message and the source line masked (no secret reaches any output)."""
         self.report(line, secrets.mask(message), column=column, severity=severity)
         finding = self.ctx.findings[-1]
-        finding.source = secrets.mask(line.raw)
+        if finding.line == line.number and finding.source is not None:
+            finding.source = secrets.mask(finding.source)  # (the line, or its beginning for a very long one)
 
 
 # -- Repetrel host actions (Hyrel M0 / M792) ------------------------------------------------------------
@@ -252,7 +253,9 @@ class RunsFile(_SecurityRule):
         M23 (select a file for M24) make the firmware run a file that is not in this job.  What runs is
         whatever that file holds on the machine at print time, which this check cannot see; on a shared or
         networked printer it may have been changed.  Prefer self-contained jobs; when a macro is
-        intended, silence this code for those files with per-file-ignores or "; noqa: SC004".
+        intended, silence this code for those files with per-file-ignores in the configuration.  A job
+        cannot silence SC findings itself: "; noqa: SC004" and "; gclint: disable=SC" are ignored for the
+        security rules.
 
         RepRapFirmware's own configuration is macros calling macros: the firmware runs homeall.g for G28,
         tpre0.g for T0, M<n>.g for a code it does not have, and these files call each other with M98
@@ -351,7 +354,7 @@ class LeakedSecret(_SecurityRule):
         if text in self._clean:  # comments repeat (";TYPE:Perimeter", ";WIDTH:0.45")
             return
         found = secrets.find(text)
-        if not found:
+        if not found and len(text) <= 1024:  # (long texts are not remembered: memory stays bounded)
             if len(self._clean) >= 8192:
                 self._clean.clear()
             self._clean.add(text)

@@ -161,7 +161,7 @@ def check_text(text: str, path: str, options: Options, cancel: threading.Event |
     text = clean_surrogates(text)
     try:
         linter = linter_for(options)
-        source = _CancellableSource.from_text(text, path)
+        source = _CancellableSource.from_text(text, path, cut_long_lines=True)  # checking, not rewriting
         source.cancel = cancel
         result = linter.check_source(source)
     except Cancelled:

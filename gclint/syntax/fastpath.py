@@ -35,9 +35,12 @@ _WORD = re.compile(rf"([A-Za-z])[ \t]*({_NUM})")
 # A G0/G1 with only plain X Y Z E F words in the order slicers write them (F first or last, not both), no
 # comment: the route for lines that need no tree (Linter._run, translate_source).  Same number syntax as
 # _CANON.  Groups: 1 the digit of G0/G1, 2 F (first), 3-6 X Y Z E, 7 F (last).
+# Runs of blanks are bounded too, so that a plain move is at most a few hundred characters: a longer line
+# (or the beginning of a huge one, syntax.source.Overlong) always goes to the parser, which reports it.
+_SEP = r"[ \t]{1,64}+"
 PLAIN_MOVE = re.compile(
-    rf"G([01])(?:[ \t]++F({_NUM_P}))?+(?:[ \t]++X({_NUM_P}))?+(?:[ \t]++Y({_NUM_P}))?+(?:[ \t]++Z({_NUM_P}))?+"
-    rf"(?:[ \t]++E({_NUM_P}))?+(?(2)|(?:[ \t]++F({_NUM_P}))?+)[ \t]*+"
+    rf"G([01])(?:{_SEP}F({_NUM_P}))?+(?:{_SEP}X({_NUM_P}))?+(?:{_SEP}Y({_NUM_P}))?+(?:{_SEP}Z({_NUM_P}))?+"
+    rf"(?:{_SEP}E({_NUM_P}))?+(?(2)|(?:{_SEP}F({_NUM_P}))?+)[ \t]{{0,64}}+"
 )
 _LINENO_VALUE = re.compile(r"\d+(?:\.\d+)?")
 _LETTER_AND_VALUE = itemgetter(0, slice(1, None))  # "X10.5" -> ("X", "10.5"), in C

@@ -6,8 +6,16 @@
   back unchanged.
 * Binary files (``.bgcode``, images, archives) are refused with a ``SourceError`` naming the problem.
 
-The file is read in chunks of ``CHUNK`` bytes; memory does not grow with the file's length (only with
-its longest line).
+The file is read in chunks of ``CHUNK`` bytes; memory does not grow with the file's length, and time is
+linear in it.  A line is held whole up to ``LINE_LIMIT`` bytes (characters for UTF-16/32): a longer one
+(a 256 MiB line of junk, a sparse file of NULs) is refused with a ``SourceError`` naming its line, unless
+the reader asked for ``cut_long_lines`` (checking, not rewriting): then the line comes as an ``Overlong``
+text, its first ``LINE_LIMIT`` characters plus its real ``length``, and the rest is skipped while
+streaming.  Writers (translate, --fix) never set it, so they never write a file they could not read whole.
+
+``Source.open(path, digest=True)`` hashes the bytes as they are read: ``source.sha256`` is the SHA-256 of
+exactly the bytes that were checked (the result cache's key), or None when the file is not a regular file
+or was not read to its end.
 """
 
 from __future__ import annotations
@@ -15,20 +23,66 @@ from __future__ import annotations
 import codecs
 import hashlib
 import io
+import os
 import re
+import stat
 import sys
 from collections.abc import Iterator
 from itertools import repeat
+from operator import itemgetter
 from typing import BinaryIO
 
 CHUNK = 1 << 20
 HEAD = 1 << 16
+LINE_LIMIT = 4 << 20  # bytes (characters for UTF-16/32) of one line held in memory
 UTF8_BOM = b"\xef\xbb\xbf"
+# (BOM, codec), UTF-32 first: its little-endian BOM starts with UTF-16's.
+_DECODED_BOMS = (
+    (codecs.BOM_UTF32_LE, "utf-32-le"),
+    (codecs.BOM_UTF32_BE, "utf-32-be"),
+    (codecs.BOM_UTF16_LE, "utf-16-le"),
+    (codecs.BOM_UTF16_BE, "utf-16-be"),
+)
 _LINES = re.compile(r"([^\r\n]*)(\r\n|\r|\n)")
+_TEXT = itemgetter(0)
 
 
 class SourceError(Exception):
     """A file that cannot be read as G-code; the message is one line for the user."""
+
+
+class Overlong(str):
+    """The first ``LINE_LIMIT`` characters of a longer line; ``length`` is the length of the whole line (bytes,
+    or characters in UTF-16/32).  Only produced for readers that asked for ``cut_long_lines``."""
+
+    length: int
+
+    def __new__(cls, text: str, length: int) -> Overlong:
+        obj = super().__new__(cls, text)
+        obj.length = length
+        return obj
+
+
+class _Hashing:
+    """A byte stream that hashes what is read from it (the cache key is the hash of the bytes checked)."""
+
+    def __init__(self, stream: BinaryIO) -> None:
+        self._stream = stream
+        self._sha = hashlib.sha256()
+        self.eof = False
+
+    def read(self, size: int = -1) -> bytes:
+        data = self._stream.read(size)
+        self._sha.update(data)
+        if not data or (size is not None and 0 <= len(data) < size):
+            self.eof = True  # a buffered read returns less than asked only at the end
+        return data
+
+    def hexdigest(self) -> str:
+        return self._sha.hexdigest()
+
+    def close(self) -> None:
+        self._stream.close()
 
 
 class Source:
@@ -38,10 +92,13 @@ class Source:
     UTF-16 variant found; ``bom`` is the byte order mark to write back (may be empty).
     """
 
-    def __init__(self, stream: BinaryIO, display: str, *, close: bool = False) -> None:
+    def __init__(self, stream: BinaryIO, display: str, *, close: bool = False, cut_long_lines: bool = False) -> None:
         self.display = display
         self._stream = stream
         self._close = close
+        self.cut_long_lines = cut_long_lines
+        self.lines_read = 0
+        self._hashing: _Hashing | None = stream if isinstance(stream, _Hashing) else None
         try:
             head = stream.read(HEAD)
         except OSError as exc:
@@ -52,26 +109,33 @@ class Source:
         if head.startswith(UTF8_BOM):
             self.bom = UTF8_BOM
             head = head[3:]
-        elif head.startswith((codecs.BOM_UTF16_LE, codecs.BOM_UTF16_BE)):
-            self.bom = head[:2]
-            self.encoding = "utf-16-le" if head.startswith(codecs.BOM_UTF16_LE) else "utf-16-be"
-            head = head[2:]
         else:
-            _refuse_binary(head, display)
+            for bom, encoding in _DECODED_BOMS:
+                if head.startswith(bom):
+                    self.bom, self.encoding = bom, encoding
+                    head = head[len(bom) :]
+                    break
+            else:
+                _refuse_binary(head, display)
         self._head = head
         self._consumed = False
-        self._hash = hashlib.blake2b(digest_size=16)  # of the bytes read, as read (BOM included)
-        self._hash.update(self.bom)
-        self._hash.update(head)
-        self._complete = False
+
+    @property
+    def sha256(self) -> str | None:
+        """The SHA-256 of every byte read, once the whole file was read (``Source.open(path, digest=True)``
+        on a regular file); None otherwise."""
+        if self._hashing is None or not self._hashing.eof:
+            return None
+        return self._hashing.hexdigest()
 
     @classmethod
-    def open(cls, path: str) -> Source:
-        """Open a file path (``-`` for standard input)."""
+    def open(cls, path: str, *, digest: bool = False, cut_long_lines: bool = False) -> Source:
+        """Open a file path (``-`` for standard input).  With ``digest``, a regular file is hashed as it is
+        read (``sha256``); pipes and devices are read once as a stream and never hashed."""
         if path == "-":
-            return cls(sys.stdin.buffer, "-")
+            return cls(sys.stdin.buffer, "-", cut_long_lines=cut_long_lines)
         try:
-            stream = open(path, "rb")  # noqa: SIM115 - closed by Source.close / iteration end
+            stream: BinaryIO = open(path, "rb")  # noqa: SIM115 - closed by Source.close / iteration end
         except FileNotFoundError:
             raise SourceError(f"{path}: no such file") from None
         except IsADirectoryError:
@@ -81,18 +145,23 @@ class Source:
         except OSError as exc:
             raise SourceError(f"{path}: cannot open: {exc.strerror or exc}") from None
         try:
-            return cls(stream, path, close=True)
+            if digest and stat.S_ISREG(os.fstat(stream.fileno()).st_mode):
+                stream = _Hashing(stream)  # type: ignore[assignment]
+            return cls(stream, path, close=True, cut_long_lines=cut_long_lines)
+        except OSError as exc:
+            stream.close()
+            raise SourceError(f"{path}: cannot read: {exc.strerror or exc}") from None
         except BaseException:
             stream.close()
             raise
 
     @classmethod
-    def from_bytes(cls, data: bytes, display: str = "<bytes>") -> Source:
-        return cls(io.BytesIO(data), display)
+    def from_bytes(cls, data: bytes, display: str = "<bytes>", *, cut_long_lines: bool = False) -> Source:
+        return cls(io.BytesIO(data), display, cut_long_lines=cut_long_lines)
 
     @classmethod
-    def from_text(cls, text: str, display: str = "<text>") -> Source:
-        return cls.from_bytes(text.encode("utf-8", "surrogateescape"), display)
+    def from_text(cls, text: str, display: str = "<text>", *, cut_long_lines: bool = False) -> Source:
+        return cls.from_bytes(text.encode("utf-8", "surrogateescape"), display, cut_long_lines=cut_long_lines)
 
     @property
     def head_is_whole(self) -> bool:
@@ -108,20 +177,21 @@ class Source:
                 more = self._stream.read(wanted)
             except OSError as exc:
                 raise SourceError(f"{self.display}: cannot read: {exc.strerror or exc}") from None
-            self._hash.update(more)
             self._head += more
             self._head_eof = len(more) < wanted
         data = self._head[:limit]
         if self.encoding == "utf-8":
             return data.decode("utf-8", "surrogateescape")
-        return data[: len(data) // 2 * 2].decode(self.encoding, "replace")
+        unit = 4 if "32" in self.encoding else 2
+        return data[: len(data) // unit * unit].decode(self.encoding, "replace")
 
     def tail_text(self, limit: int = HEAD) -> str | None:
         """The end of a regular file beyond the head (whole lines), as text, or None (the head is the
-        whole file, or the stream cannot seek: standard input, a pipe).  Does not move the stream."""
+        whole file, or the stream cannot seek: standard input, a pipe).  Does not move the stream, and
+        what it reads is not hashed (``sha256`` stays the hash of the bytes checked, in order)."""
         if self._head_eof or self._consumed:
             return None
-        stream = self._stream
+        stream = self._stream._stream if isinstance(self._stream, _Hashing) else self._stream
         try:
             if not stream.seekable():
                 return None
@@ -131,20 +201,15 @@ class Source:
             stream.seek(start)
             data = stream.read(end - start)
             stream.seek(here)
-        except (OSError, ValueError):
+        except (OSError, ValueError, AttributeError):
             return None
         if start > here:  # begins mid-line: keep whole lines only
             cut = max(data.find(b"\n"), data.find(b"\r"))
             data = data[cut + 1 :] if cut >= 0 else b""
         if self.encoding == "utf-8":
             return data.decode("utf-8", "surrogateescape")
-        return data[: len(data) // 2 * 2].decode(self.encoding, "replace")
-
-    @property
-    def digest(self) -> str | None:
-        """A hash of every byte of the file, once it has been read to the end (else None): what was
-        checked, for ``--fix`` to see that the file has not changed since."""
-        return self._hash.hexdigest() if self._complete else None
+        unit = 4 if "32" in self.encoding else 2
+        return data[: len(data) // unit * unit].decode(self.encoding, "replace")
 
     def encode(self, text: str) -> bytes:
         """Encode output text so that unchanged text gives back the original bytes."""
@@ -179,62 +244,144 @@ class Source:
             yield from chunk
 
     def _utf8_chunks(self) -> Iterator[list[tuple[str, str]]]:
-        buffer = self._head
         read = self._stream.read
-        eof = self._head_eof
-        while True:
-            if not eof:
-                more = read(CHUNK)
-                if more:
-                    self._hash.update(more)
-                    buffer += more
-                else:
-                    eof = True
-            cut = _last_line_end(buffer, eof)
-            if cut:
-                yield split_lines(buffer[:cut].decode("utf-8", "surrogateescape"))
-                buffer = buffer[cut:]
-            if eof:
-                self._complete = True
-                if buffer:
-                    yield [(buffer.decode("utf-8", "surrogateescape"), "")]
+
+        def pieces() -> Iterator[bytes]:
+            yield self._head
+            if self._head_eof:
                 return
+            while True:
+                more = read(CHUNK)
+                if not more:
+                    return
+                yield more
+
+        def decode(data: bytes) -> str:
+            return data.decode("utf-8", "surrogateescape")
+
+        yield from self._lines(pieces(), b"", b"\n", b"\r", decode)
 
     def _decoded_chunks(self) -> Iterator[list[tuple[str, str]]]:
         decoder = codecs.getincrementaldecoder(self.encoding)("surrogatepass")
-        data = self._head
-        pending = ""
+
+        def pieces() -> Iterator[str]:
+            data = self._head
+            final = self._head_eof
+            while True:
+                try:
+                    text = decoder.decode(data, final=final)
+                except UnicodeDecodeError:  # a byte count that does not fit the encoding, or not that encoding
+                    name = self.encoding.split("-le")[0].split("-be")[0].upper()
+                    raise SourceError(
+                        f"{self.display}: starts with a {name} byte order mark but is not valid {name} text"
+                    ) from None
+                if text:
+                    yield text
+                if final:
+                    return
+                data = self._stream.read(CHUNK)
+                final = not data
+
+        yield from self._lines(pieces(), "", "\n", "\r", lambda text: text)
+
+    def _lines(self, pieces: Iterator, empty, lf, cr, decode) -> Iterator[list[tuple[str, str]]]:
+        """Cut ``pieces`` (bytes or text) into lines.  Every piece is searched for line endings once and a
+        partial line is carried over only up to ``LINE_LIMIT``: time is linear, memory bounded."""
+        pending = empty
+        eof = False
         while True:
-            final = not data
-            try:
-                pending += decoder.decode(data, final=final)
-            except UnicodeDecodeError:  # an odd number of bytes: cut short, or not UTF-16 at all
-                raise SourceError(
-                    f"{self.display}: starts with a UTF-16 byte order mark but is not valid UTF-16 text"
-                ) from None
-            cut = max(pending.rfind("\n"), pending.rfind("\r"))
-            if cut >= 0 and (final or cut < len(pending) - 1 or pending[cut] == "\n"):
-                yield split_lines(pending[: cut + 1])
-                pending = pending[cut + 1 :]
-            if final:
-                self._complete = True
+            more = next(pieces, None)
+            if more is None:
+                eof = True
+            else:
+                pending = pending + more if pending else more
+            cut = _last_line_end(pending, eof, lf, cr)
+            if cut:
+                lines = split_lines(decode(pending[:cut]))
+                if cut > LINE_LIMIT and max(map(len, map(_TEXT, lines))) > LINE_LIMIT:
+                    self._limit(lines, empty)
+                self.lines_read += len(lines)
+                yield lines
+                pending = pending[cut:]
+            if eof:
                 if pending:
-                    yield [(pending, "")]
+                    self.lines_read += 1
+                    yield [(decode(pending), "")]
                 return
-            data = self._stream.read(CHUNK)
-            self._hash.update(data)
+            if len(pending) - (pending[-1:] == cr) > LINE_LIMIT:  # (a CR at the end may be its ending)
+                pending = yield from self._long_line(pending, pieces, empty, lf, cr, decode)
+
+    def _limit(self, lines: list[tuple[str, str]], empty) -> None:
+        """Refuse (or cut) the lines longer than ``LINE_LIMIT`` that arrived whole within one read."""
+        for index, (text, ending) in enumerate(lines):
+            if len(text) > LINE_LIMIT:
+                if not self.cut_long_lines:
+                    self._refuse(self.lines_read + index + 1)
+                length = len(text.encode("utf-8", "surrogateescape")) if isinstance(empty, bytes) else len(text)
+                lines[index] = (Overlong(text[:LINE_LIMIT], length), ending)
+
+    def _refuse(self, number: int) -> None:
+        raise SourceError(
+            f"{self.display}: line {number} is longer than {LINE_LIMIT:,} bytes; gclint does not read or"
+            " rewrite files with such lines"
+        )
+
+    def _long_line(self, pending, pieces: Iterator, empty, lf, cr, decode):
+        """A line longer than ``LINE_LIMIT``: refused, or (``cut_long_lines``) its beginning and length,
+        the rest skipped as it streams by.  Returns what follows the line's ending."""
+        if not self.cut_long_lines:
+            self._refuse(self.lines_read + 1)
+        prefix = decode(pending[:LINE_LIMIT])
+        length = LINE_LIMIT
+        data = pending[LINE_LIMIT:]
+        rest = None
+        while rest is None:
+            i = _first_line_end(data, lf, cr)
+            if i < 0:
+                length += len(data)
+                more = next(pieces, None)
+                if more is None:
+                    ending, rest = "", empty
+                else:
+                    data = more
+                continue
+            length += i
+            if data[i : i + 1] == lf:
+                ending, rest = "\n", data[i + 1 :]
+            elif i + 1 < len(data):
+                ending, rest = ("\r\n", data[i + 2 :]) if data[i + 1 : i + 2] == lf else ("\r", data[i + 1 :])
+            else:  # a CR that ends this piece: the next one tells CR from CRLF
+                more = next(pieces, None)
+                if more is not None and more[:1] == lf:
+                    ending, rest = "\r\n", more[1:]
+                else:
+                    ending, rest = "\r", more if more is not None else empty
+        self.lines_read += 1
+        yield [(Overlong(prefix, length), ending)]
+        return rest
 
 
-def _last_line_end(buffer: bytes, eof: bool) -> int:
-    """Length of the longest prefix of ``buffer`` that ends with a complete line ending."""
-    lf = buffer.rfind(b"\n")
-    cr = buffer.rfind(b"\r")
-    if cr > lf:
-        if cr == len(buffer) - 1 and not eof:
-            # A CR at the very end may be the first half of a CRLF split across reads.
-            return lf + 1 if lf >= 0 else 0
-        return cr + 1
-    return lf + 1
+def _first_line_end(data, lf, cr) -> int:
+    """Index of the first LF or CR in ``data`` (bytes or text), -1 when it has none."""
+    a = data.find(lf)
+    b = data.find(cr)
+    if a < 0:
+        return b
+    if b < 0:
+        return a
+    return min(a, b)
+
+
+def _last_line_end(buffer, eof: bool, lf=b"\n", cr=b"\r") -> int:
+    """Length of the longest prefix of ``buffer`` (bytes or text) that ends with a complete line ending."""
+    lf_at = buffer.rfind(lf)
+    cr_at = buffer.rfind(cr)
+    if cr_at > lf_at:
+        if cr_at == len(buffer) - 1 and not eof:
+            # A CR at the very end may be the first half of a CRLF split across reads: cut before it.
+            return max(lf_at, buffer.rfind(cr, 0, cr_at)) + 1
+        return cr_at + 1
+    return lf_at + 1
 
 
 def split_lines(text: str) -> list[tuple[str, str]]:

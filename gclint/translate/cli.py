@@ -2,14 +2,16 @@
 
 from __future__ import annotations
 
+import shutil
 import sys
+import tempfile
 
 import click
 
 from gclint.dialects.base import Dialect
 from gclint.io import AtomicWriter, OutputError
 from gclint.rules.base import Severity
-from gclint.syntax.source import Source, SourceError
+from gclint.syntax.source import CHUNK, Source, SourceError
 from gclint.translate.engine import TranslationResult, UnsupportedPair, translate_source, translator_for
 
 
@@ -43,39 +45,41 @@ def run_translate(
         )
         translator = translator_for(source, target, options)
     except UnsupportedPair as exc:
-        click.echo(f"gclint: {exc}", err=True)
+        _error(exc)
         return 2
     except ValueError as exc:
-        click.echo(f"gclint: {exc}", err=True)
+        _error(exc)
         return 2
     try:
         src = Source.open(input_path)
     except SourceError as exc:
-        click.echo(f"gclint: {exc}", err=True)
+        _error(exc)
         return 2
     result = TranslationResult(src.display, source.name, target.name)
     target_path = output if output not in (None, "-") else None
     try:
         if target_path is None:
-            data = _collect(src, translator, result)
-            if _refused(result, unsupported):
-                _report(result, unsupported)
-                return 1
-            sys.stdout.flush()
-            sys.stdout.buffer.write(data)
-            sys.stdout.buffer.flush()
+            with _collect(src, translator, result) as data:
+                if _refused(result, unsupported):
+                    _report(result, unsupported)
+                    return 1
+                sys.stdout.flush()
+                shutil.copyfileobj(data, sys.stdout.buffer, CHUNK)
+                sys.stdout.buffer.flush()
         else:
-            with AtomicWriter(target_path, keep_mode_of=input_path if input_path != "-" else None) as out:
+            in_place = target_path == input_path
+            keep = input_path if input_path != "-" else None
+            with AtomicWriter(target_path, keep_mode_of=keep, follow_links=in_place) as out:
                 out.write(src.bom)
                 for text in translate_source(src, translator, result):
                     out.write(src.encode(text))
                 if _refused(result, unsupported):
                     out.discard()
     except SourceError as exc:
-        click.echo(f"gclint: {exc}", err=True)
+        _error(exc)
         return 2
     except OutputError as exc:
-        click.echo(f"gclint: {exc}", err=True)
+        _error(exc)
         return 2
     _report(result, unsupported)
     if _refused(result, unsupported):
@@ -83,11 +87,26 @@ def run_translate(
     return 0
 
 
-def _collect(src: Source, translator, result: TranslationResult) -> bytes:
-    parts = [src.bom]
-    for text in translate_source(src, translator, result):
-        parts.append(src.encode(text))
-    return b"".join(parts)
+def _error(exc: Exception) -> None:
+    from gclint.textsafe import human  # file names and file text: no control character reaches stderr
+
+    click.echo(f"gclint: {human(str(exc))}", err=True)
+
+
+def _collect(src: Source, translator, result: TranslationResult) -> tempfile.SpooledTemporaryFile:
+    """The whole translation, held in memory up to 8 MiB and in a temporary file beyond: nothing reaches
+    standard output before the input was read to its end (an unreadable line or --unsupported error
+    would otherwise leave half a job there), and memory does not grow with the job."""
+    spool = tempfile.SpooledTemporaryFile(max_size=8 << 20)  # noqa: SIM115 (returned open)
+    try:
+        spool.write(src.bom)
+        for text in translate_source(src, translator, result):
+            spool.write(src.encode(text))
+        spool.seek(0)
+    except BaseException:
+        spool.close()
+        raise
+    return spool
 
 
 def _refused(result: TranslationResult, unsupported: str) -> bool:
@@ -97,13 +116,13 @@ def _refused(result: TranslationResult, unsupported: str) -> bool:
 def _report(result: TranslationResult, unsupported: str) -> None:
     if unsupported == "ignore":
         return
-    from gclint.reports.common import message  # masks secrets quoted from the file
+    from gclint.reports.common import human, message  # masks secrets, escapes file text
 
     for f in result.findings:
-        click.echo(f"{f.path}:{f.line}:{f.column}: {f.code} {message(f)}", err=True)
+        click.echo(f"{human(f.path)}:{f.line}:{f.column}: {f.code} {message(f)}", err=True)
     if unsupported == "error" and _refused(result, unsupported):
         click.echo(
-            f"gclint: {result.path}: not translated: {len(result.findings)} construct(s) cannot be translated "
+            f"gclint: {human(result.path)}: not translated: {len(result.findings)} construct(s) cannot be translated "
             "exactly (--unsupported error)",
             err=True,
         )

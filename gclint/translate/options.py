@@ -190,7 +190,7 @@ def _choice(value: str, choices: tuple[str, ...]) -> str:
 
 def _address(value: str) -> int:
     text = value.upper().lstrip("T")
-    if not text.isdigit() or int(text) > 48:
+    if not (text.isascii() and text.isdigit() and len(text) <= 6) or int(text) > 48:
         raise ValueError("expected a Hyrel address such as T0 or T20")
     return int(text)
 
@@ -200,6 +200,6 @@ def _positive(value: str) -> float:
         number = float(value)
     except ValueError:
         raise ValueError("expected a number") from None
-    if not number > 0:
+    if not 0 < number < 1e12:  # also refuses nan and inf
         raise ValueError("expected a positive number")
     return number

@@ -31,7 +31,7 @@ from gclint.dialects.addressing import (
 from gclint.dialects.base import Dialect
 from gclint.rules.base import Finding
 from gclint.rules.translation import TR_NAME, TR_SEVERITY
-from gclint.syntax.nodes import GCODE, Command, Line, Word, is_number
+from gclint.syntax.nodes import GCODE, Command, Line, Word, is_number, to_number
 from gclint.syntax.parse import parse_line
 from gclint.translate.engine import TranslationResult, Translator
 from gclint.translate.output import LineEdit
@@ -187,8 +187,8 @@ class Renumber(Translator):
 def _integer(text: str) -> int | None:
     if not text or not is_number(text) or len(text) > 12:
         return None
-    value = float(text)
-    return int(value) if value == int(value) and value >= 0 else None
+    value = to_number(text)  # (hex such as "0x1" included; float() would raise on it)
+    return int(value) if value is not None and value == int(value) and value >= 0 else None
 
 
 def _renumbered(text: str, value: str, new: int) -> str:

@@ -30,7 +30,7 @@ from gclint.dialects.addressing import (
 from gclint.dialects.base import Dialect, Param
 from gclint.rules.base import ANY_T, Edit, Fix, Rule, Severity, register
 from gclint.rules.dialect import ParamTableRule
-from gclint.syntax.nodes import Command, Line, Word, is_number
+from gclint.syntax.nodes import Command, Line, Word, is_number, to_number
 
 # -- helpers shared by the HY rules ------------------------------------------------------------------
 
@@ -39,8 +39,8 @@ def int_value(text: str | None) -> int | None:
     """A whole-number parameter value (``"12"``, ``"12.0"``), or None."""
     if text is None or len(text) > 12 or not is_number(text):
         return None
-    value = float(text)
-    return int(value) if value == int(value) else None
+    value = to_number(text)  # (hex such as "0x0b" included; None when not finite)
+    return int(value) if value is not None and value == int(value) else None
 
 
 def is_v5(ctx) -> bool:

@@ -1,0 +1,165 @@
+"""Folder walks (issue 12, items 12 and 15): nothing is skipped in silence.  An unreadable folder or file is
+one line on stderr and exit 2 while everything else is still checked; hidden folders are walked and links
+to folders are not followed (as ruff does), with a note; version-control folders are skipped."""
+
+from __future__ import annotations
+
+import json
+import os
+import shutil
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+
+from gclint import runner
+
+from .conftest import ROOT
+
+HOSTILE = "; gclint: dialect=hyrel\nM792 ; SHELL C:\\x.exe\n"
+CLEAN = "; gclint: dialect=hyrel\nG28 X0 Y0\n"
+
+
+def _tree(tmp_path: Path) -> Path:
+    jobs = tmp_path / "jobs"
+    (jobs / "sub").mkdir(parents=True)
+    (jobs / "a.gcode").write_text(CLEAN)
+    (jobs / "sub" / "b.gcode").write_text(HOSTILE)
+    return jobs
+
+
+def test_an_unreadable_folder_is_reported(tmp_path: Path, monkeypatch) -> None:
+    jobs = _tree(tmp_path)
+    (jobs / "z").mkdir()
+    (jobs / "z" / "c.gcode").write_text(CLEAN)
+    real_scandir = os.scandir
+
+    def scandir(path):
+        if os.path.basename(path) == "sub":
+            raise PermissionError(13, "Permission denied")
+        return real_scandir(path)
+
+    monkeypatch.setattr(os, "scandir", scandir)
+    files, problems = runner.collect([str(jobs)])
+    assert [Path(f).name for f in files] == ["a.gcode", "c.gcode"]
+    [problem] = problems
+    assert problem.path.endswith("sub") and "cannot read this folder: Permission denied" in problem.error
+
+
+def _as_nobody() -> list[str] | None:
+    """A command prefix that runs as an unprivileged user (root reads everything), or None."""
+    if not hasattr(os, "getuid"):
+        return None
+    if os.getuid() != 0:
+        return []
+    setpriv = shutil.which("setpriv")
+    if setpriv is None:
+        return None
+    return [setpriv, "--reuid=65534", "--regid=65534", "--clear-groups"]
+
+
+def _run_unprivileged(prefix: list[str], *args: str, cwd: Path) -> subprocess.CompletedProcess:
+    env = {k: v for k, v in os.environ.items() if k != "GCLINT_CACHE_DIR"}
+    env["PYTHONPATH"] = str(ROOT)
+    return subprocess.run(
+        [*prefix, sys.executable, "-m", "gclint", "check", "--no-cache", *args],
+        capture_output=True,
+        cwd=cwd,
+        env=env,
+        timeout=120,
+    )
+
+
+def _open_up(path: Path) -> None:
+    for parent in [path, *path.parents]:
+        if parent == Path("/"):
+            break
+        os.chmod(parent, os.stat(parent).st_mode | 0o755)
+
+
+@pytest.mark.skipif(_as_nobody() is None, reason="cannot run as an unprivileged user")
+def test_unreadable_folder_and_file_through_the_command_line(tmp_path: Path) -> None:
+    prefix = _as_nobody()
+    jobs = _tree(tmp_path)
+    locked = jobs / "locked"
+    locked.mkdir()
+    (locked / "c.gcode").write_text(CLEAN)
+    secret = tmp_path / "secret.gcode"
+    secret.write_text(CLEAN)
+    _open_up(jobs / "sub")
+    for f in (jobs / "a.gcode", jobs / "sub" / "b.gcode"):
+        f.chmod(0o644)
+    locked.chmod(0o700 if prefix else 0o000)
+    secret.chmod(0o600 if prefix else 0o000)
+    try:
+        proc = _run_unprivileged(prefix, "--format", "json", str(jobs), str(secret), cwd=tmp_path)
+    finally:
+        locked.chmod(0o755)
+    stderr = proc.stderr.decode()
+    assert proc.returncode == 2 and "Traceback" not in stderr and "Usage" not in stderr, stderr
+    lines = sorted(line for line in stderr.splitlines() if line.strip())
+    assert len(lines) == 2, lines
+    assert "locked" in lines[0] and "Permission denied" in lines[0], lines
+    assert "secret.gcode" in lines[1] and "permission denied" in lines[1].lower(), lines
+    assert "SC001" in {f["code"] for f in json.loads(proc.stdout)}, "the readable files were not all checked"
+    for f in (jobs / "a.gcode", jobs / "sub" / "b.gcode"):
+        f.write_text(CLEAN + "M30\n")
+    locked.chmod(0o700 if prefix else 0o000)
+    try:
+        proc = _run_unprivileged(prefix, str(jobs), cwd=tmp_path)
+    finally:
+        locked.chmod(0o755)
+    assert proc.returncode == 2 and b"All checks passed" not in proc.stdout, proc.stdout
+    assert b"could not be checked" in proc.stdout
+
+
+def test_hidden_folders_are_walked_and_tool_folders_are_not(tmp_path: Path) -> None:
+    jobs = _tree(tmp_path)
+    (jobs / ".queue").mkdir()
+    (jobs / ".queue" / "next.gcode").write_text(HOSTILE)
+    (jobs / ".git").mkdir()
+    (jobs / ".git" / "x.gcode").write_text(HOSTILE)
+    files, problems = runner.collect([str(jobs)])
+    names = [os.path.relpath(f, jobs) for f in files]
+    assert names == ["a.gcode", os.path.join(".queue", "next.gcode"), os.path.join("sub", "b.gcode")]
+    assert problems == []
+
+
+@pytest.mark.skipif(not hasattr(os, "symlink"), reason="no symbolic links")
+def test_links_to_folders_are_not_followed_and_said_so(tmp_path: Path) -> None:
+    jobs = _tree(tmp_path)
+    elsewhere = tmp_path / "elsewhere"
+    elsewhere.mkdir()
+    (elsewhere / "x.gcode").write_text(HOSTILE)
+    (jobs / "linked").symlink_to(elsewhere, target_is_directory=True)
+    (jobs / "sub" / "loop").symlink_to(jobs, target_is_directory=True)
+    (jobs / "job-link.gcode").symlink_to(elsewhere / "x.gcode")
+    notes: list[str] = []
+    files, problems = runner.collect([str(jobs)], notes)
+    assert [os.path.relpath(f, jobs) for f in files] == ["a.gcode", "job-link.gcode", os.path.join("sub", "b.gcode")]
+    assert len(notes) == 2 and all("not followed" in n for n in notes), notes
+    assert any("linked" in n for n in notes) and any("loop" in n for n in notes)
+    from .conftest import run_cli
+
+    proc = run_cli("check", "--no-cache", str(jobs), timeout=60)
+    stderr = proc.stderr.decode()
+    assert proc.returncode == 1 and "linked" in stderr and "not followed" in stderr, stderr
+
+
+def test_jobs_are_capped_with_a_note(tmp_path: Path) -> None:
+    from .conftest import run_cli
+
+    jobs = _tree(tmp_path)
+    proc = run_cli("check", "--no-cache", "--jobs", "100000", str(jobs), timeout=120)
+    stderr = proc.stderr.decode()
+    assert proc.returncode == 1 and "--jobs 100000" in stderr and "using" in stderr, stderr
+
+
+def test_show_settings_says_where_the_cache_is(tmp_path: Path) -> None:
+    from .conftest import run_cli
+
+    jobs = _tree(tmp_path)
+    proc = run_cli("check", "--show-settings", str(jobs), env={"XDG_CACHE_HOME": str(tmp_path / "xdg")})
+    shown = proc.stdout.decode()
+    assert proc.returncode == 0 and f"Result cache: {tmp_path / 'xdg' / 'gclint' / 'projects'}" in shown, shown
