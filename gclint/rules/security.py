@@ -293,7 +293,10 @@ class ChangesPrinterFiles(_SecurityRule):
         following lines into a file instead of running them (M28 /sys/config.g replaces the printer's
         configuration), M471 renames or moves a file and M559/M560 upload configuration or web files.
         A job that changes the printer's files outlives the print: it can break the next job, the
-        machine's limits or its safety settings.  Plain "M30" (end of program) is fine.
+        machine's limits or its safety settings.  Plain "M30" (end of program) is fine.  In a job read as
+        Hyrel, M30 is "End of Program" and takes no file, but the finding stays: the dialect is read from
+        the job itself, and a job that names a file after M30 deletes it wherever Marlin or RepRapFirmware
+        runs it.
     """
     example_bad = "M30 /sys/config.g"
     example_good = "M30"
@@ -303,16 +306,18 @@ class ChangesPrinterFiles(_SecurityRule):
     def inspect(self, line: Line, code: str, rest: str, column: int, cmd: Command | None) -> None:
         if not _starts_line(line, cmd):
             return
-        argument = _strip_comment(rest)
+        argument = re.sub(r"\*\d+\s*$", "", _strip_comment(rest))  # (a "*99" checksum is no file name)
         if code in ("M30", "M28"):
-            if not argument:
+            if not argument.strip():
                 return
             if code == "M30" and cmd is not None and cmd.words and not any(w.kind == "string" for w in cmd.words):
                 return  # "M30 P1": parameter words, no file name
             action = "deletes" if code == "M30" else "writes the following lines into"
-            self.report_masked(
-                line, f"{code} {action} the file {_quote(argument.strip(chr(34)))} on the printer", column
-            )
+            where = "on the printer"
+            if code == "M30" and self.ctx.dialect.family == "hyrel":
+                # the dialect is read from the job, which an attacker writes: the gate does not rest on it
+                where = "on a Marlin or RepRapFirmware printer (on Hyrel, M30 ends the program and takes no file)"
+            self.report_masked(line, f"{code} {action} the file {_quote(argument.strip(chr(34)))} {where}", column)
             return
         action = {
             "M471": "renames or moves a file",
