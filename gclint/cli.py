@@ -149,6 +149,12 @@ def main() -> None:
 @click.option(
     "--output", "-o", type=click.Path(dir_okay=False, writable=True, allow_dash=True), help="Write the report here."
 )
+@click.option("--exclude", "exclude", multiple=True, metavar="GLOB", help="Leave these paths out (replaces exclude).")
+@click.option("--extend-exclude", multiple=True, metavar="GLOB", help="Leave these paths out too.")
+@click.option("--force-exclude", is_flag=True, default=None, help="Exclude files named on the command line too.")
+@click.option(
+    "--respect-gitignore/--no-respect-gitignore", default=None, help="Leave out what .gitignore ignores (default on)."
+)
 @click.option("--exit-zero", is_flag=True, help="Exit 0 even when findings exist.")
 @click.option(
     "--fail-on",
@@ -210,6 +216,10 @@ def check(
     output: str | None,
     exit_zero: bool,
     fail_on: str,
+    exclude: tuple[str, ...],
+    extend_exclude: tuple[str, ...],
+    force_exclude: bool | None,
+    respect_gitignore: bool | None,
     statistics: bool,
     no_group: bool,
     jobs: int | None,
@@ -268,9 +278,21 @@ def check(
         _fail(f"{config_file}: configuration file not found")
 
     walk_notes: list[str] = []
-    files, problems = runner.collect(paths or (".",), walk_notes)
+    walked: set[str] = set()
+    from gclint.excludes import Excluder
+
+    excluder = Excluder(
+        exclude=_split(exclude) or None,
+        extend_exclude=_split(extend_exclude),
+        force=force_exclude,
+        respect_gitignore=respect_gitignore,
+        explicit_config=config_file,
+    )
+    files, problems = runner.collect(paths or (".",), walk_notes, excluder, walked)
     for note in walk_notes:
         _note(note)
+    if not files and not problems:
+        _note("no files left to check (all excluded)")
     if output not in (None, "-") and (checked := _same_file(output, files)) is not None:
         _fail(f"{output}: is {checked}, one of the files to check: the report would overwrite it")
     jobs = _cap_jobs(jobs)
@@ -329,7 +351,11 @@ def check(
             remaining = sum(len(r.findings) for r in results)
             click.echo(f"Would fix {fixed} finding{'s' if fixed != 1 else ''} ({remaining} remaining).", err=True)
             sys.exit(2 if any(r.error for r in results + problems) else 1 if fixed else 0)
-    results = problems + results
+    # a file found in a folder that is something else (a NetCDF .nc, an ANTLR .g): skipped, with a note
+    for r in results:
+        if r.not_gcode and r.path in walked:
+            _note(f"{r.error}: skipped")
+    results = problems + [r for r in results if not (r.not_gcode and r.path in walked)]
     for note in cache.notes if cache is not None else ():
         _note(note)
     for r in results:
@@ -349,10 +375,9 @@ def check(
     _write_report(writer, results, ctx, output)
     if verbose or fmt not in MACHINE_FORMATS:  # after the report: a report that cannot be written is one line
         from gclint.reports.notes import context_notes
-        from gclint.textsafe import human
 
         for note in context_notes(results, verbose=verbose):
-            click.echo(f"note: {human(note)}", err=True)
+            _note(note)
     if any(r.error for r in results):
         sys.exit(2)
     worst = max((f.severity for r in results for f in r.findings), default=None)
@@ -384,7 +409,7 @@ def _apply_fixes(
             outcome = fix_file(r, runner.linter_for(options), unsafe=unsafe, write=write)
             fixed += outcome.fixed
             for note in outcome.reverted:
-                click.echo(f"note: {printable(note)}", err=True)
+                _note(note)
             if outcome.diff:
                 click.echo(outcome.diff, nl=False)
             if show and outcome.applied:

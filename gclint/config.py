@@ -128,6 +128,10 @@ def _str_list(value: object, key: str, path: Path) -> list[str]:
 
 
 _KEYS = {
+    "exclude",
+    "extend-exclude",
+    "force-exclude",
+    "respect-gitignore",
     "severity",
     "dialect",
     "printer",
@@ -228,6 +232,12 @@ def apply(options: Options, table: dict, path: Path) -> Options:
         changes["tool_map"] = parse_tool_map(table["tool-map"], f"{path}: 'tool-map'")
     if "severity" in table:
         changes["severity"] = parse_severities(table["severity"], path)
+    for key in ("exclude", "extend-exclude"):  # read by gclint.excludes while folders are walked
+        if key in table and not (isinstance(table[key], list) and all(isinstance(v, str) for v in table[key])):
+            raise ConfigError(f"{path}: '{key}' must be a list of path patterns such as [\"archive/**\"]")
+    for key in ("force-exclude", "respect-gitignore"):
+        if key in table and not isinstance(table[key], bool):
+            raise ConfigError(f"{path}: '{key}' must be true or false")
     if "spindle-max-rpm" in table:
         changes["spindle_max_rpm"] = _number(table["spindle-max-rpm"], "spindle-max-rpm", path, 1, 1_000_000)
     return replace(options, **changes)

@@ -23,7 +23,7 @@ from gclint.syntax.fastpath import PLAIN_MOVE
 from gclint.syntax.nodes import GCODE, Command, Line
 from gclint.syntax.parse import parse_line
 from gclint.syntax.sniff import not_gcode_reason
-from gclint.syntax.source import Source, SourceError
+from gclint.syntax.source import NotGcode, Source, SourceError
 
 
 @dataclass
@@ -79,6 +79,12 @@ class FileResult:
     error: str | None = None  # the file could not be read (exit code 2)
     context: Context | None = None  # what the file was read as, and why (gclint.context)
     digest: str | None = None  # SHA-256 of the bytes checked (Source.sha256), for --fix and the cache
+    not_gcode: bool = False  # the error says the file is something else (a walk skips it with a note)
+
+    @classmethod
+    def unreadable(cls, path: str, exc: SourceError) -> FileResult:
+        """The result for a file that could not be read (``exc`` says why, in one line)."""
+        return cls(path, error=str(exc), not_gcode=isinstance(exc, NotGcode))
 
     @property
     def read_as(self) -> str:
@@ -294,14 +300,14 @@ class Linter:
         try:
             source = Source.open(path, digest=True, cut_long_lines=True)
         except SourceError as exc:
-            return FileResult(path, error=str(exc))
+            return FileResult.unreadable(path, exc)
         return self.check_source(source)
 
     def check_text(self, text: str, path: str = "<text>") -> FileResult:
         try:
             source = Source.from_text(text, path, cut_long_lines=True)
         except SourceError as exc:  # binary text (NUL bytes): a result with an error, as for check_path
-            return FileResult(path, error=str(exc))
+            return FileResult.unreadable(path, exc)
         return self.check_source(source)
 
     def check_source(self, source: Source) -> FileResult:
@@ -309,7 +315,7 @@ class Linter:
         reason = not_gcode_reason(source.head_text(8192))
         if reason is not None:
             source.close()
-            return FileResult(path, error=f"{path}: {reason}")
+            return FileResult(path, error=f"{path}: {reason}", not_gcode=True)
         ctx, result = self.prepare(source)
         try:
             self._run(source, ctx, result)

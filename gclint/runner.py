@@ -13,6 +13,7 @@ from typing import TYPE_CHECKING
 
 from gclint.config import ConfigError, apply, config_for, find_config
 from gclint.engine import FileResult, Linter, Options
+from gclint.excludes import Excluder
 from gclint.syntax.source import Source, SourceError
 
 if TYPE_CHECKING:
@@ -21,37 +22,20 @@ if TYPE_CHECKING:
 GCODE_EXTENSIONS = (".gcode", ".gco", ".g", ".nc", ".ngc", ".cnc", ".tap")
 
 
-# Folders a walk never enters, without a word (like ruff's default excludes): version control and tool folders.
-SKIPPED_FOLDERS = frozenset(
-    {
-        ".git",
-        ".hg",
-        ".svn",
-        ".bzr",
-        ".jj",
-        ".venv",
-        "venv",
-        ".tox",
-        ".nox",
-        "node_modules",
-        "__pycache__",
-        ".mypy_cache",
-        ".pytest_cache",
-        ".ruff_cache",
-        ".gclint_cache",
-        "site-packages",
-    }
-)
-
-
-def collect(paths: Iterable[str], notes: list[str] | None = None) -> tuple[list[str], list[FileResult]]:
-    """Expand folders into their G-code files (sorted; hidden folders included, version-control and tool
-    folders skipped, symbolic links to folders not followed: as ruff does).
+def collect(
+    paths: Iterable[str],
+    notes: list[str] | None = None,
+    excluder: Excluder | None = None,
+    walked: set[str] | None = None,
+) -> tuple[list[str], list[FileResult]]:
+    """Expand folders into their G-code files (sorted; hidden folders included, excluded and .gitignored
+    paths left out, symbolic links to folders not followed: as ruff does).
 
     Returns the files to check and results for the paths that cannot be checked (missing, empty or
     unreadable folder, a pipe or device found in a folder).  ``notes`` receives what was left out on purpose
-    (links to folders), for the user.
+    (links to folders), for the user; ``walked`` the files found in folders (not named).
     """
+    excluder = excluder if excluder is not None else Excluder()
     files: list[str] = []
     problems: list[FileResult] = []
     seen: set[str] = set()
@@ -62,7 +46,9 @@ def collect(paths: Iterable[str], notes: list[str] | None = None) -> tuple[list[
         if os.path.isdir(path):
             found: list[str] = []
             before = len(problems)
-            _walk(path, found, problems, notes if notes is not None else [])
+            _walk(path, found, problems, notes if notes is not None else [], excluder)
+            if walked is not None:
+                walked.update(found)
             if not found and len(problems) == before:
                 problems.append(
                     FileResult(path, error=f"{path}: no G-code files in this folder ({' '.join(GCODE_EXTENSIONS)})")
@@ -72,6 +58,8 @@ def collect(paths: Iterable[str], notes: list[str] | None = None) -> tuple[list[
                     seen.add(f)
                     files.append(f)
         elif os.path.lexists(path):
+            if excluder.reason(path, False, named=True) is not None:
+                continue  # --force-exclude: named, but excluded (as pre-commit passes every staged file)
             if path not in seen:
                 seen.add(path)
                 files.append(path)
@@ -80,7 +68,7 @@ def collect(paths: Iterable[str], notes: list[str] | None = None) -> tuple[list[
     return files, problems
 
 
-def _walk(top: str, found: list[str], problems: list[FileResult], notes: list[str]) -> None:
+def _walk(top: str, found: list[str], problems: list[FileResult], notes: list[str], excluder: Excluder) -> None:
     """Depth first, files of a folder before its sub-folders, each sorted by name.  A folder that cannot be
     read is a problem (exit 2), never skipped in silence; links to folders are not followed (no loops)."""
     stack = [top]
@@ -96,7 +84,7 @@ def _walk(top: str, found: list[str], problems: list[FileResult], notes: list[st
         for entry in entries:
             try:
                 if entry.is_dir(follow_symlinks=False):
-                    if entry.name not in SKIPPED_FOLDERS:
+                    if excluder.reason(entry.path, True) is None:
                         subfolders.append(entry.path)
                     continue
                 if entry.is_symlink() and entry.is_dir():
@@ -106,7 +94,7 @@ def _walk(top: str, found: list[str], problems: list[FileResult], notes: list[st
                     continue
             except OSError:
                 pass
-            if not entry.name.lower().endswith(GCODE_EXTENSIONS):
+            if not entry.name.lower().endswith(GCODE_EXTENSIONS) or excluder.reason(entry.path, False) is not None:
                 continue
             kind = _not_regular(entry.path)
             if kind is not None:
@@ -174,11 +162,11 @@ def check_file(path: str, options: Options) -> tuple[FileResult, str | None]:
     try:
         source = Source.open(path, digest=True, cut_long_lines=True)
     except SourceError as exc:
-        return FileResult(path, error=str(exc)), None
+        return FileResult.unreadable(path, exc), None
     try:
         return _linter(options).check_source(source), source.sha256
     except SourceError as exc:
-        return FileResult(path, error=str(exc)), None
+        return FileResult.unreadable(path, exc), None
     except RecursionError:
         return FileResult(path, error=f"{path}: nesting too deep to check"), None
     except MemoryError:

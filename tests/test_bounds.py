@@ -120,7 +120,9 @@ def test_fix_never_writes_part_of_a_file(tmp_path: Path, monkeypatch) -> None:
     job.write_bytes(data)
     [result] = runner.run([str(job)], Options(), {})
     outcome = fixes.fix_file(result, runner.linter_for(Options()))
-    assert job.read_bytes() == data and outcome.fixed == 0  # (the long line is SX001: no fix in a file that does not parse)
+    assert (
+        job.read_bytes() == data and outcome.fixed == 0
+    )  # (the long line is SX001: no fix in a file that does not parse)
 
 
 MEMORY_CHILD = r"""

@@ -125,3 +125,38 @@ def test_per_file_ignores_are_relative_to_the_configuration_and_globs_are_rufs(t
     (tmp_path / "gclint.toml").write_text('per-file-ignores = { "calibration/**/*.gcode" = ["SX002", "DL001"] }\n')
     out = json.loads(run_cli("check", "-f", "json", str(tmp_path / "calibration"), cwd=elsewhere).stdout)
     assert out == []
+
+
+def test_exclude_gitignore_and_files_that_are_not_gcode(tmp_path: Path) -> None:
+    import subprocess as sp
+
+    sp.run(["git", "init", "-q", str(tmp_path)], check=True)
+    for folder in ("jobs", "archive", "build"):
+        (tmp_path / folder).mkdir()
+    job = "; gclint: dialect=marlin\nG1 X1 X2 F600\n"
+    for name in ("jobs/a.gcode", "archive/old.gcode", "build/b.gcode", "jobs/x.tmp.gcode"):
+        (tmp_path / name).write_text(job)
+    (tmp_path / ".gitignore").write_text("build/\n*.tmp.gcode\n")
+    (tmp_path / "jobs" / "Foo.g").write_text("grammar Foo;\nrule: A ;\n")  # an ANTLR grammar
+    (tmp_path / "jobs" / "data.nc").write_bytes(b"CDF\x01\x00\x00\x00\x00")  # NetCDF
+    (tmp_path / "jobs" / "test.tap").write_text("TAP version 13\n1..2\nok 1 - a\nok 2 - b\n")
+    (tmp_path / "gclint.toml").write_text('extend-exclude = ["archive/**"]\n')
+    proc = run_cli("check", "-f", "json", ".", cwd=tmp_path)
+    assert proc.returncode == 1, proc.stderr
+    assert {Path(f["path"]).as_posix() for f in json.loads(proc.stdout)} == {"jobs/a.gcode"}
+    err = proc.stderr.decode()
+    assert "Foo.g: an ANTLR grammar" in err and "data.nc: NetCDF data" in err and "test.tap: Test Anything" in err
+    # named on the command line: what is not G-code is an error, an excluded file is checked ...
+    assert run_cli("check", "jobs/Foo.g", cwd=tmp_path).returncode == 2
+    assert run_cli("check", "archive/old.gcode", cwd=tmp_path).returncode == 1
+    # ... unless --force-exclude (pre-commit passes every staged file by name)
+    proc = run_cli("check", "--force-exclude", "archive/old.gcode", "build/b.gcode", cwd=tmp_path)
+    assert proc.returncode == 0 and b"no files left to check" in proc.stderr
+    # .gitignore respected by default, not with --no-respect-gitignore; --exclude replaces the list
+    out = json.loads(run_cli("check", "-f", "json", "--no-respect-gitignore", ".", cwd=tmp_path).stdout)
+    assert {Path(f["path"]).as_posix() for f in out} == {"jobs/a.gcode", "build/b.gcode", "jobs/x.tmp.gcode"}
+    # (the configuration's extend-exclude still applies, as in ruff)
+    out = json.loads(
+        run_cli("check", "-f", "json", "--exclude", "jobs", "--no-respect-gitignore", ".", cwd=tmp_path).stdout
+    )
+    assert {Path(f["path"]).as_posix() for f in out} == {"build/b.gcode"}

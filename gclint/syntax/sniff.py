@@ -2,7 +2,8 @@
 ``gclint check`` says so in one line instead of reporting every line as a parse error.
 
 Conservative on purpose: a G-code program never starts with a shebang, an INI section header, an Org
-heading, or a run of ``key = value`` lines, so none of these tests can refuse a real job.
+heading, a run of ``key = value`` lines, an ANTLR ``grammar Name;`` or a TAP plan followed by ``ok`` lines,
+so none of these tests can refuse a real job.
 """
 
 from __future__ import annotations
@@ -10,6 +11,9 @@ from __future__ import annotations
 import re
 
 _INI_SECTION = re.compile(r"\[[A-Za-z_][^\]\r\n]*\]\s*")
+# Other files that share G-code's extensions: ANTLR grammars (.g), Test Anything Protocol output (.tap)
+_ANTLR = re.compile(r"(?:(?:lexer|parser|tree)\s+)?grammar\s+[A-Za-z_]\w*\s*;")
+_TAP = re.compile(r"TAP version \d+|1\.\.\d+(?:\s*#.*)?")
 _KEY_VALUE = re.compile(r"[A-Za-z_][A-Za-z0-9_.]*\s*=\s*")
 _ORG_HEADING = re.compile(r"\*+ \S")
 
@@ -28,6 +32,10 @@ def not_gcode_reason(head: str) -> str | None:
     code = [line for line in content if not line.startswith(("#", ";"))][:40]
     if not code:
         return None
+    if _ANTLR.match(code[0]):
+        return "an ANTLR grammar (.g), not G-code"
+    if _TAP.fullmatch(code[0]) and any(line.startswith(("ok ", "not ok ")) for line in code[1:]):
+        return "Test Anything Protocol output (.tap), not G-code"
     if _INI_SECTION.fullmatch(code[0]):
         return f"an INI configuration file (section {code[0]}), not G-code"
     pairs = sum(1 for line in code if _KEY_VALUE.match(line))

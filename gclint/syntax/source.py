@@ -51,6 +51,11 @@ class SourceError(Exception):
     """A file that cannot be read as G-code; the message is one line for the user."""
 
 
+class NotGcode(SourceError):
+    """A file that is something else (an image, an archive, a script, NetCDF data): a folder walk skips it
+    with a note; named on the command line, it is an error."""
+
+
 class Overlong(str):
     """The first ``LINE_LIMIT`` characters of a longer line; ``length`` is the length of the whole line (bytes,
     or characters in UTF-16/32).  Only produced for readers that asked for ``cut_long_lines``."""
@@ -410,16 +415,19 @@ _BINARY_MAGIC = {
     b"%PDF": "a PDF document, not G-code",
     b"\x7fELF": "an executable, not G-code",
     b"\x1f\x8b": "a gzip archive, not G-code",
+    b"CDF\x01": "NetCDF data (.nc), not G-code",
+    b"CDF\x02": "NetCDF data (.nc), not G-code",
+    b"\x89HDF\r\n\x1a\n": "HDF5 / NetCDF-4 data (.nc), not G-code",
 }
 
 
 def _refuse_binary(head: bytes, display: str) -> None:
     for magic, what in _BINARY_MAGIC.items():
         if head.startswith(magic):
-            raise SourceError(f"{display}: {what}")
+            raise NotGcode(f"{display}: {what}")
     sample = head[:8192]
     if b"\x00" in sample:
         nul = sample.count(b"\x00")
         controls = sum(1 for b in sample if b < 9 or 13 < b < 32)
         if nul > 1 or controls > len(sample) // 10:
-            raise SourceError(f"{display}: binary data (NUL bytes), not a G-code text file")
+            raise NotGcode(f"{display}: binary data (NUL bytes), not a G-code text file")
