@@ -181,6 +181,7 @@ def main() -> None:
 @click.option("--unsafe-fixes", is_flag=True, help="With --fix or --diff, apply unsafe fixes too.")
 @click.option("--diff", "show_diff", is_flag=True, help="Print the fixes as a unified diff; write nothing.")
 @click.option("--show-fixes", is_flag=True, help="With --fix: list the fixes applied, per file and code.")
+@click.option("--add-noqa", is_flag=True, help="Add '; noqa: CODES' to every line with findings (not SC), then exit.")
 @click.option("--stdin-filename", metavar="NAME", help="Name to use for the file read from '-'.")
 @click.option("--no-cache", is_flag=True, help="Do not read or write the result cache.")
 @click.option(
@@ -234,6 +235,7 @@ def check(
     show_settings: bool = False,
     show_diff: bool = False,
     show_fixes: bool = False,
+    add_noqa: bool = False,
 ) -> None:
     """Check G-code files and folders (- for standard input)."""
     from gclint import runner
@@ -321,7 +323,7 @@ def check(
     from gclint.cache import ResultCache
 
     bar = progress_bar.ProgressBar(files) if progress_bar.wanted(progress, fmt, files) else None
-    cache = None if (no_cache or fix or show_diff) else ResultCache(cache_dir)
+    cache = None if (no_cache or fix or show_diff or add_noqa) else ResultCache(cache_dir)
     try:
         from gclint.rules.base import all_rules
 
@@ -342,6 +344,8 @@ def check(
     finally:
         if bar is not None:
             bar.close()
+    if add_noqa:
+        sys.exit(_add_noqa(problems + results))
     fixed = None
     if fix or show_diff:
         results, fixed = _apply_fixes(
@@ -424,6 +428,25 @@ def _apply_fixes(
                 r = FileResult(r.path, r.findings, r.dialect, r.dialect_reason, r.lines, outcome.error, r.context)
         out.append(r)
     return out, fixed
+
+
+def _add_noqa(results: list[FileResult]) -> int:
+    """``--add-noqa``: suppress what each file has now, line by line; says how many lines it marked."""
+    from gclint.fixes import add_noqa
+
+    added, failed = 0, False
+    for r in results:
+        if r.error is not None:
+            _error(r.error)
+            failed = True
+            continue
+        outcome = add_noqa(r)
+        added += outcome.fixed
+        if outcome.error is not None:
+            _error(outcome.error)
+            failed = True
+    click.echo(f"Added a noqa comment to {added} line{'s' if added != 1 else ''}.")
+    return 2 if failed else 0
 
 
 def _fix_stdin(

@@ -8,7 +8,6 @@ a ``G1`` line only touches the rules that listen to ``G1``.
 from __future__ import annotations
 
 import os
-import re
 from collections.abc import Callable, Iterable
 from dataclasses import dataclass, field
 
@@ -18,6 +17,7 @@ from gclint.dialects.base import Dialect
 from gclint.machine.interpreter import Interpreter
 from gclint.machine.profiles import DEFAULT_PROFILE, PrinterProfile, get_profile
 from gclint.machine.state import MachineState
+from gclint.noqa import DIRECTIVE, INLINE_UNSUPPRESSIBLE, NOQA, selectors
 from gclint.rules.base import ANY_T, Finding, Fix, Rule, Severity, all_rules, select_rules
 from gclint.syntax.fastpath import PLAIN_MOVE
 from gclint.syntax.nodes import GCODE, Command, Line
@@ -100,24 +100,6 @@ class FileResult:
         return out
 
 
-# "noqa" starts a comment or follows a ";" inside one ("; SAY hi ; noqa: HY029"): a word or a path that merely
-# contains it ("SHELL C:\\tools\\noqa.exe") is text, not a suppression.
-_NOQA = re.compile(r"(?i)(?:^|[;(])[ \t]*+noqa\b(?:\s*:\s*([A-Za-z]{2}\d{0,3}(?:\s*[,\s]\s*[A-Za-z]{2}\d{0,3})*))?")
-# Findings a job can never silence itself (noqa, gclint: disable): the security rules.  A hostile job would
-# otherwise write "; noqa: SC001" after its own "M792 ; SHELL ...".  They are suppressed only from the
-# configuration or the command line (--ignore, per-file-ignores), where the suppression is visible.
-INLINE_UNSUPPRESSIBLE = ("SC",)
-_DIRECTIVE = re.compile(
-    r"(?i)\bgclint:\s*(disable|enable)\b(?:\s*=\s*([A-Za-z]{2}\d{0,3}(?:\s*,\s*[A-Za-z]{2}\d{0,3})*))?"
-)
-
-
-def _codes(text: str | None) -> tuple[str, ...]:
-    if not text:
-        return ("ALL",)
-    return tuple(c.upper() for c in re.split(r"[,\s]+", text.strip()) if c)
-
-
 # Findings stay bounded whatever the input (a 3 MB line of "X1" once gave a million findings and 1.1 GB):
 # at most PER_LINE findings of one code are listed for one line and the rest are counted on the last one
 # listed ("(and N more on this line)"; a few distinct findings on one line, such as one per head left on
@@ -149,6 +131,7 @@ class FileContext:
         self.enabled_codes: frozenset[str] = frozenset()
         self.shared: dict[str, object] = {}  # objects several rules of this file share (by name)
         self.noqa: dict[int, tuple[str, ...]] = {}
+        self.noqa_used: set[tuple[int, str]] = set()  # (line, selector) that suppressed a finding
         self.directives: list[tuple[int, str, tuple[str, ...]]] = []
         self._plain_comments: set[str] = set()  # lines whose comments hold no noqa or gclint directive
         # code -> [its latest finding, that finding's own message, more on its line, more later in the file,
@@ -249,11 +232,11 @@ class FileContext:
             body = comment.body
             if "noqa" in body or "NOQA" in body or "gclint" in body.lower():
                 found = True
-                m = _NOQA.search(body)
+                m = NOQA.search(body)
                 if m:
-                    self.noqa[line.number] = self.noqa.get(line.number, ()) + _codes(m.group(1))
-                for d in _DIRECTIVE.finditer(body):
-                    self.directives.append((line.number, d.group(1).lower(), _codes(d.group(2))))
+                    self.noqa[line.number] = self.noqa.get(line.number, ()) + selectors(m.group(1))
+                for d in DIRECTIVE.finditer(body):
+                    self.directives.append((line.number, d.group(1).lower(), selectors(d.group(2))))
         if not found and len(raw) <= _REMEMBERED_LINE:
             # comment lines repeat (";TYPE:Perimeter"): remember the ones with no directive
             if len(self._plain_comments) >= 8192:
@@ -264,8 +247,11 @@ class FileContext:
         if finding.code.startswith(INLINE_UNSUPPRESSIBLE):
             return False
         codes = self.noqa.get(finding.line)
-        if codes and _matches(finding.code, codes):
-            return True
+        if codes:
+            used = [c for c in codes if c == "ALL" or finding.code.startswith(c)]
+            if used:
+                self.noqa_used.update((finding.line, c) for c in used)
+                return True
         disabled = False
         for number, action, codes in self.directives:
             if number > finding.line:
@@ -327,8 +313,46 @@ class Linter:
         result.findings = [
             f for f in ctx.findings if not ctx.suppressed(f) and not (ignored and _matches(f.code, ignored))
         ]
+        self._check_suppressions(ctx, result)
         result.findings.sort(key=Finding.sort_key)
         return result
+
+    def _check_suppressions(self, ctx: FileContext, result: FileResult) -> None:
+        """A ``noqa`` or ``gclint: disable`` naming no rule is an error (exit 2, with what was meant); with
+        SX008 selected, a ``noqa`` code that suppressed nothing is a finding."""
+        from gclint.rules.base import UnknownSelector, resolve_selectors
+
+        named = [(line, codes) for line, codes in ctx.noqa.items()]
+        named += [(line, codes) for line, _, codes in ctx.directives]
+        for line, codes in named:
+            try:
+                resolve_selectors(c for c in codes if c != "ALL")
+            except UnknownSelector as exc:
+                message = f"{result.path}:{line}: {exc}".replace(
+                    "unknown rule code", "a noqa or disable names an unknown rule code"
+                )
+                result.error = message if result.error is None else f"{result.error}; {message}"
+        if "SX008" not in ctx.enabled_codes:
+            return
+        from gclint.rules.syntax import UnusedNoqa
+
+        for line, codes in sorted(ctx.noqa.items()):
+            unused = [c for c in codes if (line, c) not in ctx.noqa_used]
+            if unused:
+                what = "noqa suppresses nothing here" if unused == ["ALL"] else f"unused noqa: {', '.join(unused)}"
+                if any(c.startswith(INLINE_UNSUPPRESSIBLE) for c in unused):
+                    what += " (a job cannot silence security findings)"
+                result.findings.append(
+                    Finding(
+                        result.path,
+                        line,
+                        1,
+                        UnusedNoqa.code,
+                        ctx.severity_of(UnusedNoqa.code, UnusedNoqa.severity),
+                        what,
+                        name=UnusedNoqa.name,
+                    )
+                )
 
     def context_of(self, source: Source) -> Context:
         """What ``source`` is checked as (its head decides; the stream is not consumed)."""

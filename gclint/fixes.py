@@ -21,6 +21,7 @@ from typing import BinaryIO
 
 from gclint.engine import FileResult, Linter
 from gclint.io import AtomicWriter, OutputError
+from gclint.noqa import INLINE_UNSUPPRESSIBLE, with_noqa
 from gclint.rules.base import Edit, Finding, Fix
 from gclint.syntax.source import Source, SourceError
 
@@ -113,6 +114,42 @@ def fix_file(result: FileResult, linter: Linter, *, unsafe: bool = False, write:
         return outcome
     outcome.fixed, outcome.applied = len(plan.fixes), plan.fixes
     outcome.result = plan.checked  # type: ignore[assignment]
+    return outcome
+
+
+def add_noqa(result: FileResult) -> FixOutcome:
+    """``check --add-noqa``: a ``; noqa: CODES`` on every line with findings (an archive of old jobs keeps
+    its findings as they are and new ones stand out, as ruff's --add-noqa), written as --fix writes:
+    atomically, and only if the file is still what was checked.  Security findings (SC) cannot be
+    silenced by the job and are left out."""
+    outcome = FixOutcome(result)
+    by_line: dict[int, list[str]] = {}
+    for f in result.findings:
+        if not f.code.startswith(INLINE_UNSUPPRESSIBLE) and f.code not in by_line.setdefault(f.line, []):
+            by_line[f.line].append(f.code)
+    by_line = {line: codes for line, codes in by_line.items() if codes}
+    if not by_line or result.error is not None:
+        return outcome
+    if result.digest is None:
+        outcome.error = f"{result.path}: no noqa added: the file was not read to the end"
+        return outcome
+    try:
+        source = Source.open(result.path, digest=True)
+        with AtomicWriter(result.path, follow_links=True) as out:
+            out.write(source.bom)
+            number = 0
+            for chunk in source.chunks():
+                for raw, ending in chunk:
+                    number += 1
+                    codes = by_line.get(number)
+                    out.write(source.encode((with_noqa(raw, codes) if codes else raw) + ending))
+            if source.sha256 != result.digest:
+                out.discard()
+                raise OutputError(f"{result.path}: no noqa added: the file changed since it was checked")
+    except (OSError, SourceError, OutputError) as exc:
+        outcome.error = str(exc)
+        return outcome
+    outcome.fixed = len(by_line)
     return outcome
 
 
@@ -223,4 +260,4 @@ def _edit(raw: str, edits: list[Edit]) -> str:
     return text
 
 
-__all__ = ["fix_file", "fix_stream", "plan_fixes", "FixOutcome", "FixPlan", "Fix"]
+__all__ = ["add_noqa", "fix_file", "fix_stream", "plan_fixes", "FixOutcome", "FixPlan", "Fix"]

@@ -1,7 +1,7 @@
 """What the settings of a run switch off, said out loud: ``--show-settings``, the ``--statistics`` lines and
 the stderr note when a configuration file turns security rules off.
 
-A job can never silence its own SC findings (``engine.INLINE_UNSUPPRESSIBLE``); the configuration and the
+A job can never silence its own SC findings (``noqa.INLINE_UNSUPPRESSIBLE``); the configuration and the
 command line can.  A configuration file travels with the jobs (a pull request can add one), so whenever
 it switches security rules off, gclint says which, where and how: a suppression that is not shown would
 be a way around the gate.

@@ -160,3 +160,25 @@ def test_exclude_gitignore_and_files_that_are_not_gcode(tmp_path: Path) -> None:
         run_cli("check", "-f", "json", "--exclude", "jobs", "--no-respect-gitignore", ".", cwd=tmp_path).stdout
     )
     assert {Path(f["path"]).as_posix() for f in out} == {"build/b.gcode"}
+
+
+def test_noqa_unknown_codes_unused_noqa_and_add_noqa(tmp_path: Path) -> None:
+    job = tmp_path / "a.gcode"
+    job.write_text("; gclint: dialect=marlin\nG1 X1 F100 ; noqa: HY999\n")
+    proc = run_cli("check", str(job))
+    assert proc.returncode == 2 and b"a.gcode:2: a noqa or disable names an unknown rule code" in proc.stderr
+    assert b"did you mean" in proc.stderr
+    job.write_text("; gclint: dialect=marlin\nG1 X1 F100 ; noqa: SX002\nG1 X1 X2 ; noqa: SX002\n")
+    assert run_cli("check", str(job)).returncode == 0  # unused noqa is opt-in (ruff's RUF100)
+    out = run_cli("check", "--extend-select", "SX008", str(job)).stdout.decode()
+    assert f"{job}:2:1: SX008 [warning] unused noqa: SX002" in out and ":3:1: SX008" not in out
+    # --add-noqa: an archive keeps its findings as they are; security findings stay
+    job.write_text("; gclint: dialect=marlin\nG1 X1 X2 F100 ; note\nM9999\nM792 ; SHELL x.exe\n")
+    proc = run_cli("check", "--add-noqa", str(job))
+    assert proc.returncode == 0 and b"Added a noqa comment to 3 lines." in proc.stdout
+    assert job.read_text() == (
+        "; gclint: dialect=marlin\nG1 X1 X2 F100 ; note ; noqa: SX002\nM9999 ; noqa: DL001\n"
+        "M792 ; SHELL x.exe ; noqa: DL001\n"
+    )
+    left = json.loads(run_cli("check", "-f", "json", str(job)).stdout)
+    assert [f["code"] for f in left] == ["SC001"]

@@ -183,5 +183,26 @@ class StrayValue(_IssueRule):
     source = "RepRap G-code page (fields)"
 
 
+@register
+class UnusedNoqa(Rule):
+    code = "SX008"
+    name = "unused-noqa"
+    severity = Severity.WARNING
+    default_enabled = False  # opt in, as ruff's RUF100: --extend-select SX008
+    summary = "A noqa comment that suppresses nothing (the finding it was for is gone)"
+    explanation = """
+        A `; noqa: HY003` stays in a job after the mistake it silenced was fixed, or names a rule that
+        does not report that line; then it silences the next real finding there without anyone deciding
+        so.  The rule reports each code of a `noqa` comment that suppressed nothing on its line (a bare
+        `noqa` that suppressed nothing too).  Security findings (SC) are never silenced by a job, so a
+        `noqa: SC...` is always unused.  Off by default: select it with `--extend-select SX008`, as ruff's
+        RUF100.  A `noqa` or `gclint: disable` that names a code no rule has is an error (exit 2).
+    """
+    example_bad = "; gclint-test: select=SX008\nG1 X10 Y10 F1200 ; noqa: SX002"
+    example_good = "; gclint-test: select=SX002,SX008\nG1 X10 X20 F1200 ; noqa: SX002"
+    source = "gclint's suppression comments (README, Rules); ruff RUF100"
+    codes = ()  # reported by the engine once every finding of the file is known
+
+
 def _n(value: float) -> str:
     return str(int(value)) if value == int(value) else str(value)

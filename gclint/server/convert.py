@@ -13,7 +13,7 @@ from collections.abc import Iterable, Sequence
 
 from lsprotocol import types as lsp
 
-from gclint.engine import _NOQA  # the engine's reading of a noqa comment (one pattern, one place)
+from gclint.noqa import noqa_insertion
 from gclint.rules.base import Edit, Finding, Fix, Severity, rule_url
 from gclint.server.analysis import HoverTarget
 from gclint.server.text import UTF16, Snapshot, char_to_units
@@ -147,31 +147,15 @@ def fix_all_edits(findings: Sequence[Finding], geo: Geometry) -> list[lsp.TextEd
     return [_text_edit(e, geo) for e in _without_overlaps(edits)]
 
 
-_COMMENT_START = re.compile(r"[;(]")
-
-
 def noqa_edit(geo: Geometry, line: int, code: str) -> lsp.TextEdit:
-    """The edit that suppresses ``code`` on ``line`` (1-based): the code put first in the line's
-    ``noqa: ...`` list when it has one, else `` ; noqa: CODE`` at the end of the line (after a comment
-    already there it is still read: a ``;`` comment runs to the end of the line, and the engine looks
-    for ``noqa`` anywhere in a comment)."""
+    """The edit that suppresses ``code`` on ``line`` (1-based), as ``check --add-noqa`` writes it
+    (gclint.noqa: first in the line's ``noqa: ...`` list, else `` ; noqa: CODE`` at the end)."""
     index = geo.line_index(line)
     text = geo.snapshot.line(index)
-    start = _COMMENT_START.search(text)
-    if start is not None:
-        m = _NOQA.search(text, start.start())
-        if m is not None and m.group(1):
-            # first in the list: whatever follows the codes (", HY003 because ...") stays as it was
-            at = char_to_units(text, m.start(1), geo.encoding)
-            return lsp.TextEdit(range=lsp.Range(lsp.Position(index, at), lsp.Position(index, at)), new_text=f"{code}, ")
-    stripped = text.rstrip()
-    if not stripped:
-        insert, new_text = len(text), f"; noqa: {code}"
-    else:
-        insert, new_text = len(stripped), f" ; noqa: {code}"
-    at = char_to_units(text, insert, geo.encoding)
-    end = char_to_units(text, len(text), geo.encoding)
-    return lsp.TextEdit(range=lsp.Range(lsp.Position(index, at), lsp.Position(index, end)), new_text=new_text)
+    start, end, new_text = noqa_insertion(text, [code])
+    first = lsp.Position(index, char_to_units(text, start, geo.encoding))
+    last = lsp.Position(index, char_to_units(text, end, geo.encoding))
+    return lsp.TextEdit(range=lsp.Range(first, last), new_text=new_text)
 
 
 # -- code actions ----------------------------------------------------------------------------------------

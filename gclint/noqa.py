@@ -1,0 +1,50 @@
+"""Suppression comments in G-code, read and written in one place: ``; noqa`` / ``; noqa: HY003, SX``
+on a line, ``; gclint: disable=HY003`` ... ``; gclint: enable=HY003`` for a range.  The engine reads them
+(suppressing findings, never the security rules'), ``check --add-noqa`` and the language server's quick
+fix write them."""
+
+from __future__ import annotations
+
+import re
+
+# "noqa" starts a comment or follows a ";" inside one ("; SAY hi ; noqa: HY029"): a word or a path that merely
+# contains it ("SHELL C:\\tools\\noqa.exe") is text, not a suppression.
+NOQA = re.compile(r"(?i)(?:^|[;(])[ \t]*+noqa\b(?:\s*:\s*([A-Za-z]{2}\d{0,3}(?:\s*[,\s]\s*[A-Za-z]{2}\d{0,3})*))?")
+DIRECTIVE = re.compile(
+    r"(?i)\bgclint:\s*(disable|enable)\b(?:\s*=\s*([A-Za-z]{2}\d{0,3}(?:\s*,\s*[A-Za-z]{2}\d{0,3})*))?"
+)
+# Findings a job can never silence itself (noqa, gclint: disable): the security rules.  A hostile job would
+# otherwise write "; noqa: SC001" after its own "M792 ; SHELL ...".  They are suppressed only from the
+# configuration or the command line (--ignore, per-file-ignores), where the suppression is visible.
+INLINE_UNSUPPRESSIBLE = ("SC",)
+_COMMENT_START = re.compile(r"[;(]")
+
+
+def selectors(text: str | None) -> tuple[str, ...]:
+    """The codes a ``noqa:`` or ``disable=`` names (``ALL`` for a bare ``noqa``)."""
+    if not text:
+        return ("ALL",)
+    return tuple(c.upper() for c in re.split(r"[,\s]+", text.strip()) if c)
+
+
+def noqa_insertion(text: str, codes: list[str]) -> tuple[int, int, str]:
+    """How to suppress ``codes`` on a line of ``text``: (start, end, new text) as 0-based character offsets.
+    The codes go first in the line's ``noqa:`` list when it has one (what follows stays as it was), else
+    `` ; noqa: CODES`` ends the line (a ``;`` comment runs to the end of the line, so it is read after a
+    comment already there)."""
+    listed = ", ".join(codes)
+    start = _COMMENT_START.search(text)
+    if start is not None:
+        m = NOQA.search(text, start.start())
+        if m is not None and m.group(1):
+            return m.start(1), m.start(1), f"{listed}, "
+    stripped = text.rstrip()
+    if not stripped:
+        return len(text), len(text), f"; noqa: {listed}"
+    return len(stripped), len(text), f" ; noqa: {listed}"
+
+
+def with_noqa(text: str, codes: list[str]) -> str:
+    """``text`` with ``codes`` suppressed (``noqa_insertion`` applied)."""
+    start, end, new = noqa_insertion(text, codes)
+    return text[:start] + new + text[end:]
