@@ -557,6 +557,55 @@ def _write_report(writer, results: list[FileResult], ctx, output: str | None) ->
         _fail(f"{exc} (the report was not written)")
 
 
+# -- summary ---------------------------------------------------------------------------------------------
+
+
+@main.command()
+@click.argument("paths", nargs=-1, type=click.Path(allow_dash=True))
+@click.option("--dialect", "-d", metavar="D", help="Dialect (default: decided from each file, as check does).")
+@click.option("--printer", "-p", metavar="MODEL", help="Hyrel model (default: read from the job, else 30m).")
+@click.option("--format", "-f", "fmt", type=click.Choice(["text", "json"]), default="text", show_default=True)
+@click.option(
+    "--config", "config_file", type=click.Path(dir_okay=False), help="Configuration file (else found upward)."
+)
+def summary(
+    paths: tuple[str, ...], dialect: str | None, printer: str | None, fmt: str, config_file: str | None
+) -> None:
+    """What each job does, in numbers: heads, temperatures, flow, layers, extent, feeds, time."""
+    import json
+
+    from gclint import runner
+    from gclint.summary import render, summarize_path
+
+    overrides: dict = {}
+    if dialect is not None:
+        overrides["dialect"] = _check_dialect(dialect)
+    if printer is not None:
+        overrides["printer"] = _check_printer(printer)
+    files, problems = runner.collect(paths or (".",))
+    for r in problems:
+        _error(r.error or "")
+    out = []
+    for path in files:
+        try:
+            options = runner.options_for(path, Options(), overrides, config_file)
+        except ConfigError as exc:
+            _fail(str(exc))
+            return
+        out.append(summarize_path(path, options))
+    from gclint.textsafe import human
+
+    if fmt == "json":
+        click.echo(json.dumps([s.to_dict() for s in out], indent=2, ensure_ascii=False))
+    else:
+        for s in out:
+            if s.error:
+                _error(s.error)
+            else:
+                click.echo("".join(human(line) + "\n" for line in render(s).splitlines()), nl=False)
+    sys.exit(2 if problems or any(s.error for s in out) else 0)
+
+
 # -- translate -------------------------------------------------------------------------------------------
 
 

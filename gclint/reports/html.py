@@ -146,6 +146,7 @@ class FileView:
     read_as: str
     weak: bool
     omitted: int = 0  # findings not listed on the page (see HTML_FINDINGS)
+    summary: list[str] = field(default_factory=list)  # the job summary (gclint summary), one fact a line
 
 
 # Findings listed per file: a page that a browser can open, and memory that stays bounded (the machine
@@ -195,7 +196,24 @@ def _file_view(index: int, result: FileResult, plot_budget: int) -> FileView:
         read_as=printable(result.read_as),
         weak=result.context is not None and result.context.weak,
         omitted=max(0, len(result.findings) - HTML_FINDINGS),
+        summary=_summary(result),
     )
+
+
+def _summary(result: FileResult) -> list[str]:
+    """The job summary beside the toolpath (the file read once more, in the context it was checked in)."""
+    if result.error is not None or result.context is None or result.path == "-":
+        return []
+    from gclint.summary import render as render_summary
+    from gclint.summary import summarize
+    from gclint.syntax.source import Source, SourceError
+
+    try:
+        source = Source.open(result.path, cut_long_lines=True)
+        facts = render_summary(summarize(source, result.context)).splitlines()[1:]
+    except (OSError, SourceError, ValueError):
+        return []
+    return [printable(line.strip()) for line in facts]
 
 
 def render(results: list[FileResult], ctx, plot_budget: int = 6000) -> str:
@@ -211,6 +229,16 @@ def render(results: list[FileResult], ctx, plot_budget: int = 6000) -> str:
     template = env.get_template("report.html.j2")
     files = [_file_view(i, r, plot_budget) for i, r in enumerate(results)]
     docs = rule_docs(codes_in(results))
+    counts: dict[str, list[int]] = {}  # code -> [findings, files]
+    for r in results:
+        for code in {f.code for f in r.findings}:
+            counts.setdefault(code, [0, 0])[1] += 1
+        for f in r.findings:
+            counts.setdefault(f.code, [0, 0])[0] += 1
+    for code, doc in docs.items():
+        doc = dict(doc)
+        doc["count"], doc["files"] = counts.get(code, [0, 0])
+        docs[code] = doc
     return template.render(
         version=ctx.tool_version,
         generated=datetime.now(UTC).strftime("%Y-%m-%d %H:%M UTC"),
