@@ -199,6 +199,7 @@ def main() -> None:
     is_flag=True,
     help="Say for every file what it was checked as (dialect, firmware, printer) and why.",
 )
+@click.option("--quiet", "-q", is_flag=True, help="No notes on stderr (how files were read, what was skipped).")
 @click.option(
     "--show-settings",
     is_flag=True,
@@ -232,12 +233,15 @@ def check(
     cache_dir: str | None,
     progress: bool | None,
     verbose: bool = False,
+    quiet: bool = False,
     show_settings: bool = False,
     show_diff: bool = False,
     show_fixes: bool = False,
     add_noqa: bool = False,
 ) -> None:
     """Check G-code files and folders (- for standard input)."""
+    if quiet:
+        _QUIET.append(True)
     from gclint import runner
     from gclint.reports import MACHINE_FORMATS, ReportContext, formats
 
@@ -270,6 +274,7 @@ def check(
     try:
         if select:
             overrides["select"] = resolve_selectors(_split(select), "--select: ")
+            overrides.setdefault("ignore", [])  # as ruff: the command line's selection is a new start
         if ignore:
             overrides["ignore"] = resolve_selectors(_split(ignore), "--ignore: ")
         if extend_select:
@@ -290,7 +295,16 @@ def check(
         respect_gitignore=respect_gitignore,
         explicit_config=config_file,
     )
+    if stdin_filename and not paths:
+        paths = ("-",)  # --stdin-filename alone reads standard input (ruff)
     files, problems = runner.collect(paths or (".",), walk_notes, excluder, walked)
+    if force_exclude:  # (pre-commit passes every staged .nc and .g by name: one that is not G-code is skipped)
+        walked.update(f for f in files if f != "-")
+    if "-" in files and stdin_filename and excluder.reason(stdin_filename, False, named=True) is not None:
+        files = [f for f in files if f != "-"]  # --force-exclude: the file it stands for is excluded
+        if fix:
+            sys.stdout.buffer.write(sys.stdin.buffer.read())  # --fix -: the text goes through unchanged
+            sys.exit(0)
     for note in walk_notes:
         _note(note)
     if not files and not problems:
@@ -311,14 +325,26 @@ def check(
         sys.exit(2 if problems else 0)
     if unsafe_fixes and not (fix or show_diff):
         _fail("--unsafe-fixes goes with --fix or --diff")
+    if add_noqa and (fix or show_diff):
+        _fail("--add-noqa writes noqa comments; run it without --fix and --diff")
+    if statistics and fmt in ("sarif", "junit", "html"):
+        _fail(f"--statistics prints a table (text) or JSON (-f json), not {fmt}")
+    if select and not overrides.get("select"):
+        _fail("--select names no rule (an empty --select would check nothing)")
     if fix and files == ["-"]:  # "--fix -": the fixed text on stdout, the findings left on stderr
         sys.exit(_fix_stdin(overrides, config_file, stdin_filename or "-", unsafe_fixes, exit_zero, fail_on))
     if (fix or show_diff) and "-" in files:
         _fail("--fix and --diff need files; '--fix -' alone fixes standard input to standard output")
+    # a broken configuration is one error before anything is checked (not one per file, as ruff)
+    for path in dict.fromkeys(files):
+        try:
+            runner.options_for(stdin_filename or path if path == "-" else path, Options(), overrides, config_file)
+        except ConfigError as exc:
+            _fail(str(exc))
     suppressions = settings.security_suppressions(files, overrides, config_file)
     for note in suppressions:
         if note.from_config:
-            _note(note.describe())
+            _note(note.describe(), always=True)
     from gclint import progress as progress_bar
     from gclint.cache import ResultCache
 
@@ -500,7 +526,13 @@ def _cache_where(files: list[str], cache_dir: str | None, no_cache: bool) -> str
     return ", ".join(folders) if folders else "(nothing to cache)"
 
 
-def _note(text: str) -> None:
+_QUIET: list[bool] = []  # check --quiet: notes are not shown (errors still are)
+
+
+def _note(text: str, *, always: bool = False) -> None:
+    """A note on stderr (``--quiet`` drops it, but never one that says a security rule is switched off)."""
+    if _QUIET and not always:
+        return
     from gclint.textsafe import human
 
     click.echo(f"gclint: note: {human(text)}", err=True)

@@ -185,7 +185,15 @@ def _read_file(path: Path) -> dict:
         raise ConfigError(f"{path}: the gclint section must be a table")
     unknown = sorted(set(table) - _KEYS)
     if unknown:
-        raise ConfigError(f"{path}: unknown option '{unknown[0]}' (known: {', '.join(sorted(_KEYS))})")
+        import difflib
+
+        said = []
+        for key in unknown:
+            near = difflib.get_close_matches(key, sorted(_KEYS), n=1)
+            said.append(f"'{key}'" + (f" (did you mean '{near[0]}'?)" if near else ""))
+        raise ConfigError(
+            f"{path}: unknown option{'s' if len(said) != 1 else ''} {', '.join(said)} (known: {', '.join(sorted(_KEYS))})"
+        )
     return table
 
 

@@ -17,7 +17,7 @@ from gclint.dialects.base import Dialect
 from gclint.machine.interpreter import Interpreter
 from gclint.machine.profiles import DEFAULT_PROFILE, PrinterProfile, get_profile
 from gclint.machine.state import MachineState
-from gclint.noqa import DIRECTIVE, INLINE_UNSUPPRESSIBLE, NOQA, selectors
+from gclint.noqa import DIRECTIVE, INLINE_UNSUPPRESSIBLE, NO_CODES, NOQA, selectors
 from gclint.rules.base import ANY_T, Finding, Fix, Rule, Severity, all_rules, select_rules
 from gclint.syntax.fastpath import PLAIN_MOVE
 from gclint.syntax.nodes import GCODE, Command, Line
@@ -324,14 +324,18 @@ class Linter:
 
         named = [(line, codes) for line, codes in ctx.noqa.items()]
         named += [(line, codes) for line, _, codes in ctx.directives]
+        problems: list[str] = []
         for line, codes in named:
+            if NO_CODES in codes:
+                problems.append(f"{result.path}:{line}: a 'noqa:' or 'disable=' with no rule code after it")
+                continue
             try:
                 resolve_selectors(c for c in codes if c != "ALL")
             except UnknownSelector as exc:
-                message = f"{result.path}:{line}: {exc}".replace(
-                    "unknown rule code", "a noqa or disable names an unknown rule code"
-                )
-                result.error = message if result.error is None else f"{result.error}; {message}"
+                problems.append(f"{result.path}:{line}: a noqa or disable names an {exc}")
+        if problems:  # every one in one line: the job's own comments are a usage error, as --select HY999 is
+            message = "; ".join(problems[:5]) + (f" (and {len(problems) - 5} more)" if len(problems) > 5 else "")
+            result.error = message if result.error is None else f"{result.error}; {message}"
         if "SX008" not in ctx.enabled_codes:
             return
         from gclint.rules.syntax import UnusedNoqa

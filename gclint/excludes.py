@@ -55,19 +55,20 @@ class Excluder:
         if named and not (self.force if self.force is not None else bool(table.get("force-exclude", False))):
             return None
         base = os.path.dirname(os.path.abspath(config_path)) if config_path is not None else os.getcwd()
-        rel = globs.relative(path, base)
         if self.exclude is not None:
             patterns, where = list(self.exclude), os.getcwd()
         else:
             patterns = list(table["exclude"]) if isinstance(table.get("exclude"), list) else list(DEFAULT_EXCLUDE)
             where = base
-        for pattern in patterns:
-            if globs.matches(pattern, globs.relative(path, where)):
-                return f"excluded by {pattern!r}"
         extend = [*(table.get("extend-exclude") or []), *self.extend_exclude]
-        for pattern in extend:
-            if globs.matches(pattern, rel):
-                return f"excluded by {pattern!r}"
+        # a walk never enters an excluded folder; a named file is excluded when it or a folder it is in is
+        for candidate in _self_and_parents(path) if named else (path,):
+            for pattern in patterns:
+                if globs.matches(pattern, globs.relative(candidate, where)):
+                    return f"excluded by {pattern!r}"
+            for pattern in extend:
+                if globs.matches(pattern, globs.relative(candidate, base)):
+                    return f"excluded by {pattern!r}"
         respect = self.respect_gitignore
         if respect is None:
             respect = bool(table.get("respect-gitignore", True))
@@ -121,3 +122,9 @@ class Excluder:
                 spec = pathspec.GitIgnoreSpec.from_lines(lines)
             self._ignores[file] = spec
         return self._ignores[file]
+
+
+def _self_and_parents(path: str) -> list[str]:
+    """``path`` and the folders it is in, up to the file system's root (absolute paths)."""
+    absolute = Path(os.path.abspath(path))
+    return [str(absolute), *(str(p) for p in absolute.parents)]

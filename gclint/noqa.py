@@ -6,13 +6,16 @@ fix write them."""
 from __future__ import annotations
 
 import re
+from functools import cache
 
 # "noqa" starts a comment or follows a ";" inside one ("; SAY hi ; noqa: HY029"): a word or a path that merely
 # contains it ("SHELL C:\\tools\\noqa.exe") is text, not a suppression.
-NOQA = re.compile(r"(?i)(?:^|[;(])[ \t]*+noqa\b(?:\s*:\s*([A-Za-z]{2}\d{0,3}(?:\s*[,\s]\s*[A-Za-z]{2}\d{0,3})*))?")
-DIRECTIVE = re.compile(
-    r"(?i)\bgclint:\s*(disable|enable)\b(?:\s*=\s*([A-Za-z]{2}\d{0,3}(?:\s*,\s*[A-Za-z]{2}\d{0,3})*))?"
-)
+# After "noqa:" come codes, prefixes or rule names, separated by commas or blanks; the first word that is
+# none of these ends the list ("; noqa: DL001 site macro" names DL001).
+NOQA = re.compile(r"(?i)(?:^|[;(])[ \t]*+noqa\b(?:[ \t]*:[ \t]*([^;)\r\n]*))?")
+DIRECTIVE = re.compile(r"(?i)\bgclint:\s*(disable|enable)\b(?:\s*=\s*([^;)\r\n]*))?")
+_SELECTOR = re.compile(r"[A-Za-z]{2}\d{0,3}|[A-Za-z][A-Za-z0-9]*(?:-[A-Za-z0-9]+)+")
+NO_CODES = "?"  # what a "noqa:" with no code after it gives: it suppresses nothing, and is an error
 # Findings a job can never silence itself (noqa, gclint: disable): the security rules.  A hostile job would
 # otherwise write "; noqa: SC001" after its own "M792 ; SHELL ...".  They are suppressed only from the
 # configuration or the command line (--ignore, per-file-ignores), where the suppression is visible.
@@ -21,10 +24,24 @@ _COMMENT_START = re.compile(r"[;(]")
 
 
 def selectors(text: str | None) -> tuple[str, ...]:
-    """The codes a ``noqa:`` or ``disable=`` names (``ALL`` for a bare ``noqa``)."""
-    if not text:
+    """The codes a ``noqa:`` or ``disable=`` names (``ALL`` for a bare ``noqa``; rule names read as their
+    codes), up to the first word that is not one (a reason may follow).  ``(NO_CODES,)`` when there is a
+    colon and no code."""
+    if text is None:
         return ("ALL",)
-    return tuple(c.upper() for c in re.split(r"[,\s]+", text.strip()) if c)
+    out: list[str] = []
+    for word in re.split(r"[,\s]+", text.strip()):
+        if not word or not _SELECTOR.fullmatch(word):
+            break
+        out.append(_NAMES().get(word.lower(), word.upper()) if "-" in word else word.upper())
+    return tuple(out) if out else (NO_CODES,)
+
+
+@cache
+def _NAMES() -> dict[str, str]:  # noqa: N802 - a constant computed once
+    from gclint.rules.base import all_rules
+
+    return {rule.name: code for code, rule in all_rules().items() if rule.name}
 
 
 def noqa_insertion(text: str, codes: list[str]) -> tuple[int, int, str]:

@@ -203,7 +203,9 @@ def run(
     results: dict[int, FileResult] = {}
     for index, path in enumerate(files):
         try:
-            options = options_for(path, base, overrides, explicit_config)
+            # standard input is configured as the file it names (--stdin-filename), as ruff does
+            named = stdin_name if path == "-" and stdin_name != "-" else path
+            options = options_for(named, base, overrides, explicit_config)
         except ConfigError as exc:
             results[index] = FileResult(path, error=str(exc))
             continue

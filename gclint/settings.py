@@ -15,7 +15,7 @@ from pathlib import Path
 
 from gclint.config import ConfigError, apply, config_for
 from gclint.engine import Linter, Options
-from gclint.rules.base import all_rules
+from gclint.rules.base import Severity, all_rules
 from gclint.textsafe import human
 
 SECURITY = "SC"
@@ -87,12 +87,33 @@ def security_suppressions(
         by_cli = sorted(off - set(by_config))
         if by_cli:
             out.append(Suppression(tuple(by_cli), "the command line", _how(options), len(paths), False))
+        lowered = _lowered_security(options, security)
+        if lowered:  # a security rule made info passes the gate as surely as one switched off
+            from_config = key is not None and lowered == _lowered_security(config_options, security)
+            origin_of = origin if from_config else "the command line"
+            out.append(Suppression(tuple(lowered), origin_of, "severity lowered", len(paths), from_config))
         for pattern, codes in options.per_file_ignores.items():
             off = [c for c in security if any(c.startswith(s.strip().upper()) for s in codes)]
             single = Linter(replace(options, per_file_ignores={pattern: codes}))
             matched = sum(1 for p in paths if _hit(single, p, off)) if off else 0
             if matched:
                 out.append(Suppression(tuple(off), origin, f"per-file-ignores {pattern!r}", matched, key is not None))
+    return out
+
+
+def _lowered_security(options: Options, security: list[str]) -> list[str]:
+    """Security rules whose severity the configuration lowers below their own."""
+    if not options.severity:
+        return []
+    rules = all_rules()
+    out = []
+    for code in security:
+        for length in (5, 4, 3, 2):
+            level = options.severity.get(code[:length])
+            if level is not None:
+                if Severity.parse(level) < rules[code].severity:
+                    out.append(code)
+                break
     return out
 
 
@@ -176,4 +197,5 @@ def _checked_as(path: str, overrides: dict, explicit_config: str | None) -> str:
     if context.printer is not None:
         how = {"option": "--printer", "configuration": "the configuration", "job": "read from the job"}
         printer = f"; printer {context.printer}: {how.get(context.printer_from, 'the default')}"
-    return f"{context.label()} ({context.strength} evidence): {context.why()}{printer}"
+    evidence = {"none": "no evidence: the default"}.get(context.strength, f"{context.strength} evidence")
+    return f"{context.label()} ({evidence}): {context.why()}{printer}"

@@ -225,7 +225,7 @@ def test_weak_and_default_decisions_are_noted_once(tmp_path: Path) -> None:
     (tmp_path / "prog.ngc").write_text("G0 X0\nM2\n")
     proc = run_cli("check", "--jobs", "1", str(tmp_path))
     err = proc.stderr.decode()
-    assert err.count("nothing in 3 files tell") == 1 and "hyrel v5, the first target" in err
+    assert err.count("nothing in 3 files tells the dialect") == 1 and "hyrel v5, the first target" in err
     assert "prog.ngc: checked as machinekit on weak evidence" in err
     assert "Checked as: hyrel v5, printer 30m (assumed) (3 files); machinekit (1 file)." in proc.stdout.decode()
 

@@ -79,7 +79,9 @@ def grouped(findings: list[Finding], group: bool = True, shown: int = SHOWN_PER_
     seen: Counter = Counter()
     for f in findings:
         seen[f.code] += 1
-        if seen[f.code] <= shown:
+        # security findings are never folded away (each names a different program or file), and folding
+        # a single finding into "1 more" saves nothing
+        if seen[f.code] <= shown or f.code.startswith("SC") or total[f.code] <= shown + 1:
             yield f
-            if seen[f.code] == shown and total[f.code] > shown:
+            if seen[f.code] == shown and total[f.code] > shown + 1 and not f.code.startswith("SC"):
                 yield Elided(f.path, f.code, total[f.code] - shown)

@@ -28,12 +28,13 @@ def context_notes(results: list[FileResult], verbose: bool = False) -> list[str]
         return lines
     lines.extend(weak[:MAX_NOTES])
     if len(weak) > MAX_NOTES:
-        lines.append(f"{len(weak) - MAX_NOTES} more files were read on weak evidence (-v lists every file)")
+        more = len(weak) - MAX_NOTES
+        lines.append(f"{more} more file{'s were' if more != 1 else ' was'} read on weak evidence (-v lists every file)")
     if defaulted:
         shown = ", ".join(defaulted[:3]) + (f" and {len(defaulted) - 3} more" if len(defaulted) > 3 else "")
-        what = "file tells" if len(defaulted) == 1 else "files tell"
+        files = "1 file" if len(defaulted) == 1 else f"{len(defaulted)} files"
         lines.append(
-            f"nothing in {len(defaulted)} {what} its dialect ({shown}): checked as hyrel v5, the first target; "
+            f"nothing in {files} tells the dialect ({shown}): checked as hyrel v5, the first target; "
             "set --dialect, dialect = ... in gclint.toml or '; gclint: dialect=NAME' in the file"
         )
     return lines
