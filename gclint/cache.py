@@ -95,7 +95,31 @@ def project_root(path: str) -> Path:
     for candidate in (folder, *folder.parents):
         if os.path.lexists(candidate / ".git"):
             return candidate
-    return folder
+    here = Path.cwd().resolve()
+    return here if folder.is_relative_to(here) else folder  # (as ruff: the working folder is the project)
+
+
+_ROOT_NOTE = "project"  # in each project's cache folder: the project's path
+
+
+def projects_under(root: Path, top: Path) -> list[Path]:
+    """The cache folders of every project at or below the folder ``top`` (their ``project`` notes)."""
+    out = []
+    try:
+        with os.scandir(root / "projects") as listing:
+            folders = [Path(e.path) for e in listing if e.is_dir(follow_symlinks=False)]
+    except OSError:
+        return out
+    top = top.resolve()
+    for folder in folders:
+        try:
+            with open(folder / _ROOT_NOTE, "rb") as fh:
+                project = Path(os.fsdecode(fh.read(4096)))
+        except OSError:
+            continue
+        if project == top or project.is_relative_to(top):
+            out.append(folder)
+    return out
 
 
 def project_folder(root: Path, project: Path) -> Path:
@@ -171,11 +195,14 @@ class ResultCache:
     def folder_for(self, path: str) -> Path:
         if self.folder is not None:
             return self.folder
+        return project_folder(self.root, self._project_of(path))
+
+    @staticmethod
+    def _project_of(path: str) -> Path:
         try:
-            project = project_root(path)
+            return project_root(path)
         except Exception:  # a broken configuration on the way up: the file's own folder
-            project = Path(os.path.dirname(os.path.abspath(path)))
-        return project_folder(self.root, project)
+            return Path(os.path.dirname(os.path.abspath(path)))
 
     def _entry(self, path: str) -> Path:
         name = hashlib.sha256(os.fsencode(os.path.abspath(path))).hexdigest()[:32]
@@ -320,6 +347,8 @@ class ResultCache:
                 return
             if self.folder is not None:
                 _write_new(folder / ".gitignore", _MARKER.encode())
+            else:  # which project this is, for "gclint clean PATH" (every project at or below PATH)
+                _write_new(folder / _ROOT_NOTE, os.fsencode(str(self._project_of(path))))
             if _private_dir(entry.parent, create=True) is not None:
                 return
             record = {"format": _FORMAT, "settings": settings, "path": path, "sha256": digest, "result": _dump(result)}
@@ -403,6 +432,11 @@ def clean(folder: Path) -> int:
                         except OSError:
                             pass
             _rmdir(sub.path)
+        elif sub.name == _ROOT_NOTE and sub.is_file(follow_symlinks=False):
+            try:
+                os.unlink(sub.path)
+            except OSError:
+                pass
         elif sub.name == ".gitignore" and sub.is_file(follow_symlinks=False):
             try:
                 with open(sub.path, encoding="utf-8", errors="replace") as fh:

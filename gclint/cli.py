@@ -808,10 +808,13 @@ def clean(paths: tuple[str, ...], everything: bool, cache_dir: str | None) -> No
     if cache_dir:
         folders = [Path(cache_dir)]
     elif everything:
-        folders = [cache.user_cache_root() / "projects"]
-    else:
+        folders = [cache.user_cache_root()]
+    else:  # each path's project, and every project below it (nested configurations), as ruff clean does
         root = cache.user_cache_root()
         folders = sorted({cache.project_folder(root, cache.project_root(p)) for p in paths or (".",)})
+        for p in paths or (".",):
+            if os.path.isdir(p):
+                folders = sorted(set(folders) | set(cache.projects_under(root, Path(p))))
     for folder in folders:
         removed = cache.clean(folder)
         if removed:

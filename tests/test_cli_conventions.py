@@ -182,3 +182,23 @@ def test_noqa_unknown_codes_unused_noqa_and_add_noqa(tmp_path: Path) -> None:
     )
     left = json.loads(run_cli("check", "-f", "json", str(job)).stdout)
     assert [f["code"] for f in left] == ["SC001"]
+
+
+def test_clean_removes_nested_projects_and_all(tmp_path: Path) -> None:
+    env = {"XDG_CACHE_HOME": str(tmp_path / "xdg")}
+    project = tmp_path / "p"
+    (project / "sub").mkdir(parents=True)
+    (project / "a.gcode").write_text("G1 X1 X2\n")
+    (project / "sub" / "b.gcode").write_text("G1 X1 X2\n")
+    (project / "sub" / "gclint.toml").write_text('ignore = ["HY"]\n')  # a project of its own
+
+    def entries() -> int:
+        return len(list((tmp_path / "xdg").rglob("*.json")))
+
+    run_cli("check", ".", cwd=project, env=env)
+    assert entries() == 2
+    proc = run_cli("clean", cwd=project, env=env)
+    assert proc.returncode == 0 and entries() == 0, proc.stdout
+    run_cli("check", ".", cwd=project, env=env)
+    assert b"removed 2 cached results" in run_cli("clean", "--all", cwd=tmp_path, env=env).stdout
+    assert entries() == 0
