@@ -100,7 +100,7 @@ def _walk(top: str, found: list[str], problems: list[FileResult], notes: list[st
             if kind is not None:
                 problems.append(FileResult(entry.path, error=f"{entry.path}: not a regular file ({kind}): not read"))
                 continue
-            found.append(entry.path)
+            found.append(entry.path[2:] if entry.path.startswith("./") else entry.path)  # "a.gcode", as ruff
         stack.extend(reversed(subfolders))
 
 

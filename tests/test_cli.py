@@ -153,10 +153,13 @@ def test_noqa_and_disable_ranges(tmp_path):
     assert [(f["line"], f["code"]) for f in data] == [(6, "SX002")]
 
 
-def test_fix_applies_safe_fixes(tmp_path):
+def test_fix_applies_safe_fixes_only(tmp_path):
     job = tmp_path / "a.gcode"
     job.write_text("N1 G1 X1*12\n")
+    # a checksum fix is unsafe (a wrong checksum may be a damaged line): --fix leaves it
     proc = run_cli("check", str(job), "--fix", "--dialect", "marlin")
+    assert proc.returncode == 1 and job.read_text() == "N1 G1 X1*12\n", proc.stdout
+    proc = run_cli("check", str(job), "--fix", "--unsafe-fixes", "--dialect", "marlin")
     assert proc.returncode == 0, proc.stdout
     assert job.read_text() == "N1 G1 X1*96\n"  # XOR of the bytes of "N1 G1 X1"
     assert run_cli("check", str(job), "--dialect", "marlin").returncode == 0

@@ -177,7 +177,7 @@ def test_fix_write_failure_leaves_the_original(tmp_path: Path, monkeypatch) -> N
     data = b"N1 G1 X1*99\nN2 G1 X2*0\n"
     path.write_bytes(data)
     _full_disk_after(monkeypatch, 5)
-    result = _invoke("check", "--fix", "--select", "SX004", "--jobs", "1", str(path))
+    result = _invoke("check", "--fix", "--unsafe-fixes", "--select", "SX004", "--jobs", "1", str(path))
     assert path.read_bytes() == data and _temporaries(tmp_path) == []
     assert result.exit_code == 2
     assert "fixme.gcode" in result.stderr and "No space left on device" in result.stderr
@@ -187,7 +187,7 @@ def test_fix_rewrites_atomically_and_keeps_the_mode(tmp_path: Path) -> None:
     path = tmp_path / "fixme.gcode"
     path.write_bytes(b"; latin-1 caf\xe9\r\nN1 G1 X1*99\r\nN2 G1 X2*0")
     os.chmod(path, 0o600)
-    proc = run_cli("check", "--fix", "--select", "SX004", str(path))
+    proc = run_cli("check", "--fix", "--unsafe-fixes", "--select", "SX004", str(path))
     assert proc.returncode == 0, proc.stderr
     assert (
         path.read_bytes()

@@ -74,6 +74,8 @@ def roundtrip(raw: str) -> None:
         ("#1211 = FUP[#1201 / #1114]", ["#"]),  # functions
         ("M307 H1 R4.446 K0.738:0.000", ["M307"]),  # RRF drive lists
         ("M708 A0x0b X5", ["M708"]),  # Prusa hex register
+        ("g0x2", ["G0"]),  # compact CNC: G0 X2, not a hex code
+        ("g53g0x1 y0", ["G53", "G0"]),
         ("T?", ["T?"]),  # Prusa MMU query
         # a G/M word that cannot be a code (sign, more than 3 digits after the point) is a parameter
         ("M900 K0.02 M0.125481", ["M900"]),  # PrusaSlicer/BambuStudio

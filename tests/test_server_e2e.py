@@ -20,9 +20,12 @@ EMOJI = "\U0001f600"
 JOB = (
     "; gclint: dialect=hyrel\n"
     f"({EMOJI} warm up) M109 T40 S200\n"  # HY003 after a non-BMP comment
-    "N1 G1 F600 X1*12\n"  # SX004, with a safe fix
+    "N1 G1 F600 X1*12\n"  # SX004, with an unsafe fix
     "M106 C255\n"
     "M106 T0 S127\n"
+    "M6 T12 O2 X0 Y0 Z0\n"  # HY008 (v4 numbering), with a safe fix
+    "M109 T12 S200\n"
+    "T1\n"
     "M30\n"
 )
 
@@ -105,7 +108,8 @@ def test_session_without_client_capabilities(client, tmp_path):
     # code actions on the checksum line: the fix, noqa, fix all; applying the fix removes the finding
     actions = _code_actions(client, uri, 2, [found["SX004"]])
     titles = [a["title"] for a in actions]
-    fix = next(a for a in actions if a["title"].startswith("SX004: ") and a.get("isPreferred"))
+    fix = next(a for a in actions if a["title"].startswith("SX004: "))
+    assert fix["title"].endswith("(unsafe fix)") and not fix.get("isPreferred")
     assert "SX004: suppress on this line (; noqa: SX004)" in titles
     assert any(a["kind"] == "source.fixAll.gclint" for a in actions)
     fixed = _apply(JOB, fix["edit"], uri)

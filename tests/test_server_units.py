@@ -198,18 +198,22 @@ def test_noqa_on_an_empty_line():
 
 
 def test_code_actions_per_line_and_kind():
-    text = "N1 G1 F100 X1*12\nN2 G1 X2*99\nM109 T40 S200\nM30\n"
+    text = "M6 T12 O2 X0 Y0 Z0\nM109 T12 S200\nM109 T40 S200\nT1\nN1 G1 F100 X1*12\nM30\n"
     result = Linter(Options(dialect="hyrel")).check_text(text, "job.gcode")
     geo = convert.Geometry(Snapshot(text))
     actions = convert.code_actions("file:///job.gcode", result.findings, geo, 0, 0)
     titles = [a.title for a in actions]
-    assert any(t.startswith("SX004: ") for t in titles)
-    assert "SX004: suppress on this line (; noqa: SX004)" in titles
+    assert any(t.startswith("HY008: ") for t in titles)
+    assert "HY008: suppress on this line (; noqa: HY008)" in titles
     assert sum(1 for a in actions if a.kind == convert.FIX_ALL_KIND) == 1
     assert any(a.kind == "quickfix" and a.title.startswith("Fix all safe") for a in actions)
-    fix = next(a for a in actions if a.title.startswith("SX004: ") and a.is_preferred)
-    assert fix.diagnostics and fix.diagnostics[0].code == "SX004"
+    fix = next(a for a in actions if a.title.startswith("HY008: ") and a.is_preferred)
+    assert fix.diagnostics and fix.diagnostics[0].code == "HY008"
     assert fix.edit is not None and list(fix.edit.changes) == ["file:///job.gcode"]
+    # an unsafe fix (the checksum) is offered, marked, never preferred
+    fifth = convert.code_actions("file:///job.gcode", result.findings, geo, 4, 4)
+    unsafe = next(a for a in fifth if a.title.startswith("SX004: "))
+    assert unsafe.title.endswith("(unsafe fix)") and not unsafe.is_preferred
     # only source.fixAll: the fix-all action alone; versioned edits when the client takes them
     only = convert.code_actions("file:///job.gcode", result.findings, geo, 0, 0, only=["source.fixAll"], version=3)
     assert [a.kind for a in only] == [convert.FIX_ALL_KIND]

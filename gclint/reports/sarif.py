@@ -17,10 +17,9 @@ from urllib.parse import quote
 
 from gclint.engine import FileResult
 from gclint.reports.common import clean, codes_in, mask, message, rule_docs, source_line
-from gclint.rules.base import Finding, Severity
+from gclint.rules.base import Finding, Severity, project_url
 
 SCHEMA = "https://docs.oasis-open.org/sarif/sarif/v2.1.0/errata01/os/schemas/sarif-schema-2.1.0.json"
-INFORMATION_URI = "https://gclint.dev"
 LEVELS = {Severity.ERROR: "error", Severity.WARNING: "warning", Severity.INFO: "note"}
 _DOC_LEVELS = {"error": "error", "warning": "warning", "info": "note"}
 
@@ -159,7 +158,7 @@ def build(results: list[FileResult], ctx) -> dict:
                 "name": "gclint",
                 "version": ctx.tool_version or "0",
                 "semanticVersion": ctx.tool_version or "0.0.0",
-                "informationUri": INFORMATION_URI,
+                **({"informationUri": home} if (home := project_url("homepage", "repository", "source")) else {}),
                 "rules": rules,
             }
         },

@@ -52,8 +52,9 @@ def write_summary(results: list[FileResult], out: TextIO, ctx) -> None:
     files = f" in {files_with} file{'s' if files_with != 1 else ''}" if n else ""
     if ctx.fixed is not None and (ctx.fixed or n):  # --fix: ruff's "Found 3 errors (2 fixed, 1 remaining)."
         found = n + ctx.fixed
-        remaining = f"{n} remaining: {', '.join(parts)}" if n else "0 remaining"
-        out.write(f"Found {found} finding{'s' if found != 1 else ''} ({ctx.fixed} fixed, {remaining}){files}.\n")
+        # the file count is of the remaining findings (the fixed ones may be in other files)
+        remaining = f"{n} remaining: {', '.join(parts)}{files}" if n else "0 remaining"
+        out.write(f"Found {found} finding{'s' if found != 1 else ''} ({ctx.fixed} fixed, {remaining}).\n")
     elif n:
         out.write(f"Found {n} finding{'s' if n != 1 else ''} ({', '.join(parts)}){files}.\n")
     elif any(r.error is not None for r in results):

@@ -112,21 +112,31 @@ class Finding:
 _RULES_DOC = Path(__file__).resolve().parents[2] / "docs" / "rules.md"
 
 
+def project_url(*labels: str) -> str | None:
+    """The first of the package's [project.urls] entries named ``labels`` (case-insensitive), or None."""
+    try:
+        from importlib.metadata import PackageNotFoundError, metadata
+
+        entries = metadata("gclint").get_all("Project-URL") or ()
+    except (ImportError, PackageNotFoundError):
+        return None
+    found = {}
+    for entry in entries:
+        label, _, url = entry.partition(",")
+        if url.strip():
+            found.setdefault(label.strip().lower(), url.strip())
+    return next((found[label] for label in labels if label in found), None)
+
+
 @cache
 def rules_doc_base() -> str | None:
     """The address of the rule reference (without the anchor), or None when none is known."""
     configured = os.environ.get("GCLINT_DOCS_URL")
     if configured:
         return configured
-    try:
-        from importlib.metadata import PackageNotFoundError, metadata
-
-        for entry in metadata("gclint").get_all("Project-URL") or ():
-            label, _, url = entry.partition(",")
-            if label.strip().lower() == "documentation" and url.strip():
-                return url.strip()
-    except (ImportError, PackageNotFoundError):
-        pass
+    published = project_url("documentation")
+    if published:
+        return published
     return _RULES_DOC.as_uri() if _RULES_DOC.is_file() else None
 
 

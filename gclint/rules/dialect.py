@@ -74,8 +74,8 @@ class UnknownCode(Rule):
         self.report(line, message, node=cmd, severity=severity)
 
     def _checked_against(self) -> str:
-        title = self.ctx.dialect.title
-        return title if self.flavor is None else f"{title.split(' (')[0]} or {self.flavor.title}"
+        title = self.ctx.dialect.title.split(" (")[0]  # the name, without the description in brackets
+        return title if self.flavor is None else f"{title} or {self.flavor.title}"
 
     def _documented_elsewhere(self, code: str) -> str:
         """Names the firmware that has ``code`` (" (Prusa Buddy firmware has it)") when its files are read

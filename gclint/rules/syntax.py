@@ -122,9 +122,13 @@ class ChecksumMismatch(Rule):
         if actual != expected:
             from gclint.rules.base import Edit, Fix
 
+            # Unsafe: a wrong checksum is how a host finds a line damaged in transfer; recomputing it would
+            # bless the damage.  Only the user knows the line's words are what they meant.
             start = checksum.column
             fix = Fix(
-                f"set the checksum to {expected}", (Edit(line.number, start, checksum.end_column, f"*{expected}"),)
+                f"set the checksum to {expected}",
+                (Edit(line.number, start, checksum.end_column, f"*{expected}"),),
+                safe=False,
             )
             self.report(line, f"checksum is {actual}, the line's bytes give {expected}", node=checksum, fix=fix)
 
