@@ -12,7 +12,7 @@ import sys
 import click
 
 from gclint import __version__, dialects
-from gclint.config import ConfigError, parse_heads, parse_known_codes, parse_tool_map
+from gclint.config import ConfigError, check_flavor, parse_heads, parse_known_codes, parse_tool_map
 from gclint.engine import FileResult, Options
 from gclint.machine.profiles import PROFILES, UnknownPrinter, get_profile
 from gclint.rules.base import RuleError, Severity
@@ -124,6 +124,12 @@ def main() -> None:
 )
 @click.option("--printer", "-p", metavar="MODEL", help=f"Hyrel model: {', '.join(PROFILES)} (default 30m).")
 @click.option(
+    "--flavor",
+    metavar="FIRMWARE",
+    help="The firmware the files are for, when they do not say: prusa-buddy, prusa-mk3, bambu, klipper... "
+    "(else read from each file's slicer settings).",
+)
+@click.option(
     "--loaded",
     metavar="T0,T2",
     help="Head positions loaded on the yoke, in v5 numbering T0-T19 (else from the job header).",
@@ -209,6 +215,7 @@ def check(
     paths: tuple[str, ...],
     dialect: str | None,
     printer: str | None,
+    flavor: str | None,
     loaded: str | None,
     select: tuple[str, ...],
     ignore: tuple[str, ...],
@@ -263,6 +270,9 @@ def check(
         overrides["printer"] = _check_printer(printer)
         overrides["printer_origin"] = "option"
     try:
+        if flavor is not None:
+            overrides["flavor"] = check_flavor(flavor, "--flavor")
+            overrides["flavor_origin"] = "option"
         if loaded is not None:
             overrides["loaded"] = parse_heads(loaded)
         if extend_known_codes:

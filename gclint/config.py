@@ -134,6 +134,7 @@ _KEYS = {
     "respect-gitignore",
     "severity",
     "dialect",
+    "flavor",
     "printer",
     "loaded",
     "select",
@@ -197,6 +198,25 @@ def _read_file(path: Path) -> dict:
     return table
 
 
+def flavor_names() -> list[str]:
+    """The firmware a file can be declared for (``--flavor``, ``flavor =``): the flavours of a dialect."""
+    from gclint import firmware
+
+    return [f.name for f in firmware.all_firmware() if f.flavor]
+
+
+def check_flavor(name: object, where: str) -> str:
+    """``name`` when it is a flavour's name, else a ConfigError naming ``where`` and the choices."""
+    names = flavor_names()
+    if not isinstance(name, str) or name.lower() not in names:
+        import difflib
+
+        near = difflib.get_close_matches(str(name).lower(), names, n=1)
+        hint = f" (did you mean '{near[0]}'?)" if near else ""
+        raise ConfigError(f"{where}: unknown firmware {name!r}{hint}; known: {', '.join(names)}")
+    return name.lower()
+
+
 def apply(options: Options, table: dict, path: Path) -> Options:
     """``options`` updated with a configuration table (command-line values are applied afterwards)."""
     from gclint import dialects
@@ -214,6 +234,9 @@ def apply(options: Options, table: dict, path: Path) -> Options:
                 raise ConfigError(f"{path}: {exc}") from None
         changes["dialect"] = name
         changes["dialect_origin"] = "configuration"
+    if "flavor" in table:
+        changes["flavor"] = check_flavor(table["flavor"], f"{path}: 'flavor'")
+        changes["flavor_origin"] = "configuration"
     if "printer" in table:
         try:
             get_profile(str(table["printer"]))

@@ -34,6 +34,8 @@ class Options:
     printer: str | None = None  # a Hyrel model; None = read it from the job (else the default, 30m)
     dialect_origin: str = "option"  # where an explicit dialect/printer came from: option or configuration
     printer_origin: str = "option"
+    flavor: str | None = None  # the firmware of a Marlin/RepRap/CNC file (klipper); None = read it from the file
+    flavor_origin: str = "option"
     loaded: frozenset[int] | None = None  # v5 head positions; None = take them from the job header
     select: list[str] | None = None
     ignore: list[str] = field(default_factory=list)
@@ -53,6 +55,8 @@ class Options:
                 self.printer,
                 self.dialect_origin,
                 self.printer_origin,
+                self.flavor,
+                self.flavor_origin,
                 sorted(self.loaded) if self.loaded is not None else None,
                 self.select,
                 sorted(self.ignore),
@@ -367,6 +371,8 @@ class Linter:
             dialect_origin=options.dialect_origin,
             printer=options.printer,
             printer_origin=options.printer_origin,
+            flavor=options.flavor,
+            flavor_origin=options.flavor_origin,
             env_flavor=options.env_flavor,
         )
 

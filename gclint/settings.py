@@ -148,6 +148,7 @@ def show_settings(files: list[str], overrides: dict, explicit_config: str | None
             f"  dialect: {options.dialect}"
             + (" (each file's is decided from its content)" if options.dialect == "auto" else "")
         )
+        lines.append(f"  firmware (flavor): {options.flavor or '(read from each file)'}")
         lines.append(f"  printer: {options.printer or '(read from each Hyrel job, else 30m)'}")
         loaded = "from the job header" if options.loaded is None else ",".join(f"T{h}" for h in sorted(options.loaded))
         lines.append(f"  loaded heads: {loaded}")

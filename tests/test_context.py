@@ -436,3 +436,38 @@ def test_unsafe_fixes_alone_is_a_usage_error(tmp_path: Path) -> None:
 def test_hy039_every_axis_is_homed_again_after_m18(moves: str, reported: bool) -> None:
     text = "G21\nG90\nG28 X0 Y0 Z0\nT0\nM104 T0 S200\nG1 X1 Y1 F100\nM18\n" + moves + "M30\n"
     assert ("HY039" in {f.code for f in check(text).findings}) is reported
+
+
+# -- a declared firmware (--flavor, flavor = ...) --------------------------------------------------------
+
+
+def test_a_declared_flavor_says_the_dialect_and_the_firmware() -> None:
+    head = "G28\nG1 X10 F3000\nM74 W100\n"  # nothing says the firmware: Prusa Buddy's M74 is unknown to Marlin
+    assert infer(head, "a.gcode").flavor is None
+    context = infer(head, "a.gcode", flavor="prusa-buddy")
+    assert (context.dialect, context.flavor) == ("marlin", "prusa-buddy")
+    assert context.why() == "set by --flavor prusa-buddy"
+    configured = infer(head, "a.gcode", flavor="klipper", flavor_origin="configuration")
+    assert configured.flavor == "klipper" and "flavor = klipper in the configuration" in configured.why()
+    # an explicit dialect wins; a firmware for other files is said to be ignored
+    hyrel = infer(head, "a.gcode", dialect="hyrel", flavor="klipper")
+    assert hyrel.dialect == "hyrel" and hyrel.flavor is None and "--flavor klipper" in hyrel.why()
+    assert "ignored" in hyrel.why()
+    # the file's own slicer settings lose to the user's word
+    told = infer("; printer_model = MK4S\n" + head, "a.gcode", flavor="bambu")
+    assert told.flavor == "bambu"
+
+
+def test_flavor_on_the_command_line_and_in_the_configuration(tmp_path: Path) -> None:
+    job = tmp_path / "a.gcode"
+    job.write_text("G28\nG1 X10 F3000\nM74 W100\n")
+    proc = run_cli("check", "--flavor", "prusa-buddy", str(job))
+    assert proc.returncode == 0 and "Checked as marlin (prusa-buddy)." in proc.stdout.decode(), proc.stdout
+    (tmp_path / "gclint.toml").write_text('flavor = "prusa-buddy"\n')
+    proc = run_cli("check", str(job))
+    assert proc.returncode == 0 and "Checked as marlin (prusa-buddy)." in proc.stdout.decode(), proc.stdout
+    proc = run_cli("check", "--flavor", "klipr", str(job))
+    assert proc.returncode == 2 and "did you mean 'klipper'" in proc.stderr.decode()
+    (tmp_path / "gclint.toml").write_text('flavor = "marlin"\n')  # a dialect, not a firmware flavour
+    proc = run_cli("check", str(job))
+    assert proc.returncode == 2 and "unknown firmware 'marlin'" in proc.stderr.decode()

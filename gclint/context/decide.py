@@ -94,6 +94,8 @@ def infer(
     dialect_origin: str = OPTION,
     printer: str | None = None,
     printer_origin: str = OPTION,
+    flavor: str | None = None,
+    flavor_origin: str = OPTION,
     env_flavor: str | None = None,
     complete: bool = True,
     tail: str | None = None,
@@ -101,9 +103,13 @@ def infer(
     """The context of the file whose beginning is ``head`` (``complete``: the whole file; ``tail``: the
     end of a longer file, whole lines; the flavour reads it too).
 
-    ``dialect`` is a dialect name or ``auto``; ``printer`` a model name or None (infer it).  The
-    ``*_origin`` arguments say where an explicit value came from (``option`` or ``configuration``).
+    ``dialect`` is a dialect name or ``auto``; ``printer`` a model name or None (infer it); ``flavor`` the
+    firmware the user declared (``klipper``; None: read it from the file), which also says the dialect when
+    nobody else does.  The ``*_origin`` arguments say where an explicit value came from (``option`` or
+    ``configuration``).
     """
+    declared = _declared(flavor)
+    told = (f"--flavor {flavor}" if flavor_origin == OPTION else f"flavor = {flavor} in the configuration",)
     scan = HeadScan(head)
     reading: ContentReading | None = None
 
@@ -119,15 +125,23 @@ def infer(
         name, origin, reasons, strength, conflict = directive, DIRECTIVE, (), EXPLICIT, ""
     elif dialect != "auto":
         name, origin, reasons, strength, conflict = dialects.get(dialect).name, dialect_origin, (), EXPLICIT, ""
+    elif declared is not None:  # the firmware's files are its dialect's
+        name, origin, reasons, strength, conflict = declared.dialect, flavor_origin, told, EXPLICIT, ""
     else:
         name, origin, reasons, strength, conflict = _weigh(
             scan, content(), path, env_flavor, HeadScan(tail) if tail else None
         )
     if notes:  # a directive that names nothing is shown, as weak evidence is
         conflict = "; ".join((*notes, conflict)) if conflict else notes[0]
+    if declared is not None and declared.dialect != name:
+        ignored = f"{told[0]} is a firmware for {declared.dialect} files, and this one is read as {name}: ignored"
+        conflict = f"{conflict}; {ignored}" if conflict else ignored
     if dialects.get(name).family != "hyrel":
-        flavor, flavor_reasons = _flavor(scan, HeadScan(tail) if tail else None, content, name)
-        return Context(name, origin, strength, reasons, conflict, flavor=flavor, flavor_reasons=flavor_reasons)
+        if declared is not None and declared.dialect == name:
+            found, flavor_reasons = declared.name, told
+        else:
+            found, flavor_reasons = _flavor(scan, HeadScan(tail) if tail else None, content, name)
+        return Context(name, origin, strength, reasons, conflict, flavor=found, flavor_reasons=flavor_reasons)
 
     firmware, firmware_origin, firmware_reasons, evidence = _version(content(), name, origin)
     name = "hyrel-v4" if firmware == 4 else "hyrel"
@@ -147,6 +161,10 @@ def infer(
         printer_reasons=model_reasons,
         printer_candidates=fitting,
     )
+
+
+def _declared(flavor: str | None) -> firmware.Firmware | None:
+    return firmware.get(flavor) if flavor is not None else None
 
 
 _FAR = 1 << 20  # how far to read when the head is mostly comments (a slicer's thumbnail images)

@@ -74,7 +74,9 @@ class Context:
 
     def why(self) -> str:
         """Why the file was read so, in one sentence (for notes and -v)."""
-        if self.origin == OPTION:
+        if self.origin in (OPTION, CONFIGURATION) and self.reasons:
+            base = f"set by {self.reasons[0]}"  # a declared firmware (--flavor) says its dialect
+        elif self.origin == OPTION:
             base = "set with --dialect"
         elif self.origin == CONFIGURATION:
             base = "set in the configuration"
@@ -91,7 +93,7 @@ class Context:
             parts.append(self.conflict)
         if self.firmware is not None and self.firmware_origin not in EXPLICIT_ORIGINS and self.firmware_reasons:
             parts.append(f"v{self.firmware}: " + "; ".join(self.firmware_reasons[:3]))
-        if self.flavor is not None and self.flavor_reasons:
+        if self.flavor is not None and self.flavor_reasons and self.flavor_reasons != self.reasons:
             parts.append(f"{self.flavor}: " + "; ".join(self.flavor_reasons[:2]))
         if self.printer is not None and self.printer_reasons and self.printer_origin not in (OPTION, CONFIGURATION):
             parts.append(f"printer {self.printer}: " + "; ".join(self.printer_reasons[:2]))

@@ -203,4 +203,3 @@ REPRAP = Dialect(
     sources=("research/dialects.md section 1 [RRF]",),
     extras={"fan_max": 255},
 )
-

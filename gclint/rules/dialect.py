@@ -54,23 +54,24 @@ class UnknownCode(Rule):
         ):
             return
         dialect = self.ctx.dialect
+        name = dialect.title.split(" (")[0]  # without the description in brackets
         severity = Severity.parse(dialect.unknown_severity)
         kind = cmd.kind
         if kind in (GCODE, TEXT):
             message = f"{code} is not a {self._checked_against()} code{self._documented_elsewhere(code)}"
         elif kind == EXTENDED:
-            message = f"{code}: {dialect.title} has no Klipper-style extended commands"
+            message = f"{code}: {name} has no Klipper-style extended commands"
         elif kind == META:
             if code == "echo":  # also Smoothieware's console (Carvera's firmware)
-                message = f"'echo': {dialect.title} has no RepRapFirmware meta commands or Smoothieware console"
+                message = f"'echo': {name} has no RepRapFirmware meta commands or Smoothieware console"
             else:
-                message = f"'{code}': {dialect.title} has no RepRapFirmware meta commands"
+                message = f"'{code}': {name} has no RepRapFirmware meta commands"
         elif kind == OWORD:
-            message = f"O-word: {dialect.title} has no LinuxCNC O-word subroutines or control flow"
+            message = f"O-word: {name} has no LinuxCNC O-word subroutines or control flow"
         elif kind == IMPLICIT:
             return
         else:
-            message = f"'#' parameters: {dialect.title} has no LinuxCNC parameters"
+            message = f"'#' parameters: {name} has no LinuxCNC parameters"
         self.report(line, message, node=cmd, severity=severity)
 
     def _checked_against(self) -> str:
