@@ -203,9 +203,8 @@ def write_report(outcome: Outcome, out: TextIO, fail_on: str, limit: int | None 
     for f in findings:
         counts[f.severity.label] += 1
     if findings:
-        out.write(
-            f"{len(findings)} finding(s): {counts['error']} error(s), {counts['warning']} warning(s), {counts['info']} info\n"
-        )
+        parts = ", ".join(_count(counts[k], k) for k in ("error", "warning", "info") if counts[k])
+        out.write(f"{_count(len(findings), 'finding')}: {parts}\n")
     else:
         out.write("no findings\n")
     threshold = FAIL_ON[fail_on]
@@ -256,3 +255,7 @@ def main(
     elif outcome.report_path:
         err.write(f"report: {human(outcome.report_path)}\n")
     return outcome.exit_code(fail_on, untranslatable_fails=True)
+
+
+def _count(n: int, word: str) -> str:
+    return f"{n} {word}{'' if n == 1 else 's'}"

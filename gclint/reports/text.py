@@ -109,10 +109,14 @@ def statistics(results: list[FileResult]) -> list[dict]:
 
 def write_statistics(results: list[FileResult], out: TextIO) -> None:
     """The statistics table (``--statistics``), ``[*]`` on codes with safe fixes."""
-    for row in statistics(results):
+    rows = statistics(results)
+    name_width = max((len(row["name"]) for row in rows), default=0)
+    for row in rows:
         mark = " [*]" if row["fixable"] else ""
+        level = f"[{row['severity']}]"
         out.write(
-            f"{row['count']:>7}  {row['code']}{mark:<4} {row['name']:<32} [{row['severity']}]  first at {human(row['first'])}\n"
+            f"{row['count']:>7}  {row['code']}{mark:<4} {row['name']:<{name_width}}  {level:<9}  "
+            f"first at {human(row['first'])}\n"
         )
 
 
