@@ -11,7 +11,7 @@ import os
 from collections.abc import Callable, Iterable
 from dataclasses import dataclass, field
 
-from gclint import dialects, globs
+from gclint import dialects, firmware, globs
 from gclint.context import Context, infer_source
 from gclint.dialects.base import Dialect
 from gclint.machine.interpreter import Interpreter
@@ -20,7 +20,7 @@ from gclint.machine.state import MachineState
 from gclint.noqa import DIRECTIVE, INLINE_UNSUPPRESSIBLE, NO_CODES, NOQA, selectors
 from gclint.rules.base import ANY_T, Finding, Fix, Rule, Severity, all_rules, select_rules
 from gclint.syntax.fastpath import PLAIN_MOVE
-from gclint.syntax.nodes import GCODE, Command, Line
+from gclint.syntax.nodes import EXTENDED, GCODE, Command, Line
 from gclint.syntax.parse import parse_line
 from gclint.syntax.sniff import not_gcode_reason
 from gclint.syntax.source import NotGcode, Source, SourceError
@@ -412,6 +412,9 @@ class Linter:
         by_code: dict[str, list[Callable[[Line, Command], None]]] = {}
         any_t: list[Callable[[Line, Command], None]] = []
         unknown: list[Callable[[Line, Command], None]] = []
+        # a Marlin-flavour file is read as Klipper's too unless its firmware is known to be another one
+        flavor = ctx.context.flavor if ctx.context is not None else None
+        no_extended = flavor is not None and not firmware.get(flavor).extended_commands
         interpreter = ctx.interpreter
         line_hooks = tuple(r.check_line for r in rules if r.on_line)
         long_hooks = tuple((r.on_line_longer_than, r.check_line) for r in rules if r.on_line_longer_than is not None)
@@ -465,7 +468,9 @@ class Linter:
             handlers = list(by_code.get(code, ())) if code is not None else []
             if code is not None and cmd.kind == GCODE and code[0] == "T":
                 handlers.extend(any_t)
-            if not dialect.accepts(cmd.kind, code):
+            if not dialect.accepts(cmd.kind, code) or (
+                no_extended and cmd.kind == EXTENDED and not (code is not None and dialect.knows(code))
+            ):  # (Prusa's MMU "Tx" and "Tc" read as command words, and are Marlin's)
                 handlers.extend(unknown)
             always, filtered = [], []
             for handler in handlers:

@@ -213,6 +213,19 @@ def test_a_code_no_flavor_documents_is_still_reported(tmp_path):
     assert "Bambu Lab firmware has it" in finding["message"]
 
 
+def test_klipper_commands_in_a_job_for_another_firmware_are_reported(tmp_path):
+    path = tmp_path / "mk4s.gcode"
+    path.write_text(MK4S_HEAD + "SET_FAN_SPEED FAN=part SPEED=1\nT1\nTx\nTc\n")  # Tx, Tc: Prusa MMU
+    findings = json.loads(run_cli("check", str(path), "--no-cache", "-f", "json").stdout)
+    (finding,) = [f for f in findings if f["code"] == "DL001"]
+    assert finding["message"] == (
+        "SET_FAN_SPEED: neither Marlin 2.x nor Prusa Buddy firmware has Klipper-style extended commands"
+    )
+    # a Marlin-flavour job whose firmware is not known may be Klipper's: nothing to say
+    path.write_text("G28\nG1 X1 F600\nSET_FAN_SPEED FAN=part SPEED=1\n")
+    assert run_cli("check", str(path), "--no-cache", "--dialect", "marlin").returncode == 0
+
+
 def test_extend_known_codes_in_the_configuration(tmp_path):
     job = tmp_path / "jobs" / "part.gcode"
     job.parent.mkdir()

@@ -36,6 +36,7 @@ class Firmware:
     detection: Detection = Detection()
     source: str = ""
     marks_dialect: bool = True  # its codes count as the dialect's when gclint.context weighs a file
+    extended_commands: bool = False  # runs Klipper-style NAME KEY=VALUE commands (and macros named so)
 
     def knows(self, code: str) -> bool:
         """Whether the firmware documents ``code`` (a normalised code, or a command word in any case)."""

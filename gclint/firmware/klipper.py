@@ -60,6 +60,7 @@ KLIPPER = Firmware(
     words=EXTENDED_COMMANDS,
     dialect="marlin",
     flavor=True,
+    extended_commands=True,
     detection=Detection(
         # the slicer's flavour names the firmware itself: it outweighs the printer model
         patterns=((r"(?i)^;\s*gcode_flavor\s*=\s*klipper\s*$", 20),),

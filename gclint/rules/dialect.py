@@ -60,7 +60,8 @@ class UnknownCode(Rule):
         if kind in (GCODE, TEXT):
             message = f"{code} is not a {self._checked_against()} code{self._documented_elsewhere(code)}"
         elif kind == EXTENDED:
-            message = f"{code}: {name} has no Klipper-style extended commands"
+            has = f"neither {name} nor {self.flavor.title} has" if self.flavor is not None else f"{name} has no"
+            message = f"{code}: {has} Klipper-style extended commands"
         elif kind == META:
             if code == "echo":  # also Smoothieware's console (Carvera's firmware)
                 message = f"'echo': {name} has no RepRapFirmware meta commands or Smoothieware console"
