@@ -81,7 +81,7 @@ def gclint_check(files: list[str], dialect: str) -> int:
 def gclint_translate(files: list[str], target: str) -> int:
     from gclint import dialects
     from gclint.syntax.source import Source
-    from gclint.translate.engine import TranslationResult, translate_source, translator_for
+    from gclint.translate import TranslationResult, translate_source, translator_for
 
     n = 0
     for path in files:

@@ -17,7 +17,7 @@ from gclint.dialects.addressing import V4_TO_V5_COMMAND, V4_TO_V5_VARIABLE
 from gclint.engine import Linter, Options
 from gclint.rules.base import Severity
 from gclint.syntax.source import Source
-from gclint.translate.engine import TranslationResult, translate_source, translator_for
+from gclint.translate import TranslationResult, translate_source, translator_for
 
 from .conftest import CORPUS, needs_corpus
 from .test_translate_tables import Row, ids, translate_rows

@@ -18,7 +18,7 @@ import pytest
 
 from gclint import dialects
 from gclint.syntax.source import Source
-from gclint.translate.engine import TranslationResult, translate_source, translator_for
+from gclint.translate import TranslationResult, translate_source, translator_for
 from gclint.translate.options import TranslateOptions
 
 PRELUDES = {

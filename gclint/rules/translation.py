@@ -1,7 +1,7 @@
 """TR: translation findings.  ``gclint translate`` reports them; ``gclint check`` never runs them.
 
 Each class documents one kind of loss, so ``gclint rules TR003`` explains it like any other rule.  The
-translators in gclint/translate/ report them through ``gclint.translate.base.HyrelTranslator.report``;
+translators in gclint/translate/ report them through ``HyrelTranslator.report`` (gclint/translate/writer.py);
 the numbering is documented in docs/translation.md:
 
     TR001 dropped                      info     no Hyrel counterpart, no effect on the job

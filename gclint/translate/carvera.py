@@ -12,51 +12,20 @@ from __future__ import annotations
 from typing import ClassVar
 
 from gclint.syntax.nodes import Command
-from gclint.translate.base import (
-    TR_APPROX,
-    TR_DROPPED,
-    TR_LOST,
-    TR_NOTE,
-    TR_UNTRANSLATABLE,
-    WORKSPACES,
-    HyrelTranslator,
-    num,
-)
-from gclint.translate.marlin import _codes
+from gclint.translate.cnc import CncTranslator
+from gclint.translate.findings import TR_APPROX, TR_DROPPED, TR_LOST, TR_NOTE, TR_UNTRANSLATABLE
+from gclint.translate.findings import codes as _codes
 from gclint.translate.output import fmt
+from gclint.translate.words import num
 
 
-class CarveraToHyrel(HyrelTranslator):
-    CHECK_EXPRESSIONS = True
-    END_CODES: ClassVar[frozenset[str]] = frozenset({"M2", "M30"})
+class CarveraToHyrel(CncTranslator):
     MAX_RPM = 15000.0  # Carvera C1 (research/dialects.md 2.3; gclint/dialects/carvera.py extras)
     EXTRA_LETTERS: ClassVar[frozenset[str]] = frozenset("SABE")
 
-    HANDLERS: ClassVar[dict[str, str]] = {
-        "G0": "move",
-        "G1": "move",
-        "G2": "arc",
-        "G3": "arc",
-        "G4": "dwell_seconds",
-        "G17": "keep",
-        "G18": "keep",
-        "G19": "keep",
-        "G20": "units",
-        "G21": "units",
+    MACHINE = "the Carvera's machine"
+    HANDLERS: ClassVar[dict[str, str]] = {  # besides cnc.CNC_HANDLERS
         "G28": "clearance",
-        "G53": "g53",
-        "G90": "positioning",
-        "G91": "positioning",
-        "G92": "set_position",
-        "G92.1": "clear_g92",
-        **WORKSPACES,
-        "M0": "keep",
-        "M2": "end_program",
-        "M30": "end_program",
-        "M3": "spindle",
-        "M4": "spindle",
-        "M5": "spindle_stop",
-        "M6": "tool_change",
         "M7": "air",
         "M9": "air_off",
         "M17": "motors_on",
@@ -109,7 +78,6 @@ class CarveraToHyrel(HyrelTranslator):
 
     def __init__(self, source, target, options=None) -> None:
         super().__init__(source, target, options)
-        self.prepared: int | None = None
         self.laser = False  # M321 laser mode
         self.laser_fire = False  # M3 in laser mode
         self.laser_power = 0.0  # percent, modal (S on moves)
@@ -168,17 +136,12 @@ class CarveraToHyrel(HyrelTranslator):
             key="G28",
         )
 
-    def g53(self, cmd: Command) -> None:
-        self.untranslatable(
-            cmd, "machine-coordinate move (G53): the Carvera's machine coordinates mean nothing on the Hyrel", key="G53"
-        )
-
     def motors_on(self, cmd: Command) -> None:
         if cmd.params:
             self.replace(cmd, "M17")
 
     def disengage(self, cmd: Command) -> None:
-        self.motors_off = True
+        self.hy.motors_off = True
         if cmd.params:
             self.replace(cmd, cmd.code or "M84")
             self.report(TR_APPROX, f"{cmd.code} with axes: Hyrel cuts every motor", key="M18", cmd=cmd)
@@ -210,14 +173,6 @@ class CarveraToHyrel(HyrelTranslator):
             return
         self.spindle_off(cmd)
 
-    def tool_command(self, cmd: Command) -> None:
-        number = (cmd.code or "T")[1:]
-        if not number.lstrip("-").isdigit() or len(number) > 6:
-            self.untranslatable(cmd, "a tool given by an expression cannot be translated", key="T?")
-            return
-        self.prepared = int(number)  # T prepares, M6 changes (T6M6)
-        self.consume(cmd)
-
     def tool_change(self, cmd: Command) -> None:
         index = num(cmd.params.get("T"))
         tool = int(index) if index is not None else self.prepared
@@ -234,9 +189,9 @@ class CarveraToHyrel(HyrelTranslator):
         # one Hyrel spindle: a manual tool change
         address = self.opts.spindle_address()
         lines = []
-        if address in self.spindles_on:
+        if address in self.hy.spindles_on:
             lines.append(f"M5 T{address}")
-            self.spindles_on.pop(address, None)
+            self.hy.spindles_on.pop(address, None)
         lines.append(f"M0 ; change to tool {tool}")
         *first, last = lines
         if first:
@@ -254,7 +209,7 @@ class CarveraToHyrel(HyrelTranslator):
         self.laser = True
         self.extra_always = True  # every move: firing moves get E1 and the power
         address = self.opts.laser_address()
-        self.emitters_on.add(address)
+        self.hy.emitters_on.add(address)
         self.replace(cmd, f"M620 T{address} E1")
         self.report(
             TR_APPROX,
@@ -269,28 +224,28 @@ class CarveraToHyrel(HyrelTranslator):
         self.laser_fire = False
         self.extra_always = False
         address = self.opts.laser_address()
-        self.emitters_on.discard(address)
+        self.hy.emitters_on.discard(address)
         self.replace(cmd, f"M620 T{address} E0")
 
     # -- aux devices --------------------------------------------------------------------------------------
 
     def air(self, cmd: Command) -> None:
         port = self.opts.air
-        self.air_on = True
+        self.hy.air_on = True
         text = {"M7": "M7", "M8": "M8"}.get(port, f"{port} S100")
         if text != (cmd.code or "") or cmd.params:
             self.replace(cmd, text)
 
     def air_off(self, cmd: Command) -> None:
         port = self.opts.air
-        self.air_on = False
+        self.hy.air_on = False
         text = "M9" if port in ("M7", "M8") else f"{port} S0"
         if text != (cmd.code or "") or cmd.params:
             self.replace(cmd, text)
 
     def footer(self) -> list[str]:
         lines = super().footer()
-        if self.air_on and self.opts.air not in ("M7", "M8"):
+        if self.hy.air_on and self.opts.air not in ("M7", "M8"):
             lines = [f"{self.opts.air} S0" if t == "M9" else t for t in lines]
         return lines
 

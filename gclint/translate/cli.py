@@ -4,13 +4,12 @@ from __future__ import annotations
 
 import sys
 
-import click
-
 from gclint.dialects.base import Dialect
 from gclint.io import AtomicWriter, OutputError
 from gclint.rules.base import Severity
 from gclint.syntax.source import Source, SourceError
-from gclint.translate.engine import TranslationResult, UnsupportedPair, translate_source, translator_for
+from gclint.translate.engine import TranslationResult, UnsupportedPair, translate_source
+from gclint.translate.pairs import translator_for
 
 
 def run_translate(
@@ -43,15 +42,15 @@ def run_translate(
         )
         translator = translator_for(source, target, options)
     except UnsupportedPair as exc:
-        click.echo(f"gclint: {exc}", err=True)
+        _say(f"gclint: {exc}")
         return 2
     except ValueError as exc:
-        click.echo(f"gclint: {exc}", err=True)
+        _say(f"gclint: {exc}")
         return 2
     try:
         src = Source.open(input_path)
     except SourceError as exc:
-        click.echo(f"gclint: {exc}", err=True)
+        _say(f"gclint: {exc}")
         return 2
     result = TranslationResult(src.display, source.name, target.name)
     target_path = output if output not in (None, "-") else None
@@ -72,15 +71,20 @@ def run_translate(
                 if _refused(result, unsupported):
                     out.discard()
     except SourceError as exc:
-        click.echo(f"gclint: {exc}", err=True)
+        _say(f"gclint: {exc}")
         return 2
     except OutputError as exc:
-        click.echo(f"gclint: {exc}", err=True)
+        _say(f"gclint: {exc}")
         return 2
     _report(result, unsupported)
     if _refused(result, unsupported):
         return 1
     return 0
+
+
+def _say(text: str) -> None:
+    """One line on standard error (no click here: gclint/translate is library code)."""
+    print(text, file=sys.stderr)
 
 
 def _collect(src: Source, translator, result: TranslationResult) -> bytes:
@@ -100,10 +104,9 @@ def _report(result: TranslationResult, unsupported: str) -> None:
     from gclint.reports.common import message  # masks secrets quoted from the file
 
     for f in result.findings:
-        click.echo(f"{f.path}:{f.line}:{f.column}: {f.code} {message(f)}", err=True)
+        _say(f"{f.path}:{f.line}:{f.column}: {f.code} {message(f)}")
     if unsupported == "error" and _refused(result, unsupported):
-        click.echo(
+        _say(
             f"gclint: {result.path}: not translated: {len(result.findings)} construct(s) cannot be translated "
-            "exactly (--unsupported error)",
-            err=True,
+            "exactly (--unsupported error)"
         )

@@ -1,5 +1,7 @@
 """The translation engine.  A ``Translator`` for a dialect pair turns each source line into zero or more
-output lines; the identity translator (same dialect on both sides) keeps every line as it is."""
+output lines; the identity translator (same dialect on both sides) keeps every line as it is.  Which
+translator serves which pair is pairs.py's business (``translator_for``); this module knows none of them,
+so the translators can import it without a cycle."""
 
 from __future__ import annotations
 
@@ -61,20 +63,6 @@ PlainMove = Callable[[bool, int, "str | None", "str | None", "str | None", "str 
 
 def _keep(g1: bool, number: int, x, y, z, e, f, ending: str) -> bool:
     return True
-
-
-def translator_for(source: Dialect, target: Dialect, options=None) -> Translator:
-    if source.name == target.name:
-        return Translator(source, target, options)
-    try:
-        from gclint.translate import pairs  # the dialect-pair translators (issue: translation)
-    except ImportError:
-        pairs = None  # type: ignore[assignment]
-    if pairs is not None:
-        translator = pairs.get(source, target, options)
-        if translator is not None:
-            return translator
-    raise UnsupportedPair(f"translation from {source.name} to {target.name} is not supported")
 
 
 def translate_source(source: Source, translator: Translator, result: TranslationResult) -> Iterator[str]:

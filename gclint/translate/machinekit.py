@@ -12,54 +12,23 @@ from __future__ import annotations
 from typing import ClassVar
 
 from gclint.syntax.nodes import Command
-from gclint.translate.base import (
-    TR_APPROX,
-    TR_DROPPED,
-    TR_LOST,
-    TR_NOTE,
-    TR_UNTRANSLATABLE,
-    WORKSPACES,
-    HyrelTranslator,
-    num,
-)
-from gclint.translate.marlin import _codes
+from gclint.translate.cnc import CncTranslator
+from gclint.translate.findings import TR_APPROX, TR_DROPPED, TR_LOST, TR_NOTE, TR_UNTRANSLATABLE
+from gclint.translate.findings import codes as _codes
 from gclint.translate.output import fmt
+from gclint.translate.words import num
 
 
-class MachinekitToHyrel(HyrelTranslator):
+class MachinekitToHyrel(CncTranslator):
     EXTRUDER = "A"
     E_MODE_FOLLOWS_POSITIONING: str | None = "the extruder (A) follows G90/G91 in Machinekit"
-    CHECK_EXPRESSIONS = True
-    END_CODES: ClassVar[frozenset[str]] = frozenset({"M2", "M30"})
     FAN_MAX = 255.0
     EXTRA_LETTERS: ClassVar[frozenset[str]] = frozenset("FEBCUVW")
 
-    HANDLERS: ClassVar[dict[str, str]] = {
-        "G0": "move",
-        "G1": "move",
-        "G2": "arc",
-        "G3": "arc",
-        "G4": "dwell_seconds",
-        "G17": "keep",
-        "G18": "keep",
-        "G19": "keep",
-        "G20": "units",
-        "G21": "units",
+    HANDLERS: ClassVar[dict[str, str]] = {  # besides cnc.CNC_HANDLERS
         "G22": "retract",
         "G23": "unretract",
         "G28": "mk_home",
-        "G90": "positioning",
-        "G91": "positioning",
-        "G92": "set_position",
-        "G92.1": "clear_g92",
-        **WORKSPACES,
-        "M0": "keep",
-        "M2": "end_program",
-        "M30": "end_program",
-        "M3": "spindle",
-        "M4": "spindle",
-        "M5": "spindle_stop",
-        "M6": "tool_change",
         "M7": "keep",
         "M8": "keep",
         "M9": "keep",
@@ -76,7 +45,6 @@ class MachinekitToHyrel(HyrelTranslator):
         "M300": "beep",
         "M701": "m701",
         "M702": "m702",
-        "G53": "g53",
     }
     DROPPED: ClassVar[dict[str, tuple[str, str]]] = {
         **_codes("M1", TR_DROPPED, "optional stop (off unless the operator enables it)"),
@@ -114,10 +82,6 @@ class MachinekitToHyrel(HyrelTranslator):
         **_codes("G10", TR_LOST, "tool table or coordinate system setting (G10 L..)"),
     }
 
-    def __init__(self, source, target, options=None) -> None:
-        super().__init__(source, target, options)
-        self.prepared: int | None = None
-
     def e_absolute(self) -> bool:
         return self.state.absolute  # A follows G90/G91
 
@@ -152,7 +116,7 @@ class MachinekitToHyrel(HyrelTranslator):
 
     def mk_home(self, cmd: Command) -> None:
         """Machinekit's g28.ngc does not home: it rapids the listed axes (all if none) to 0 and resets A."""
-        if not self.started_motion:
+        if not self.hy.started_motion:
             self.before_motion()
         params = cmd.params
         axes = [a for a in "XYZ" if a in params] or (["X", "Y", "Z"] if "A" not in params else [])
@@ -172,28 +136,11 @@ class MachinekitToHyrel(HyrelTranslator):
             cmd=cmd,
         )
 
-    def g53(self, cmd: Command) -> None:
-        self.untranslatable(
-            cmd, "machine-coordinate move (G53): the source machine's coordinates mean nothing on the Hyrel"
-        )
-
     def spindle(self, cmd: Command) -> None:
         s = num(cmd.params.get("S"))
         if s is not None:
             self.rpm = s
         self.spindle_on(cmd, self.rpm_percent(self.rpm) if self.rpm is not None else None)
-
-    def spindle_stop(self, cmd: Command) -> None:
-        self.spindle_off(cmd)
-
-    def tool_command(self, cmd: Command) -> None:
-        number = (cmd.code or "T")[1:]
-        if not number.lstrip("-").isdigit() or len(number) > 6:
-            self.untranslatable(cmd, "a tool given by an expression cannot be translated", key="T?")
-            return
-        # LinuxCNC: T prepares the tool, M6 changes to it
-        self.prepared = int(number)
-        self.consume(cmd)
 
     def tool_change(self, cmd: Command) -> None:
         index = num(cmd.params.get("T"))

@@ -12,22 +12,11 @@ from __future__ import annotations
 from typing import ClassVar
 
 from gclint.syntax.nodes import Command
-from gclint.translate.base import (
-    TR_APPROX,
-    TR_DROPPED,
-    TR_LOST,
-    TR_NOTE,
-    TR_UNTRANSLATABLE,
-    WORKSPACES,
-    HyrelTranslator,
-    num,
-)
+from gclint.translate.base import HyrelTranslator
+from gclint.translate.findings import TR_APPROX, TR_DROPPED, TR_LOST, TR_NOTE, TR_UNTRANSLATABLE
+from gclint.translate.findings import codes as _codes
 from gclint.translate.output import fmt, rewrite
-
-
-def _codes(text: str, code: str, reason: str) -> dict[str, tuple[str, str]]:
-    return {c: (code, reason) for c in text.split()}
-
+from gclint.translate.words import num
 
 # Codes with no Hyrel counterpart (research/dialects.md 2.1 and 1.8).  TR001: no effect on the job.
 _NO_EFFECT = {
@@ -161,29 +150,15 @@ _HOST_LOST = frozenset(
 class MarlinToHyrel(HyrelTranslator):
     """Marlin 2.x and Marlin-flavour slicer output -> Hyrel v5."""
 
-    HANDLERS: ClassVar[dict[str, str]] = {
-        "G0": "move",
-        "G1": "move",
-        "G2": "arc",
-        "G3": "arc",
+    HANDLERS: ClassVar[dict[str, str]] = {  # besides HyrelTranslator.HANDLERS
         "G4": "dwell",
         "G10": "g10",
         "G11": "g11",
-        "G17": "keep",
-        "G18": "keep",
-        "G19": "keep",
-        "G20": "units",
-        "G21": "units",
         "G28": "home",
         "G53": "machine_coordinates",
-        **WORKSPACES,
         "G59.1": "workspace_extra",
         "G59.2": "workspace_extra",
         "G59.3": "workspace_extra",
-        "G90": "positioning",
-        "G91": "positioning",
-        "G92": "set_position",
-        "G92.1": "clear_g92",
         "M0": "pause",
         "M1": "pause",
         "M3": "spindle",
@@ -268,15 +243,15 @@ class MarlinToHyrel(HyrelTranslator):
         if not self.evalues:
             self.remove(cmd, TR_NOTE, "E mode dropped: in native flow Hyrel does not use E amounts", key="e-mode")
             return
-        if not self.m229_written:
-            self.m229_written = True
+        if not self.hy.m229_written:
+            self.hy.m229_written = True
             self.before("M229 E1 D1", note="header: the E values carry the flow")
-        self.e_mode_written = absolute
+        self.hy.e_mode_written = absolute
 
     def home(self, cmd: Command) -> None:
-        if not self.started_motion:
+        if not self.hy.started_motion:
             self.before_motion(focus=False)
-        self.motors_off = False
+        self.hy.motors_off = False
         params = cmd.params
         axes = [a for a in "XYZ" if a in params]
         if "A" in params and "A" in self.opts.printer.axes:
@@ -387,7 +362,7 @@ class MarlinToHyrel(HyrelTranslator):
     def disengage(self, cmd: Command) -> None:
         params = cmd.params
         if not params:
-            self.motors_off = True
+            self.hy.motors_off = True
             return
         if "S" in params and not any(a in params for a in "XYZ"):
             self.remove(
@@ -400,7 +375,7 @@ class MarlinToHyrel(HyrelTranslator):
         if not any(a in params for a in "XYZ"):
             self.remove(cmd, TR_LOST, "disabling only the extruder motor has no Hyrel counterpart", key="M84-E")
             return
-        self.motors_off = True
+        self.hy.motors_off = True
         self.replace(cmd, cmd.code or "M84")
         self.report(
             TR_APPROX, f"{cmd.code} with axes: Hyrel cuts every motor (re-home before moving)", key="M84-axes", cmd=cmd
@@ -479,10 +454,10 @@ class MarlinToHyrel(HyrelTranslator):
             )
         else:
             self.temperature(cmd, "M109", address, None, window=True)
-        if self.RRF and index is not None and address is not None and address != self.focus:
+        if self.RRF and index is not None and address is not None and address != self.hy.focus:
             # RepRapFirmware's M109 T also selects the tool
             self.after(f"T{address}", note="RepRapFirmware's M109 T selects the tool")
-            self.focus = address
+            self.hy.focus = address
 
     def _slot(self, cmd: Command, default: int) -> int | None:
         """RepRapFirmware's bed/chamber slot P: P0 the first (T24), P1 the second (T25)."""
@@ -776,8 +751,8 @@ class RepRapToHyrel(MarlinToHyrel):
         """Wait for every temperature set without waiting: written as explicit waits with a tolerance."""
         window = num(cmd.params.get("S"))
         window_text = fmt(window) if window is not None else fmt(self.opts.temp_window)
-        waits = [f"{code} T{address} S{temp} R{window_text}" for address, (code, temp) in sorted(self.temps.items())]
-        self.temps.clear()
+        waits = [f"{code} T{address} S{temp} R{window_text}" for address, (code, temp) in sorted(self.hy.temps.items())]
+        self.hy.temps.clear()
         if not waits:
             self.remove(cmd, TR_NOTE, "M116 with no temperature set since the last wait; dropped", key="M116-none")
             return
