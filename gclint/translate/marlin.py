@@ -1,4 +1,4 @@
-"""Marlin and RepRapFirmware -> Hyrel v5 (research/dialects.md section 2.1).
+"""Marlin -> Hyrel v5 (research/dialects.md section 2.1; RepRapFirmware builds on it in reprap.py).
 
 The traps (dialects.md 1.7): M109/M190/M191 R is a target that also waits while cooling (Hyrel: a
 tolerance window); M106 S is 0-255 (RepRapFirmware also 0-1) and P is a fan index (Hyrel: duty during
@@ -11,140 +11,12 @@ from __future__ import annotations
 
 from typing import ClassVar
 
+import gclint.translate.marlin_codes as codes
 from gclint.syntax.nodes import Command
 from gclint.translate.base import HyrelTranslator
 from gclint.translate.findings import TR_APPROX, TR_DROPPED, TR_LOST, TR_NOTE, TR_UNTRANSLATABLE
-from gclint.translate.findings import codes as _codes
 from gclint.translate.output import fmt, rewrite
 from gclint.translate.words import num
-
-# Codes with no Hyrel counterpart (research/dialects.md 2.1 and 1.8).  TR001: no effect on the job.
-_NO_EFFECT = {
-    **_codes("M73 M73.2", TR_DROPPED, "print progress display"),
-    **_codes("M117 M118", TR_DROPPED, "display or host message"),
-    **_codes(
-        "M105 M114 M115 M119 M27 M31 M155 M154 M503 M122 M123 M43 M100 M111 M113 M430 M876",
-        TR_DROPPED,
-        "host report or diagnostic",
-    ),
-    **_codes("M400", TR_DROPPED, "wait for the move queue (Hyrel runs commands in order)"),
-    **_codes("M486 M555", TR_DROPPED, "object labels and print area for the host"),
-    **_codes("M75 M76 M77 M78", TR_DROPPED, "print job timer and statistics"),
-    **_codes("M108 M110", TR_DROPPED, "host protocol"),
-    **_codes("M20 M21 M22 M23 M24 M25 M26 M28 M29 M32 M33 M34 M524 M928", TR_DROPPED, "SD card operation"),
-    **_codes(
-        "M500 M501 M502 M504 M510 M511 M512 M575 M993 M994 M995 M997 M999",
-        TR_DROPPED,
-        "settings storage or firmware maintenance",
-    ),
-    **_codes("M862.1 M862.2 M862.3 M862.4 M862.5 M862.6 M16", TR_DROPPED, "printer, nozzle or firmware check"),
-    **_codes("M150 M250 M256 M355 M7219 M960", TR_DROPPED, "lights or display"),
-    **_codes("M80 M81 M85 M86 M87", TR_DROPPED, "power supply or idle timeout"),
-    **_codes("M120 M121 M540 M302 M412 M413 M591 M603 M217 M145 M149", TR_DROPPED, "firmware safety or preset setting"),
-    **_codes("M301 M303 M304 M305 M307 M308 M143 M142", TR_DROPPED, "heater configuration"),
-    **_codes(
-        "M92 M350 M351 M569 M906 M907 M908 M909 M910 M911 M912 M913 M914 M915 M916 M917 M919",
-        TR_DROPPED,
-        "stepper driver configuration (Repetrel configures the Hyrel machine)",
-    ),
-    **_codes(
-        "M260 M261 M42 M281 M282 M672 M860 M861 M862 M863 M864 M865 M866 M867 M868 M869 M871",
-        TR_DROPPED,
-        "pin, bus or sensor configuration",
-    ),
-    **_codes("M710", TR_DROPPED, "controller fan (the number is Hyrel's RTD enable)"),
-    **_codes(
-        "M971 M991 M1002 M975 M981 M982 M983 M1003 M1006 M1007 M973 M970 M970.3 M974 M976 M977 M972 M980.3"
-        " M963 M964 M969 M1002 M708 M709",
-        TR_DROPPED,
-        "vendor-specific (Bambu, Prusa) notification or calibration",
-    ),
-    **_codes("G81 G162 G392", TR_DROPPED, "vendor-specific report or check"),
-}
-
-# TR002: the source firmware did something here that Hyrel cannot do from G-code.
-_LOST = {
-    **_codes(
-        "M201 M201.2 M204 M205 M566",
-        TR_LOST,
-        "acceleration and jerk limits have no Hyrel G-code (M204 and M205 "
-        "mean no-ramp speed and homing speed in Hyrel firmware)",
-    ),
-    **_codes("M900 M572 M593 M592", TR_LOST, "pressure/linear advance and input shaping have no Hyrel counterpart"),
-    **_codes(
-        "G29 G29.1 G29.2 G30 G31 G32 G33 G34 G35 G80 G26 G425 G39 G380 G383 M420 M421 M422 M423 M425 M851 M48 "
-        "M290 M401 M402 G76 M192",
-        TR_LOST,
-        "bed levelling and probing calibration; Hyrel has none in G-code",
-    ),
-    **_codes(
-        "M207 M208 M209",
-        TR_LOST,
-        "firmware retraction settings (Hyrel heads carry their own unprime/prime settings, M721/M722)",
-    ),
-    **_codes("M206 M428 M218", TR_LOST, "home and hotend offsets (Repetrel declares head offsets with M6)"),
-    **_codes("M163 M164 M165 M166 M567", TR_LOST, "colour mixing"),
-    **_codes("M605", TR_LOST, "duplication mode (Hyrel clone squads need M702/M703 set up by hand)"),
-    **_codes("M701 M702", TR_LOST, "filament load/unload (the numbers are Hyrel head reporting and clone squads)"),
-    **_codes("M10 M11 M380 M381 M126 M127 M128 M129 M240", TR_LOST, "auxiliary output (valve, solenoid, camera)"),
-    **_codes("M665 M666 M951", TR_LOST, "kinematics configuration"),
-    **_codes("M404 M405 M406 M407", TR_LOST, "filament width sensor"),
-    **_codes("M280", TR_LOST, "servo position"),
-    **_codes("G12 G27 G60 M125", TR_LOST, "nozzle cleaning or parking moves"),
-    **_codes("M410", TR_LOST, "quick stop"),
-    **_codes("M193", TR_LOST, "laser cooler temperature"),
-    **_codes("M403", TR_LOST, "MMU filament type"),
-}
-
-_UNTRANSLATABLE = {
-    **_codes(
-        "G5 G6 G42 G61 G150 G38.2 G38.3 G38.4 G38.5",
-        TR_UNTRANSLATABLE,
-        "a move or probing move Hyrel has no command for (the toolpath changes)",
-    ),
-    **_codes("M808", TR_UNTRANSLATABLE, "repeat markers (a loop over part of the job)"),
-    **_codes("M112", TR_UNTRANSLATABLE, "emergency stop: Hyrel documents no e-stop code"),
-    # Bambu's AMS filament change: the numbers are Hyrel's laser and UV codes (M620-M623).
-    **_codes(
-        "M620 M620.1 M620.3 M620.10 M620.11 M621 M622 M622.1 M623 M624 M625",
-        TR_UNTRANSLATABLE,
-        "vendor filament-change sequence (the number is a Hyrel laser/UV code)",
-    ),
-}
-
-_HOST_NO_EFFECT = frozenset(
-    {
-        "EXCLUDE_OBJECT_DEFINE",
-        "EXCLUDE_OBJECT_START",
-        "EXCLUDE_OBJECT_END",
-        "EXCLUDE_OBJECT",
-        "SET_PRINT_STATS_INFO",
-        "RESPOND",
-        "SET_DISPLAY_TEXT",
-        "UPDATE_DELAYED_GCODE",
-        "SAVE_VARIABLE",
-        "M117",
-    }
-)
-_HOST_LOST = frozenset(
-    {
-        "SET_VELOCITY_LIMIT",
-        "SET_PRESSURE_ADVANCE",
-        "SET_RETRACTION",
-        "SET_GCODE_OFFSET",
-        "SET_INPUT_SHAPER",
-        "SET_FAN_SPEED",
-        "SET_LED",
-        "SET_HEATER_TEMPERATURE",
-        "TEMPERATURE_WAIT",
-        "SET_TEMPERATURE_FAN_TARGET",
-        "BED_MESH_PROFILE",
-        "BED_MESH_CLEAR",
-        "BED_MESH_CALIBRATE",
-        "SET_KINEMATIC_POSITION",
-        "SET_EXTRUDER_ROTATION_DISTANCE",
-    }
-)
 
 
 class MarlinToHyrel(HyrelTranslator):
@@ -192,7 +64,7 @@ class MarlinToHyrel(HyrelTranslator):
         "M30": "m30",
         "M2": "m2",
     }
-    DROPPED: ClassVar[dict[str, tuple[str, str]]] = {**_NO_EFFECT, **_LOST, **_UNTRANSLATABLE}
+    DROPPED: ClassVar[dict[str, tuple[str, str]]] = {**codes.NO_EFFECT, **codes.LOST, **codes.UNTRANSLATABLE}
     FAN_MAX = 255.0
     RRF = False
     E_MODE_FOLLOWS_POSITIONING: str | None = "Marlin's G90/G91 also set the E mode"
@@ -339,9 +211,9 @@ class MarlinToHyrel(HyrelTranslator):
     def extended(self, cmd: Command) -> None:
         """Klipper-style host commands found in Marlin-flavour files (Orca, Bambu, Klipper start macros)."""
         name = (cmd.code or "").upper()
-        if name in _HOST_NO_EFFECT:
+        if name in codes.HOST_NO_EFFECT:
             self.remove(cmd, TR_DROPPED, "host command with no effect on the job", key=name)
-        elif name in _HOST_LOST:
+        elif name in codes.HOST_LOST:
             self.remove(cmd, TR_LOST, "host (Klipper) setting has no Hyrel counterpart", key=name)
         else:
             self.untranslatable(cmd, "host macro (Klipper): its content is not known here", key=name)
@@ -578,223 +450,3 @@ class MarlinToHyrel(HyrelTranslator):
             return
         # percent -> multiplier (Hyrel M221 S: "direct flow multiplier, 1.0")
         self.replace(cmd, f"M221 T{address} S{fmt(s / 100, 4)}")
-
-
-class RepRapToHyrel(MarlinToHyrel):
-    """RepRapFirmware 3 (Duet) -> Hyrel v5: like Marlin, plus tool temperatures and offsets in G10, fan values
-    0-1, meta commands and macros (untranslatable), M116."""
-
-    HANDLERS: ClassVar[dict[str, str]] = {
-        "M116": "m116",
-        "M568": "m568",
-        "M98": "macro",
-        "M99": "macro_return",
-        "M291": "message_box",
-        "M226": "rrf_m226",
-        "M0": "rrf_stop",
-        "M1": "rrf_stop",
-        "M2": "end_program",
-    }
-    DROPPED: ClassVar[dict[str, tuple[str, str]]] = {
-        **MarlinToHyrel.DROPPED,
-        **_codes(
-            "M550 M551 M552 M553 M554 M555 M556 M557 M558 M559 M560 M561 M562 M563 M564 M570 M571 M573 M574 "
-            "M575 M576 M577 M578 M579 M580 M581 M582 M584 M585 M586 M587 M588 M589 M594 M595 M596 M597 M598 "
-            "M599 M650 M651 M667 M669 M671 M673 M674 M675 M905 M918 M929 M950 M951 M952 M953 M954 M955 M956 "
-            "M957 M998 M409 M409.1 M408 M36 M36.1 M37 M38 M39 M101 M102 M103 M144 M470 M471 M472 M500.1 "
-            "M569.1 M569.2 M569.3 M569.4 M569.5 M569.6 M569.7 M569.8 M569.9 M586.4 M292 M450 M451 M452 M453 "
-            "M201.1 M260.1 M260.2 M261.1 M261.2 M374 M375 M376 M505 M86",
-            TR_DROPPED,
-            "RepRapFirmware configuration or report (Repetrel configures the Hyrel machine)",
-        ),
-        **_codes("G22 G23", TR_LOST, "RepRapFirmware G22/G23 (tool change support) has no Hyrel counterpart"),
-        **_codes("G68 G69", TR_UNTRANSLATABLE, "coordinate rotation changes the toolpath"),
-        **_codes("G93", TR_UNTRANSLATABLE, "inverse-time feed (every F would need converting per move)"),
-        **_codes("G94", TR_DROPPED, "units-per-minute feed mode (Hyrel's only mode)"),
-    }
-    FAN_MAX = 255.0
-    RRF = True
-    E_MODE_FOLLOWS_POSITIONING = None  # RepRapFirmware: G90/G91 leave the E mode alone
-    CHECK_EXPRESSIONS = True
-    END_CODES = frozenset({"M2"})
-    MOVE_OVERRIDE_IGNORES_PLAIN = True  # move() below adds cases for H, S and R words only
-
-    def move(self, cmd: Command) -> None:
-        params = cmd.params
-        homing = "H" in params and num(params.get("H")) not in (None, 0)
-        if homing or (cmd.code == "G1" and num(params.get("S")) in (1, 2)):
-            self.untranslatable(
-                cmd,
-                "homing or endstop-sensing move (G1 H/S) is machine-specific; Hyrel's G1 H "
-                "applies a tool-height register",
-                key="G1-H",
-            )
-            return
-        if "R" in params and num(params.get("R")) not in (None, 0):
-            self.untranslatable(
-                cmd, "move to a saved restore point (G0/G1 R) depends on the firmware's memory", key="G1-R"
-            )
-            return
-        super().move(cmd)
-
-    def fallback(self, cmd: Command) -> None:
-        code = cmd.code
-        if (
-            cmd.kind == "gcode"
-            and code
-            and code[0] in "GM"
-            and code not in self.DROPPED
-            and code not in self.source.codes
-        ):
-            # RepRapFirmware runs the macro file sys/<code>.g for a code it does not know
-            self.untranslatable(
-                cmd, "RepRapFirmware runs a macro file for this code; its content is unknown here", key=code
-            )
-            return
-        super().fallback(cmd)
-
-    def dwell(self, cmd: Command) -> None:
-        """G4 S and P: RepRapFirmware's units are Hyrel's (S seconds, P milliseconds)."""
-
-    def _fan_value(self, cmd: Command) -> float | None:
-        s = num(cmd.params.get("S"))
-        if s is not None and s <= 1.0:
-            return s * 255  # RepRapFirmware: S 0.0-1.0 is a fraction, above 1 a 0-255 value
-        return s
-
-    def m106(self, cmd: Command) -> None:
-        params = cmd.params
-        if "S" not in params and any(letter in params for letter in "CLXBHTRAF"):
-            self.remove(
-                cmd,
-                TR_DROPPED,
-                "fan configuration (RepRapFirmware M106 with configuration parameters)",
-                key="M106-config",
-            )
-            return
-        super().m106(cmd)
-
-    def g10(self, cmd: Command) -> None:
-        params = cmd.params
-        if "L" in params:
-            level = num(params.get("L"))
-            if level in (2, 20):
-                self.untranslatable(
-                    cmd, "G10 L2/L20 sets workspace origins; not translated (use Repetrel fixture offsets and G54)"
-                )
-            else:
-                self.remove(cmd, TR_LOST, "tool offsets: Repetrel declares head offsets itself (M6)", key="G10-offset")
-            return
-        if "P" not in params:
-            self.firmware_retract(cmd, "M721", "firmware retract", "fw-retract")
-            return
-        index = self._tool_index(cmd, "P")
-        if any(a in params for a in "XYZ"):
-            if self.opts.tool_offsets == "m6":
-                self._offsets_as_m6(cmd, index)
-                if "S" not in params:
-                    return
-            else:
-                self.report(
-                    TR_LOST,
-                    "tool offsets in G10 dropped: Repetrel declares head offsets itself (M6; set "
-                    "tool-offsets=m6 to write them)",
-                    key="G10-offset",
-                    cmd=cmd,
-                )
-        if "S" in params:
-            if "R" in params:
-                self.report(TR_APPROX, "standby temperature (R) has no Hyrel counterpart", key="standby", cmd=cmd)
-            self.temperature(cmd, "M104", self.head(index), params["S"])
-        elif "R" in params:
-            self.remove(cmd, TR_APPROX, "standby temperature (R) has no Hyrel counterpart", key="standby")
-        else:
-            self.consume(cmd)
-
-    def _offsets_as_m6(self, cmd: Command, index: int | None) -> None:
-        """RepRapFirmware subtracts a tool's offset from the position; Hyrel's M6 declares the head's offset
-        (register O = position + 1, the v4 convention): written with the opposite sign, to verify."""
-        address = self.head(index)
-        if address is None:
-            return
-        words = [f"M6 T{address} O{address + 1}"]
-        for letter in "XYZ":
-            value = num(cmd.params.get(letter))
-            if value is not None:
-                words.append(f"{letter}{fmt(-value)}")
-        text = " ".join(words)
-        if "S" in cmd.params:
-            self.before(text, note="tool offsets")
-        else:
-            self.replace(cmd, text)
-        self.report(
-            TR_APPROX,
-            "tool offsets written as M6 (sign reversed, register O = head + 1): verify on the "
-            "machine; Repetrel also sends head offsets at job start",
-            key="G10-m6",
-            cmd=cmd,
-        )
-
-    def m568(self, cmd: Command) -> None:
-        params = cmd.params
-        index = self._tool_index(cmd, "P")
-        if "S" in params:
-            if "R" in params:
-                self.report(TR_APPROX, "standby temperature (R) has no Hyrel counterpart", key="standby", cmd=cmd)
-            self.temperature(cmd, "M104", self.head(index), params["S"])
-        else:
-            self.remove(
-                cmd, TR_APPROX, "tool settings without an active temperature have no Hyrel counterpart", key="M568"
-            )
-
-    def m116(self, cmd: Command) -> None:
-        """Wait for every temperature set without waiting: written as explicit waits with a tolerance."""
-        window = num(cmd.params.get("S"))
-        window_text = fmt(window) if window is not None else fmt(self.opts.temp_window)
-        waits = [f"{code} T{address} S{temp} R{window_text}" for address, (code, temp) in sorted(self.hy.temps.items())]
-        self.hy.temps.clear()
-        if not waits:
-            self.remove(cmd, TR_NOTE, "M116 with no temperature set since the last wait; dropped", key="M116-none")
-            return
-        *first, last = waits
-        if first:
-            self.before(*first, note="RepRapFirmware M116")
-        self.replace(cmd, last)
-        self.report(TR_NOTE, "M116 written as explicit waits for the temperatures set before it", key="M116", cmd=cmd)
-
-    def macro(self, cmd: Command) -> None:
-        self.untranslatable(cmd, "macro call: the macro's content is not translated")
-
-    def macro_return(self, cmd: Command) -> None:
-        self.remove(cmd, TR_DROPPED, "return from a macro", key="M99")
-
-    def message_box(self, cmd: Command) -> None:
-        s = num(cmd.params.get("S"))
-        if s is not None and s >= 2:
-            self.replace(cmd, "M0 ; message")
-            self.report(
-                TR_APPROX,
-                "blocking message box written as a pause (the message text is not shown)",
-                key="M291",
-                cmd=cmd,
-            )
-        else:
-            self.remove(cmd, TR_DROPPED, "message box", key="M291")
-
-    def rrf_m226(self, cmd: Command) -> None:
-        self.replace(cmd, "M0")
-        self.report(
-            TR_APPROX, "M226 (pause at this point) written as Hyrel's M0 (wait for Resume)", key="M226", cmd=cmd
-        )
-
-    def rrf_stop(self, cmd: Command) -> None:
-        self.replace(cmd, "M0")
-        self.report(
-            TR_APPROX,
-            f"RepRapFirmware {cmd.code} stops (and may switch heaters and motors off); written as Hyrel's pause M0",
-            key="M0-rrf",
-            cmd=cmd,
-        )
-
-    def extended(self, cmd: Command) -> None:
-        self.untranslatable(cmd, "extended command cannot be translated", key=cmd.code)

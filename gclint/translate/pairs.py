@@ -13,9 +13,10 @@ from gclint.translate.base import HyrelTranslator
 from gclint.translate.carvera import CarveraToHyrel
 from gclint.translate.engine import Translator, UnsupportedPair
 from gclint.translate.machinekit import MachinekitToHyrel
-from gclint.translate.marlin import MarlinToHyrel, RepRapToHyrel
+from gclint.translate.marlin import MarlinToHyrel
 from gclint.translate.options import TranslateOptions
 from gclint.translate.renumber import Chain, Renumber
+from gclint.translate.reprap import RepRapToHyrel
 
 # source dialect -> the translator into Hyrel v5
 TO_HYREL: dict[str, type[HyrelTranslator]] = {
