@@ -187,6 +187,7 @@ def test_foreign_source_to_v4_is_v5_renumbered() -> None:
         "T1",
         "G21",
         "G90",
+        "M104 T12 S200",  # tool 1 prints without a set-point of its own: the nozzle's (a single-nozzle job)
         "M229 E1 D1",
         "M82",
         "G1 X1 Y1 E0.5 F600",

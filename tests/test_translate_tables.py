@@ -104,9 +104,10 @@ MARLIN = [
     ),
     Row("X4 evalues: M229 before M82/M83", "M83", "M229 E1 D1\nM83", prelude=""),
     Row(
-        "X4 native: E reduced to E1",
+        "X4 native: E reduced to E1 (Hyrel computes the flow: TR003)",
         "G1 X1 Y1 E0.5 F600",
         "G21\nG90\nT0\nG1 X1 Y1 E1 F600",
+        "TR003",
         prelude="",
         settings={"flow": "native"},
     ),
@@ -185,7 +186,9 @@ MARLIN = [
     Row("2.1 G30 (probe)", "G30", "", "TR002"),
     Row("2.1 M420 (levelling on/off)", "M420 S1", "", "TR002"),
     # G53-G59, G90-G93
-    Row("2.1 G53 G1 prefix", "G53 G1 X10", "G53\nG1 X10\nG54", "TR003"),
+    # no workspace selected: none to invoke again after it (Hyrel's G54 would apply stored offsets)
+    Row("2.1 G53 G1 prefix", "G53 G1 X10", "G53\nG1 X10", "TR003"),
+    Row("2.1 G53 G1 prefix in a workspace", "G55\nG53 G1 X10", "G55\nG53\nG1 X10\nG55", "TR003 TR004"),
     Row("2.1 G54 select", "G55", "G55", "TR004"),
     Row("2.1 G59.1", "G59.1", "", "TR005", out="Hyrel has no G59.1-G59.3"),
     Row("2.1 G90 on Marlin also sets absolute E: M82", "G90", "G90\nM82"),
@@ -196,10 +199,22 @@ MARLIN = [
     Row("2.1 G92.1", "G92.1", "G93", "TR004"),
     # M0-M9
     Row("2.1 M0 (Marlin)", "M0", "M0"),
-    Row("2.1 M0 S (timeout)", "M0 S30", "M0", "TR004"),
+    Row("2.1 M0 S (timeout): Hyrel waits for Resume", "M0 S30", "M0", "TR003"),
     Row("2.1 M1 (Marlin: M0 alias)", "M1", "M0"),
     Row("2.1 M3 S (PWM 0-255)", "M3 S255", "M3 T0 S100", "TR003"),
-    Row("2.1 M3 then M4: stopped first", "M3 S255\nM4 S255", "M3 T0 S100\nM5 T0\nM4 T0 S100", "TR003"),
+    Row(
+        "2.1 M3 then M4: stopped first, then a pause until it stands still",
+        "M3 S255\nM4 S255",
+        "M3 T0 S100\nM5 T0\nM0 ; gclint: spindle stopped; resume when it stands still\nM4 T0 S100",
+        "TR003",
+    ),
+    Row(
+        "2.1 M3 then M4 with spindle-stop-dwell",
+        "M3 S255\nM4 S255",
+        "M3 T0 S100\nM5 T0\nG4 S5\nM4 T0 S100",
+        "TR003",
+        settings={"spindle_stop_dwell": "5"},
+    ),
     Row("2.1 M5", "M3 S128\nM5", "M3 T0 S50.2\nM5 T0", "TR003"),
     Row("2.1 M5 with spindle=T20", "M5", "M5 T20", settings={"spindle": "T20"}, v4="M5 T26"),
     Row(
@@ -283,7 +298,7 @@ MARLIN = [
     Row("2.1 M300", "M300 S440 P200", "M792 ; BEEP", "TR004"),
     Row("2.1 M400", "M400", "", "TR001"),
     Row("2.1 M500-M503", "M500\nM501\nM502", "", "TR001"),
-    Row("2.1 M600", "M600", "M0 ; filament change", "TR003"),
+    Row("2.1 M600", "M600", "M0 ; gclint: filament change", "TR003"),
     Row(
         "2.1 M605 S2 (duplication)",
         "M605 S2",
@@ -370,7 +385,7 @@ REPRAP = [
     Row("2.1 RRF M140 P1 (second bed)", "M140 P1 S60", "M140 T25 S60", v4="M140 T92 S60"),
     Row("2.1 RRF M140 S-273.1 (off)", "M140 S-273.1", "M140 T24 S0"),
     Row("2.1 RRF M226 (pause)", "M226", "M0", "TR003"),
-    Row("2.1 RRF M291 S2 (blocking message)", 'M291 P"Check the bed" S2', "M0 ; message", "TR003"),
+    Row("2.1 RRF M291 S2 (blocking message)", 'M291 P"Check the bed" S2', "M0 ; gclint: message", "TR003"),
     Row("2.1 RRF M563 M584 M950 (configuration)", 'M563 P0 D0 H1\nM584 X0 Y1\nM950 H1 C"out1"', "", "TR001"),
     Row("2.1 RRF M98 (macro call)", 'M98 P"homeall.g"', "", "TR005"),
     Row("2.1 RRF unknown code runs a macro file", "M4000 S1", "", "TR005"),

@@ -9,7 +9,7 @@ from __future__ import annotations
 
 import gclint.translate.arcs as arcs
 from gclint.syntax.nodes import Command
-from gclint.translate.findings import TR_NOTE, TR_UNTRANSLATABLE
+from gclint.translate.findings import TR_APPROX, TR_NOTE, TR_UNTRANSLATABLE
 from gclint.translate.output import fmt, rewrite
 from gclint.translate.words import INCH, num
 
@@ -27,8 +27,10 @@ class ArcMoves:
         ext = self.EXTRUDER
         delta = self.e_delta(cmd) if ext in params else None
         extruding = delta is not None and delta > 0
+        if extruding and self.sync_due:
+            self.sync_working_head()
         turns = num(params.get("P")) if "P" in params else None
-        if plane != 17 or (turns is not None and turns >= 1) or (extruding and self.evalues) or self.inch:
+        if plane != 17 or (turns is not None and turns >= 1) or (extruding and self.evalues):
             self.linearize(cmd, plane, delta, int(turns or 0))
             return
         drop = ""
@@ -39,7 +41,8 @@ class ArcMoves:
             if centre is None:
                 return
             drop += "R"
-            values["I"], values["J"] = fmt(centre[0]), fmt(centre[1])
+            scale = INCH if self.inch else 1.0
+            values["I"], values["J"] = fmt(centre[0] * scale), fmt(centre[1] * scale)
             self.report(
                 TR_NOTE, "R-form arc written with its centre I/J (Hyrel's G2/G3 take no R)", key="arc-R", cmd=cmd
             )
@@ -49,6 +52,7 @@ class ArcMoves:
             drop += "P"
         if ext in params:
             if extruding:
+                self.native_flow(cmd)
                 if ext != "E":
                     drop += ext
                     add = ("E1",)
@@ -58,8 +62,18 @@ class ArcMoves:
                 drop += ext
                 if self.evalues and self.e_absolute() and delta:
                     self.after(f"G92 E{self.scaled_e(params[ext])}", note="keeps Hyrel's E position")
+        if self.inch:  # X10: every length in mm (the arc stays an arc)
+            for letter in "XYZIJ":
+                if letter in params and letter not in drop and letter not in values:
+                    v = num(params[letter])
+                    if v is not None:
+                        values[letter] = fmt(v * INCH)
         if "F" in params:
-            self.hy.feed = num(params["F"])
+            f = num(params["F"])
+            if f is not None and self.inch:
+                f *= INCH
+                values["F"] = fmt(f, 2)
+            self.hy.feed = f
         else:
             feed = self.source_feed()
             if feed is not None and feed != self.hy.feed:
@@ -100,6 +114,18 @@ class ArcMoves:
         params = cmd.params
         a, b, oa, ob, helix = arcs.PLANES[plane]
         start = {axis: st.position.get(axis) for axis in (a, b, helix)}
+        if start[helix] is None and (helix not in params or not st.absolute):
+            start[helix] = 0.0  # no helix, or a relative one: the segments need no absolute start
+        elif start[helix] is None:
+            start[helix] = num(params.get(helix))  # the helix from an unknown height: reached on the first segment
+            if start[helix] is not None:
+                self.report(
+                    TR_APPROX,
+                    f"helical arc from an unknown {helix}: the segments go to {helix}{params[helix]} at once",
+                    key="arc-helix-unknown",
+                    cmd=cmd,
+                    aspects=("path",),
+                )
         if any(v is None for v in start.values()):
             if "R" in params:
                 self.untranslatable(
@@ -131,7 +157,17 @@ class ArcMoves:
                 offsets = arcs.centre_from_radius(end[a] - start[a], end[b] - start[b], radius, clockwise)  # type: ignore[operator]
             else:
                 offsets = (num(params.get(oa)) or 0.0, num(params.get(ob)) or 0.0)
-            points = arcs.segments(start, end, offsets, clockwise, plane, turns)  # type: ignore[arg-type]
+            unit = INCH if self.inch else 1.0  # the tolerance is in mm, the geometry in the source's unit
+            points = arcs.segments(
+                start,  # type: ignore[arg-type]
+                end,
+                offsets,
+                clockwise,
+                plane,
+                turns,
+                tolerance=arcs.CHORD_TOLERANCE / unit,
+                max_segment=arcs.MAX_SEGMENT / unit,
+            )
         except arcs.ArcError as exc:
             self.untranslatable(cmd, f"arc cannot be drawn: {exc}", key="arc-error")
             return
@@ -156,6 +192,7 @@ class ArcMoves:
                         e_words[k - 1] = "E" + fmt(total - done, 5)
                         done = total
             elif extruding:
+                self.native_flow(cmd)
                 e_words = ["E1"] * len(points)
             elif self.evalues and self.e_absolute() and delta:
                 self.after(f"G92 E{self.scaled_e(params[ext])}", note="keeps Hyrel's E position")
@@ -204,7 +241,7 @@ class ArcMoves:
         reason = "R-form arc" if "R" in params else (f"arc in the G{plane} plane" if plane != 17 else "arc")
         self.replace(cmd, texts[0], note=f"{reason} written as {len(texts)} G1 segments")
         if len(texts) > 1:
-            self._edit().after[:0] = texts[1:]
+            self.after(*texts[1:], note=f"{reason} segment", first=True)
         if plane != 17 or "R" in params or turns:
             self.report(
                 TR_NOTE,

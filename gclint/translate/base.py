@@ -29,15 +29,16 @@ from gclint.machine.interpreter import Interpreter
 from gclint.syntax.nodes import ASSIGNMENT, EXTENDED, GCODE, IMPLICIT, META, OWORD, Command, Line
 from gclint.translate.arc_moves import ArcMoves
 from gclint.translate.engine import PlainMove, TranslationResult, Translator
-from gclint.translate.findings import TR_AFTER_END, TR_LOST, TR_UNTRANSLATABLE
+from gclint.translate.findings import TR_AFTER_END, TR_APPROX, TR_LOST, TR_NOTE, TR_UNTRANSLATABLE, dropped_aspects
 from gclint.translate.heads import Heads
 from gclint.translate.modal import Modal
 from gclint.translate.motion import Motion
 from gclint.translate.options import TranslateOptions
-from gclint.translate.output import LineEdit
+from gclint.translate.output import LINE_LIMIT, LineEdit, fit_line
 from gclint.translate.program import Program
 from gclint.translate.spindle import Spindles
 from gclint.translate.state import HyrelSide
+from gclint.translate.tools import SourceTools
 from gclint.translate.words import has_expression
 from gclint.translate.writer import LineWriter
 
@@ -78,6 +79,7 @@ class HyrelTranslator(LineWriter, Heads, Program, Motion, ArcMoves, Modal, Spind
     # set E absolute/relative; Machinekit: the extruder axis A follows them; Hyrel's do not, dialects.md
     # 1.4 M82/M83 and 2.1 G90 row); None where the E mode is independent (RepRapFirmware, Carvera).
     E_MODE_FOLLOWS_POSITIONING: str | None = None
+    DEFAULT_WORKSPACE: str | None = None  # the workspace the source starts in (CNC sources: G54)
 
     def __init__(self, source: Dialect, target: Dialect, options: TranslateOptions | None = None) -> None:
         super().__init__(source, target, options)
@@ -95,6 +97,15 @@ class HyrelTranslator(LineWriter, Heads, Program, Motion, ArcMoves, Modal, Spind
                 self.handlers[code] = getattr(self, name)
         self.hy = HyrelSide()  # what the Hyrel printer will believe
         self.rpm: float | None = None  # the source's modal spindle speed (S words)
+        self.tools = SourceTools()  # what the source firmware believes about its tools (tools.py)
+        self.sync_due = False  # a tool change: carry set-point, fan and flow before the next working move
+        # native flow: the layer height Hyrel computes the flow with (M756), per layer (motion.py)
+        self.layer_z: float | None = None
+        self.layer_moves = 0
+        self.layer_height: float | None = None  # stated by the slicer for the coming layer
+        self.default_layer_height: float | None = None  # stated once for the whole job
+        self.height_written: float | None = None
+        self.spiral = False
         # the file
         self.default_ending = "\n"
         self._ending_known = False
@@ -114,6 +125,50 @@ class HyrelTranslator(LineWriter, Heads, Program, Motion, ArcMoves, Modal, Spind
         return iter(())
 
     def translate_line(self, line: Line, result: TranslationResult) -> Iterator[str]:  # type: ignore[override]
+        out = self._translate(line, result)
+        if type(out) is tuple:
+            if len(out[0]) <= LINE_LIMIT:
+                return out  # type: ignore[return-value]
+        elif all(len(piece) <= LINE_LIMIT + 2 for piece in out):  # +2: the line ending
+            return out  # type: ignore[return-value]
+        return self._fit(line, out)  # type: ignore[arg-type]
+
+    def _fit(self, line: Line, out: tuple | list) -> list[str]:
+        """Output lines over Hyrel's 100 characters ("all lines will be truncated at 100 characters", Gcode
+        page, M0): a comment goes onto lines of its own, wrapped; an M0/M792 message is cut; a command
+        that is still too long is reported."""
+        pieces = [out[0] + out[1]] if type(out) is tuple else list(out)
+        fitted: list[str] = []
+        self.line, self.edit = line, None
+        for piece in pieces:
+            text = piece.rstrip("\r\n")
+            ending = piece[len(text) :] or self.default_ending
+            if len(text) <= LINE_LIMIT:
+                fitted.append(piece)
+                continue
+            lines, what = fit_line(text)
+            if what == "wrapped":
+                self.report(TR_NOTE, "comment longer than Hyrel's 100-character lines: wrapped", key="wrap")
+            elif what == "cut":
+                self.report(
+                    TR_APPROX,
+                    "M0/M792 text longer than Hyrel's 100-character lines: cut at 100 (Repetrel truncates it)",
+                    key="cut",
+                    aspects=(),
+                )
+            else:
+                self.report(
+                    TR_APPROX,
+                    "a command longer than Hyrel's 100-character lines: Repetrel truncates it",
+                    key="too-long",
+                )
+            fitted.extend(text + (ending if i == len(lines) - 1 else ending) for i, text in enumerate(lines))
+            if not piece.endswith(("\n", "\r")):
+                fitted[-1] = fitted[-1].rstrip("\r\n")
+        self.edit = None
+        return fitted
+
+    def _translate(self, line: Line, result: TranslationResult) -> tuple | list:
         ending = line.ending
         self._last_ending = ending
         if not self._ending_known and ending:
@@ -128,6 +183,8 @@ class HyrelTranslator(LineWriter, Heads, Program, Motion, ArcMoves, Modal, Spind
                 dropped.dropped = dropped.changed = True
                 self.report(TR_UNTRANSLATABLE, "the line could not be parsed; dropped", key="unparsed")
                 return dropped.render(self.annotate, self.default_ending)  # type: ignore[return-value]
+            if not self.evalues and parsed.comments:
+                self.layer_hint(line.raw)
             return (line.raw, ending)  # type: ignore[return-value]
         self.line = line
         self.edit = None
@@ -220,7 +277,7 @@ class HyrelTranslator(LineWriter, Heads, Program, Motion, ArcMoves, Modal, Spind
             return
         entry = self.DROPPED.get(code)  # type: ignore[arg-type]
         if entry is not None:
-            self.remove(cmd, entry[0], entry[1], key=code)
+            self.remove(cmd, entry[0], entry[1], key=code, aspects=dropped_aspects(code, entry[0]))  # type: ignore[arg-type]
             return
         if kind == GCODE and code and code[0] == "T":
             self.tool_command(cmd)

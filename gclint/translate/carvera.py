@@ -24,7 +24,9 @@ class CarveraToHyrel(CncTranslator):
     EXTRA_LETTERS: ClassVar[frozenset[str]] = frozenset("SABE")
 
     MACHINE = "the Carvera's machine"
+    END_CODES: ClassVar[frozenset[str]] = frozenset({"M2"})  # "M30 End of the program, no action on the Carvera"
     HANDLERS: ClassVar[dict[str, str]] = {  # besides cnc.CNC_HANDLERS
+        "M30": "m30",
         "G28": "clearance",
         "M7": "air",
         "M9": "air_off",
@@ -102,6 +104,7 @@ class CarveraToHyrel(CncTranslator):
                 f"rotary axis words dropped: the {self.opts.printer.name} has no A/B axis (use --printer ehr or 16a)",
                 key="A",
                 cmd=cmd,
+                aspects=("position", "path", "moves", "feed"),
             )
         if "E" in params:
             drop += "E"
@@ -119,13 +122,22 @@ class CarveraToHyrel(CncTranslator):
         if self.laser:
             if s > 1:
                 self.report(
-                    TR_APPROX, "laser power above 1 taken as percent (Carvera's laser S is 0-1)", key="laser-S", cmd=cmd
+                    TR_APPROX,
+                    "laser power above 1 taken as percent (Carvera's laser S is 0-1)",
+                    key="laser-S",
+                    cmd=cmd,
+                    aspects="laser",
                 )
                 self.laser_power = min(100.0, s)
             else:
                 self.laser_power = s * 100
             return
         super().speed_word(cmd)
+
+    def m30(self, cmd: Command) -> None:
+        """ "M30 | End of the program, no action on the Carvera" (carvera-mcodes.md): the code after it runs
+        (example programs run several passes, each ending in M30).  Hyrel's M30 would end the job."""
+        self.remove(cmd, TR_DROPPED, "no action on the Carvera (the code after it runs); dropped", key="M30")
 
     def clearance(self, cmd: Command) -> None:
         self.remove(
@@ -134,6 +146,7 @@ class CarveraToHyrel(CncTranslator):
             "Carvera's G28 goes to the clearance position; Hyrel's G28 homes and clears "
             "offsets, so it is dropped: add a safe retract",
             key="G28",
+            aspects="position",
         )
 
     def motors_on(self, cmd: Command) -> None:
@@ -144,10 +157,12 @@ class CarveraToHyrel(CncTranslator):
         self.hy.motors_off = True
         if cmd.params:
             self.replace(cmd, cmd.code or "M84")
-            self.report(TR_APPROX, f"{cmd.code} with axes: Hyrel cuts every motor", key="M18", cmd=cmd)
+            self.report(
+                TR_APPROX, f"{cmd.code} with axes: Hyrel cuts every motor", key="M18", cmd=cmd, aspects="position"
+            )
 
     def pause(self, cmd: Command) -> None:
-        self.replace(cmd, "M0 ; pause")
+        self.pause_command(cmd, "M0 ; gclint: pause (Carvera M600)")
 
     # -- spindle, tools, laser ----------------------------------------------------------------------------
 
@@ -160,7 +175,13 @@ class CarveraToHyrel(CncTranslator):
             self.consume(cmd, "laser mode: firing follows the moves' power (E1 on firing moves)")
             return
         if cmd.code == "M4":
-            self.report(TR_APPROX, "M4 is not documented on the Carvera; written as Hyrel's M4", key="M4", cmd=cmd)
+            self.report(
+                TR_APPROX,
+                "M4 is not documented on the Carvera; written as Hyrel's M4",
+                key="M4",
+                cmd=cmd,
+                aspects="spindle",
+            )
         if s is not None:
             self.rpm = s
         rpm = self.rpm
@@ -177,11 +198,17 @@ class CarveraToHyrel(CncTranslator):
         index = num(cmd.params.get("T"))
         tool = int(index) if index is not None else self.prepared
         if tool is None:
-            self.remove(cmd, TR_LOST, "tool change with no tool", key="M6")
+            self.remove(cmd, TR_LOST, "tool change with no tool", key="M6", aspects=("head", "spindle"))
             return
         if tool <= 0:
             what = "the wireless probe (T0)" if tool == 0 else "no tool (T-1)"
-            self.remove(cmd, TR_LOST, f"tool change to {what} has no Hyrel counterpart; dropped", key=("M6", tool))
+            self.remove(
+                cmd,
+                TR_LOST,
+                f"tool change to {what} has no Hyrel counterpart; dropped",
+                key=("M6", tool),
+                aspects=("head", "spindle"),
+            )
             return
         if tool in self.opts.tool_map:
             self.select_tool(cmd, tool)
@@ -192,17 +219,18 @@ class CarveraToHyrel(CncTranslator):
         if address in self.hy.spindles_on:
             lines.append(f"M5 T{address}")
             self.hy.spindles_on.pop(address, None)
-        lines.append(f"M0 ; change to tool {tool}")
+        lines.append(f"M0 ; gclint: change to tool {tool}")
         *first, last = lines
         if first:
-            self.before(*first)
-        self.replace(cmd, last)
+            self.before(*first, note="spindle off for the manual tool change")
+        self.pause_command(cmd, last)
         self.report(
             TR_APPROX,
             "automatic tool change written as a manual change (spindle off, pause); map tools "
             "to Hyrel heads with --tool-map to switch heads instead",
             key="M6-manual",
             cmd=cmd,
+            aspects=("head", "spindle"),
         )
 
     def laser_mode(self, cmd: Command) -> None:
@@ -217,6 +245,7 @@ class CarveraToHyrel(CncTranslator):
             "get E1 and the power M621 P",
             key="M321",
             cmd=cmd,
+            aspects="laser",
         )
 
     def laser_mode_off(self, cmd: Command) -> None:
@@ -252,7 +281,7 @@ class CarveraToHyrel(CncTranslator):
     def vacuum(self, cmd: Command) -> None:
         s = cmd.params.get("S") or "100"
         self.replace(cmd, f"M679 S{s}")
-        self.report(TR_APPROX, "vacuum written as Hyrel's M679 (30M and ESR only)", key="M801", cmd=cmd)
+        self.report(TR_APPROX, "vacuum written as Hyrel's M679 (30M and ESR only)", key="M801", cmd=cmd, aspects="aux")
 
     def vacuum_off(self, cmd: Command) -> None:
         self.replace(cmd, "M679 S0")

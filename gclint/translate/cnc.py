@@ -14,7 +14,7 @@ from gclint.translate.base import HyrelTranslator
 CNC_HANDLERS: dict[str, str] = {
     "G4": "dwell_seconds",  # G4 P is seconds (LinuxCNC, Carvera grbl mode); Hyrel P is milliseconds
     "G53": "g53",
-    "M0": "keep",
+    "M0": "stop",
     "M2": "end_program",
     "M30": "end_program",
     "M3": "spindle",
@@ -31,6 +31,7 @@ class CncTranslator(HyrelTranslator):
     CHECK_EXPRESSIONS = True
     END_CODES: ClassVar[frozenset[str]] = frozenset({"M2", "M30"})
     MACHINE = "the source machine's"  # whose machine coordinates G53 names (messages)
+    DEFAULT_WORKSPACE = "G54"  # LinuxCNC and the Carvera start in G54 (research/dialects.md 1.1, G54-G59)
 
     def __init__(self, source, target, options=None) -> None:
         super().__init__(source, target, options)
@@ -51,6 +52,10 @@ class CncTranslator(HyrelTranslator):
             f"machine-coordinate move (G53): {self.MACHINE} coordinates mean nothing on the Hyrel",
             key="G53",
         )
+
+    def stop(self, cmd: Command) -> None:
+        """M0: a pause on both sides."""
+        self.pause_command(cmd, "M0")
 
     def spindle_stop(self, cmd: Command) -> None:
         self.spindle_off(cmd)

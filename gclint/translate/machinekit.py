@@ -103,10 +103,39 @@ class MachinekitToHyrel(CncTranslator):
             drop += "F"  # LinuxCNC's G0 ignores F (the F still sets the feed of later G1s)
         if "E" in params:
             drop += "E"
+            self.report(
+                TR_UNTRANSLATABLE,
+                "E is not a word of Machinekit/LinuxCNC (the extruder is the A axis): the E word is dropped and "
+                "the move does not extrude (was the job written for another firmware?)",
+                key="E-word",
+                cmd=cmd,
+                aspects="e",
+            )
+        axes = self.opts.printer.axes
+        lost = [letter for letter in "BCUVW" if letter in params and letter not in axes]
+        if lost:
+            self.report(
+                TR_UNTRANSLATABLE,
+                f"axis words {' '.join(lost)} dropped: the {self.opts.printer.name} has no such axes "
+                "(A is the extruder here)",
+                key=("axes", *lost),
+                cmd=cmd,
+                aspects=("position", "path", "moves", "feed"),
+            )
         for letter in "BCUVW":
-            if letter in params:
+            if letter in params and letter not in axes:
                 drop += letter
         return (drop, ()) if drop else None
+
+    def extruding_rapid(self, cmd: Command) -> None:
+        self.report(
+            TR_APPROX,
+            "a rapid (G0) that moves the extruder (A): Hyrel's G0 cannot extrude, so it is written as a G1 at the "
+            "modal feed",
+            key="G0-A",
+            cmd=cmd,
+            aspects=("moves", "feed", "position", "path", "e"),
+        )
 
     def retract(self, cmd: Command) -> None:
         self.firmware_retract(cmd, "M721", f"{cmd.code} retraction", "G22")
@@ -120,18 +149,17 @@ class MachinekitToHyrel(CncTranslator):
             self.before_motion()
         params = cmd.params
         axes = [a for a in "XYZ" if a in params] or (["X", "Y", "Z"] if "A" not in params else [])
-        lines = []
-        if axes:
-            lines.append("G0 " + " ".join(f"{a}0" for a in axes))
+        # g28.ngc: "G0 X0", then "G0 Y0", then "G0 Z0" (one axis at a time), then "G92 A0"
+        lines = [f"G0 {a}0" for a in axes]
         if "A" in params or not any(a in params for a in "XYZ"):
             lines.append("G92 E0")
         self.replace(cmd, lines[0])
         if len(lines) > 1:
-            self.after(*lines[1:])
+            self.after(*lines[1:], note="Machinekit's G28, one axis at a time")
         self.report(
-            TR_APPROX,
-            "Machinekit's G28 moves to 0 without homing; written as a G0 to 0 (and G92 E0). "
-            "Hyrel homing belongs in the header",
+            TR_NOTE,
+            "Machinekit's G28 (g28.ngc) does not home: it moves X, then Y, then Z to 0 and resets the "
+            "extruder; written as the same G0 moves and G92 E0",
             key="G28",
             cmd=cmd,
         )
@@ -160,11 +188,13 @@ class MachinekitToHyrel(CncTranslator):
         index = num(params.get("T"))
         return params.get("P"), int(index) if index is not None else None
 
-    def _temp(self, cmd: Command, code: str, address: int | None, temp: str | None, wait: bool) -> None:
+    def _temp(
+        self, cmd: Command, code: str, address: int | None, temp: str | None, wait: bool, tool: int | None = None
+    ) -> None:
         if temp is None:
             self.remove(cmd, TR_DROPPED, f"{cmd.code} without a temperature sets nothing", key=f"{cmd.code}-none")
             return
-        self.temperature(cmd, code, address, temp, window=wait)
+        self.temperature(cmd, code, address, temp, window=wait, tool=tool)
         if wait:
             self.report(
                 TR_NOTE,
@@ -176,11 +206,11 @@ class MachinekitToHyrel(CncTranslator):
 
     def m104(self, cmd: Command) -> None:
         temp, index = self._flavour(cmd)
-        self._temp(cmd, "M104", self.head(index), temp, False)
+        self._temp(cmd, "M104", self.head(index), temp, False, tool=index)
 
     def m109(self, cmd: Command) -> None:
         temp, index = self._flavour(cmd)
-        self._temp(cmd, "M109", self.head(index), temp, True)
+        self._temp(cmd, "M109", self.head(index), temp, True, tool=index)
 
     def m140(self, cmd: Command) -> None:
         temp = cmd.params.get("S", cmd.params.get("P"))
@@ -204,25 +234,25 @@ class MachinekitToHyrel(CncTranslator):
             self.report(
                 TR_NOTE, "M106 I (execute at once) dropped: Hyrel executes M106 in order", key="M106-I", cmd=cmd
             )
-        self.fan(cmd, self.head(index if index is not None else 0, "fan"), num(value))
+        self.fan(cmd, self.head(index if index is not None else 0, "fan"), num(value), index=index)
 
     def m107(self, cmd: Command) -> None:
         index = num(cmd.params.get("T", cmd.params.get("P")))
-        self.fan_off(cmd, self.head(int(index) if index is not None else 0, "fan"))
+        tool = int(index) if index is not None else 0
+        self.fan_off(cmd, self.head(tool, "fan"), index=tool)
 
     def m221(self, cmd: Command) -> None:
         factor = num(cmd.params.get("P"))
-        address = self.head(None)
-        if factor is None or address is None:
+        if factor is None:
             self.remove(cmd, TR_DROPPED, "M221 without a factor sets nothing", key="M221")
             return
-        self.replace(cmd, f"M221 T{address} S{fmt(factor, 4)}")
+        self.flow(cmd, self.head(None), factor)
 
     def m226(self, cmd: Command) -> None:
-        self.replace(cmd, "M0")
+        self.pause_command(cmd, "M0")
 
     def beep(self, cmd: Command) -> None:
-        self.before("M792 ; BEEP")
+        self.before("M792 ; BEEP", note="M300 tone")
         self.consume(cmd)
         self.report(
             TR_NOTE, "tone written as Hyrel's BEEP action: frequency and duration are lost", key="M300", cmd=cmd

@@ -18,6 +18,16 @@ from gclint.translate.findings import TR_APPROX, TR_DROPPED, TR_LOST, TR_NOTE, T
 from gclint.translate.output import fmt, rewrite
 from gclint.translate.words import num
 
+# Klipper host settings whose loss the meaning diff can see (the others: acceleration, shaping...)
+_HOST_ASPECTS: dict[str, tuple[str, ...]] = {
+    "SET_FAN_SPEED": ("aux", "fan"),
+    "SET_HEATER_TEMPERATURE": ("temp", "beds"),
+    "TEMPERATURE_WAIT": ("temp", "beds"),
+    "SET_GCODE_OFFSET": ("position",),
+    "SET_KINEMATIC_POSITION": ("position",),
+    "SET_EXTRUDER_ROTATION_DISTANCE": ("e",),
+}
+
 
 class MarlinToHyrel(HyrelTranslator):
     """Marlin 2.x and Marlin-flavour slicer output -> Hyrel v5."""
@@ -73,6 +83,7 @@ class MarlinToHyrel(HyrelTranslator):
     def __init__(self, source, target, options=None) -> None:
         super().__init__(source, target, options)
         self.wcs = "G54"
+        self.wcs_selected = False  # the job selected a workspace (G54-G59) itself
 
     # -- motion ---------------------------------------------------------------------------------------
 
@@ -86,6 +97,7 @@ class MarlinToHyrel(HyrelTranslator):
                 "S (laser power) on a move dropped: Hyrel's G1 S is a flow multiplier and G2 S a segment size",
                 key="move-S",
                 cmd=cmd,
+                aspects=("laser", "spindle"),
             )
         if ("A" in params or "B" in params) and "A" not in self.opts.printer.axes:
             drop += "AB"
@@ -94,6 +106,7 @@ class MarlinToHyrel(HyrelTranslator):
                 f"A/B axis words dropped: the {self.opts.printer.name} has no A/B axes",
                 key="AB",
                 cmd=cmd,
+                aspects=("position", "path", "moves", "feed"),
             )
         for letter in "UVWCHK" if cmd.code in ("G0", "G1") else "UVWCH":
             if letter in params:
@@ -140,6 +153,7 @@ class MarlinToHyrel(HyrelTranslator):
                     "is not homed here (G28 X0 Y0; set home-z=true for Z0)",
                     key="G28",
                     cmd=cmd,
+                    aspects="position",
                 )
         others = [letter for letter in params if letter not in "XYZAB"]
         if others:
@@ -158,21 +172,26 @@ class MarlinToHyrel(HyrelTranslator):
             self.remove(
                 cmd,
                 TR_APPROX,
-                "G53 prefix: written as G53 before the move and the workspace re-invoked "
-                "after it (Hyrel's G53 is modal; G92 and head offsets still apply)",
+                "G53 prefix: written as G53 before the move (Hyrel's G53 is modal, and G92 and head "
+                "offsets still apply)" + (f"; {self.wcs} invoked again after it" if self.wcs_selected else ""),
                 key="G53",
+                aspects=("position", "wcs"),
             )
-            self.before("G53")
-            self.after(self.wcs)
+            self.before("G53", note="G53 prefix: machine coordinates")
+            if self.wcs_selected:
+                # Hyrel's G53 stays in force; the workspace the source had selected is invoked again.  A job
+                # that never selected one had no fixture offsets, and Hyrel has none after G53 either.
+                self.after(self.wcs, note="the workspace again after the G53 move")
         elif self.RRF:
             self.remove(cmd, TR_DROPPED, "G53 alone does nothing in RepRapFirmware", key="G53-alone")
 
     def workspace(self, cmd: Command) -> None:
         self.wcs = cmd.code or "G54"
+        self.wcs_selected = True
         super().workspace(cmd)
 
     def workspace_extra(self, cmd: Command) -> None:
-        self.untranslatable(cmd, "Hyrel has no G59.1-G59.3 workspaces")
+        self.untranslatable(cmd, "Hyrel has no G59.1-G59.3 workspaces", aspects=("wcs", "position"))
 
     def clear_g92(self, cmd: Command) -> None:
         self.replace(cmd, "G93")
@@ -185,28 +204,42 @@ class MarlinToHyrel(HyrelTranslator):
         self.firmware_retract(cmd, "M722", "firmware recover", "fw-retract")
 
     def pause(self, cmd: Command) -> None:
-        if cmd.params or cmd.code != "M0":
-            self.replace(cmd, "M0")
-            if cmd.params:
-                self.report(TR_NOTE, "pause timeout dropped: Hyrel's M0 waits for Resume", key="M0-timeout", cmd=cmd)
+        self.pause_command(cmd, "M0")
+        params = cmd.params
+        if num(params.get("S")) is not None or num(params.get("P")) is not None:
+            self.report(
+                TR_APPROX,
+                "pause timeout dropped: Marlin goes on after S seconds / P ms, Hyrel's M0 waits for Resume",
+                key="M0-timeout",
+                cmd=cmd,
+                aspects=(),
+            )
+        elif params:
+            self.report(TR_NOTE, "pause message dropped (it is not a comment on Hyrel)", key="M0-message", cmd=cmd)
 
     def filament_change(self, cmd: Command) -> None:
-        self.replace(cmd, "M0 ; filament change")
+        self.pause_command(cmd, "M0 ; gclint: filament change")
         self.report(
-            TR_APPROX, f"{cmd.code} (filament change) written as a pause: no park, unload or load", key="M600", cmd=cmd
+            TR_APPROX,
+            f"{cmd.code} (filament change) written as a pause: no park, unload or load",
+            key="M600",
+            cmd=cmd,
+            aspects=(),
         )
 
     def m30(self, cmd: Command) -> None:
-        self.untranslatable(cmd, "M30 deletes a file on the SD card here; Hyrel's M30 ends the job")
+        self.untranslatable(cmd, "M30 deletes a file on the SD card here; Hyrel's M30 ends the job", aspects=())
 
     def m2(self, cmd: Command) -> None:
-        self.remove(cmd, TR_LOST, "M2 has no meaning in Marlin", key="M2")
+        self.remove(cmd, TR_LOST, "M2 has no meaning in Marlin", key="M2", aspects=())
 
     def m6(self, cmd: Command) -> None:
-        self.remove(cmd, TR_LOST, "M6 is not a tool change here; Hyrel's M6 declares head offsets", key="M6")
+        self.remove(
+            cmd, TR_LOST, "M6 is not a tool change here; Hyrel's M6 declares head offsets", key="M6", aspects=()
+        )
 
     def m226(self, cmd: Command) -> None:
-        self.remove(cmd, TR_LOST, "wait for a pin state has no Hyrel counterpart", key="M226")
+        self.remove(cmd, TR_LOST, "wait for a pin state has no Hyrel counterpart", key="M226", aspects=())
 
     def extended(self, cmd: Command) -> None:
         """Klipper-style host commands found in Marlin-flavour files (Orca, Bambu, Klipper start macros)."""
@@ -214,13 +247,19 @@ class MarlinToHyrel(HyrelTranslator):
         if name in codes.HOST_NO_EFFECT:
             self.remove(cmd, TR_DROPPED, "host command with no effect on the job", key=name)
         elif name in codes.HOST_LOST:
-            self.remove(cmd, TR_LOST, "host (Klipper) setting has no Hyrel counterpart", key=name)
+            self.remove(
+                cmd,
+                TR_LOST,
+                "host (Klipper) setting has no Hyrel counterpart",
+                key=name,
+                aspects=_HOST_ASPECTS.get(name, ()),
+            )
         else:
             self.untranslatable(cmd, "host macro (Klipper): its content is not known here", key=name)
 
     def beep(self, cmd: Command) -> None:
         # the action is the text after ';' (M792), so it gets a line of its own
-        self.before("M792 ; BEEP")
+        self.before("M792 ; BEEP", note="M300 tone")
         self.consume(cmd)
         self.report(
             TR_NOTE, "tone written as Hyrel's BEEP action: frequency and duration are lost", key="M300", cmd=cmd
@@ -242,21 +281,30 @@ class MarlinToHyrel(HyrelTranslator):
                 TR_LOST,
                 "motor idle timeout has no Hyrel counterpart (M18/M84 with a value would cut the motors at once)",
                 key="M84-S",
+                aspects=(),
             )
             return
         if not any(a in params for a in "XYZ"):
-            self.remove(cmd, TR_LOST, "disabling only the extruder motor has no Hyrel counterpart", key="M84-E")
+            self.remove(
+                cmd, TR_LOST, "disabling only the extruder motor has no Hyrel counterpart", key="M84-E", aspects=()
+            )
             return
         self.hy.motors_off = True
         self.replace(cmd, cmd.code or "M84")
         self.report(
-            TR_APPROX, f"{cmd.code} with axes: Hyrel cuts every motor (re-home before moving)", key="M84-axes", cmd=cmd
+            TR_APPROX,
+            f"{cmd.code} with axes: Hyrel cuts every motor (re-home before moving)",
+            key="M84-axes",
+            cmd=cmd,
+            aspects="position",
         )
 
     # -- spindle and laser --------------------------------------------------------------------------------
 
     def spindle(self, cmd: Command) -> None:
         s = num(cmd.params.get("S"))
+        if s is None:
+            s = num(cmd.params.get("O"))  # Marlin: "O" is the power as PWM 0-255
         if s is None:
             self.spindle_on(cmd, None)
             return
@@ -270,6 +318,7 @@ class MarlinToHyrel(HyrelTranslator):
             "spindle/laser power taken as PWM 0-255 (Marlin's default cutter unit) and written as percent",
             key="M3-pwm",
             cmd=cmd,
+            aspects="spindle",
         )
 
     def spindle_stop(self, cmd: Command) -> None:
@@ -289,9 +338,13 @@ class MarlinToHyrel(HyrelTranslator):
         temp = params.get("S")
         if temp is None:
             if "I" in params:
-                self.untranslatable(cmd, "material preset temperature (I) is not known to the translator")
+                self.untranslatable(
+                    cmd, "material preset temperature (I) is not known to the translator", aspects="temp"
+                )
             elif "R" in params:
-                self.remove(cmd, TR_APPROX, "standby temperature has no Hyrel counterpart", key="standby")
+                self.remove(
+                    cmd, TR_APPROX, "standby temperature has no Hyrel counterpart", key="standby", aspects="temp"
+                )
             else:
                 self.remove(
                     cmd,
@@ -301,8 +354,11 @@ class MarlinToHyrel(HyrelTranslator):
                 )
             return
         if "R" in params and self.RRF:
-            self.report(TR_APPROX, "standby temperature (R) has no Hyrel counterpart", key="standby", cmd=cmd)
-        self.temperature(cmd, "M104", self.head(self._tool_index(cmd)), temp)
+            self.report(
+                TR_APPROX, "standby temperature (R) has no Hyrel counterpart", key="standby", cmd=cmd, aspects="temp"
+            )
+        index = self._tool_index(cmd)
+        self.temperature(cmd, "M104", self.head(index), temp, tool=index)
 
     def _autotemp_note(self, cmd: Command) -> None:
         if "B" in cmd.params or "F" in cmd.params:
@@ -314,9 +370,9 @@ class MarlinToHyrel(HyrelTranslator):
         index = self._tool_index(cmd)
         address = self.head(index)
         if "S" in params:
-            self.temperature(cmd, "M109", address, params["S"])
+            self.temperature(cmd, "M109", address, params["S"], tool=index)
         elif "R" in params:
-            self.temperature(cmd, "M109", address, params["R"], window=True)
+            self.temperature(cmd, "M109", address, params["R"], window=True, tool=index)
             self.report(
                 TR_NOTE,
                 "R (wait heating or cooling to this target) written as S with Hyrel's tolerance "
@@ -325,7 +381,7 @@ class MarlinToHyrel(HyrelTranslator):
                 cmd=cmd,
             )
         else:
-            self.temperature(cmd, "M109", address, None, window=True)
+            self.temperature(cmd, "M109", address, None, window=True, tool=index)
         if self.RRF and index is not None and address is not None and address != self.hy.focus:
             # RepRapFirmware's M109 T also selects the tool
             self.after(f"T{address}", note="RepRapFirmware's M109 T selects the tool")
@@ -338,7 +394,7 @@ class MarlinToHyrel(HyrelTranslator):
             return default
         if slot == 1 and default == 24:
             return 25
-        self.report("TR007", f"heater slot P{slot} has no Hyrel address", key=("slot", slot), cmd=cmd)
+        self.report("TR007", f"heater slot P{slot} has no Hyrel address", key=("slot", slot), cmd=cmd, aspects="beds")
         return None
 
     def _heater(self, cmd: Command, code: str, default: int) -> None:
@@ -346,7 +402,7 @@ class MarlinToHyrel(HyrelTranslator):
         address = self._slot(cmd, default)
         wait = code in ("M190", "M191")
         if code == "M190" and "T" in params and not self.RRF:
-            self.report(TR_APPROX, "M190 T (annealing cool-down time) dropped", key="M190-T", cmd=cmd)
+            self.report(TR_APPROX, "M190 T (annealing cool-down time) dropped", key="M190-T", cmd=cmd, aspects="beds")
         if "S" in params:
             self.temperature(cmd, code, address, params["S"])
         elif "R" in params and wait:
@@ -386,11 +442,11 @@ class MarlinToHyrel(HyrelTranslator):
             self.report(TR_NOTE, "M106 T (secondary fan speed) dropped", key="M106-T", cmd=cmd)
         index = self._tool_index(cmd, "P")
         address = self.head(index if index is not None else 0, "fan")
-        self.fan(cmd, address, self._fan_value(cmd))
+        self.fan(cmd, address, self._fan_value(cmd), index=index)
 
     def m107(self, cmd: Command) -> None:
         index = self._tool_index(cmd, "P")
-        self.fan_off(cmd, self.head(index if index is not None else 0, "fan"))
+        self.fan_off(cmd, self.head(index if index is not None else 0, "fan"), index=index)
 
     def m200(self, cmd: Command) -> None:
         d = num(cmd.params.get("D"))
@@ -412,6 +468,7 @@ class MarlinToHyrel(HyrelTranslator):
                 "maximum feed rates (mm/s) are not Hyrel's M203 (G0 speeds in mm/min); "
                 "dropped (set max-feed=convert to write them as G0 speeds)",
                 key="M203",
+                aspects=(),
             )
             return
         factor = 1.0 if self.RRF else 60.0
@@ -421,7 +478,9 @@ class MarlinToHyrel(HyrelTranslator):
             if v is not None:
                 words.append(f"{letter}{fmt(v * factor, 1)}")
         if not words:
-            self.remove(cmd, TR_LOST, "maximum feed rate for the extruder has no Hyrel counterpart", key="M203")
+            self.remove(
+                cmd, TR_LOST, "maximum feed rate for the extruder has no Hyrel counterpart", key="M203", aspects=()
+            )
             return
         self.replace(cmd, "M203 " + " ".join(words))
         self.report(
@@ -429,6 +488,7 @@ class MarlinToHyrel(HyrelTranslator):
             "maximum feed rates written as Hyrel's G0 speeds (mm/min): Hyrel does not cap G1",
             key="M203-convert",
             cmd=cmd,
+            aspects=(),
         )
 
     def m220(self, cmd: Command) -> None:
@@ -436,7 +496,7 @@ class MarlinToHyrel(HyrelTranslator):
         if s is None or s == 100:
             self.remove(cmd, TR_DROPPED, "feed rate factor at 100 % (or backup/restore) changes nothing", key="M220")
         else:
-            self.remove(cmd, TR_LOST, "feed rate factor has no Hyrel counterpart", key="M220-S")
+            self.remove(cmd, TR_LOST, "feed rate factor has no Hyrel counterpart", key="M220-S", aspects="feed")
 
     def m221(self, cmd: Command) -> None:
         s = num(cmd.params.get("S"))
@@ -444,9 +504,5 @@ class MarlinToHyrel(HyrelTranslator):
             self.remove(cmd, TR_DROPPED, "M221 without S sets nothing", key="M221-noS")
             return
         index = self._tool_index(cmd, "D" if self.RRF else "T")
-        address = self.head(index)
-        if address is None:
-            self.consume(cmd)
-            return
         # percent -> multiplier (Hyrel M221 S: "direct flow multiplier, 1.0")
-        self.replace(cmd, f"M221 T{address} S{fmt(s / 100, 4)}")
+        self.flow(cmd, self.head(index), s / 100, tool=index)

@@ -18,7 +18,13 @@ class Modal:
 
     def units(self, cmd: Command) -> None:
         self.hy.units_seen = True
-        self.inch = cmd.code == "G20"
+        inch = cmd.code == "G20"
+        feed = self.state.feed
+        if feed is not None and inch != self.inch:
+            # the modal feed keeps its speed across a change of units (Marlin keeps it in mm/min; LinuxCNC
+            # converts it): in the new unit it is another number
+            self.state.feed = feed / INCH if inch else feed * INCH
+        self.inch = inch
         if cmd.code == "G20":
             self.replace(cmd, "G21")
             self.report(
@@ -31,6 +37,7 @@ class Modal:
     def workspace(self, cmd: Command) -> None:
         """G54-G59 select a workspace elsewhere; on Hyrel they (re)apply the stored fixture offsets, and
         with values they would store new ones (Gcode page, G54 - G59), so values are dropped."""
+        self.hy.workspace_seen = True
         if cmd.params:
             self.replace(cmd, cmd.code or "G54")
         self.report(
@@ -83,7 +90,8 @@ class Modal:
         add: tuple[str, ...] = ()
         if ext != "E" and ext in params:
             drop += ext
-            add = ("E" + (params[ext] or "0"),)
+            value = params[ext] or "0"
+            add = ("E" + (self.scaled_e(value) if self.inch else value),)
         if self.inch:
             for letter in "XYZE":
                 if letter in params and letter not in drop:

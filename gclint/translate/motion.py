@@ -7,9 +7,12 @@ A mixin of ``HyrelTranslator``.
 from __future__ import annotations
 
 from gclint.syntax.nodes import GCODE, Command
-from gclint.translate.findings import TR_LOST, TR_NOTE
+from gclint.translate.findings import TR_APPROX, TR_LOST, TR_NOTE
 from gclint.translate.output import fmt, rewrite
 from gclint.translate.words import INCH, SCALED, fast_float, num
+
+# comments that state the layer height: (text after ';', stated per layer)
+_HEIGHT_HINTS = (("HEIGHT:", True), ("LAYER_HEIGHT:", True), ("Layer height:", False), ("layer_height =", False))
 
 
 class Motion:
@@ -83,9 +86,12 @@ class Motion:
             else:
                 delta = self.e_delta(cmd)
             if delta is not None and delta > 0:
+                if self.sync_due:
+                    self.sync_working_head()
                 if g0:
                     out_code = "G1"  # Marlin/RRF: G0 is G1 and extrudes (dialects.md 1.1 G0)
                     g0 = False
+                    self.extruding_rapid(cmd)
                 if self.evalues:
                     if not self.hy.m229_written:
                         self.before_extrusion()
@@ -95,6 +101,7 @@ class Motion:
                 else:
                     rename = {ext: "E"} if ext != "E" else None
                     values = {"E": "1"}
+                    self.native_flow(cmd)
             else:
                 drop = ext
                 if delta and self.evalues and self.e_absolute():
@@ -154,7 +161,13 @@ class Motion:
             return False
         st = self.state
         if e is not None:
-            if not g1 or (x is None and y is None and z is None) or not self.evalues or not self.hy.m229_written:
+            if (
+                not g1
+                or (x is None and y is None and z is None)
+                or not self.evalues
+                or not self.hy.m229_written
+                or self.sync_due
+            ):
                 return False
             delta = float(e)
             if st.e_absolute and st.e_position is not None:
@@ -173,6 +186,82 @@ class Motion:
         self.hy.wrote_command = True
         self.interp.plain_move("G1" if g1 else "G0", number, x, y, z, e, f)
         return True
+
+    # -- native flow: layer heights (M756) ---------------------------------------------------------------
+
+    def layer_hint(self, raw: str) -> None:
+        """A comment that states the layer height: PrusaSlicer/Orca ``;HEIGHT:0.2`` and Bambu ``; LAYER_HEIGHT:
+        0.2`` per layer, Cura ``;Layer height: 0.2`` and a ``; layer_height = 0.2`` setting for the job."""
+        text = raw.lstrip()
+        if not text.startswith(";"):
+            return
+        body = text[1:].strip()
+        for prefix, per_layer in _HEIGHT_HINTS:
+            if body.startswith(prefix):
+                value = fast_float(body[len(prefix) :].strip().split()[0] if body[len(prefix) :].strip() else None)
+                if value is not None and value > 0:
+                    if per_layer:
+                        self.layer_height = value
+                    elif self.default_layer_height is None:
+                        self.default_layer_height = value
+                return
+
+    def native_flow(self, cmd: Command) -> None:
+        """An extruding move in native flow: E1, the layer height, and (once) the finding that the flow is
+        Hyrel's own, not the slicer's E amounts (Gcode page, Controlling Material Flow)."""
+        self.report(
+            TR_APPROX,
+            "native flow: Hyrel computes the flow from each move's length, the layer height (M756) and the "
+            "head's width (M221 W); the slicer's E amounts are not used",
+            key="native-flow",
+            cmd=cmd,
+            aspects="e",
+        )
+        self.layer_change(cmd)
+
+    def layer_change(self, cmd: Command) -> None:
+        """Native flow computes the flow from the layer height: "We declare M756 at the beginning of every
+        layer" (Gcode page, M756).  At the first extruding move of a layer (a new Z): the height the
+        slicer stated, else the rise from the layer below."""
+        st = self.state
+        z = st.position.get("Z")
+        v = fast_float(cmd.params.get("Z"))
+        if v is not None:
+            z = v if st.absolute else (z + v if z is not None else None)
+        if z is None:
+            return
+        if self.inch:
+            z *= INCH
+        previous = self.layer_z
+        if previous is not None and abs(z - previous) < 1e-6:
+            self.layer_moves += 1
+            return
+        one_move_layer = previous is not None and self.layer_moves <= 1
+        self.layer_z, self.layer_moves = z, 1
+        height = self.layer_height or self.default_layer_height
+        if height is None:
+            if self.spiral:
+                return
+            if one_move_layer and self.height_written is not None:
+                self.spiral = True
+                self.report(
+                    TR_APPROX,
+                    "Z changes on every extruding move (a spiral): the job states no layer height for Hyrel's "
+                    "native flow (M756); use --flow evalues",
+                    key="M756-spiral",
+                    cmd=cmd,
+                    aspects="e",
+                )
+                return
+            height = z - previous if previous is not None else z
+            if not height > 0:
+                return
+        if height != self.height_written:
+            self.before(f"M756 S{fmt(height, 4)}", note="native flow: the layer height")
+            self.height_written = height
+
+    def extruding_rapid(self, cmd: Command) -> None:
+        """A G0 that extrudes, written as G1 (Hyrel's G0 cannot extrude): exact where G0 is G1 (Marlin)."""
 
     def move_extra(self, cmd: Command, rapid: bool) -> tuple[str, tuple[str, ...]] | None:
         """Dialect hook: (letters to drop, words to add) for a move; None for no change."""

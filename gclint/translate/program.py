@@ -8,8 +8,9 @@ A mixin of ``HyrelTranslator``.
 
 from __future__ import annotations
 
+from gclint.rules.security import host_actions
 from gclint.syntax.nodes import Command
-from gclint.translate.findings import TR_APPROX
+from gclint.translate.findings import TR_ACTION, TR_APPROX
 
 
 class Program:
@@ -26,6 +27,7 @@ class Program:
             TR_APPROX,
             "a move after the motors were disengaged: Hyrel must re-home first, G28 X0 Y0 added",
             key="rehome",
+            aspects="position",
         )
 
     def before_motion(self, focus: bool = True) -> None:
@@ -39,6 +41,11 @@ class Program:
         if not self.hy.positioning_seen:
             lines.append("G90" if self.state.absolute else "G91")
             self.hy.positioning_seen = True
+        if self.DEFAULT_WORKSPACE and not self.hy.workspace_seen:
+            # the source works in its default workspace (LinuxCNC, Carvera: G54, the operator's work
+            # origin); Hyrel applies no fixture offsets until a G54-G59 invokes the stored ones
+            lines.append(self.DEFAULT_WORKSPACE)
+            self.hy.workspace_seen = True
         if self.hy.focus is None and focus:
             address = self.focus_address()
             if address is not None:
@@ -91,3 +98,26 @@ class Program:
         self.hy.emitters_on.clear()
         self.hy.spindles_on.clear()
         self.hy.air_on = False
+
+    # -- pauses --------------------------------------------------------------------------------------------
+
+    def pause_command(self, cmd: Command, text: str = "M0") -> None:
+        """Write a pause (``text``: M0 with the translator's own ``; gclint: ...`` message).  On Hyrel the
+        text after M0 is a list of host actions ("SHELL C:\\program.exe - the computer will execute the
+        file", Gcode page, M0 and M792): a source comment on the line that reads as one is removed (TR009),
+        since in the source it was only a comment."""
+        line = self.line
+        keywords = sorted({k for c in line.parsed.comments for k, _, _ in host_actions(c.text)})  # type: ignore[union-attr]
+        if keywords:
+            self.replace(cmd, text)
+            self._edit().strip_comments = True
+            self.report(
+                TR_ACTION,
+                f"the comment on this pause would be a Repetrel action on Hyrel ({', '.join(keywords)}; SHELL "
+                "runs a program, PIC/VID open files): removed",
+                key="action",
+                cmd=cmd,
+                aspects=(),
+            )
+        elif text != cmd.code or cmd.params:
+            self.replace(cmd, text)

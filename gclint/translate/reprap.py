@@ -116,10 +116,18 @@ class RepRapToHyrel(MarlinToHyrel):
             level = num(params.get("L"))
             if level in (2, 20):
                 self.untranslatable(
-                    cmd, "G10 L2/L20 sets workspace origins; not translated (use Repetrel fixture offsets and G54)"
+                    cmd,
+                    "G10 L2/L20 sets workspace origins; not translated (use Repetrel fixture offsets and G54)",
+                    aspects=("wcs", "position"),
                 )
             else:
-                self.remove(cmd, TR_LOST, "tool offsets: Repetrel declares head offsets itself (M6)", key="G10-offset")
+                self.remove(
+                    cmd,
+                    TR_LOST,
+                    "tool offsets: Repetrel declares head offsets itself (M6)",
+                    key="G10-offset",
+                    aspects="position",
+                )
             return
         if "P" not in params:
             self.firmware_retract(cmd, "M721", "firmware retract", "fw-retract")
@@ -137,13 +145,22 @@ class RepRapToHyrel(MarlinToHyrel):
                     "tool-offsets=m6 to write them)",
                     key="G10-offset",
                     cmd=cmd,
+                    aspects="position",
                 )
         if "S" in params:
             if "R" in params:
-                self.report(TR_APPROX, "standby temperature (R) has no Hyrel counterpart", key="standby", cmd=cmd)
-            self.temperature(cmd, "M104", self.head(index), params["S"])
+                self.report(
+                    TR_APPROX,
+                    "standby temperature (R) has no Hyrel counterpart",
+                    key="standby",
+                    cmd=cmd,
+                    aspects="temp",
+                )
+            self.temperature(cmd, "M104", self.head(index), params["S"], tool=index)
         elif "R" in params:
-            self.remove(cmd, TR_APPROX, "standby temperature (R) has no Hyrel counterpart", key="standby")
+            self.remove(
+                cmd, TR_APPROX, "standby temperature (R) has no Hyrel counterpart", key="standby", aspects="temp"
+            )
         else:
             self.consume(cmd)
 
@@ -169,6 +186,7 @@ class RepRapToHyrel(MarlinToHyrel):
             "machine; Repetrel also sends head offsets at job start",
             key="G10-m6",
             cmd=cmd,
+            aspects="position",
         )
 
     def m568(self, cmd: Command) -> None:
@@ -176,11 +194,21 @@ class RepRapToHyrel(MarlinToHyrel):
         index = self._tool_index(cmd, "P")
         if "S" in params:
             if "R" in params:
-                self.report(TR_APPROX, "standby temperature (R) has no Hyrel counterpart", key="standby", cmd=cmd)
-            self.temperature(cmd, "M104", self.head(index), params["S"])
+                self.report(
+                    TR_APPROX,
+                    "standby temperature (R) has no Hyrel counterpart",
+                    key="standby",
+                    cmd=cmd,
+                    aspects="temp",
+                )
+            self.temperature(cmd, "M104", self.head(index), params["S"], tool=index)
         else:
             self.remove(
-                cmd, TR_APPROX, "tool settings without an active temperature have no Hyrel counterpart", key="M568"
+                cmd,
+                TR_APPROX,
+                "tool settings without an active temperature have no Hyrel counterpart",
+                key="M568",
+                aspects="temp",
             )
 
     def m116(self, cmd: Command) -> None:
@@ -188,7 +216,11 @@ class RepRapToHyrel(MarlinToHyrel):
         window = num(cmd.params.get("S"))
         window_text = fmt(window) if window is not None else fmt(self.opts.temp_window)
         waits = [f"{code} T{address} S{temp} R{window_text}" for address, (code, temp) in sorted(self.hy.temps.items())]
+        for address in self.hy.temps:
+            state = self.hy.head(address)
+            state.waited = state.target
         self.hy.temps.clear()
+        self.tools.wait_all()
         if not waits:
             self.remove(cmd, TR_NOTE, "M116 with no temperature set since the last wait; dropped", key="M116-none")
             return
@@ -207,24 +239,29 @@ class RepRapToHyrel(MarlinToHyrel):
     def message_box(self, cmd: Command) -> None:
         s = num(cmd.params.get("S"))
         if s is not None and s >= 2:
-            self.replace(cmd, "M0 ; message")
+            self.pause_command(cmd, "M0 ; gclint: message")
             self.report(
                 TR_APPROX,
                 "blocking message box written as a pause (the message text is not shown)",
                 key="M291",
                 cmd=cmd,
+                aspects=(),
             )
         else:
             self.remove(cmd, TR_DROPPED, "message box", key="M291")
 
     def rrf_m226(self, cmd: Command) -> None:
-        self.replace(cmd, "M0")
+        self.pause_command(cmd, "M0")
         self.report(
-            TR_APPROX, "M226 (pause at this point) written as Hyrel's M0 (wait for Resume)", key="M226", cmd=cmd
+            TR_APPROX,
+            "M226 (pause at this point) written as Hyrel's M0 (wait for Resume)",
+            key="M226",
+            cmd=cmd,
+            aspects=(),
         )
 
     def rrf_stop(self, cmd: Command) -> None:
-        self.replace(cmd, "M0")
+        self.pause_command(cmd, "M0")
         self.report(
             TR_APPROX,
             f"RepRapFirmware {cmd.code} stops (and may switch heaters and motors off); written as Hyrel's pause M0",

@@ -7,12 +7,17 @@ renders the output lines; a line with no edit is copied byte for byte.
 
 from __future__ import annotations
 
-from gclint.rules.base import Finding
+from collections.abc import Iterable
+
+from gclint.rules.base import Finding, Severity
 from gclint.rules.translation import TR_NAME, TR_SEVERITY
 from gclint.syntax.nodes import ASSIGNMENT, GCODE, IMPLICIT, META, OWORD, TEXT, Command, Line
 from gclint.translate.engine import TranslationResult
 from gclint.translate.findings import TR_UNTRANSLATABLE
 from gclint.translate.output import LineEdit
+
+Aspects = str | Iterable[str] | None
+ANY = frozenset(("*",))
 
 
 class LineWriter:
@@ -39,10 +44,16 @@ class LineWriter:
         if note:
             edit.notes.append(note)
 
-    def remove(self, cmd: Command, code: str, reason: str, *, key: object = None) -> None:
+    def remove(self, cmd: Command, code: str, reason: str, *, key: object = None, aspects: Aspects = None) -> None:
         """Drop the command, with a finding."""
         self.consume(cmd)
-        self.report(code, f"{_show(cmd)}: {reason}", key=key if key is not None else (cmd.code, reason), cmd=cmd)
+        self.report(
+            code,
+            f"{_show(cmd)}: {reason}",
+            key=key if key is not None else (cmd.code, reason),
+            cmd=cmd,
+            aspects=aspects,
+        )
 
     def consume(self, cmd: Command, note: str | None = None) -> None:
         """Drop the command without a finding: its meaning is carried elsewhere (a tool prepared for M6,
@@ -53,28 +64,48 @@ class LineWriter:
         if note:
             edit.notes.append(note)
 
-    def untranslatable(self, cmd: Command, reason: str, *, key: object = None) -> None:
-        self.remove(cmd, TR_UNTRANSLATABLE, reason, key=key)
+    def untranslatable(self, cmd: Command, reason: str, *, key: object = None, aspects: Aspects = None) -> None:
+        self.remove(cmd, TR_UNTRANSLATABLE, reason, key=key, aspects=aspects)
 
-    def before(self, *texts: str, note: str | None = None) -> None:
-        """Insert lines before the current line."""
+    def before(self, *texts: str, note: str) -> None:
+        """Insert lines before the current line; ``note`` says why (``--annotate`` writes it on each)."""
         edit = self._edit()
-        if self.annotate and note:
+        if self.annotate:
             texts = tuple(f"{t} ; gclint: added ({note})" for t in texts)
         edit.before.extend(texts)
 
-    def after(self, *texts: str, note: str | None = None) -> None:
+    def after(self, *texts: str, note: str, first: bool = False) -> None:
+        """Insert lines after the current line (``first``: before the lines already added after it)."""
         edit = self._edit()
-        if self.annotate and note:
+        if self.annotate:
             texts = tuple(f"{t} ; gclint: added ({note})" for t in texts)
-        edit.after.extend(texts)
+        if first:
+            edit.after[:0] = texts
+        else:
+            edit.after.extend(texts)
 
-    def report(self, code: str, message: str, *, key: object = None, cmd: Command | None = None) -> None:
-        """A TR finding on the current line; repeated findings (same code and key) are counted, not listed."""
+    def report(
+        self, code: str, message: str, *, key: object = None, cmd: Command | None = None, aspects: Aspects = None
+    ) -> None:
+        """A TR finding on the current line; repeated findings (same code and key) are counted, not listed.
+
+        ``aspects``: what of the job the loss touches, as the meaning diff names them (trace.ASPECTS):
+        a warning-level finding explains a difference ``gclint diff`` finds in one of them.  Default: any
+        ("*"); ``()`` for a loss the diff does not model (acceleration, levelling...)."""
         line = self.line
         assert line is not None and self.result is not None
         edit = self._edit()
         edit.notes.append(f"{code} {message}")
+        severity = TR_SEVERITY[code]
+        if severity >= Severity.WARNING:
+            if aspects is None:
+                touched = ANY
+            elif isinstance(aspects, str):
+                touched = frozenset((aspects,))
+            else:
+                touched = frozenset(aspects)
+            if touched:
+                self.result.record(code, touched, line.number)
         k = (code, key if key is not None else message)
         entry = self._aggregate.get(k)
         if entry is not None:
@@ -85,7 +116,7 @@ class LineWriter:
             line=line.number,
             column=cmd.column if cmd is not None else 1,
             code=code,
-            severity=TR_SEVERITY[code],
+            severity=severity,
             message=message,
             name=TR_NAME[code],
             source=line.raw,
