@@ -39,15 +39,17 @@ CARVERA = [
     Row("2.3 M1 (optional stop)", "M1", "", "TR001"),
     Row("2.3 M2: spindle and air off, M30", "M2", "M5 T0\nM9\nM30", prelude=RUNNING),
     Row("2.3 M3 S (rpm, Carvera maximum assumed)", "M3 S12000", "M3 T0 S80", "TR003"),
-    Row("2.3 M3 S with spindle-max-rpm", "M3 S12000", "M3 T0 S50", settings={"spindle_max_rpm": "24000"}),
+    # the spindle is still on at the end of these rows' files: the footer stops it (TR003)
+    Row("2.3 M3 S with spindle-max-rpm", "M3 S12000", "M3 T0 S50", "TR003", settings={"spindle_max_rpm": "24000"}),
     Row(
         "2.3 M3 S above the maximum: clamped", "M3 S30000", "M3 T0 S100", "TR003", settings={"spindle_max_rpm": "24000"}
     ),
-    Row("2.3 S word before M3 (S10000 M3)", "S12000 M3", "M3 T0 S50", settings={"spindle_max_rpm": "24000"}),
+    Row("2.3 S word before M3 (S10000 M3)", "S12000 M3", "M3 T0 S50", "TR003", settings={"spindle_max_rpm": "24000"}),
     Row(
         "2.3 spindle on a Hyrel head",
         "M3 S12000",
         "M3 T2 S50",
+        "TR003",
         settings={"spindle_max_rpm": "24000", "spindle": "T2"},
         v4="M3 T13 S50",
     ),

@@ -369,7 +369,7 @@ REPRAP = [
     Row("2.1 RRF M1 (sleep)", "M1", "M0", "TR003"),
     Row("2.1 RRF M2 (end): footer", "M2", "M30", prelude="M104 S200\n"),
     Row("2.1 RRF M3 S (rpm)", "M3 S12000", "M3 T0 S80", "TR003"),
-    Row("2.1 RRF M3 S with spindle-max-rpm", "M3 S12000", "M3 T0 S50", settings={"spindle_max_rpm": "24000"}),
+    Row("2.1 RRF M3 S with spindle-max-rpm", "M3 S12000", "M3 T0 S50", "TR003", settings={"spindle_max_rpm": "24000"}),
     Row("2.1 RRF M106 S0.5 (0-1 fraction)", "M106 S0.5", "M106 T0 S128"),
     Row("2.1 RRF M106 S1 (full)", "M106 S1", "M106 T0 S255"),
     Row("2.1 RRF M106 S200 (0-255)", "M106 S200", "M106 T0 S200"),
@@ -395,6 +395,125 @@ REPRAP = [
     Row("2.1 RRF meta command", "if move.axes[0].homed\n  G1 X10", "  G1 X10", "TR005"),
     Row("2.1 RRF expression parameter", "G1 X{var.x} Y10", "", "TR005"),
 ]
+
+
+# -- issue 13: meaning kept for multi-tool, CNC and inch jobs --------------------------------------------------
+
+ISSUE_13 = [
+    Row(
+        "2: a single-nozzle job heats each head it prints with (and waits, as for the nozzle)",
+        "M104 S215\nM109 S215\nT1\nG1 X5 Y5 E1",
+        "M104 T0 S215\nM109 T0 S215\nT1\nM109 T1 S215\nG1 X5 Y5 E1",
+        "TR004",
+    ),
+    Row(
+        "2: a single nozzle's flow goes with it; its heater off is off on every head",
+        "M104 S215\nM221 S90\nT1\nG1 X5 Y5 E1\nM104 S0",
+        "M104 T0 S215\nM221 T0 S0.9\nT1\nM104 T1 S215\nM221 T1 S0.9\nG1 X5 Y5 E1\nM104 T1 S0\nM104 T0 S0",
+        "TR004",
+    ),
+    Row(
+        "4: the part fan (M106 without P) follows the tool; M107 stops it on the head that has it",
+        "M104 T0 S200\nM104 T1 S200\nM106 S255\nT1\nG1 X5 Y5 E1\nT0\nG1 X6 Y6 E1\nM107",
+        "M104 T0 S200\nM104 T1 S200\nM106 T0 S255\nT1\nM107 T0\nM106 T1 S255\nG1 X5 Y5 E1\nT0\nM107 T1\n"
+        "M106 T0 S255\nG1 X6 Y6 E1\nM107 T0",
+    ),
+    Row(
+        "4: an M107 while two heads blow switches off both",
+        "M104 T0 S200\nM104 T1 S200\nM106 S255\nM106 P1 S255\nM107",
+        "M104 T0 S200\nM104 T1 S200\nM106 T0 S255\nM106 T1 S255\nM107 T0",
+        settings={"fan_map": "1=T1"},
+    ),
+    Row("3: an inch arc stays an arc, in mm", "G20\nG2 X1 Y0 I0.5 J0", "G21\nG2 X25.4 Y0 I12.7 J0", "TR004"),
+    Row(
+        "7: native flow declares the layer height the slicer states (M756) at each layer",
+        "M83\n;HEIGHT:0.2\nG1 Z0.2 F600\nG1 X1 Y1 E1\n;HEIGHT:0.3\nG1 Z0.5\nG1 X2 Y2 E1",
+        ";HEIGHT:0.2\nG21\nG90\nT0\nG1 Z0.2 F600\nM756 S0.2\nG1 X1 Y1 E1\n;HEIGHT:0.3\nG1 Z0.5\nM756 S0.3\nG1 X2 Y2 E1",
+        "TR003 TR004",
+        prelude="",
+        settings={"flow": "native"},
+    ),
+    Row(
+        "7: native flow, no stated height: the rise from the layer below",
+        "M83\nG1 Z0.2 F600\nG1 X1 Y1 E1\nG1 X0 Y1 E1\nG1 Z0.35\nG1 X2 Y2 E1",
+        "G21\nG90\nT0\nG1 Z0.2 F600\nM756 S0.2\nG1 X1 Y1 E1\nG1 X0 Y1 E1\nG1 Z0.35\nM756 S0.15\nG1 X2 Y2 E1",
+        "TR003 TR004",
+        prelude="",
+        settings={"flow": "native"},
+    ),
+    Row(
+        "7: native flow, a spiral (Z rises on every move): no height to declare, reported",
+        "M83\nG1 Z0.2 F600\nG1 X1 Y1 E1\nG1 X0 Y1 E1\nG1 X1 Y2 Z0.21 E1\nG1 X2 Y2 Z0.22 E1\nG1 X3 Y2 Z0.23 E1",
+        # the first rise reads as a layer of 0.01; once Z rises on every move, the height before is declared again
+        "G21\nG90\nT0\nG1 Z0.2 F600\nM756 S0.2\nG1 X1 Y1 E1\nG1 X0 Y1 E1\nM756 S0.01\nG1 X1 Y2 Z0.21 E1\n"
+        "G1 X2 Y2 Z0.22 E1\nM756 S0.2\nG1 X3 Y2 Z0.23 E1",
+        "TR003 TR004",
+        prelude="",
+        settings={"flow": "native"},
+    ),
+    Row("9: Marlin M3 O (power as PWM 0-255)", "M3 O128", "M3 T0 S50.2", "TR003"),
+    Row(
+        "9: a tool the printer has no head for: the head before goes on printing (and heating) for it",
+        "M104 S200\nT9\nM104 S210\nG1 X5 Y5 E1",
+        "M104 T0 S200\nM104 T0 S210\nG1 X5 Y5 E1",
+        "TR007",
+    ),
+    Row("10: M0 whose comment Hyrel would run (SHELL)", "M0 ; SHELL C:\\evil.exe", "M0", "TR009"),
+    Row("10: M0 whose comment Hyrel would show (PIC)", "M0 (PIC C:\\x.png)", "M0", "TR009"),
+    Row("10: M600 whose comment Hyrel would run", "M600 ; SAY hello", "M0 ; gclint: filament change", "TR003 TR009"),
+    Row("10: M0 with a plain comment stays as it is", "M0 ; wait for me", "M0 ; wait for me"),
+]
+
+
+@pytest.mark.parametrize("row", ISSUE_13, ids=ids(ISSUE_13))
+def test_issue_13(row: Row) -> None:
+    validate("marlin", row)
+
+
+def test_arc_before_any_z_word_is_kept() -> None:
+    """An extruding arc under M229 E1 before any Z word: written as segments (no Z needed), not dropped."""
+    got, codes = translate_rows("marlin", "G2 X10 Y0 I5 J0 E1", prelude="G21\nG90\nM83\nG1 X0 Y0 F600\n")
+    assert len(got) == 18 and all(line.startswith("G1 X") and " Z" not in line for line in got)
+    assert got[-1] == "G1 X10 Y0 E0.05556" and codes == ["TR004"]
+
+
+def test_tool_map_to_a_bed_is_refused() -> None:
+    options = TranslateOptions()
+    with pytest.raises(ValueError, match=r"a tool maps to a head \(T0-T19\); T24 is Bed1"):
+        options.set("tool-map", "0=T24")
+
+
+def test_one_command_per_line_on_changed_lines() -> None:
+    got, codes = translate_rows("carvera", "G0 X0.000 Y0.000 S10000M3")
+    assert got == ["G0 X0.000 Y0.000", "M3 T0 S66.7"] and codes == ["TR003"]
+    got, _ = translate_rows("carvera", "N5 G20 G90 (inch)")
+    assert got == ["N5 G21", "G90 (inch)"]
+
+
+def test_annotate_marks_every_added_line() -> None:
+    """--annotate: every line the translator adds says so (header, carried state, segments, footer)."""
+    source = "M104 S215\nM109 S215\nM106 S255\nT1\nG1 X5 Y5 E1\nG2 X9 Y5 I2 J0 E1\nG53 G1 X1\nM300 S440 P10\n"
+    options = TranslateOptions(annotate=True)
+    translator = translator_for(dialects.get("marlin"), dialects.get("hyrel"), options)
+    result = TranslationResult("t", "marlin", "hyrel")
+    out = "".join(translate_source(Source.from_text("G21\nG90\nM82\n" + source), translator, result))
+    lines = out.splitlines()
+    source_lines = set(("G21\nG90\nM82\n" + source).splitlines())
+    # a line with a command that is not in the source says why it is there (a note longer than Hyrel's 100
+    # characters is on the comment lines just before it)
+    added = [i for i, line in enumerate(lines) if line not in source_lines and not line.startswith(";")]
+    assert len(added) > 10
+    for i in added:
+        assert "; gclint:" in lines[i] or lines[i - 1].startswith(";"), lines[i]
+
+
+def test_long_lines_fit_in_100_characters() -> None:
+    long_comment = "; " + "word " * 40
+    source = f"M104 S210 ; {'x' * 110}\n{long_comment}\nM0 ; {'y' * 120}\n"
+    out, result = translate("marlin", source)
+    assert all(len(line) <= 100 for line in out.splitlines())
+    assert "M104 T0 S210" in out.splitlines()
+    assert {f.code for f in result.findings} >= {"TR003", "TR004"}
 
 
 @pytest.mark.parametrize("row", MARLIN, ids=ids(MARLIN))

@@ -150,12 +150,19 @@ class MachinekitSimulator(CncSimulator):
         self.heat = ToolHeat(self.mapping)
         self.heat.tool = None
 
+    def m2(self, cmd: Command, n: int) -> None:
+        # LinuxCNC's M2/M30 end the program with the spindle stopped and the coolant off
+        self.spindle = None
+        self.aux.clear()
+        self.dirty()
+        self.end_program(cmd, n)
+
     def table(self):
         h = super().table()
         h.update(
             {
                 "G28": self.g28,
-                "M30": self.end_program,
+                "M30": self.m2,
                 "M104": self.m104,
                 "M109": self.m109,
                 "M140": self.bed,

@@ -397,8 +397,13 @@ class Diff:
         ):
             if _same_end(a, b):
                 continue
+            percent = name == "fans"
             diff = Difference(
-                "end", source.line or None, output.line or None, f"{name}: {_end(a)}", f"{name}: {_end(b)}"
+                "end",
+                source.line or None,
+                output.line or None,
+                f"{name}: {_end(a, percent)}",
+                f"{name}: {_end(b, percent)}",
             )
             if self.explanations is not None:
                 for aspect in ("end", *_END_ASPECT[name]):
@@ -430,13 +435,16 @@ def _same_end(a: dict, b: dict) -> bool:
     return True
 
 
-def _end(d: dict) -> str:
+def _end(d: dict, percent: bool = False) -> str:
     if not d:
         return "all off"
     parts = []
     for k, v in sorted(d.items(), key=lambda kv: str(kv[0])):
         key = f"T{k}" if isinstance(k, int) else str(k)
-        parts.append(f"{key} {_num(v, 3) if isinstance(v, float) else v}")
+        if percent and isinstance(v, float | int):
+            parts.append(f"{key} {_num(v * 100, 1)} %")
+        else:
+            parts.append(f"{key} {_num(v, 3) if isinstance(v, float) else v}")
     return ", ".join(parts)
 
 

@@ -7,6 +7,8 @@ A mixin of ``HyrelTranslator``.
 
 from __future__ import annotations
 
+import math
+
 import gclint.translate.arcs as arcs
 from gclint.syntax.nodes import Command
 from gclint.translate.findings import TR_APPROX, TR_NOTE, TR_UNTRANSLATABLE
@@ -30,6 +32,13 @@ class ArcMoves:
         if extruding and self.sync_due:
             self.sync_working_head()
         turns = num(params.get("P")) if "P" in params else None
+        if "R" not in params:
+            a, b, oa, ob, _ = arcs.PLANES[plane]
+            if not num(params.get(oa)) and not num(params.get(ob)):
+                # Hyrel: "I=J=0 -> INVALID ARC" (research/dialects.md 1.1 G2); the source rejects it too
+                self.untranslatable(cmd, "arc with no centre (I and J both 0 or missing)", key="arc-no-centre")
+                return
+            self._check_radius(cmd, plane)
         if plane != 17 or (turns is not None and turns >= 1) or (extruding and self.evalues):
             self.linearize(cmd, plane, delta, int(turns or 0))
             return
@@ -85,6 +94,35 @@ class ArcMoves:
             add = (*add, *extra[1])
         if drop or add or values:
             self.replace(cmd, rewrite(cmd, drop=drop, values=values, add=add))
+
+    def _check_radius(self, cmd: Command, plane: int) -> None:
+        """An I/J/K arc whose end is not on its circle: LinuxCNC and grbl refuse it ("radius to end of arc
+        differs from radius to start"); Hyrel's drawing of it is not documented."""
+        st = self.state
+        params = cmd.params
+        a, b, oa, ob, _ = arcs.PLANES[plane]
+        sa, sb = st.position.get(a), st.position.get(b)
+        if sa is None or sb is None:
+            return
+        ea, eb = num(params.get(a)), num(params.get(b))
+        if not st.absolute:
+            ea = sa + (ea or 0.0)
+            eb = sb + (eb or 0.0)
+        ea = sa if ea is None else ea
+        eb = sb if eb is None else eb
+        ia, ib = num(params.get(oa)) or 0.0, num(params.get(ob)) or 0.0
+        r0 = math.hypot(ia, ib)
+        r1 = math.hypot(ea - sa - ia, eb - sb - ib)
+        unit = INCH if self.inch else 1.0
+        if abs(r1 - r0) * unit > max(arcs.CHORD_TOLERANCE, 0.001 * r0 * unit):
+            self.report(
+                TR_APPROX,
+                f"arc whose end is not on its circle (radius {fmt(r0 * unit, 3)} mm at the start, "
+                f"{fmt(r1 * unit, 3)} mm at the end): the source firmware refuses or bends it",
+                key="arc-radius",
+                cmd=cmd,
+                aspects=("path", "position"),
+            )
 
     def _centre(self, cmd: Command) -> tuple[float, float] | None:
         """The I/J of an R-form XY arc (None, reported, when it cannot be computed)."""

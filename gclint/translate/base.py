@@ -27,6 +27,7 @@ from typing import ClassVar
 from gclint.dialects.base import Dialect
 from gclint.machine.interpreter import Interpreter
 from gclint.syntax.nodes import ASSIGNMENT, EXTENDED, GCODE, IMPLICIT, META, OWORD, Command, Line
+from gclint.syntax.parse import parse_line
 from gclint.translate.arc_moves import ArcMoves
 from gclint.translate.engine import PlainMove, TranslationResult, Translator
 from gclint.translate.findings import TR_AFTER_END, TR_APPROX, TR_LOST, TR_NOTE, TR_UNTRANSLATABLE, dropped_aspects
@@ -105,6 +106,9 @@ class HyrelTranslator(LineWriter, Heads, Program, Motion, ArcMoves, Modal, Spind
         self.layer_height: float | None = None  # stated by the slicer for the coming layer
         self.default_layer_height: float | None = None  # stated once for the whole job
         self.height_written: float | None = None
+        self.height_before: float | None = None  # the height declared before the last one
+        self.pending_height: float | None = None  # declared at the layer's second move (after a 1-move layer)
+        self.single_move_layers = 0
         self.spiral = False
         # the file
         self.default_ending = "\n"
@@ -234,10 +238,21 @@ class HyrelTranslator(LineWriter, Heads, Program, Motion, ArcMoves, Modal, Spind
         return edit.render(self.annotate, self.default_ending)  # type: ignore[return-value]
 
     def finish(self, result: TranslationResult) -> Iterator[str]:
+        footer = not self.hy.ended and self.hy.wrote_command
+        if footer and (self.hy.emitters_on or self.hy.spindles_on or self.hy.air_on):
+            # the file ends with no end of program and something still on: the footer (X6) switches it off
+            self.line, self.edit, self.result = Line(result.lines_in, "", "", parse_line("")), None, result
+            self.report(
+                TR_APPROX,
+                "the job ends with a laser, spindle or air still on; the footer switches it off (M30 last)",
+                key="footer-off",
+                aspects="end",
+            )
+            self.edit = None
         for finding, count in self._aggregate.values():
             if count > 1:
                 finding.message += f" ({count} lines like this; the first is shown)"
-        if self.hy.ended or not self.hy.wrote_command:
+        if not footer:
             return iter(())
         lines = self.footer()
         if self.annotate:

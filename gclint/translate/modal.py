@@ -7,7 +7,7 @@ A mixin of ``HyrelTranslator``.
 from __future__ import annotations
 
 from gclint.syntax.nodes import Command
-from gclint.translate.findings import TR_NOTE
+from gclint.translate.findings import TR_NOTE, TR_UNTRANSLATABLE
 from gclint.translate.output import fmt, rewrite
 from gclint.translate.words import INCH, num
 
@@ -98,9 +98,25 @@ class Modal:
                     v = num(params[letter])
                     if v is not None:
                         values[letter] = fmt(v * INCH)
+        axes = self.opts.printer.axes
+        lost = []
         for letter in params:
-            if letter not in "XYZABE" and letter != ext:
+            if letter == ext or letter in "XYZ" or (letter == "E" and ext == "E"):
+                continue
+            if letter in "AB" and letter in axes:
+                continue
+            if letter not in drop:
                 drop += letter
+            if letter in "AB":
+                lost.append(letter)
+        if lost:
+            self.report(
+                TR_UNTRANSLATABLE,
+                f"G92 {' '.join(lost)} dropped: the {self.opts.printer.name} has no such axis",
+                key=("G92-axes", *lost),
+                cmd=cmd,
+                aspects="position",
+            )
         if drop or values or add:
             self.replace(cmd, rewrite(cmd, drop=drop, values=values, add=add))
 

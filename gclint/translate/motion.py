@@ -235,28 +235,41 @@ class Motion:
         previous = self.layer_z
         if previous is not None and abs(z - previous) < 1e-6:
             self.layer_moves += 1
+            pending = self.pending_height
+            if pending is not None and self.layer_moves == 2:
+                self.pending_height = None
+                self.write_height(pending)
             return
         one_move_layer = previous is not None and self.layer_moves <= 1
-        self.layer_z, self.layer_moves = z, 1
+        self.single_move_layers = self.single_move_layers + 1 if one_move_layer else 0
+        self.layer_z, self.layer_moves, self.pending_height = z, 1, None
         height = self.layer_height or self.default_layer_height
         if height is None:
-            if self.spiral:
-                return
-            if one_move_layer and self.height_written is not None:
-                self.spiral = True
-                self.report(
-                    TR_APPROX,
-                    "Z changes on every extruding move (a spiral): the job states no layer height for Hyrel's "
-                    "native flow (M756); use --flow evalues",
-                    key="M756-spiral",
-                    cmd=cmd,
-                    aspects="e",
-                )
-                return
             height = z - previous if previous is not None else z
             if not height > 0:
                 return
+            if one_move_layer:
+                # the layer below had one move: a spiral (Z rising on every move) has no layer height; wait
+                # for a second move at this height before declaring it
+                if self.single_move_layers >= 2 and not self.spiral:
+                    self.spiral = True
+                    if self.height_before is not None:
+                        self.write_height(self.height_before)  # the spiral's first rise was no layer height
+                    self.report(
+                        TR_APPROX,
+                        "Z changes on every extruding move (a spiral): the job states no layer height for "
+                        "Hyrel's native flow (M756); use --flow evalues",
+                        key="M756-spiral",
+                        cmd=cmd,
+                        aspects="e",
+                    )
+                self.pending_height = height
+                return
+        self.write_height(height)
+
+    def write_height(self, height: float) -> None:
         if height != self.height_written:
+            self.height_before = self.height_written
             self.before(f"M756 S{fmt(height, 4)}", note="native flow: the layer height")
             self.height_written = height
 

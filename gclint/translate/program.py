@@ -9,7 +9,7 @@ A mixin of ``HyrelTranslator``.
 from __future__ import annotations
 
 from gclint.rules.security import host_actions
-from gclint.syntax.nodes import Command
+from gclint.syntax.nodes import GCODE, Command
 from gclint.translate.findings import TR_ACTION, TR_APPROX
 
 
@@ -90,8 +90,8 @@ class Program:
         *first, last = lines
         if first:
             self.before(*first, note="footer")
-        if cmd.code == "M30" and not cmd.params:
-            pass  # M30 stays M30, byte for byte
+        if cmd.code == "M30" and not cmd.params and cmd.kind == GCODE:
+            pass  # M30 stays M30, byte for byte (not "M30 <text>", which Hyrel would read as a file name)
         else:
             self.replace(cmd, last)
         self.hy.ended = True
