@@ -110,6 +110,7 @@ class HyrelTranslator(LineWriter, Heads, Program, Motion, ArcMoves, Modal, Spind
         self.pending_height: float | None = None  # declared at the layer's second move (after a 1-move layer)
         self.single_move_layers = 0
         self.spiral = False
+        self.native_reported = False  # the native-flow finding (once: it holds for the whole job)
         # the file
         self.default_ending = "\n"
         self._ending_known = False
@@ -128,14 +129,11 @@ class HyrelTranslator(LineWriter, Heads, Program, Motion, ArcMoves, Modal, Spind
         self.result = result
         return iter(())
 
-    def translate_line(self, line: Line, result: TranslationResult) -> Iterator[str]:  # type: ignore[override]
-        out = self._translate(line, result)
-        if type(out) is tuple:
-            if len(out[0]) <= LINE_LIMIT:
-                return out  # type: ignore[return-value]
-        elif all(len(piece) <= LINE_LIMIT + 2 for piece in out):  # +2: the line ending
-            return out  # type: ignore[return-value]
-        return self._fit(line, out)  # type: ignore[arg-type]
+    def _checked(self, line: Line, out: list[str]) -> list[str]:
+        for piece in out:
+            if len(piece) > LINE_LIMIT + 2:  # +2: the line ending
+                return self._fit(line, out)
+        return out
 
     def _fit(self, line: Line, out: tuple | list) -> list[str]:
         """Output lines over Hyrel's 100 characters ("all lines will be truncated at 100 characters", Gcode
@@ -172,7 +170,9 @@ class HyrelTranslator(LineWriter, Heads, Program, Motion, ArcMoves, Modal, Spind
         self.edit = None
         return fitted
 
-    def _translate(self, line: Line, result: TranslationResult) -> tuple | list:
+    def translate_line(self, line: Line, result: TranslationResult) -> Iterator[str]:  # type: ignore[override]
+        """The output of one source line (text and line endings).  Every return point keeps the lines
+        within Hyrel's 100 characters (``_fit``)."""
         ending = line.ending
         self._last_ending = ending
         if not self._ending_known and ending:
@@ -186,9 +186,11 @@ class HyrelTranslator(LineWriter, Heads, Program, Motion, ArcMoves, Modal, Spind
                 dropped = self.edit = LineEdit(line)
                 dropped.dropped = dropped.changed = True
                 self.report(TR_UNTRANSLATABLE, "the line could not be parsed; dropped", key="unparsed")
-                return dropped.render(self.annotate, self.default_ending)  # type: ignore[return-value]
+                return self._checked(line, dropped.render(self.annotate, self.default_ending))  # type: ignore[return-value]
             if not self.evalues and parsed.comments:
                 self.layer_hint(line.raw)
+            if len(line.raw) > LINE_LIMIT:
+                return self._fit(line, (line.raw, ending))  # type: ignore[return-value]
             return (line.raw, ending)  # type: ignore[return-value]
         self.line = line
         self.edit = None
@@ -228,6 +230,8 @@ class HyrelTranslator(LineWriter, Heads, Program, Motion, ArcMoves, Modal, Spind
         edit = self.edit
         if edit is None:
             self.hy.wrote_command = True
+            if len(line.raw) > LINE_LIMIT:
+                return self._fit(line, (line.raw, ending))  # type: ignore[return-value]
             return (line.raw, ending)  # type: ignore[return-value]
         if edit.changed:
             result.lines_changed += 1
@@ -235,7 +239,7 @@ class HyrelTranslator(LineWriter, Heads, Program, Motion, ArcMoves, Modal, Spind
             edit.before or edit.after or any(edit.replaced.get(i, True) for i in range(len(commands)))
         ):
             self.hy.wrote_command = True
-        return edit.render(self.annotate, self.default_ending)  # type: ignore[return-value]
+        return self._checked(line, edit.render(self.annotate, self.default_ending))  # type: ignore[return-value]
 
     def finish(self, result: TranslationResult) -> Iterator[str]:
         footer = not self.hy.ended and self.hy.wrote_command

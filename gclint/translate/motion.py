@@ -157,7 +157,8 @@ class Motion:
         with nothing done.  The unchanged case of ``move``: motion started, no re-homing due, no inch
         conversion or extra words, an extruding G1 with E values on (M229 written), and a feed that
         Hyrel already has.  tests/test_translate_plain.py checks that the output is the same without."""
-        if self.hy.ended or not self.hy.started_motion or self.hy.motors_off or self.inch or self.extra_always:
+        hy = self.hy
+        if hy.ended or not hy.started_motion or hy.motors_off or self.inch or self.extra_always:
             return False
         st = self.state
         if e is not None:
@@ -165,7 +166,7 @@ class Motion:
                 not g1
                 or (x is None and y is None and z is None)
                 or not self.evalues
-                or not self.hy.m229_written
+                or not hy.m229_written
                 or self.sync_due
             ):
                 return False
@@ -176,14 +177,14 @@ class Motion:
                 return False
         if g1:
             if f is not None:
-                self.hy.feed = float(f)
-            elif st.feed is not None and st.feed != self.hy.feed:
+                hy.feed = float(f)
+            elif st.feed is not None and st.feed != hy.feed:
                 return False
         self._last_ending = ending
         if not self._ending_known and ending:
             self.default_ending = ending
             self._ending_known = True
-        self.hy.wrote_command = True
+        hy.wrote_command = True
         self.interp.plain_move("G1" if g1 else "G0", number, x, y, z, e, f)
         return True
 
@@ -209,14 +210,16 @@ class Motion:
     def native_flow(self, cmd: Command) -> None:
         """An extruding move in native flow: E1, the layer height, and (once) the finding that the flow is
         Hyrel's own, not the slicer's E amounts (Gcode page, Controlling Material Flow)."""
-        self.report(
-            TR_APPROX,
-            "native flow: Hyrel computes the flow from each move's length, the layer height (M756) and the "
-            "head's width (M221 W); the slicer's E amounts are not used",
-            key="native-flow",
-            cmd=cmd,
-            aspects="e",
-        )
+        if not self.native_reported:
+            self.native_reported = True
+            self.report(
+                TR_APPROX,
+                "native flow: Hyrel computes the flow from each move's length, the layer height (M756) and the "
+                "head's width (M221 W); the slicer's E amounts are not used",
+                key="native-flow",
+                cmd=cmd,
+                aspects="e",
+            )
         self.layer_change(cmd)
 
     def layer_change(self, cmd: Command) -> None:

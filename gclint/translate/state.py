@@ -22,7 +22,7 @@ class HeadState:
         self.flow: float | None = None  # M221 S multiplier
 
 
-@dataclass
+@dataclass(slots=True)
 class HyrelSide:
     feed: float | None = None  # F of the last G1/G2/G3 written (G0 F is one-shot on Hyrel)
     m229_written: bool = False  # M229 E1 D1: E amounts carry the flow
