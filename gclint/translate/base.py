@@ -99,7 +99,7 @@ class HyrelTranslator(LineWriter, Heads, Program, Motion, ArcMoves, Modal, Spind
         self.hy = HyrelSide()  # what the Hyrel printer will believe
         self.rpm: float | None = None  # the source's modal spindle speed (S words)
         self.tools = SourceTools()  # what the source firmware believes about its tools (tools.py)
-        self.sync_due = False  # a tool change: carry set-point, fan and flow before the next working move
+        self.sync_due = True  # (a tool change; the first working move) carry set-point, fan, flow before it
         # native flow: the layer height Hyrel computes the flow with (M756), per layer (motion.py)
         self.layer_z: float | None = None
         self.layer_moves = 0
