@@ -237,6 +237,8 @@ def test_cli_diff_exit_codes(tmp_path: Path) -> None:
     same = run_cli("diff", str(source), str(good), "--from", "marlin", "--to", "hyrel")
     assert same.returncode == 0, same.stdout + same.stderr
     assert b"0 differences over 3 matched working moves (0 unexplained)." in same.stdout
+    piped = run_cli("diff", "-", str(good), "--from", "marlin", "--to", "hyrel", input=DUAL.encode())
+    assert piped.returncode == 0, piped.stderr  # standard input is read once, translated and simulated
     bad = tmp_path / "bad.gcode"
     bad.write_text(WRONG[1].output)
     differs = run_cli("diff", str(source), str(bad), "--from", "marlin", "--to", "hyrel", "--format", "json")

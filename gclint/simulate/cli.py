@@ -51,9 +51,10 @@ def run_diff(
         return 2
     explanations: Explanations | None = None
     try:
+        opener = _opener(source_path)
         if explain and source.name != target.name:
-            explanations = _explanations(source_path, source, target, options)
-        first = Source.open(source_path)
+            explanations = _explanations(opener(), source, target, options)
+        first = opener()
         try:
             second = Source.open(output_path)
             try:
@@ -77,15 +78,30 @@ def run_diff(
     return 1 if result.differences else 0
 
 
-def _explanations(path: str, source: Dialect, target: Dialect, options) -> Explanations:
+def _opener(path: str):
+    """A function that opens SOURCE afresh (it is read twice: translated, then simulated); standard input
+    is read once, into memory."""
+    if path != "-":
+        return lambda: Source.open(path)
+    first = Source.open(path)
+    try:
+        data = first.bom + b"".join(
+            first.encode("".join(raw + ending for raw, ending in chunk)) for chunk in first.chunks()
+        )
+    finally:
+        first.close()
+    return lambda: Source.from_bytes(data, first.display)
+
+
+def _explanations(src: Source, source: Dialect, target: Dialect, options) -> Explanations:
     from gclint.simulate.translation import explanations_from, translate_text
 
     try:
-        _, result = translate_text(path, source, target, options)
+        _, result = translate_text(src, source, target, options)
+    except SourceError:
+        raise
     except Exception as exc:  # the translator's own problem must not hide the diff
-        if isinstance(exc, SourceError):
-            raise
-        _say(f"gclint: {path}: could not translate it to explain the differences: {type(exc).__name__}")
+        _say(f"gclint: {src.display}: could not translate it to explain the differences: {type(exc).__name__}")
         return Explanations()
     return explanations_from(result)
 

@@ -13,12 +13,12 @@ def explanations_from(result) -> Explanations:
     return Explanations([(code, aspects, list(lines)) for (code, aspects), lines in result.occurrences.items()])
 
 
-def translate_text(path: str, source: Dialect, target: Dialect, options) -> tuple[str, object]:
-    """Translate ``path`` in memory: (output text, TranslationResult)."""
+def translate_text(path: str | Source, source: Dialect, target: Dialect, options) -> tuple[str, object]:
+    """Translate ``path`` (or an open ``Source``) in memory: (output text, TranslationResult)."""
     from gclint.translate import TranslationResult, translate_source, translator_for
 
     translator = translator_for(source, target, options)
-    src = Source.open(path)
+    src = Source.open(path) if isinstance(path, str) else path
     try:
         result = TranslationResult(src.display, source.name, target.name)
         text = "".join(translate_source(src, translator, result))
