@@ -24,6 +24,7 @@ class CncSimulator(Simulator):
     """What LinuxCNC and Carvera share: workspaces, G53, spindle, tool change, coolant, end of program."""
 
     DEFAULT_WCS = "G54"
+    FEED_ON_ANY_COMMAND = True
 
     def __init__(self, dialect, mapping=None, *, cnc: bool = True) -> None:
         super().__init__(dialect, mapping, cnc=cnc)
@@ -181,6 +182,10 @@ class MachinekitSimulator(CncSimulator):
 
     def plain_moves(self) -> bool:
         return False  # E is not a word here; plain moves go through motion() with their words checked
+
+    def extra_turns(self, params: dict) -> int:
+        p = number(params.get("P"))  # LinuxCNC: "P - number of turns", P1 the plain arc
+        return int(p) - 1 if p is not None and p >= 1 else 0
 
     def motion(self, mode: str, params: dict, n: int) -> Move | None:
         if "E" in params:

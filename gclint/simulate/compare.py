@@ -113,15 +113,27 @@ def _plane_axes(plane: int) -> tuple[int, int]:
     return {17: (0, 1), 18: (2, 0), 19: (1, 2)}.get(plane, (0, 1))
 
 
+def _arc_progress(point: tuple, move: Move, before: float) -> float | None:
+    """How far round the source arc an output point is (radians from its start, in its direction), if it
+    lies on the arc beyond ``before``; None if not (off the circle, backwards, or past the end)."""
+    plane, (cu, cv), r, clockwise, a0, turn = move.arc  # type: ignore[misc]
+    u, v = _plane_axes(plane)
+    pu, pv = point[u], point[v]
+    if pu is None or pv is None or abs(math.hypot(pu - cu, pv - cv) - r) > CHORD_TOLERANCE + POSITION_TOLERANCE:
+        return None
+    angle = math.atan2(pv - cv, pu - cu)
+    step = ((a0 - angle) if clockwise else (angle - a0)) % (2 * math.pi)
+    laps = max(0.0, (before - step) // (2 * math.pi) + 1) if step < before - 1e-6 else 0.0
+    progress = step + 2 * math.pi * laps
+    if progress < before - 1e-6 or progress > turn + 1e-6:
+        return None
+    return progress
+
+
 def _on_path(point: tuple, move: Move) -> bool:
     """Whether an output point lies on the source move's path (an intermediate segment end)."""
     if move.arc is not None:
-        plane, (cu, cv), r, _ = move.arc
-        u, v = _plane_axes(plane)
-        pu, pv = point[u], point[v]
-        if pu is None or pv is None:
-            return False
-        return abs(math.hypot(pu - cu, pv - cv) - r) <= CHORD_TOLERANCE + POSITION_TOLERANCE
+        return _arc_progress(point, move, 0.0) is not None
     start, end = move.start, move.end
     if any(start[i] is None or end[i] is None or point[i] is None for i in (0, 1)):
         return False
@@ -157,40 +169,59 @@ def align(source: Iterable[Move], output: Iterable[Move]) -> Iterator[tuple[Move
             continue
         o = out.get(0)
         assert o is not None
-        for j in range(1, LOOKAHEAD + 1):  # is the output move a later source move? then these are missing
-            later = src.get(j)
-            if later is None:
-                break
-            if _xy_match(later.end, o.end):
-                for _ in range(j):
-                    yield src.pop(), [], None
-                break
-        else:
-            for i in range(1, LOOKAHEAD + 1):  # is the source move a later output move? then these are extra
-                later_out = out.get(i)
-                if later_out is None:
-                    break
-                if _xy_match(later_out.end, s.end):
-                    for _ in range(i):
-                        yield None, [out.pop()], s.line
-                    break
-            else:
-                yield src.pop(), [out.pop()], None  # the same move, ending elsewhere
+        missing = _ahead(src, o.end)  # is the output move a later source move? the ones before it are missing
+        if missing:
+            for _ in range(missing):
+                yield src.pop(), [], None
+            continue
+        extra = _ahead(out, s.end)  # is the source move a later output move? the ones before it are extra
+        if extra:
+            for _ in range(extra):
+                yield None, [out.pop()], s.line
+            continue
+        yield src.pop(), [out.pop()], None  # the same move, ending elsewhere
+
+
+def _ahead(moves: _Peek, end: tuple) -> int:
+    """How many moves ahead (1 to LOOKAHEAD) one ends at ``end``'s X Y; 0 if none does."""
+    for i in range(1, LOOKAHEAD + 1):
+        later = moves.get(i)
+        if later is None:
+            return 0
+        if _xy_match(later.end, end):
+            return i
+    return 0
 
 
 def _run(s: Move, out: _Peek) -> list[Move] | None:
+    """The output moves that make source move ``s``: intermediate ends on its path (going forward round an
+    arc), the last at its end."""
     k = 0
     limit = MAX_SEGMENTS if s.arc is not None else 64
+    progress = 0.0
     while k < limit:
         o = out.get(k)
         if o is None:
             return None
-        if _xy_match(o.end, s.end):
+        if _xy_match(o.end, s.end) and (s.arc is None or k == 0 or _arc_done(o.end, s, progress)):
             return [out.pop() for _ in range(k + 1)]
-        if _xy_match(o.end, s.start) or not _on_path(o.end, s):
+        if _xy_match(o.end, s.start):
             return None  # a move that stays at the start is not a piece of this one
+        if s.arc is not None:
+            ahead = _arc_progress(o.end, s, progress)
+            if ahead is None:
+                return None
+            progress = ahead
+        elif not _on_path(o.end, s):
+            return None
         k += 1
     return None
+
+
+def _arc_done(point: tuple, move: Move, progress: float) -> bool:
+    """Whether an output point at the arc's end point closes it (and is not the end of an earlier lap)."""
+    turn = move.arc[5]  # type: ignore[index]
+    return progress > turn - 2 * math.pi + 1e-6 or turn <= 2 * math.pi + 1e-6
 
 
 # -- describing values ------------------------------------------------------------------------------------
@@ -472,10 +503,10 @@ def _deviation(s: Move, run: list[Move]) -> float | None:
     """How far the output's way from the source's start to its end strays from the source's path, when
     more than the tolerance allows (None: within it)."""
     if s.arc is not None:
-        plane, (cu, cv), r, clockwise = s.arc
+        plane, (cu, cv), r, clockwise = s.arc[:4]
         u, v = _plane_axes(plane)
         if len(run) == 1 and run[0].arc is not None:
-            _, (ou, ov), orad, ocw = run[0].arc
+            _, (ou, ov), orad, ocw = run[0].arc[:4]
             if _close(ou, cu) and _close(ov, cv) and ocw == clockwise:
                 return None
             return max(math.hypot(ou - cu, ov - cv), abs(orad - r))

@@ -21,6 +21,7 @@ from gclint.syntax.source import Source
 
 INCH = 25.4
 _AXIS_INDEX = {"X": 0, "Y": 1, "Z": 2, "A": 3, "B": 4}
+_MOTION = frozenset({"G0", "G1", "G2", "G3", None})
 _PLANES = {17: ("X", "Y", "I", "J"), 18: ("Z", "X", "K", "I"), 19: ("Y", "Z", "J", "K")}
 
 
@@ -44,6 +45,7 @@ class Simulator:
     G0_EXTRUDES = False  # Marlin/RRF: G0 is G1 and extrudes
     E_FOLLOWS_G90 = False  # Marlin: G90/G91 also set the E mode; Machinekit: A is an axis
     DEFAULT_WCS: str | None = None  # the workspace in force at the start (LinuxCNC, Carvera: G54)
+    FEED_ON_ANY_COMMAND = False  # LinuxCNC, Carvera: an F word sets the feed whatever the line's G code
 
     def __init__(self, dialect: Dialect, mapping: Mapping | None = None, *, cnc: bool = False) -> None:
         self.dialect = dialect
@@ -108,6 +110,10 @@ class Simulator:
                 for cmd in parse_line(raw).commands:
                     if self.ended:
                         break
+                    if self.FEED_ON_ANY_COMMAND and "F" in cmd.params and cmd.code not in _MOTION:
+                        f = number(cmd.params["F"])
+                        if f is not None:
+                            self.feed = f * self.scale
                     handler = handlers.get(cmd.code)  # type: ignore[arg-type]
                     if handler is not None:
                         move = handler(cmd, n)
@@ -353,9 +359,24 @@ class Simulator:
                 centre = None
             if centre is not None:
                 cu, cv = sa + centre[0], sb + centre[1]
-                arc = (plane, (cu, cv), math.hypot(centre[0], centre[1]), cmd.code == "G2")
+                clockwise = cmd.code == "G2"
+                ea, eb = self.pos[i_a], self.pos[i_b]
+                a0 = math.atan2(sb - cv, sa - cu)
+                a1 = math.atan2(eb - cv, ea - cu) if ea is not None and eb is not None else a0
+                turn = (a0 - a1) if clockwise else (a1 - a0)  # the way round, in the arc's direction
+                turn %= 2 * math.pi
+                if turn < 1e-9:
+                    turn = 2 * math.pi  # the same start and end: a full circle
+                turn += 2 * math.pi * self.extra_turns(params)
+                arc = (plane, (cu, cv), math.hypot(centre[0], centre[1]), clockwise, a0, turn)
         native = self.arc_native(params)
         return self.sync(start, arc, delta, self.feed, False, native=native)
+
+    def extra_turns(self, params: dict) -> int:
+        """Full circles an arc makes before its end (Marlin, RepRapFirmware: P is the number of extra
+        circles; LinuxCNC counts P turns, P1 being the plain arc)."""
+        p = number(params.get("P"))
+        return int(p) if p is not None and p >= 1 else 0
 
     def arc_native(self, params: dict) -> bool:
         """Whether an arc prints with a flow the machine computes itself (Hyrel: arcs with E)."""

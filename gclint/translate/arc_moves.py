@@ -32,6 +32,8 @@ class ArcMoves:
         if extruding and self.sync_due:
             self.sync_working_head()
         turns = num(params.get("P")) if "P" in params else None
+        if turns is not None and self.TURNS_COUNT_THE_ARC:
+            turns -= 1  # LinuxCNC: "P - number of turns", P1 being the plain arc
         if "R" not in params:
             a, b, oa, ob, _ = arcs.PLANES[plane]
             if not num(params.get(oa)) and not num(params.get(ob)):

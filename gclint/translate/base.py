@@ -35,7 +35,7 @@ from gclint.translate.heads import Heads
 from gclint.translate.modal import Modal
 from gclint.translate.motion import Motion
 from gclint.translate.options import TranslateOptions
-from gclint.translate.output import LINE_LIMIT, LineEdit, fit_line
+from gclint.translate.output import LINE_LIMIT, LineEdit, fit_line, rewrite
 from gclint.translate.program import Program
 from gclint.translate.spindle import Spindles
 from gclint.translate.state import HyrelSide
@@ -44,6 +44,7 @@ from gclint.translate.words import has_expression
 from gclint.translate.writer import LineWriter
 
 WORKSPACES = {f"G{n}": "workspace" for n in range(54, 60)}  # G54-G59: the same codes on Hyrel
+_MOVES = frozenset({"G0", "G1", "G2", "G3"})
 
 
 class HyrelTranslator(LineWriter, Heads, Program, Motion, ArcMoves, Modal, Spindles, Translator):
@@ -81,6 +82,8 @@ class HyrelTranslator(LineWriter, Heads, Program, Motion, ArcMoves, Modal, Spind
     # 1.4 M82/M83 and 2.1 G90 row); None where the E mode is independent (RepRapFirmware, Carvera).
     E_MODE_FOLLOWS_POSITIONING: str | None = None
     DEFAULT_WORKSPACE: str | None = None  # the workspace the source starts in (CNC sources: G54)
+    FEED_ON_ANY_COMMAND = False  # an F on a non-motion command sets the feed (LinuxCNC, Carvera)
+    TURNS_COUNT_THE_ARC = False  # G2/G3 P: extra full circles (Marlin); LinuxCNC: the turns, P1 the arc itself
 
     def __init__(self, source: Dialect, target: Dialect, options: TranslateOptions | None = None) -> None:
         super().__init__(source, target, options)
@@ -211,11 +214,24 @@ class HyrelTranslator(LineWriter, Heads, Program, Motion, ArcMoves, Modal, Spind
             handlers = self.handlers
             apply = self.interp.apply
             check = self.CHECK_EXPRESSIONS
+            feed_words = self.FEED_ON_ANY_COMMAND
             for i, cmd in enumerate(commands):
                 self.index = i
                 if self.hy.ended:
                     self.remove(cmd, TR_AFTER_END, "after the end of the program; dropped", key="after-end")
                     continue
+                if feed_words and cmd.kind == GCODE and cmd.code not in _MOVES:
+                    params = cmd.params
+                    if "@" in params or "^" in params:  # LinuxCNC polar words (@ radius, ^ angle): a modal move
+                        self.report(
+                            TR_UNTRANSLATABLE,
+                            "polar coordinates (@ radius, ^ angle) cannot be translated; the move is dropped",
+                            key="polar",
+                            cmd=cmd,
+                        )
+                        self.replace(cmd, rewrite(cmd, drop="@^"))
+                    if "F" in params:
+                        self.modal_feed(cmd)  # type: ignore[attr-defined]  (then the command's own handler)
                 if check and (cmd.kind == GCODE or cmd.kind == IMPLICIT) and has_expression(cmd):
                     self.untranslatable(
                         cmd, "a parameter is an expression or variable the translator cannot evaluate", key="expression"

@@ -9,6 +9,8 @@ from typing import ClassVar
 
 from gclint.syntax.nodes import Command
 from gclint.translate.base import HyrelTranslator
+from gclint.translate.output import rewrite
+from gclint.translate.words import fast_float
 
 # The rows Machinekit and Carvera share (the rows every source shares are HyrelTranslator.HANDLERS).
 CNC_HANDLERS: dict[str, str] = {
@@ -31,11 +33,22 @@ class CncTranslator(HyrelTranslator):
     CHECK_EXPRESSIONS = True
     END_CODES: ClassVar[frozenset[str]] = frozenset({"M2", "M30"})
     MACHINE = "the source machine's"  # whose machine coordinates G53 names (messages)
-    DEFAULT_WORKSPACE = "G54"  # LinuxCNC and the Carvera start in G54 (research/dialects.md 1.1, G54-G59)
+    DEFAULT_WORKSPACE = "G54"
+    FEED_ON_ANY_COMMAND = True  # LinuxCNC and the Carvera start in G54 (research/dialects.md 1.1, G54-G59)
 
     def __init__(self, source, target, options=None) -> None:
         super().__init__(source, target, options)
         self.prepared: int | None = None  # the tool a T word prepared for the next M6
+
+    def modal_feed(self, cmd: Command) -> None:
+        """An F word on a line with no motion (``G54 G18 G21 F400``): LinuxCNC and the Carvera set the feed
+        of later moves from it.  Hyrel's G1 feed is modal: the F is dropped here and written on the next
+        working move that needs it."""
+        f = fast_float(cmd.params.get("F"))
+        if f is None:
+            return
+        self.state.feed = f
+        self.replace(cmd, rewrite(cmd, drop="F"))
 
     def tool_command(self, cmd: Command) -> None:
         number = (cmd.code or "T")[1:]

@@ -21,9 +21,10 @@ from gclint.translate.words import num
 
 class MachinekitToHyrel(CncTranslator):
     EXTRUDER = "A"
+    TURNS_COUNT_THE_ARC = True
     E_MODE_FOLLOWS_POSITIONING: str | None = "the extruder (A) follows G90/G91 in Machinekit"
     FAN_MAX = 255.0
-    EXTRA_LETTERS: ClassVar[frozenset[str]] = frozenset("FEBCUVW")
+    EXTRA_LETTERS: ClassVar[frozenset[str]] = frozenset("FEBCUVWSP")
 
     HANDLERS: ClassVar[dict[str, str]] = {  # besides cnc.CNC_HANDLERS
         "G22": "retract",
@@ -45,6 +46,8 @@ class MachinekitToHyrel(CncTranslator):
         "M300": "beep",
         "M701": "m701",
         "M702": "m702",
+        "G5.2": "nurbs_start",
+        "G5.3": "nurbs_end",
     }
     DROPPED: ClassVar[dict[str, tuple[str, str]]] = {
         **_codes("M1", TR_DROPPED, "optional stop (off unless the operator enables it)"),
@@ -82,6 +85,10 @@ class MachinekitToHyrel(CncTranslator):
         **_codes("G10", TR_LOST, "tool table or coordinate system setting (G10 L..)"),
     }
 
+    def __init__(self, source, target, options=None) -> None:
+        super().__init__(source, target, options)
+        self.nurbs = False  # inside a G5.2 ... G5.3 block
+
     def e_absolute(self) -> bool:
         return self.state.absolute  # A follows G90/G91
 
@@ -96,9 +103,39 @@ class MachinekitToHyrel(CncTranslator):
             return value
         return value - current
 
+    MOVE_OVERRIDE_IGNORES_PLAIN = True  # move() below only adds polar words (@, ^) and NURBS blocks
+
+    def move(self, cmd: Command) -> None:
+        if self.nurbs:
+            self.untranslatable(cmd, "a NURBS control point (G5.2 block) cannot be translated", key="nurbs")
+            return
+        if "@" in cmd.params or "^" in cmd.params:
+            self.untranslatable(cmd, "polar coordinates (@ radius, ^ angle) cannot be translated", key="polar")
+            return
+        super().move(cmd)
+
+    def nurbs_start(self, cmd: Command) -> None:
+        self.nurbs = True
+        self.untranslatable(cmd, "NURBS block (G5.2 ... G5.3): Hyrel has no spline moves", key="nurbs")
+
+    def nurbs_end(self, cmd: Command) -> None:
+        self.nurbs = False
+        self.remove(cmd, TR_DROPPED, "end of a NURBS block", key="nurbs-end")
+
+    def implicit_move(self, cmd: Command) -> None:
+        if self.nurbs and any(a in cmd.params for a in "XYZP"):
+            self.untranslatable(cmd, "a NURBS control point (G5.2 block) cannot be translated", key="nurbs")
+            return
+        super().implicit_move(cmd)
+
     def move_extra(self, cmd: Command, rapid: bool) -> tuple[str, tuple[str, ...]] | None:
         params = cmd.params
         drop = ""
+        if "S" in params:
+            drop += "S"  # the spindle speed, modal (for the next M3, or now if it runs)
+            self.speed_word(cmd)
+        if "P" in params and cmd.code in ("G0", "G1"):
+            drop += "P"  # no P on a LinuxCNC G0/G1
         if rapid and "F" in params:
             drop += "F"  # LinuxCNC's G0 ignores F (the F still sets the feed of later G1s)
         if "E" in params:
