@@ -21,9 +21,13 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
 
 from gclint import dialects
 from gclint.simulate import Mapping, diff_sources
+from gclint.simulate.compare import align
+from gclint.simulate.trace import Look, Move
 from gclint.simulate.translation import explanations_from
 from gclint.syntax.source import Source
 from gclint.translate import TranslationResult, translate_source, translator_for
@@ -338,3 +342,30 @@ def test_corpus_translations_have_no_unexplained_difference(folder: str, dialect
             problems.append(f"{path.relative_to(CORPUS)}:{d.source_line}: {d.aspect}: {d.source} -> {d.output}")
     assert jobs > 0
     assert not problems, "\n".join(problems[:20])
+
+
+# -- the alignment always ends -----------------------------------------------------------------------------
+
+_points = st.lists(st.tuples(st.integers(0, 4), st.integers(0, 4)), max_size=40)
+
+
+def _moves(points: list[tuple[int, int]]) -> list[Move]:
+    out, previous = [], (0.0, 0.0, 0.0, None, None)
+    for n, (x, y) in enumerate(points, 1):
+        end = (float(x), float(y), 0.0, None, None)
+        out.append(Move(n, previous, end, None, 1.0, 1200.0, Look()))
+        previous = end
+    return out
+
+
+@settings(max_examples=200, deadline=None)
+@given(source=_points, output=_points)
+def test_alignment_consumes_both_sides(source, output) -> None:
+    """Whatever the two jobs, every move of each is accounted for exactly once (and the walk ends)."""
+    src, out = _moves(source), _moves(output)
+    seen_src, seen_out = [], []
+    for s, run, _ in align(src, out):
+        if s is not None:
+            seen_src.append(s.line)
+        seen_out.extend(m.line for m in run)
+    assert seen_src == [m.line for m in src] and seen_out == [m.line for m in out]
