@@ -168,7 +168,7 @@ class Heads:
                     lines.append(f"M107 T{address}")
                 state.fan = tools.fan
             self.hy.part_fan_heads = {address} if tools.fan else set()
-        if flow is not None and (state.flow if state.flow is not None else 1.0) != flow:
+        if flow is not None and state.flow != flow:  # explicit, not the head's stored value (X2)
             lines.append(f"M221 T{address} S{fmt(flow, 4)}")
             state.flow = flow
         if lines:
