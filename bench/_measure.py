@@ -82,7 +82,7 @@ def gclint_translate(files: list[str], target: str) -> int:
     from gclint import dialects
     from gclint.context import infer
     from gclint.syntax.source import Source
-    from gclint.translate.engine import TranslationResult, translate_source, translator_for
+    from gclint.translate import TranslationResult, translate_source, translator_for
 
     n = 0
     for path in files:

@@ -33,7 +33,7 @@ def translate_folder(folder: Path, out: str) -> None:
     """Translate every job of ``folder`` (Marlin) to Hyrel into ``out`` (not timed)."""
     from gclint import dialects
     from gclint.syntax.source import Source
-    from gclint.translate.engine import TranslationResult, translate_source, translator_for
+    from gclint.translate import TranslationResult, translate_source, translator_for
 
     for i, path in enumerate(bench_check_files(folder)):
         source = Source.open(path)

@@ -21,7 +21,7 @@ sys.path.insert(0, str(ROOT))
 from gclint import dialects  # noqa: E402
 from gclint.engine import Linter, Options  # noqa: E402
 from gclint.syntax.source import Source  # noqa: E402
-from gclint.translate.engine import TranslationResult, translate_source, translator_for  # noqa: E402
+from gclint.translate import TranslationResult, translate_source, translator_for  # noqa: E402
 from gclint.translate.options import TranslateOptions  # noqa: E402
 
 EXTENSIONS = (".gcode", ".gco", ".g", ".nc", ".ngc", ".cnc", ".tap")

@@ -743,6 +743,75 @@ def translate(
     sys.exit(code)
 
 
+# -- diff ------------------------------------------------------------------------------------------------
+
+
+@main.command()
+@click.argument("source_path", metavar="SOURCE", type=click.Path(allow_dash=True))
+@click.argument("output_path", metavar="OUTPUT", type=click.Path(allow_dash=True))
+@click.option("--from", "source", required=True, metavar="D", help="Dialect of SOURCE.")
+@click.option("--to", "target", required=True, metavar="D", help="Dialect of OUTPUT (hyrel, hyrel-v4).")
+@click.option("--format", "-f", "fmt", type=click.Choice(["text", "json"]), default="text", show_default=True)
+@click.option(
+    "--fail-on",
+    type=click.Choice(["any", "unexplained"]),
+    default="any",
+    show_default=True,
+    help="Exit 1 on any difference, or only on one no TR finding explains.",
+)
+@click.option("--no-explain", is_flag=True, help="Do not translate SOURCE to explain the differences.")
+@click.option("--printer", "-p", metavar="MODEL", help="Hyrel model of the target.")
+@click.option("--tool-map", metavar="0=T2,...", help="Source tool index -> Hyrel head address.")
+@click.option("--flow", type=click.Choice(["evalues", "native"]), default=None, help="As given to translate.")
+@click.option("--set", "settings", multiple=True, metavar="KEY=VALUE", help="Translation setting, as for translate.")
+@click.option(
+    "--config", "config_file", type=click.Path(dir_okay=False), help="Configuration file (else found upward)."
+)
+def diff(
+    source_path: str,
+    output_path: str,
+    source: str,
+    target: str,
+    fmt: str,
+    fail_on: str,
+    no_explain: bool,
+    printer: str | None,
+    tool_map: str | None,
+    flow: str | None,
+    settings: tuple[str, ...],
+    config_file: str | None,
+) -> None:
+    """Where OUTPUT (a translation of SOURCE) differs from it in meaning; exit 1 if it does."""
+    from gclint.simulate.cli import run_diff
+    from gclint.translate.options import parse_settings
+
+    src = dialects.get(_check_dialect(source, allow_auto=False))  # type: ignore[arg-type]
+    dst = dialects.get(_check_dialect(target, allow_auto=False))  # type: ignore[arg-type]
+    if source_path == "-" and output_path == "-":
+        _fail("SOURCE and OUTPUT cannot both be standard input")
+    try:
+        mapping = parse_tool_map(tool_map) if tool_map else None
+        extra = parse_settings(settings)
+    except (ConfigError, ValueError) as exc:
+        _fail(str(exc))
+        return
+    code = run_diff(
+        source_path,
+        output_path,
+        src,
+        dst,
+        fmt=fmt,
+        explain=not no_explain,
+        fail_on=fail_on,
+        printer=_check_printer(printer),
+        tool_map=mapping,
+        config_file=config_file,
+        flow=flow,
+        settings=extra,
+    )
+    sys.exit(code)
+
+
 # -- rules and dialects ------------------------------------------------------------------------------------
 
 

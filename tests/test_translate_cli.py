@@ -147,3 +147,17 @@ def test_rules_show_tr_documentation():
 def test_check_never_reports_tr_codes():
     proc = run_cli("check", "--dialect", "marlin", "--format", "json", "-", input=JOB)
     assert b'"TR0' not in proc.stdout
+
+
+def test_tool_map_to_a_bed_is_refused():
+    """issue 13 item 6: a tool maps to a head (T0-T19) only; T24 is a bed: one line, exit 2."""
+    proc = run_cli("translate", "--from", "marlin", "--to", "hyrel", "--tool-map", "0=T24", "-", input=JOB)
+    assert proc.returncode == 2 and proc.stdout == b""
+    err = proc.stderr.decode().strip()
+    assert len(err.splitlines()) == 1 and "T24 is Bed1" in err and "T0-T19" in err
+
+
+def test_check_reports_e_words_in_machinekit_jobs():
+    """issue 13 item 8: ``check --dialect machinekit`` on a job written with E (DL005)."""
+    proc = run_cli("check", "--dialect", "machinekit", "--select", "DL005", "-", input=b"G1 X1 Y1 E0.5 F600\n")
+    assert proc.returncode == 1 and b"DL005" in proc.stdout

@@ -21,7 +21,7 @@ from gclint.rules.base import Severity
 from gclint.syntax.nodes import GCODE, TEXT
 from gclint.syntax.parse import parse_line
 from gclint.syntax.source import Source
-from gclint.translate.engine import TranslationResult, translate_source, translator_for
+from gclint.translate import TranslationResult, translate_source, translator_for
 from gclint.translate.options import TranslateOptions
 
 from .conftest import CORPUS, needs_corpus

@@ -27,9 +27,10 @@ MACHINEKIT = [
     Row("2.2 G4 P (seconds) -> G4 S", "G4 P2.5", "G4 S2.5", "TR004"),
     Row("2.2 G22/G23 (retract)", "G22\nG23", "", "TR004"),
     Row("2.2 G22/G23 retract=explicit", "G22\nG23", "M721 T0 I1\nM722 T0 I1", settings={"retract": "explicit"}),
-    Row("2.2 G28 (no homing: rapid to 0, reset A)", "G28", "G0 X0 Y0 Z0\nG92 E0", "TR003"),
-    Row("2.2 G28 X Y", "G28 X Y", "G0 X0 Y0", "TR003"),
-    Row("2.2 G28 A", "G28 A", "G92 E0", "TR003"),
+    # g28.ngc: "G0 X0", then "G0 Y0", then "G0 Z0" (one axis at a time, issue 13 item 9), then "G92 A0"
+    Row("2.2 G28 (no homing: rapid to 0, reset A)", "G28", "G0 X0\nG0 Y0\nG0 Z0\nG92 E0", "TR004"),
+    Row("2.2 G28 X Y", "G28 X Y", "G0 X0\nG0 Y0", "TR004"),
+    Row("2.2 G28 A", "G28 A", "G92 E0", "TR004"),
     Row("2.2 G29 G29.1 G29.2 G30", "G29\nG29.1 Z1\nG30", "", "TR002"),
     Row("2.2 G38.x (probe)", "G38.2 Z-10 F100", "", "TR005"),
     Row("2.2 G10 L2/L20", "G10 L2 P1 X0 Y0", "", "TR002", out="coordinate systems are Repetrel fixture offsets"),
@@ -60,9 +61,13 @@ MACHINEKIT = [
     Row("2.2 M30: footer", "M30", "M30"),
     Row("2.2 code after M2", "M2\nG0 X0", "M30", "TR008"),
     Row("2.2 M3 S (rpm)", "M3 S12000", "M3 T0 S80", "TR003"),
-    Row("2.2 M3 S with spindle-max-rpm", "M3 S12000", "M3 T0 S50", settings={"spindle_max_rpm": "24000"}),
-    Row("2.2 S word then M3", "S6000\nM3", "M3 T0 S25", settings={"spindle_max_rpm": "24000"}),
+    # the spindle is still on at the end of these rows' files: the footer stops it (TR003)
+    Row("2.2 M3 S with spindle-max-rpm", "M3 S12000", "M3 T0 S50", "TR003", settings={"spindle_max_rpm": "24000"}),
+    Row("2.2 S word then M3", "S6000\nM3", "M3 T0 S25", "TR003", settings={"spindle_max_rpm": "24000"}),
     Row("2.2 M5", "M5", "M5 T0"),
+    # issue 13 item 8: E is not a word of Machinekit/LinuxCNC: reported, not silently dropped
+    Row("2.2 E word (the extruder is A)", "G1 X5 Y5 E1", "G1 X5 Y5", "TR005"),
+    Row("2.2 G0 that moves the extruder: a G1 at the modal feed", "G0 X2 Y2 A3", "G1 X2 Y2 E3", "TR003"),
     Row("2.2 T<n> M6", "T1 M6", "T1"),
     Row("2.2 T<n> then M6", "T1\nM6", "T1"),
     Row("2.2 M6 with the tool map", "T1 M6", "T3", settings={"tool_map": "1=T3"}),
@@ -107,7 +112,7 @@ def test_machinekit(row: Row) -> None:
 
 def test_machinekit_file_without_a_tool_gets_one() -> None:
     out, _ = translate("machinekit", "G21\nG1 X1 Y1 A0.5 F600\nM2\n")
-    assert out.splitlines() == ["G21", "G90", "T0", "M229 E1 D1", "M82", "G1 X1 Y1 E0.5 F600", "M30"]
+    assert out.splitlines() == ["G21", "G90", "G54", "T0", "M229 E1 D1", "M82", "G1 X1 Y1 E0.5 F600", "M30"]
 
 
 def test_machinekit_subroutine_is_untranslatable() -> None:

@@ -12,7 +12,7 @@ from hypothesis import strategies as st
 
 from gclint import dialects
 from gclint.syntax.source import Source
-from gclint.translate.engine import TranslationResult, Translator, translate_source, translator_for
+from gclint.translate import TranslationResult, Translator, translate_source, translator_for
 from gclint.translate.options import TranslateOptions
 from tests.strategies import any_line, numbers
 from tests.test_translate_corpus import FOLDERS, jobs

@@ -18,7 +18,7 @@ import pytest
 
 from gclint import dialects
 from gclint.syntax.source import Source
-from gclint.translate.engine import TranslationResult, translate_source, translator_for
+from gclint.translate import TranslationResult, translate_source, translator_for
 from gclint.translate.options import TranslateOptions
 
 PRELUDES = {
@@ -104,9 +104,10 @@ MARLIN = [
     ),
     Row("X4 evalues: M229 before M82/M83", "M83", "M229 E1 D1\nM83", prelude=""),
     Row(
-        "X4 native: E reduced to E1",
+        "X4 native: E reduced to E1 (Hyrel computes the flow: TR003)",
         "G1 X1 Y1 E0.5 F600",
         "G21\nG90\nT0\nG1 X1 Y1 E1 F600",
+        "TR003",
         prelude="",
         settings={"flow": "native"},
     ),
@@ -185,7 +186,9 @@ MARLIN = [
     Row("2.1 G30 (probe)", "G30", "", "TR002"),
     Row("2.1 M420 (levelling on/off)", "M420 S1", "", "TR002"),
     # G53-G59, G90-G93
-    Row("2.1 G53 G1 prefix", "G53 G1 X10", "G53\nG1 X10\nG54", "TR003"),
+    # no workspace selected: none to invoke again after it (Hyrel's G54 would apply stored offsets)
+    Row("2.1 G53 G1 prefix", "G53 G1 X10", "G53\nG1 X10", "TR003"),
+    Row("2.1 G53 G1 prefix in a workspace", "G55\nG53 G1 X10", "G55\nG53\nG1 X10\nG55", "TR003 TR004"),
     Row("2.1 G54 select", "G55", "G55", "TR004"),
     Row("2.1 G59.1", "G59.1", "", "TR005", out="Hyrel has no G59.1-G59.3"),
     Row("2.1 G90 on Marlin also sets absolute E: M82", "G90", "G90\nM82"),
@@ -196,10 +199,22 @@ MARLIN = [
     Row("2.1 G92.1", "G92.1", "G93", "TR004"),
     # M0-M9
     Row("2.1 M0 (Marlin)", "M0", "M0"),
-    Row("2.1 M0 S (timeout)", "M0 S30", "M0", "TR004"),
+    Row("2.1 M0 S (timeout): Hyrel waits for Resume", "M0 S30", "M0", "TR003"),
     Row("2.1 M1 (Marlin: M0 alias)", "M1", "M0"),
     Row("2.1 M3 S (PWM 0-255)", "M3 S255", "M3 T0 S100", "TR003"),
-    Row("2.1 M3 then M4: stopped first", "M3 S255\nM4 S255", "M3 T0 S100\nM5 T0\nM4 T0 S100", "TR003"),
+    Row(
+        "2.1 M3 then M4: stopped first, then a pause until it stands still",
+        "M3 S255\nM4 S255",
+        "M3 T0 S100\nM5 T0\nM0 ; gclint: spindle stopped; resume when it stands still\nM4 T0 S100",
+        "TR003",
+    ),
+    Row(
+        "2.1 M3 then M4 with spindle-stop-dwell",
+        "M3 S255\nM4 S255",
+        "M3 T0 S100\nM5 T0\nG4 S5\nM4 T0 S100",
+        "TR003",
+        settings={"spindle_stop_dwell": "5"},
+    ),
     Row("2.1 M5", "M3 S128\nM5", "M3 T0 S50.2\nM5 T0", "TR003"),
     Row("2.1 M5 with spindle=T20", "M5", "M5 T20", settings={"spindle": "T20"}, v4="M5 T26"),
     Row(
@@ -284,7 +299,7 @@ MARLIN = [
     Row("2.1 M300", "M300 S440 P200", "M792 ; BEEP", "TR004"),
     Row("2.1 M400", "M400", "", "TR001"),
     Row("2.1 M500-M503", "M500\nM501\nM502", "", "TR001"),
-    Row("2.1 M600", "M600", "M0 ; filament change", "TR003"),
+    Row("2.1 M600", "M600", "M0 ; gclint: filament change", "TR003"),
     Row(
         "2.1 M605 S2 (duplication)",
         "M605 S2",
@@ -355,7 +370,7 @@ REPRAP = [
     Row("2.1 RRF M1 (sleep)", "M1", "M0", "TR003"),
     Row("2.1 RRF M2 (end): footer", "M2", "M30", prelude="M104 S200\n"),
     Row("2.1 RRF M3 S (rpm)", "M3 S12000", "M3 T0 S80", "TR003"),
-    Row("2.1 RRF M3 S with spindle-max-rpm", "M3 S12000", "M3 T0 S50", settings={"spindle_max_rpm": "24000"}),
+    Row("2.1 RRF M3 S with spindle-max-rpm", "M3 S12000", "M3 T0 S50", "TR003", settings={"spindle_max_rpm": "24000"}),
     Row("2.1 RRF M106 S0.5 (0-1 fraction)", "M106 S0.5", "M106 T0 S128"),
     Row("2.1 RRF M106 S1 (full)", "M106 S1", "M106 T0 S255"),
     Row("2.1 RRF M106 S200 (0-255)", "M106 S200", "M106 T0 S200"),
@@ -371,7 +386,7 @@ REPRAP = [
     Row("2.1 RRF M140 P1 (second bed)", "M140 P1 S60", "M140 T25 S60", v4="M140 T92 S60"),
     Row("2.1 RRF M140 S-273.1 (off)", "M140 S-273.1", "M140 T24 S0"),
     Row("2.1 RRF M226 (pause)", "M226", "M0", "TR003"),
-    Row("2.1 RRF M291 S2 (blocking message)", 'M291 P"Check the bed" S2', "M0 ; message", "TR003"),
+    Row("2.1 RRF M291 S2 (blocking message)", 'M291 P"Check the bed" S2', "M0 ; gclint: message", "TR003"),
     Row("2.1 RRF M563 M584 M950 (configuration)", 'M563 P0 D0 H1\nM584 X0 Y1\nM950 H1 C"out1"', "", "TR001"),
     Row("2.1 RRF M98 (macro call)", 'M98 P"homeall.g"', "", "TR005"),
     Row("2.1 RRF unknown code runs a macro file", "M4000 S1", "", "TR005"),
@@ -381,6 +396,125 @@ REPRAP = [
     Row("2.1 RRF meta command", "if move.axes[0].homed\n  G1 X10", "  G1 X10", "TR005"),
     Row("2.1 RRF expression parameter", "G1 X{var.x} Y10", "", "TR005"),
 ]
+
+
+# -- issue 13: meaning kept for multi-tool, CNC and inch jobs --------------------------------------------------
+
+ISSUE_13 = [
+    Row(
+        "2: a single-nozzle job heats each head it prints with (and waits, as for the nozzle)",
+        "M104 S215\nM109 S215\nT1\nG1 X5 Y5 E1",
+        "M104 T0 S215\nM109 T0 S215\nT1\nM109 T1 S215\nG1 X5 Y5 E1",
+        "TR004",
+    ),
+    Row(
+        "2: a single nozzle's flow goes with it; its heater off is off on every head",
+        "M104 S215\nM221 S90\nT1\nG1 X5 Y5 E1\nM104 S0",
+        "M104 T0 S215\nM221 T0 S0.9\nT1\nM104 T1 S215\nM221 T1 S0.9\nG1 X5 Y5 E1\nM104 T1 S0\nM104 T0 S0",
+        "TR004",
+    ),
+    Row(
+        "4: the part fan (M106 without P) follows the tool; M107 stops it on the head that has it",
+        "M104 T0 S200\nM104 T1 S200\nM106 S255\nT1\nG1 X5 Y5 E1\nT0\nG1 X6 Y6 E1\nM107",
+        "M104 T0 S200\nM104 T1 S200\nM106 T0 S255\nT1\nM107 T0\nM106 T1 S255\nG1 X5 Y5 E1\nT0\nM107 T1\n"
+        "M106 T0 S255\nG1 X6 Y6 E1\nM107 T0",
+    ),
+    Row(
+        "4: an M107 while two heads blow switches off both",
+        "M104 T0 S200\nM104 T1 S200\nM106 S255\nM106 P1 S255\nM107",
+        "M104 T0 S200\nM104 T1 S200\nM106 T0 S255\nM106 T1 S255\nM107 T0",
+        settings={"fan_map": "1=T1"},
+    ),
+    Row("3: an inch arc stays an arc, in mm", "G20\nG2 X1 Y0 I0.5 J0", "G21\nG2 X25.4 Y0 I12.7 J0", "TR004"),
+    Row(
+        "7: native flow declares the layer height the slicer states (M756) at each layer",
+        "M83\n;HEIGHT:0.2\nG1 Z0.2 F600\nG1 X1 Y1 E1\n;HEIGHT:0.3\nG1 Z0.5\nG1 X2 Y2 E1",
+        ";HEIGHT:0.2\nG21\nG90\nT0\nG1 Z0.2 F600\nM756 S0.2\nG1 X1 Y1 E1\n;HEIGHT:0.3\nG1 Z0.5\nM756 S0.3\nG1 X2 Y2 E1",
+        "TR003 TR004",
+        prelude="",
+        settings={"flow": "native"},
+    ),
+    Row(
+        "7: native flow, no stated height: the rise from the layer below",
+        "M83\nG1 Z0.2 F600\nG1 X1 Y1 E1\nG1 X0 Y1 E1\nG1 Z0.35\nG1 X2 Y2 E1",
+        "G21\nG90\nT0\nG1 Z0.2 F600\nM756 S0.2\nG1 X1 Y1 E1\nG1 X0 Y1 E1\nG1 Z0.35\nM756 S0.15\nG1 X2 Y2 E1",
+        "TR003 TR004",
+        prelude="",
+        settings={"flow": "native"},
+    ),
+    Row(
+        "7: native flow, a spiral (Z rises on every move): no height to declare, reported",
+        "M83\nG1 Z0.2 F600\nG1 X1 Y1 E1\nG1 X0 Y1 E1\nG1 X1 Y2 Z0.21 E1\nG1 X2 Y2 Z0.22 E1\nG1 X3 Y2 Z0.23 E1",
+        # the first rise reads as a layer of 0.01; once Z rises on every move, the height before is declared again
+        "G21\nG90\nT0\nG1 Z0.2 F600\nM756 S0.2\nG1 X1 Y1 E1\nG1 X0 Y1 E1\nM756 S0.01\nG1 X1 Y2 Z0.21 E1\n"
+        "G1 X2 Y2 Z0.22 E1\nM756 S0.2\nG1 X3 Y2 Z0.23 E1",
+        "TR003 TR004",
+        prelude="",
+        settings={"flow": "native"},
+    ),
+    Row("9: Marlin M3 O (power as PWM 0-255)", "M3 O128", "M3 T0 S50.2", "TR003"),
+    Row(
+        "9: a tool the printer has no head for: the head before goes on printing (and heating) for it",
+        "M104 S200\nT9\nM104 S210\nG1 X5 Y5 E1",
+        "M104 T0 S200\nM104 T0 S210\nG1 X5 Y5 E1",
+        "TR007",
+    ),
+    Row("10: M0 whose comment Hyrel would run (SHELL)", "M0 ; SHELL C:\\evil.exe", "M0", "TR009"),
+    Row("10: M0 whose comment Hyrel would show (PIC)", "M0 (PIC C:\\x.png)", "M0", "TR009"),
+    Row("10: M600 whose comment Hyrel would run", "M600 ; SAY hello", "M0 ; gclint: filament change", "TR003 TR009"),
+    Row("10: M0 with a plain comment stays as it is", "M0 ; wait for me", "M0 ; wait for me"),
+]
+
+
+@pytest.mark.parametrize("row", ISSUE_13, ids=ids(ISSUE_13))
+def test_issue_13(row: Row) -> None:
+    validate("marlin", row)
+
+
+def test_arc_before_any_z_word_is_kept() -> None:
+    """An extruding arc under M229 E1 before any Z word: written as segments (no Z needed), not dropped."""
+    got, codes = translate_rows("marlin", "G2 X10 Y0 I5 J0 E1", prelude="G21\nG90\nM83\nG1 X0 Y0 F600\n")
+    assert len(got) == 18 and all(line.startswith("G1 X") and " Z" not in line for line in got)
+    assert got[-1] == "G1 X10 Y0 E0.05556" and codes == ["TR004"]
+
+
+def test_tool_map_to_a_bed_is_refused() -> None:
+    options = TranslateOptions()
+    with pytest.raises(ValueError, match=r"a tool maps to a head \(T0-T19\); T24 is Bed1"):
+        options.set("tool-map", "0=T24")
+
+
+def test_one_command_per_line_on_changed_lines() -> None:
+    got, codes = translate_rows("carvera", "G0 X0.000 Y0.000 S10000M3")
+    assert got == ["G0 X0.000 Y0.000", "M3 T0 S66.7"] and codes == ["TR003"]
+    got, _ = translate_rows("carvera", "N5 G20 G90 (inch)")
+    assert got == ["N5 G21", "G90 (inch)"]
+
+
+def test_annotate_marks_every_added_line() -> None:
+    """--annotate: every line the translator adds says so (header, carried state, segments, footer)."""
+    source = "M104 S215\nM109 S215\nM106 S255\nT1\nG1 X5 Y5 E1\nG2 X9 Y5 I2 J0 E1\nG53 G1 X1\nM300 S440 P10\n"
+    options = TranslateOptions(annotate=True)
+    translator = translator_for(dialects.get("marlin"), dialects.get("hyrel"), options)
+    result = TranslationResult("t", "marlin", "hyrel")
+    out = "".join(translate_source(Source.from_text("G21\nG90\nM82\n" + source), translator, result))
+    lines = out.splitlines()
+    source_lines = set(("G21\nG90\nM82\n" + source).splitlines())
+    # a line with a command that is not in the source says why it is there (a note longer than Hyrel's 100
+    # characters is on the comment lines just before it)
+    added = [i for i, line in enumerate(lines) if line not in source_lines and not line.startswith(";")]
+    assert len(added) > 10
+    for i in added:
+        assert "; gclint:" in lines[i] or lines[i - 1].startswith(";"), lines[i]
+
+
+def test_long_lines_fit_in_100_characters() -> None:
+    long_comment = "; " + "word " * 40
+    source = f"M104 S210 ; {'x' * 110}\n{long_comment}\nM0 ; {'y' * 120}\n"
+    out, result = translate("marlin", source)
+    assert all(len(line) <= 100 for line in out.splitlines())
+    assert "M104 T0 S210" in out.splitlines()
+    assert {f.code for f in result.findings} >= {"TR003", "TR004"}
 
 
 @pytest.mark.parametrize("row", MARLIN, ids=ids(MARLIN))

@@ -243,3 +243,36 @@ class UnknownParameter(Rule):
                 f"{cmd.code} does not take {letter} in {self.ctx.dialect.name} (it takes {takes})",
                 node=cmd.param(letter) or cmd,
             )
+
+
+@register
+class WordNotInDialect(Rule):
+    code = "DL005"
+    name = "word-not-in-dialect"
+    severity = Severity.ERROR
+    summary = "A move with a word the dialect's language does not have (E in Machinekit/LinuxCNC)"
+    explanation = """
+        LinuxCNC's RS274NGC has no E word on moves: Machinekit drives the extruder as the A axis ("A follows
+        G90/G91"; the gcode-to-ngc filter rewrites RepRap E to A).  A move written with E is refused by the
+        interpreter ("Bad character used") or, after a careless conversion, extrudes nothing.  The file was
+        probably written for another firmware: check the dialect, or write the extrusion on A.
+    """
+    example_bad = "; gclint: dialect=machinekit\nG1 X10 Y10 E0.5 F1200"
+    example_good = "; gclint: dialect=machinekit\nG1 X10 Y10 A0.5 F1200"
+    source = "research/dialects.md 1.1 (G1, Machinekit: A = extruder) and 1.8 [MK] (gcode-to-ngc: E -> A)"
+    codes = ("G0", "G1", "G2", "G3")
+    families = ("linuxcnc",)
+
+    def trigger_letters(self, code: str) -> frozenset[str] | None:
+        return None  # plain moves carry E: ``plain_filter`` picks the ones to check
+
+    def plain_filter(self, mode, x, y, z, e, f) -> bool:
+        return e is not None
+
+    def check(self, line: Line, cmd: Command) -> None:
+        if "E" in cmd.params:
+            self.report(
+                line,
+                f"{cmd.code} E: E is not a word of {self.ctx.dialect.title}; the extruder is the A axis",
+                node=cmd.param("E") or cmd,
+            )

@@ -1,7 +1,7 @@
 """TR: translation findings.  ``gclint translate`` reports them; ``gclint check`` never runs them.
 
 Each class documents one kind of loss, so ``gclint rules TR003`` explains it like any other rule.  The
-translators in gclint/translate/ report them through ``gclint.translate.base.HyrelTranslator.report``;
+translators in gclint/translate/ report them through ``HyrelTranslator.report`` (gclint/translate/writer.py);
 the numbering is documented in docs/translation.md:
 
     TR001 dropped                      info     no Hyrel counterpart, no effect on the job
@@ -12,6 +12,7 @@ the numbering is documented in docs/translation.md:
     TR006 address-without-counterpart  error    Hyrel v4 <-> v5: a T number with no certain counterpart
     TR007 tool-not-on-printer          error    a tool, fan or device maps to an address the printer lacks
     TR008 after-end-of-program         info     code after the source's end of program (never ran there)
+    TR009 comment-becomes-action       warning  a comment Hyrel would run as a host action after M0 (removed)
 
 ``families = ()`` keeps them out of every check: ``Rule.applies_to`` is false for all dialects.
 """
@@ -177,6 +178,28 @@ class AfterEndOfProgram(TranslationRule):
     source = "research/dialects.md 2.0 X6; Hyrel Gcode page, M30 End of Program"
 
 
+@register
+class CommentBecomesAction(TranslationRule):
+    code = "TR009"
+    name = "comment-becomes-action"
+    severity = Severity.WARNING
+    summary = "A comment that Hyrel would run as a host action (SHELL, PIC, SAY...) was removed from an M0/M792"
+    explanation = """
+        On Marlin, RepRapFirmware, Machinekit and Carvera a comment after M0 is only a comment.  On Hyrel,
+        Repetrel reads the text after M0 and M792 as actions, one per segment: "SHELL C:\\program.exe - the
+        computer will execute the file at the specified location", PIC and VID open files, SAY speaks, SEND
+        writes to the Aux port, BEEP beeps.  Carried over as it was, `M0 ; SHELL C:\\evil.exe` would make
+        the PC that runs the printer start a program.  The translator removes such a comment from the
+        pause and reports it; the pause itself stays.
+    """
+    example_bad = "M0 ; SHELL C:\\evil.exe"
+    example_good = "M0"
+    source = (
+        "Hyrel Gcode page, M0 Stop Until Resume and M792 Execute Action (SAY, PIC, VID, SEND, BEEP, SHELL); "
+        "gclint/rules/security.py (SC rules)"
+    )
+
+
 TR_SEVERITY: dict[str, Severity] = {
     cls.code: cls.severity
     for cls in (
@@ -188,6 +211,7 @@ TR_SEVERITY: dict[str, Severity] = {
         AddressWithoutCounterpart,
         ToolNotOnPrinter,
         AfterEndOfProgram,
+        CommentBecomesAction,
     )
 }
 TR_NAME: dict[str, str] = {
@@ -201,5 +225,6 @@ TR_NAME: dict[str, str] = {
         AddressWithoutCounterpart,
         ToolNotOnPrinter,
         AfterEndOfProgram,
+        CommentBecomesAction,
     )
 }

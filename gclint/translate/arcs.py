@@ -69,9 +69,13 @@ def segments(
     clockwise: bool,
     plane: int = 17,
     turns: int = 0,
+    *,
+    tolerance: float = CHORD_TOLERANCE,
+    max_segment: float = MAX_SEGMENT,
 ) -> list[dict[str, float]]:
     """Points along the arc from ``start`` to ``end`` (dicts of axis -> absolute value, the three axes
-    of the plane), the last one being ``end`` exactly."""
+    of the plane), the last one being ``end`` exactly.  ``tolerance`` and ``max_segment`` are in the
+    unit of the coordinates (an inch job: 0.02 mm is 0.02 / 25.4 in)."""
     a, b, _, _, helix = PLANES[plane]
     centre = (start[a] + offsets[0], start[b] + offsets[1])
     radius = math.hypot(offsets[0], offsets[1])
@@ -79,7 +83,7 @@ def segments(
         raise ArcError("arc with a zero radius")
     angle = sweep((start[a], start[b]), (end[a], end[b]), centre, clockwise, turns)
     length = abs(angle) * radius
-    seg = min(MAX_SEGMENT, math.sqrt(8 * radius * CHORD_TOLERANCE)) if radius > CHORD_TOLERANCE / 2 else MAX_SEGMENT
+    seg = min(max_segment, math.sqrt(8 * radius * tolerance)) if radius > tolerance / 2 else max_segment
     count = max(1, min(MAX_SEGMENTS, math.ceil(length / seg)))
     a0 = math.atan2(start[b] - centre[1], start[a] - centre[0])
     points = []

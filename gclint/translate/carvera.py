@@ -12,51 +12,22 @@ from __future__ import annotations
 from typing import ClassVar
 
 from gclint.syntax.nodes import Command
-from gclint.translate.base import (
-    TR_APPROX,
-    TR_DROPPED,
-    TR_LOST,
-    TR_NOTE,
-    TR_UNTRANSLATABLE,
-    WORKSPACES,
-    HyrelTranslator,
-    num,
-)
-from gclint.translate.marlin import _codes
+from gclint.translate.cnc import CncTranslator
+from gclint.translate.findings import TR_APPROX, TR_DROPPED, TR_LOST, TR_NOTE, TR_UNTRANSLATABLE
+from gclint.translate.findings import codes as _codes
 from gclint.translate.output import fmt
+from gclint.translate.words import num
 
 
-class CarveraToHyrel(HyrelTranslator):
-    CHECK_EXPRESSIONS = True
-    END_CODES: ClassVar[frozenset[str]] = frozenset({"M2", "M30"})
+class CarveraToHyrel(CncTranslator):
     MAX_RPM = 15000.0  # Carvera C1 (research/dialects.md 2.3; gclint/dialects/carvera.py extras)
     EXTRA_LETTERS: ClassVar[frozenset[str]] = frozenset("SABE")
 
-    HANDLERS: ClassVar[dict[str, str]] = {
-        "G0": "move",
-        "G1": "move",
-        "G2": "arc",
-        "G3": "arc",
-        "G4": "dwell_seconds",
-        "G17": "keep",
-        "G18": "keep",
-        "G19": "keep",
-        "G20": "units",
-        "G21": "units",
+    MACHINE = "the Carvera's machine"
+    END_CODES: ClassVar[frozenset[str]] = frozenset({"M2"})  # "M30 End of the program, no action on the Carvera"
+    HANDLERS: ClassVar[dict[str, str]] = {  # besides cnc.CNC_HANDLERS
+        "M30": "m30",
         "G28": "clearance",
-        "G53": "g53",
-        "G90": "positioning",
-        "G91": "positioning",
-        "G92": "set_position",
-        "G92.1": "clear_g92",
-        **WORKSPACES,
-        "M0": "keep",
-        "M2": "end_program",
-        "M30": "end_program",
-        "M3": "spindle",
-        "M4": "spindle",
-        "M5": "spindle_stop",
-        "M6": "tool_change",
         "M7": "air",
         "M9": "air_off",
         "M17": "motors_on",
@@ -109,7 +80,6 @@ class CarveraToHyrel(HyrelTranslator):
 
     def __init__(self, source, target, options=None) -> None:
         super().__init__(source, target, options)
-        self.prepared: int | None = None
         self.laser = False  # M321 laser mode
         self.laser_fire = False  # M3 in laser mode
         self.laser_power = 0.0  # percent, modal (S on moves)
@@ -134,6 +104,7 @@ class CarveraToHyrel(HyrelTranslator):
                 f"rotary axis words dropped: the {self.opts.printer.name} has no A/B axis (use --printer ehr or 16a)",
                 key="A",
                 cmd=cmd,
+                aspects=("position", "path", "moves", "feed"),
             )
         if "E" in params:
             drop += "E"
@@ -151,13 +122,22 @@ class CarveraToHyrel(HyrelTranslator):
         if self.laser:
             if s > 1:
                 self.report(
-                    TR_APPROX, "laser power above 1 taken as percent (Carvera's laser S is 0-1)", key="laser-S", cmd=cmd
+                    TR_APPROX,
+                    "laser power above 1 taken as percent (Carvera's laser S is 0-1)",
+                    key="laser-S",
+                    cmd=cmd,
+                    aspects="laser",
                 )
                 self.laser_power = min(100.0, s)
             else:
                 self.laser_power = s * 100
             return
         super().speed_word(cmd)
+
+    def m30(self, cmd: Command) -> None:
+        """ "M30 | End of the program, no action on the Carvera" (carvera-mcodes.md): the code after it runs
+        (example programs run several passes, each ending in M30).  Hyrel's M30 would end the job."""
+        self.remove(cmd, TR_DROPPED, "no action on the Carvera (the code after it runs); dropped", key="M30")
 
     def clearance(self, cmd: Command) -> None:
         self.remove(
@@ -166,11 +146,7 @@ class CarveraToHyrel(HyrelTranslator):
             "Carvera's G28 goes to the clearance position; Hyrel's G28 homes and clears "
             "offsets, so it is dropped: add a safe retract",
             key="G28",
-        )
-
-    def g53(self, cmd: Command) -> None:
-        self.untranslatable(
-            cmd, "machine-coordinate move (G53): the Carvera's machine coordinates mean nothing on the Hyrel", key="G53"
+            aspects="position",
         )
 
     def motors_on(self, cmd: Command) -> None:
@@ -178,13 +154,15 @@ class CarveraToHyrel(HyrelTranslator):
             self.replace(cmd, "M17")
 
     def disengage(self, cmd: Command) -> None:
-        self.motors_off = True
+        self.hy.motors_off = True
         if cmd.params:
             self.replace(cmd, cmd.code or "M84")
-            self.report(TR_APPROX, f"{cmd.code} with axes: Hyrel cuts every motor", key="M18", cmd=cmd)
+            self.report(
+                TR_APPROX, f"{cmd.code} with axes: Hyrel cuts every motor", key="M18", cmd=cmd, aspects="position"
+            )
 
     def pause(self, cmd: Command) -> None:
-        self.replace(cmd, "M0 ; pause")
+        self.pause_command(cmd, "M0 ; gclint: pause (Carvera M600)")
 
     # -- spindle, tools, laser ----------------------------------------------------------------------------
 
@@ -197,7 +175,13 @@ class CarveraToHyrel(HyrelTranslator):
             self.consume(cmd, "laser mode: firing follows the moves' power (E1 on firing moves)")
             return
         if cmd.code == "M4":
-            self.report(TR_APPROX, "M4 is not documented on the Carvera; written as Hyrel's M4", key="M4", cmd=cmd)
+            self.report(
+                TR_APPROX,
+                "M4 is not documented on the Carvera; written as Hyrel's M4",
+                key="M4",
+                cmd=cmd,
+                aspects="spindle",
+            )
         if s is not None:
             self.rpm = s
         rpm = self.rpm
@@ -210,23 +194,21 @@ class CarveraToHyrel(HyrelTranslator):
             return
         self.spindle_off(cmd)
 
-    def tool_command(self, cmd: Command) -> None:
-        number = (cmd.code or "T")[1:]
-        if not number.lstrip("-").isdigit() or len(number) > 6:
-            self.untranslatable(cmd, "a tool given by an expression cannot be translated", key="T?")
-            return
-        self.prepared = int(number)  # T prepares, M6 changes (T6M6)
-        self.consume(cmd)
-
     def tool_change(self, cmd: Command) -> None:
         index = num(cmd.params.get("T"))
         tool = int(index) if index is not None else self.prepared
         if tool is None:
-            self.remove(cmd, TR_LOST, "tool change with no tool", key="M6")
+            self.remove(cmd, TR_LOST, "tool change with no tool", key="M6", aspects=("head", "spindle"))
             return
         if tool <= 0:
             what = "the wireless probe (T0)" if tool == 0 else "no tool (T-1)"
-            self.remove(cmd, TR_LOST, f"tool change to {what} has no Hyrel counterpart; dropped", key=("M6", tool))
+            self.remove(
+                cmd,
+                TR_LOST,
+                f"tool change to {what} has no Hyrel counterpart; dropped",
+                key=("M6", tool),
+                aspects=("head", "spindle"),
+            )
             return
         if tool in self.opts.tool_map:
             self.select_tool(cmd, tool)
@@ -234,27 +216,28 @@ class CarveraToHyrel(HyrelTranslator):
         # one Hyrel spindle: a manual tool change
         address = self.opts.spindle_address()
         lines = []
-        if address in self.spindles_on:
+        if address in self.hy.spindles_on:
             lines.append(f"M5 T{address}")
-            self.spindles_on.pop(address, None)
-        lines.append(f"M0 ; change to tool {tool}")
+            self.hy.spindles_on.pop(address, None)
+        lines.append(f"M0 ; gclint: change to tool {tool}")
         *first, last = lines
         if first:
-            self.before(*first)
-        self.replace(cmd, last)
+            self.before(*first, note="spindle off for the manual tool change")
+        self.pause_command(cmd, last)
         self.report(
             TR_APPROX,
             "automatic tool change written as a manual change (spindle off, pause); map tools "
             "to Hyrel heads with --tool-map to switch heads instead",
             key="M6-manual",
             cmd=cmd,
+            aspects=("head", "spindle"),
         )
 
     def laser_mode(self, cmd: Command) -> None:
         self.laser = True
         self.extra_always = True  # every move: firing moves get E1 and the power
         address = self.opts.laser_address()
-        self.emitters_on.add(address)
+        self.hy.emitters_on.add(address)
         self.replace(cmd, f"M620 T{address} E1")
         self.report(
             TR_APPROX,
@@ -262,6 +245,7 @@ class CarveraToHyrel(HyrelTranslator):
             "get E1 and the power M621 P",
             key="M321",
             cmd=cmd,
+            aspects="laser",
         )
 
     def laser_mode_off(self, cmd: Command) -> None:
@@ -269,35 +253,35 @@ class CarveraToHyrel(HyrelTranslator):
         self.laser_fire = False
         self.extra_always = False
         address = self.opts.laser_address()
-        self.emitters_on.discard(address)
+        self.hy.emitters_on.discard(address)
         self.replace(cmd, f"M620 T{address} E0")
 
     # -- aux devices --------------------------------------------------------------------------------------
 
     def air(self, cmd: Command) -> None:
         port = self.opts.air
-        self.air_on = True
+        self.hy.air_on = True
         text = {"M7": "M7", "M8": "M8"}.get(port, f"{port} S100")
         if text != (cmd.code or "") or cmd.params:
             self.replace(cmd, text)
 
     def air_off(self, cmd: Command) -> None:
         port = self.opts.air
-        self.air_on = False
+        self.hy.air_on = False
         text = "M9" if port in ("M7", "M8") else f"{port} S0"
         if text != (cmd.code or "") or cmd.params:
             self.replace(cmd, text)
 
     def footer(self) -> list[str]:
         lines = super().footer()
-        if self.air_on and self.opts.air not in ("M7", "M8"):
+        if self.hy.air_on and self.opts.air not in ("M7", "M8"):
             lines = [f"{self.opts.air} S0" if t == "M9" else t for t in lines]
         return lines
 
     def vacuum(self, cmd: Command) -> None:
         s = cmd.params.get("S") or "100"
         self.replace(cmd, f"M679 S{s}")
-        self.report(TR_APPROX, "vacuum written as Hyrel's M679 (30M and ESR only)", key="M801", cmd=cmd)
+        self.report(TR_APPROX, "vacuum written as Hyrel's M679 (30M and ESR only)", key="M801", cmd=cmd, aspects="aux")
 
     def vacuum_off(self, cmd: Command) -> None:
         self.replace(cmd, "M679 S0")

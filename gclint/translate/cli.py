@@ -6,13 +6,12 @@ import shutil
 import sys
 import tempfile
 
-import click
-
 from gclint.dialects.base import Dialect
 from gclint.io import AtomicWriter, OutputError
 from gclint.rules.base import Severity
 from gclint.syntax.source import CHUNK, Source, SourceError
-from gclint.translate.engine import TranslationResult, UnsupportedPair, translate_source, translator_for
+from gclint.translate.engine import TranslationResult, UnsupportedPair, translate_source
+from gclint.translate.pairs import translator_for
 
 
 def run_translate(
@@ -90,7 +89,12 @@ def run_translate(
 def _error(exc: Exception) -> None:
     from gclint.textsafe import human  # file names and file text: no control character reaches stderr
 
-    click.echo(f"gclint: {human(str(exc))}", err=True)
+    _say(f"gclint: {human(str(exc))}")
+
+
+def _say(text: str) -> None:
+    """One line on standard error (no click here: gclint/translate is library code)."""
+    print(text, file=sys.stderr)
 
 
 def _collect(src: Source, translator, result: TranslationResult) -> tempfile.SpooledTemporaryFile:
@@ -119,10 +123,9 @@ def _report(result: TranslationResult, unsupported: str) -> None:
     from gclint.reports.common import human, message  # masks secrets, escapes file text
 
     for f in result.findings:
-        click.echo(f"{human(f.path)}:{f.line}:{f.column}: {f.code} {message(f)}", err=True)
+        _say(f"{human(f.path)}:{f.line}:{f.column}: {f.code} {message(f)}")
     if unsupported == "error" and _refused(result, unsupported):
-        click.echo(
+        _say(
             f"gclint: {human(result.path)}: not translated: {len(result.findings)} construct(s) cannot be translated "
-            "exactly (--unsupported error)",
-            err=True,
+            "exactly (--unsupported error)"
         )

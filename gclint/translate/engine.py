@@ -1,8 +1,11 @@
 """The translation engine.  A ``Translator`` for a dialect pair turns each source line into zero or more
-output lines; the identity translator (same dialect on both sides) keeps every line as it is."""
+output lines; the identity translator (same dialect on both sides) keeps every line as it is.  Which
+translator serves which pair is pairs.py's business (``translator_for``); this module knows none of them,
+so the translators can import it without a cycle."""
 
 from __future__ import annotations
 
+from array import array
 from collections.abc import Callable, Iterator
 from dataclasses import dataclass, field
 
@@ -20,7 +23,12 @@ class UnsupportedPair(Exception):
 
 @dataclass
 class TranslationResult:
-    """Findings (TR codes) and counts gathered while translating one file."""
+    """Findings (TR codes) and counts gathered while translating one file.
+
+    ``occurrences`` keeps every line a warning-level finding was made on (findings repeat; the list of
+    findings shows the first), by (code, aspects): the aspects of the job the loss touches, as the meaning
+    diff names them (gclint/simulate/trace.py ASPECTS; "*" for any).  ``gclint diff`` explains its
+    differences with them."""
 
     path: str
     source_dialect: str
@@ -28,6 +36,14 @@ class TranslationResult:
     findings: list[Finding] = field(default_factory=list)
     lines_in: int = 0
     lines_changed: int = 0
+    occurrences: dict[tuple[str, frozenset[str]], array] = field(default_factory=dict)
+
+    def record(self, code: str, aspects: frozenset[str], line: int) -> None:
+        lines = self.occurrences.get((code, aspects))
+        if lines is None:
+            lines = self.occurrences[(code, aspects)] = array("l")
+        if not lines or lines[-1] != line:
+            lines.append(line)
 
 
 class Translator:
@@ -63,20 +79,6 @@ def _keep(g1: bool, number: int, x, y, z, e, f, ending: str) -> bool:
     return True
 
 
-def translator_for(source: Dialect, target: Dialect, options=None) -> Translator:
-    if source.name == target.name:
-        return Translator(source, target, options)
-    try:
-        from gclint.translate import pairs  # the dialect-pair translators (issue: translation)
-    except ImportError:
-        pairs = None  # type: ignore[assignment]
-    if pairs is not None:
-        translator = pairs.get(source, target, options)
-        if translator is not None:
-            return translator
-    raise UnsupportedPair(f"translation from {source.name} to {target.name} is not supported")
-
-
 def translate_source(source: Source, translator: Translator, result: TranslationResult) -> Iterator[str]:
     """Yield the translated text of ``source`` (line endings included), one piece per chunk of source
     lines, so that writers encode and write a few large strings instead of one per line."""
@@ -90,7 +92,7 @@ def translate_source(source: Source, translator: Translator, result: Translation
         extend = parts.extend
         for raw, ending in chunk:
             number += 1
-            if plain is not None and raw[:1] == "G":
+            if plain is not None and raw[:1] == "G" and len(raw) <= 100:  # longer lines: Translator._fit
                 m = plain_match(raw)
                 if m is not None:
                     digit, f_first, x, y, z, e, f = m.groups()

@@ -12,54 +12,24 @@ from __future__ import annotations
 from typing import ClassVar
 
 from gclint.syntax.nodes import Command
-from gclint.translate.base import (
-    TR_APPROX,
-    TR_DROPPED,
-    TR_LOST,
-    TR_NOTE,
-    TR_UNTRANSLATABLE,
-    WORKSPACES,
-    HyrelTranslator,
-    num,
-)
-from gclint.translate.marlin import _codes
+from gclint.translate.cnc import CncTranslator
+from gclint.translate.findings import TR_APPROX, TR_DROPPED, TR_LOST, TR_NOTE, TR_UNTRANSLATABLE
+from gclint.translate.findings import codes as _codes
 from gclint.translate.output import fmt
+from gclint.translate.words import num
 
 
-class MachinekitToHyrel(HyrelTranslator):
+class MachinekitToHyrel(CncTranslator):
     EXTRUDER = "A"
+    TURNS_COUNT_THE_ARC = True
     E_MODE_FOLLOWS_POSITIONING: str | None = "the extruder (A) follows G90/G91 in Machinekit"
-    CHECK_EXPRESSIONS = True
-    END_CODES: ClassVar[frozenset[str]] = frozenset({"M2", "M30"})
     FAN_MAX = 255.0
-    EXTRA_LETTERS: ClassVar[frozenset[str]] = frozenset("FEBCUVW")
+    EXTRA_LETTERS: ClassVar[frozenset[str]] = frozenset("FEBCUVWSP")
 
-    HANDLERS: ClassVar[dict[str, str]] = {
-        "G0": "move",
-        "G1": "move",
-        "G2": "arc",
-        "G3": "arc",
-        "G4": "dwell_seconds",
-        "G17": "keep",
-        "G18": "keep",
-        "G19": "keep",
-        "G20": "units",
-        "G21": "units",
+    HANDLERS: ClassVar[dict[str, str]] = {  # besides cnc.CNC_HANDLERS
         "G22": "retract",
         "G23": "unretract",
         "G28": "mk_home",
-        "G90": "positioning",
-        "G91": "positioning",
-        "G92": "set_position",
-        "G92.1": "clear_g92",
-        **WORKSPACES,
-        "M0": "keep",
-        "M2": "end_program",
-        "M30": "end_program",
-        "M3": "spindle",
-        "M4": "spindle",
-        "M5": "spindle_stop",
-        "M6": "tool_change",
         "M7": "keep",
         "M8": "keep",
         "M9": "keep",
@@ -76,7 +46,8 @@ class MachinekitToHyrel(HyrelTranslator):
         "M300": "beep",
         "M701": "m701",
         "M702": "m702",
-        "G53": "g53",
+        "G5.2": "nurbs_start",
+        "G5.3": "nurbs_end",
     }
     DROPPED: ClassVar[dict[str, tuple[str, str]]] = {
         **_codes("M1", TR_DROPPED, "optional stop (off unless the operator enables it)"),
@@ -116,7 +87,7 @@ class MachinekitToHyrel(HyrelTranslator):
 
     def __init__(self, source, target, options=None) -> None:
         super().__init__(source, target, options)
-        self.prepared: int | None = None
+        self.nurbs = False  # inside a G5.2 ... G5.3 block
 
     def e_absolute(self) -> bool:
         return self.state.absolute  # A follows G90/G91
@@ -132,17 +103,76 @@ class MachinekitToHyrel(HyrelTranslator):
             return value
         return value - current
 
+    MOVE_OVERRIDE_IGNORES_PLAIN = True  # move() below only adds polar words (@, ^) and NURBS blocks
+
+    def move(self, cmd: Command) -> None:
+        if self.nurbs:
+            self.untranslatable(cmd, "a NURBS control point (G5.2 block) cannot be translated", key="nurbs")
+            return
+        if "@" in cmd.params or "^" in cmd.params:
+            self.untranslatable(cmd, "polar coordinates (@ radius, ^ angle) cannot be translated", key="polar")
+            return
+        super().move(cmd)
+
+    def nurbs_start(self, cmd: Command) -> None:
+        self.nurbs = True
+        self.untranslatable(cmd, "NURBS block (G5.2 ... G5.3): Hyrel has no spline moves", key="nurbs")
+
+    def nurbs_end(self, cmd: Command) -> None:
+        self.nurbs = False
+        self.remove(cmd, TR_DROPPED, "end of a NURBS block", key="nurbs-end")
+
+    def implicit_move(self, cmd: Command) -> None:
+        if self.nurbs and any(a in cmd.params for a in "XYZP"):
+            self.untranslatable(cmd, "a NURBS control point (G5.2 block) cannot be translated", key="nurbs")
+            return
+        super().implicit_move(cmd)
+
     def move_extra(self, cmd: Command, rapid: bool) -> tuple[str, tuple[str, ...]] | None:
         params = cmd.params
         drop = ""
+        if "S" in params:
+            drop += "S"  # the spindle speed, modal (for the next M3, or now if it runs)
+            self.speed_word(cmd)
+        if "P" in params and cmd.code in ("G0", "G1"):
+            drop += "P"  # no P on a LinuxCNC G0/G1
         if rapid and "F" in params:
             drop += "F"  # LinuxCNC's G0 ignores F (the F still sets the feed of later G1s)
         if "E" in params:
             drop += "E"
+            self.report(
+                TR_UNTRANSLATABLE,
+                "E is not a word of Machinekit/LinuxCNC (the extruder is the A axis): the E word is dropped and "
+                "the move does not extrude (was the job written for another firmware?)",
+                key="E-word",
+                cmd=cmd,
+                aspects="e",
+            )
+        axes = self.opts.printer.axes
+        lost = [letter for letter in "BCUVW" if letter in params and letter not in axes]
+        if lost:
+            self.report(
+                TR_UNTRANSLATABLE,
+                f"axis words {' '.join(lost)} dropped: the {self.opts.printer.name} has no such axes "
+                "(A is the extruder here)",
+                key=("axes", *lost),
+                cmd=cmd,
+                aspects=("position", "path", "moves", "feed"),
+            )
         for letter in "BCUVW":
-            if letter in params:
+            if letter in params and letter not in axes:
                 drop += letter
         return (drop, ()) if drop else None
+
+    def extruding_rapid(self, cmd: Command) -> None:
+        self.report(
+            TR_APPROX,
+            "a rapid (G0) that moves the extruder (A): Hyrel's G0 cannot extrude, so it is written as a G1 at the "
+            "modal feed",
+            key="G0-A",
+            cmd=cmd,
+            aspects=("moves", "feed", "position", "path", "e"),
+        )
 
     def retract(self, cmd: Command) -> None:
         self.firmware_retract(cmd, "M721", f"{cmd.code} retraction", "G22")
@@ -152,29 +182,23 @@ class MachinekitToHyrel(HyrelTranslator):
 
     def mk_home(self, cmd: Command) -> None:
         """Machinekit's g28.ngc does not home: it rapids the listed axes (all if none) to 0 and resets A."""
-        if not self.started_motion:
+        if not self.hy.started_motion:
             self.before_motion()
         params = cmd.params
         axes = [a for a in "XYZ" if a in params] or (["X", "Y", "Z"] if "A" not in params else [])
-        lines = []
-        if axes:
-            lines.append("G0 " + " ".join(f"{a}0" for a in axes))
+        # g28.ngc: "G0 X0", then "G0 Y0", then "G0 Z0" (one axis at a time), then "G92 A0"
+        lines = [f"G0 {a}0" for a in axes]
         if "A" in params or not any(a in params for a in "XYZ"):
             lines.append("G92 E0")
         self.replace(cmd, lines[0])
         if len(lines) > 1:
-            self.after(*lines[1:])
+            self.after(*lines[1:], note="Machinekit's G28, one axis at a time")
         self.report(
-            TR_APPROX,
-            "Machinekit's G28 moves to 0 without homing; written as a G0 to 0 (and G92 E0). "
-            "Hyrel homing belongs in the header",
+            TR_NOTE,
+            "Machinekit's G28 (g28.ngc) does not home: it moves X, then Y, then Z to 0 and resets the "
+            "extruder; written as the same G0 moves and G92 E0",
             key="G28",
             cmd=cmd,
-        )
-
-    def g53(self, cmd: Command) -> None:
-        self.untranslatable(
-            cmd, "machine-coordinate move (G53): the source machine's coordinates mean nothing on the Hyrel"
         )
 
     def spindle(self, cmd: Command) -> None:
@@ -182,18 +206,6 @@ class MachinekitToHyrel(HyrelTranslator):
         if s is not None:
             self.rpm = s
         self.spindle_on(cmd, self.rpm_percent(self.rpm) if self.rpm is not None else None)
-
-    def spindle_stop(self, cmd: Command) -> None:
-        self.spindle_off(cmd)
-
-    def tool_command(self, cmd: Command) -> None:
-        number = (cmd.code or "T")[1:]
-        if not number.lstrip("-").isdigit() or len(number) > 6:
-            self.untranslatable(cmd, "a tool given by an expression cannot be translated", key="T?")
-            return
-        # LinuxCNC: T prepares the tool, M6 changes to it
-        self.prepared = int(number)
-        self.consume(cmd)
 
     def tool_change(self, cmd: Command) -> None:
         index = num(cmd.params.get("T"))
@@ -213,11 +225,13 @@ class MachinekitToHyrel(HyrelTranslator):
         index = num(params.get("T"))
         return params.get("P"), int(index) if index is not None else None
 
-    def _temp(self, cmd: Command, code: str, address: int | None, temp: str | None, wait: bool) -> None:
+    def _temp(
+        self, cmd: Command, code: str, address: int | None, temp: str | None, wait: bool, tool: int | None = None
+    ) -> None:
         if temp is None:
             self.remove(cmd, TR_DROPPED, f"{cmd.code} without a temperature sets nothing", key=f"{cmd.code}-none")
             return
-        self.temperature(cmd, code, address, temp, window=wait)
+        self.temperature(cmd, code, address, temp, window=wait, tool=tool)
         if wait:
             self.report(
                 TR_NOTE,
@@ -229,11 +243,11 @@ class MachinekitToHyrel(HyrelTranslator):
 
     def m104(self, cmd: Command) -> None:
         temp, index = self._flavour(cmd)
-        self._temp(cmd, "M104", self.head(index), temp, False)
+        self._temp(cmd, "M104", self.head(index), temp, False, tool=index)
 
     def m109(self, cmd: Command) -> None:
         temp, index = self._flavour(cmd)
-        self._temp(cmd, "M109", self.head(index), temp, True)
+        self._temp(cmd, "M109", self.head(index), temp, True, tool=index)
 
     def m140(self, cmd: Command) -> None:
         temp = cmd.params.get("S", cmd.params.get("P"))
@@ -257,25 +271,25 @@ class MachinekitToHyrel(HyrelTranslator):
             self.report(
                 TR_NOTE, "M106 I (execute at once) dropped: Hyrel executes M106 in order", key="M106-I", cmd=cmd
             )
-        self.fan(cmd, self.head(index if index is not None else 0, "fan"), num(value))
+        self.fan(cmd, self.head(index if index is not None else 0, "fan"), num(value), index=index)
 
     def m107(self, cmd: Command) -> None:
         index = num(cmd.params.get("T", cmd.params.get("P")))
-        self.fan_off(cmd, self.head(int(index) if index is not None else 0, "fan"))
+        tool = int(index) if index is not None else 0
+        self.fan_off(cmd, self.head(tool, "fan"), index=tool)
 
     def m221(self, cmd: Command) -> None:
         factor = num(cmd.params.get("P"))
-        address = self.head(None)
-        if factor is None or address is None:
+        if factor is None:
             self.remove(cmd, TR_DROPPED, "M221 without a factor sets nothing", key="M221")
             return
-        self.replace(cmd, f"M221 T{address} S{fmt(factor, 4)}")
+        self.flow(cmd, self.head(None), factor)
 
     def m226(self, cmd: Command) -> None:
-        self.replace(cmd, "M0")
+        self.pause_command(cmd, "M0")
 
     def beep(self, cmd: Command) -> None:
-        self.before("M792 ; BEEP")
+        self.before("M792 ; BEEP", note="M300 tone")
         self.consume(cmd)
         self.report(
             TR_NOTE, "tone written as Hyrel's BEEP action: frequency and duration are lost", key="M300", cmd=cmd

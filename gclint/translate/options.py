@@ -20,6 +20,8 @@ their defaults:
     tool-offsets  drop      RepRapFirmware G10 tool offsets: drop (Repetrel declares head offsets itself),
                             or m6 (M6 T# O<n> X Y Z, sign and register to verify on the machine)
     spindle-max-rpm         the rpm of the Hyrel spindle at 100 % (M3 S rpm -> percent)
+    spindle-stop-dwell      s to wait after the M5 added before a change of spindle direction ("DO NOT
+                            CHANGE DIRECTION while the spindle is in motion", M3); unset: a pause (M0)
 
 ``--set KEY=VALUE`` (repeatable) sets any of them on the command line.
 """
@@ -55,6 +57,7 @@ class TranslateOptions:
     max_feed: str = "drop"
     home_z: bool | None = None  # None: as the printer needs (EHR: yes)
     tool_offsets: str = "drop"
+    spindle_stop_dwell: float | None = None  # s to wait after M5 before reversing (None: pause, M0)
 
     @classmethod
     def build(
@@ -85,8 +88,10 @@ class TranslateOptions:
             opts.printer = get_profile(str(name))
         if "tool-map" in table:
             opts.tool_map = dict(checked.tool_map)
+            _check_tool_map(opts.tool_map, f"{path}: tool-map ")
         if tool_map:
             opts.tool_map = dict(tool_map)
+            _check_tool_map(opts.tool_map, "--tool-map ")
         if "spindle-max-rpm" in table:
             opts.spindle_max_rpm = checked.spindle_max_rpm
         if spindle_max_rpm is not None:
@@ -110,6 +115,7 @@ class TranslateOptions:
                 self.fan_map = parse_tool_map(v, "fan-map")
             elif k == "tool-map":
                 self.tool_map = parse_tool_map(v, "tool-map")
+                _check_tool_map(self.tool_map, "")
             elif k in ("bed", "chamber", "spindle", "laser"):
                 setattr(self, k, _address(v))
             elif k == "temp-window":
@@ -124,6 +130,8 @@ class TranslateOptions:
                 self.tool_offsets = _choice(v.lower(), ("drop", "m6"))
             elif k == "spindle-max-rpm":
                 self.spindle_max_rpm = _positive(v)
+            elif k == "spindle-stop-dwell":
+                self.spindle_stop_dwell = _positive(v)
             elif k == "printer":
                 self.printer = get_profile(v)
             else:
@@ -167,6 +175,7 @@ SETTINGS = (
     "home-z",
     "tool-offsets",
     "spindle-max-rpm",
+    "spindle-stop-dwell",
     "printer",
 )
 
@@ -180,6 +189,19 @@ def parse_settings(values: tuple[str, ...] | list[str]) -> dict[str, str]:
         key, value = item.split("=", 1)
         out[key.strip()] = value.strip()
     return out
+
+
+def _check_tool_map(tool_map: dict[int, int], where: str) -> None:
+    """A source tool becomes a Hyrel head: T0-T19 ("we have the ability to control up to 20 tool positions or
+    heads", T_v5, Chart of Addresses); a bed, spindle, laser or group address is refused."""
+    from gclint.dialects.addressing import resolve_v5
+
+    for tool, address in sorted(tool_map.items()):
+        if not 0 <= address <= 19:
+            raise ValueError(
+                f"{where}{tool}=T{address}: a tool maps to a head (T0-T19); T{address} is "
+                f"{resolve_v5(address).label} (seeds/hyrel-T_v5-addressing)"
+            )
 
 
 def _choice(value: str, choices: tuple[str, ...]) -> str:

@@ -9,10 +9,58 @@ becomes two) are plain text without N or checksum.
 
 from __future__ import annotations
 
+import re
 from collections.abc import Mapping
 
 from gclint.rules.syntax import compute_checksum
 from gclint.syntax.nodes import Command, Line
+
+LINE_LIMIT = 100  # "Note that all lines will be truncated at 100 characters." (Hyrel Gcode page, M0)
+
+
+def fit_line(text: str) -> tuple[list[str], str]:
+    """Lines of at most 100 characters for ``text`` and what was done: "wrapped" (the comment on lines of
+    its own, before the command), "cut" (an M0/M792 message, which must stay on its line), or "long"
+    (the command itself is longer; left as it is)."""
+    from gclint.syntax.parse import parse_line
+
+    parsed = parse_line(text)
+    comments = parsed.comments
+    if not comments:
+        return [text], "long"
+    start = comments[0].column - 1
+    command = text[:start].rstrip()
+    if command and _ACTION_CODE.match(command):
+        return [text[:LINE_LIMIT]], "cut"
+    wrapped = []
+    for comment in comments:
+        if comment.style == "(":
+            body, opening, closing = comment.text[1:-1].strip(), "(", ")"
+        else:
+            body, opening, closing = comment.text[1:].strip(), ";", ""
+        room = LINE_LIMIT - len(opening) - len(closing) - 1
+        words = body.split(" ")
+        current = ""
+        for word in words:
+            while len(word) > room:  # a word longer than a line
+                if current:
+                    wrapped.append(current)
+                    current = ""
+                wrapped.append(word[:room])
+                word = word[room:]
+            if current and len(current) + 1 + len(word) > room:
+                wrapped.append(current)
+                current = word
+            else:
+                current = f"{current} {word}" if current else word
+        if current or not wrapped:
+            wrapped.append(current)
+    lines = [f"{opening} {chunk}{closing}".rstrip() if opening == ";" else f"({chunk})" for chunk in wrapped]
+    if not command:
+        return lines, "wrapped"
+    if len(command) > LINE_LIMIT:
+        return [*lines, command], "long"
+    return [*lines, command], "wrapped"
 
 
 def fmt(value: float, places: int = 4) -> str:
@@ -73,7 +121,7 @@ class LineEdit:
     """What the translator does to one source line: replaced or removed commands, lines to insert
     before and after, notes for ``--annotate``."""
 
-    __slots__ = ("line", "replaced", "before", "after", "notes", "changed", "dropped")
+    __slots__ = ("line", "replaced", "before", "after", "notes", "changed", "dropped", "strip_comments")
 
     def __init__(self, line: Line) -> None:
         self.line = line
@@ -83,14 +131,15 @@ class LineEdit:
         self.notes: list[str] = []
         self.changed = False  # the source line itself changes (not only insertions around it)
         self.dropped = False  # the whole line goes (a line that could not be parsed)
+        self.strip_comments = False  # the line's comments go (they would be Hyrel host actions)
 
     def render(self, annotate: bool, default_ending: str) -> list[str]:
         """The output lines, endings included."""
         line = self.line
         ending = line.ending
-        if not annotate and not self.before and not self.after and not self.dropped:
+        if not annotate and not self.before and not self.after and not self.dropped and not self.strip_comments:
             # the common case (one command rewritten in place): no list juggling
-            main = _apply(line, self.replaced) if self.replaced else line.raw
+            main = _apply(line, self.replaced, ending or default_ending) if self.replaced else line.raw
             if main is None:
                 return []
             return [main, ending]
@@ -99,8 +148,10 @@ class LineEdit:
         main: str | None
         if self.dropped:
             main = None
+        elif self.strip_comments:
+            main = _commands_only(line, self.replaced)
         elif self.replaced:
-            main = _apply(line, self.replaced)
+            main = _apply(line, self.replaced, glue)
         else:
             main = line.raw
         if main == line.raw and not self.before and not self.after:
@@ -109,6 +160,9 @@ class LineEdit:
             note = "; ".join(self.notes) if self.notes else f"was '{_quote(line.raw)}'"
             if main is None:
                 main = f"; gclint: dropped '{_quote(line.raw)}' ({note})"
+            elif _ACTION_CODE.match(main):
+                # on Hyrel the text after M0/M792 is a list of host actions: the note goes on a line of its own
+                out.append(f"; gclint: {note}{glue}")
             else:
                 main = f"{main} ; gclint: {note}" if main.strip() else f"; gclint: {note}"
         if main is not None:
@@ -120,6 +174,53 @@ class LineEdit:
             # the dropped line was the last one and had no line ending: keep the file's missing final newline
             out[-1] = out[-1][: len(out[-1]) - len(glue)]
         return out
+
+
+def _one_per_line(line: Line, replaced: dict[int, str], glue: str) -> str:
+    """A changed line with several commands, one command a line: the first keeps the N number (and a
+    recomputed checksum), the last the comments."""
+    parsed = line.parsed
+    raw = line.raw
+    texts = []
+    for index, cmd in enumerate(parsed.commands):
+        text = replaced.get(index)
+        if text is None:
+            start, end = _span(cmd, line)
+            text = raw[start:end]
+            for comment in parsed.comments:
+                text = text.replace(comment.text, "")
+            text = " ".join(text.split())
+        if text:
+            texts.append(text)
+    first = parsed.commands[0]
+    prefix = raw[: first.column - 1]
+    if parsed.checksum is not None:
+        prefix = prefix[: parsed.checksum.column - 1] if parsed.checksum.column <= first.column else prefix
+    texts[0] = prefix + texts[0]
+    if parsed.checksum is not None:
+        texts[0] = f"{texts[0]}*{compute_checksum(texts[0])}"
+    if parsed.comments:
+        texts[-1] += " " + " ".join(c.text for c in parsed.comments)
+    return glue.join(texts)
+
+
+def _commands_only(line: Line, replaced: dict[int, str]) -> str | None:
+    """The line's commands (replaced or as written), without its comments, N number and checksum."""
+    texts = []
+    for index, cmd in enumerate(line.parsed.commands):
+        text = replaced.get(index)
+        if text is None:
+            start, end = _span(cmd, line)
+            text = line.raw[start:end]
+            for comment in line.parsed.comments:  # a comment between the command's words
+                text = text.replace(comment.text, "")
+            text = " ".join(text.split())
+        if text:
+            texts.append(text)
+    return " ".join(texts) or None
+
+
+_ACTION_CODE = re.compile(r"[ \t]*(?:[Nn]\d+[ \t]*)?[Mm]0*(?:0|792)(?![\d.])")
 
 
 def _quote(text: str) -> str:
@@ -147,12 +248,16 @@ def _span(cmd: Command, line: Line) -> tuple[int, int]:
     return cmd.column - 1, end - 1
 
 
-def _apply(line: Line, replaced: dict[int, str]) -> str | None:
-    """The line's text with commands replaced; None when nothing but an N number and whitespace is left."""
+def _apply(line: Line, replaced: dict[int, str], glue: str = "\n") -> str | None:
+    """The line's text with commands replaced; None when nothing but an N number and whitespace is left.
+    When more than one command is left, each gets a line of its own (joined with ``glue``): the Hyrel
+    pages show one command per line."""
     parsed = line.parsed
     raw = line.raw
     checksum = parsed.checksum
     commands = parsed.commands
+    if len(commands) > 1 and sum(1 for i in range(len(commands)) if replaced.get(i, True)) > 1:
+        return _one_per_line(line, replaced, glue)
     if len(commands) == 1 and checksum is None and not parsed.extra:
         text = replaced.get(0)
         if text and all(c.style == ";" for c in parsed.comments):

@@ -1,39 +1,53 @@
-"""Which translator serves which pair of dialects (``translator_for`` in engine.py asks ``get``).
+"""Which translator serves which pair of dialects.
 
 Targets are Hyrel only: ``hyrel`` (v5) and ``hyrel-v4``.  A foreign source is translated to v5 meaning
 first; for a v4 target the v5 lines are then renumbered (renumber.Chain).  v4 <-> v5 is a renumbering.
+The same dialect on both sides is the identity (every byte kept).
 """
 
 from __future__ import annotations
 
+from gclint import dialects
 from gclint.dialects.base import Dialect
-from gclint.translate.engine import Translator
+from gclint.translate.base import HyrelTranslator
+from gclint.translate.carvera import CarveraToHyrel
+from gclint.translate.engine import Translator, UnsupportedPair
+from gclint.translate.machinekit import MachinekitToHyrel
+from gclint.translate.marlin import MarlinToHyrel
+from gclint.translate.options import TranslateOptions
+from gclint.translate.renumber import Chain, Renumber
+from gclint.translate.reprap import RepRapToHyrel
+
+# source dialect -> the translator into Hyrel v5
+TO_HYREL: dict[str, type[HyrelTranslator]] = {
+    "marlin": MarlinToHyrel,
+    "reprap": RepRapToHyrel,
+    "machinekit": MachinekitToHyrel,
+    "carvera": CarveraToHyrel,
+}
 
 
-def get(source: Dialect, target: Dialect, options=None) -> Translator | None:
-    from gclint.dialects import get as dialect
-    from gclint.translate.carvera import CarveraToHyrel
-    from gclint.translate.machinekit import MachinekitToHyrel
-    from gclint.translate.marlin import MarlinToHyrel, RepRapToHyrel
-    from gclint.translate.options import TranslateOptions
-    from gclint.translate.renumber import Chain, Renumber
+def translator_for(source: Dialect, target: Dialect, options: TranslateOptions | None = None) -> Translator:
+    """The translator from ``source`` to ``target``; UnsupportedPair when there is none."""
+    if source.name == target.name:
+        return Translator(source, target, options)
+    translator = get(source, target, options)
+    if translator is None:
+        raise UnsupportedPair(f"translation from {source.name} to {target.name} is not supported")
+    return translator
 
+
+def get(source: Dialect, target: Dialect, options: TranslateOptions | None = None) -> Translator | None:
     if target.family != "hyrel":
         return None
     if options is None:
         options = TranslateOptions()
     if source.family == "hyrel":
         return Renumber(source, target, options)
-    factories = {
-        "marlin": MarlinToHyrel,
-        "reprap": RepRapToHyrel,
-        "machinekit": MachinekitToHyrel,
-        "carvera": CarveraToHyrel,
-    }
-    factory = factories.get(source.name)
+    factory = TO_HYREL.get(source.name)
     if factory is None:
         return None
-    v5 = dialect("hyrel")
+    v5 = dialects.get("hyrel")
     first = factory(source, v5, options)
     if target.name == v5.name:
         return first

@@ -1,0 +1,79 @@
+"""Simulation of G-code jobs in their own dialect, and the meaning diff built on it (``gclint diff``).
+
+``simulator_for`` gives the simulator of a dialect (fdm.py: Marlin, RepRapFirmware; cnc.py: Machinekit,
+Carvera; hyrel.py: Hyrel v5 and v4).  Each reads its dialect's pages on its own, not the translator's
+tables, and describes every working move in Hyrel terms (trace.py).  ``diff_sources`` runs two of them
+side by side and compares them (compare.py).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+from gclint.dialects.base import Dialect
+from gclint.simulate.cnc import CarveraSimulator, MachinekitSimulator
+from gclint.simulate.compare import Diff, Difference, Explanations
+from gclint.simulate.fdm import MarlinSimulator, RepRapSimulator
+from gclint.simulate.hyrel import HyrelSimulator
+from gclint.simulate.machine import Simulator
+from gclint.simulate.trace import EndState, Mapping
+from gclint.syntax.source import Source
+
+__all__ = ["DiffResult", "Difference", "Explanations", "Mapping", "diff_sources", "simulator_for", "is_cnc"]
+
+_SIMULATORS: dict[str, type[Simulator]] = {
+    "marlin": MarlinSimulator,
+    "reprap": RepRapSimulator,
+    "machinekit": MachinekitSimulator,
+    "carvera": CarveraSimulator,
+}
+
+
+def is_cnc(dialect: Dialect) -> bool:
+    """CNC jobs synchronise on every feed move; printing jobs on the moves that print."""
+    return dialect.family in ("linuxcnc", "smoothie")
+
+
+def simulator_for(dialect: Dialect, mapping: Mapping | None = None, *, cnc: bool = False) -> Simulator:
+    if dialect.family == "hyrel":
+        return HyrelSimulator(dialect, mapping, cnc=cnc)
+    factory = _SIMULATORS.get(dialect.name)
+    if factory is None:
+        raise ValueError(f"no simulator for {dialect.name}")
+    return factory(dialect, mapping, cnc=cnc)
+
+
+@dataclass
+class DiffResult:
+    differences: list[Difference] = field(default_factory=list)
+    source_end: EndState = field(default_factory=EndState)
+    output_end: EndState = field(default_factory=EndState)
+    pairs: int = 0  # working moves matched
+    notes: list[str] = field(default_factory=list)
+
+    def unexplained(self) -> list[Difference]:
+        return [d for d in self.differences if d.explained_by is None]
+
+
+def diff_sources(
+    source: Source,
+    output: Source,
+    source_dialect: Dialect,
+    output_dialect: Dialect,
+    mapping: Mapping | None = None,
+    explanations: Explanations | None = None,
+) -> DiffResult:
+    """Simulate both jobs, each in its own dialect, and compare them move by move and at the end."""
+    cnc = is_cnc(source_dialect) or is_cnc(output_dialect)
+    first = simulator_for(source_dialect, mapping, cnc=cnc)
+    second = simulator_for(output_dialect, mapping, cnc=cnc)
+    diff = Diff(explanations)
+    diff.run(first.run(source), second.run(output))
+    diff.finish(first.trace.end, second.trace.end)
+    return DiffResult(
+        differences=diff.differences,
+        source_end=first.trace.end,
+        output_end=second.trace.end,
+        pairs=diff.pairs,
+        notes=first.trace.notes + [n for n in second.trace.notes if n not in first.trace.notes],
+    )

@@ -1,0 +1,420 @@
+"""Machinekit FDM (LinuxCNC) and Carvera (Smoothieware community firmware), as the source of a translation.
+
+Machinekit (seeds/machinekit-fdm-mcodes.md; research/dialects.md 1.1-1.5 and 2.2 [MK, LCNC]): the
+extruder is the A axis and follows G90/G91; E is not a word of the language; G0 ignores F (the F still
+sets the feed of later moves); ``M104 P<index> S<temp>`` (the README) or ``M104 P<temp> T<index>`` (the
+final remap), M106/M109 alike; ``M221 P`` is a factor; ``T`` prepares a tool and ``M6`` changes to it;
+the G28 remap (g28.ngc) rapids X, then Y, then Z to 0 and resets A; M2 and M30 end the program.
+
+Carvera (seeds/carvera-mcodes.md; research/dialects.md 2.3 [CV]): M3 S is rpm, an S word alone sets the
+speed; M5 stops; ``M6 T<n>`` changes tools (T0 is the probe, T-1 none); M7/M9 air; M321/M322 enter and
+leave laser mode, where M3 fires and S on a move is the power (0-1); G28 goes to the clearance position;
+"M2 end program, stop spindle and air"; "M30 End of the program, no action on the Carvera"; G0's F is
+one-shot.  No extrusion.
+"""
+
+from __future__ import annotations
+
+from gclint.simulate.machine import Simulator, number
+from gclint.simulate.trace import AUX_PORTS, EndState, Look, Move
+from gclint.syntax.nodes import Command
+
+
+class CncSimulator(Simulator):
+    """What LinuxCNC and Carvera share: workspaces, G53, spindle, tool change, coolant, end of program."""
+
+    DEFAULT_WCS = "G54"
+    FEED_ON_ANY_COMMAND = True
+
+    def __init__(self, dialect, mapping=None, *, cnc: bool = True) -> None:
+        super().__init__(dialect, mapping, cnc=cnc)
+        self.tool: int | None = None  # the tool in the spindle
+        self.prepared: int | None = None
+        self.rpm: float | None = None
+        self.spindle: str | None = None  # "M3" / "M4"
+        self.aux: dict[str, float] = {}
+        self._g53_line = -1
+
+    def table(self):
+        h = {
+            "G0": self.g0,
+            "G1": self.g1,
+            "G2": self.arc,
+            "G3": self.arc,
+            "G17": self.set_plane,
+            "G18": self.set_plane,
+            "G19": self.set_plane,
+            "G20": self.units,
+            "G21": self.units,
+            "G53": self.g53,
+            "G90": self.positioning,
+            "G91": self.positioning,
+            "G92": self.set_position,
+            "G92.1": self.clear_offsets,
+            "M2": self.m2,
+            "M3": self.spindle_on,
+            "M4": self.spindle_on,
+            "M5": self.spindle_off,
+            "M6": self.tool_change,
+        }
+        for n in range(54, 60):
+            h[f"G{n}"] = self.workspace
+        return h
+
+    def implicit(self, cmd: Command, n: int) -> Move | None:
+        if "S" in cmd.params:
+            self.speed(number(cmd.params.get("S")))
+        return super().implicit(cmd, n)
+
+    def speed(self, rpm: float | None) -> None:
+        if rpm is not None:
+            self.rpm = rpm
+            self.dirty()
+
+    def g53(self, cmd: Command, n: int) -> None:
+        self._g53_line = n  # the move on this line is in machine coordinates
+
+    def motion(self, mode: str, params: dict, n: int) -> Move | None:
+        if "S" in params:
+            self.speed(number(params.get("S")))
+        if self._g53_line != n:
+            return super().motion(mode, params, n)
+        saved, shift = self.wcs, list(self.shift)
+        self.wcs, self.shift = "G53", [0.0] * 5
+        self.dirty()
+        try:
+            move = super().motion(mode, params, n)
+        finally:
+            self.wcs, self.shift = saved, shift
+            self.dirty()
+        return move
+
+    def clear_offsets(self, cmd: Command, n: int) -> None:
+        self.clear_shift()
+
+    def tool_command(self, cmd: Command, n: int) -> None:
+        text = (cmd.code or "T")[1:]
+        if text.lstrip("-").isdigit() and len(text) <= 6:
+            self.prepared = int(text)  # T prepares, M6 changes
+
+    def tool_change(self, cmd: Command, n: int) -> None:
+        value = number(cmd.params.get("T"))
+        tool = int(value) if value is not None else self.prepared
+        if tool is None:
+            return
+        self.tool = tool
+        self.dirty()
+
+    def spindle_percent(self) -> float | None:
+        top = self.mapping.spindle_max_rpm
+        if self.rpm is None or top is None:
+            return None
+        return round(max(0.0, min(100.0, self.rpm / top * 100)), 1)
+
+    def spindle_on(self, cmd: Command, n: int) -> None:
+        self.speed(number(cmd.params.get("S")))
+        if self.rpm is not None and self.rpm == 0:
+            self.spindle = None
+        else:
+            self.spindle = cmd.code
+        self.dirty()
+
+    def spindle_off(self, cmd: Command, n: int) -> None:
+        self.spindle = None
+        self.dirty()
+
+    def m2(self, cmd: Command, n: int) -> None:
+        self.end_program(cmd, n)
+
+    def build_look(self) -> Look:
+        spindle = (self.spindle, self.spindle_percent()) if self.spindle else None
+        return Look(head=self.working_head(), spindle=spindle, aux=tuple(sorted(self.aux.items())), wcs=self.wcs)
+
+    def working_head(self) -> int | str | None:
+        return self.mapping.spindle_address()
+
+    def end_state(self) -> EndState:
+        spindles = {self.mapping.spindle_address(): self.spindle} if self.spindle else {}
+        return EndState(spindles=spindles, aux=dict(self.aux))
+
+
+class MachinekitSimulator(CncSimulator):
+    EXTRUDER = "A"
+    AXES = "XYZB"  # A is the extruder
+    G0_FEED = "rapid"
+    E_FOLLOWS_G90 = True
+
+    def __init__(self, dialect, mapping=None, *, cnc: bool = True) -> None:
+        super().__init__(dialect, mapping, cnc=cnc)
+        from gclint.simulate.heat import ToolHeat
+
+        self.heat = ToolHeat(self.mapping)
+        self.heat.tool = None
+
+    def m2(self, cmd: Command, n: int) -> None:
+        # LinuxCNC's M2/M30 end the program with the spindle stopped and the coolant off
+        self.spindle = None
+        self.aux.clear()
+        self.dirty()
+        self.end_program(cmd, n)
+
+    def table(self):
+        h = super().table()
+        h.update(
+            {
+                "G28": self.g28,
+                "M30": self.m2,
+                "M104": self.m104,
+                "M109": self.m109,
+                "M140": self.bed,
+                "M141": self.bed,
+                "M190": self.bed,
+                "M191": self.bed,
+                "M106": self.m106,
+                "M107": self.m107,
+                "M221": self.m221,
+                "M7": self.coolant_on,
+                "M8": self.coolant_on,
+                "M9": self.coolant_off,
+            }
+        )
+        return h
+
+    def plain_moves(self) -> bool:
+        return False  # E is not a word here; plain moves go through motion() with their words checked
+
+    def extra_turns(self, params: dict) -> int:
+        p = number(params.get("P"))  # LinuxCNC: "P - number of turns", P1 the plain arc
+        return int(p) - 1 if p is not None and p >= 1 else 0
+
+    def motion(self, mode: str, params: dict, n: int) -> Move | None:
+        if "E" in params:
+            self.note_once("E", "E is not a word of Machinekit/LinuxCNC (the extruder is the A axis): ignored")
+            params = {k: v for k, v in params.items() if k != "E"}
+        return super().motion(mode, params, n)
+
+    def g28(self, cmd: Command, n: int) -> None:
+        params = cmd.params
+        listed = [a for a in "XYZ" if a in params]
+        bare = not any(a in params for a in "XYZA")
+        for axis in listed or (["X", "Y", "Z"] if bare else []):
+            if self.absolute:
+                i = "XYZ".index(axis)
+                self.pos[i] = self.shift[i]  # program 0
+        if bare or "A" in params:
+            self.e_pos = 0.0
+
+    def tool_change(self, cmd: Command, n: int) -> None:
+        super().tool_change(cmd, n)
+        self.heat.tool = self.tool
+
+    def _flavour(self, cmd: Command) -> tuple[float | None, int | None]:
+        """(value, index): the README's ``P<index> S<value>`` or the remap's ``P<value> T<index>``."""
+        params = cmd.params
+        if "S" in params:
+            index = number(params.get("P"))
+            return number(params.get("S")), int(index) if index is not None else None
+        index = number(params.get("T"))
+        return number(params.get("P")), int(index) if index is not None else None
+
+    def m104(self, cmd: Command, n: int) -> None:
+        value, index = self._flavour(cmd)
+        if value is not None:
+            self.heat.set_temp(index, value, wait=False)
+            self.dirty()
+
+    def m109(self, cmd: Command, n: int) -> None:
+        value, index = self._flavour(cmd)
+        if value is not None:
+            self.heat.set_temp(index, value, wait=True)
+            self.dirty()
+
+    def bed(self, cmd: Command, n: int) -> None:
+        value = number(cmd.params.get("S", cmd.params.get("P")))
+        if value is None:
+            return
+        chamber = cmd.code in ("M141", "M191")
+        self.heat.set_bed(self.mapping.chamber if chamber else self.mapping.bed, value, cmd.code in ("M190", "M191"))
+        self.dirty()
+
+    def m106(self, cmd: Command, n: int) -> None:
+        value, index = self._flavour(cmd)
+        if value is None:
+            return
+        self.heat.set_fan(index or 0, value / 255)
+        self.dirty()
+
+    def m107(self, cmd: Command, n: int) -> None:
+        index = number(cmd.params.get("T", cmd.params.get("P")))
+        self.heat.set_fan(int(index) if index is not None else 0, 0.0)
+        self.dirty()
+
+    def m221(self, cmd: Command, n: int) -> None:
+        factor = number(cmd.params.get("P"))
+        if factor is not None:
+            self.heat.set_flow(None, factor)
+            self.dirty()
+
+    def coolant_on(self, cmd: Command, n: int) -> None:
+        self.aux[AUX_PORTS[cmd.code]] = 100.0  # type: ignore[index]
+        self.dirty()
+
+    def coolant_off(self, cmd: Command, n: int) -> None:
+        self.aux.clear()
+        self.dirty()
+
+    def working_head(self) -> int | str | None:
+        return self.mapping.head(self.heat.tool if self.heat.tool is not None else 0)
+
+    def build_look(self) -> Look:
+        heat = self.heat
+        saved = heat.tool
+        if heat.tool is None:
+            heat.tool = 0
+        temp, flow = heat.working()
+        heat.tool = saved
+        spindle = (self.spindle, self.spindle_percent()) if self.spindle else None
+        return Look(
+            head=self.working_head(),
+            temp=temp,
+            fan=round(heat.fans.get(0, 0.0), 3),
+            flow=round(flow, 4),
+            beds=heat.bed_look(),
+            spindle=spindle,
+            aux=heat.aux_fans() + tuple(sorted(self.aux.items())),
+            wcs=self.wcs,
+        )
+
+    def end_state(self) -> EndState:
+        state = super().end_state()
+        heat = self.heat
+        if heat.tool is None:
+            heat.tool = 0
+        state.heaters = heat.end_heaters()
+        state.fans = heat.end_fans()
+        return state
+
+
+class CarveraSimulator(CncSimulator):
+    EXTRUDER = None
+    G0_FEED = "one-shot"
+
+    def __init__(self, dialect, mapping=None, *, cnc: bool = True) -> None:
+        super().__init__(dialect, mapping, cnc=cnc)
+        self.laser_mode = False
+        self.firing = False  # M3 in laser mode
+        self.power = 0.0  # percent
+
+    def table(self):
+        h = super().table()
+        h.update(
+            {
+                "G28": self.g28,
+                "M7": self.air_on,
+                "M9": self.air_off,
+                "M321": self.m321,
+                "M322": self.m322,
+                "M801": self.vacuum,
+                "M802": self.vacuum_off,
+                "M821": self.light,
+                "M822": self.light_off,
+            }
+        )
+        return h
+
+    def plain_moves(self) -> bool:
+        return not self.laser_mode and super().plain_moves()
+
+    def g28(self, cmd: Command, n: int) -> None:
+        self.forget("XYZ")  # "G28 means goto clearance position on the Carvera": a place this file does not say
+
+    def speed(self, rpm: float | None) -> None:
+        if rpm is None:
+            return
+        if self.laser_mode:
+            self.power = min(100.0, rpm) if rpm > 1 else rpm * 100
+        else:
+            self.rpm = rpm
+        self.dirty()
+
+    def spindle_on(self, cmd: Command, n: int) -> None:
+        if self.laser_mode:
+            self.speed(number(cmd.params.get("S")))
+            self.firing = True
+            self.dirty()
+            return
+        super().spindle_on(cmd, n)
+
+    def spindle_off(self, cmd: Command, n: int) -> None:
+        if self.laser_mode:
+            self.firing = False
+            self.dirty()
+            return
+        super().spindle_off(cmd, n)
+
+    def tool_change(self, cmd: Command, n: int) -> None:
+        super().tool_change(cmd, n)
+        self.spindle = None  # the spindle stops for a tool change
+        self.dirty()
+
+    def working_head(self) -> int | str | None:
+        tool = self.tool
+        if tool is not None and tool in self.mapping.tool_map:
+            return self.mapping.head(tool)
+        return self.mapping.spindle_address()
+
+    def sync(self, start, arc, delta, feed, rapid, native=False):
+        fires = self.laser_mode and self.firing and not rapid and self.power > 0
+        return super().sync(start, arc, delta, feed, rapid, native=fires)
+
+    def m2(self, cmd: Command, n: int) -> None:
+        self.spindle = None  # "end program, stop spindle and air"
+        self.aux.pop(AUX_PORTS.get(self.mapping.air, self.mapping.air), None)
+        self.dirty()
+        self.end_program(cmd, n)
+
+    def m321(self, cmd: Command, n: int) -> None:
+        self.laser_mode = True
+        self.dirty()
+
+    def m322(self, cmd: Command, n: int) -> None:
+        self.laser_mode = False
+        self.firing = False
+        self.dirty()
+
+    def air_on(self, cmd: Command, n: int) -> None:
+        self.aux[AUX_PORTS.get(self.mapping.air, self.mapping.air)] = 100.0
+        self.dirty()
+
+    def air_off(self, cmd: Command, n: int) -> None:
+        self.aux.pop(AUX_PORTS.get(self.mapping.air, self.mapping.air), None)
+        self.dirty()
+
+    def vacuum(self, cmd: Command, n: int) -> None:
+        s = number(cmd.params.get("S"))
+        self.aux["vacuum"] = 100.0 if s is None else s
+        self.dirty()
+
+    def vacuum_off(self, cmd: Command, n: int) -> None:
+        self.aux.pop("vacuum", None)
+        self.dirty()
+
+    def light(self, cmd: Command, n: int) -> None:
+        self.aux["light"] = 100.0
+        self.dirty()
+
+    def light_off(self, cmd: Command, n: int) -> None:
+        self.aux.pop("light", None)
+        self.dirty()
+
+    def build_look(self) -> Look:
+        look = super().build_look()
+        if self.laser_mode:
+            return Look(head=look.head, spindle=look.spindle, aux=look.aux, wcs=look.wcs, laser=round(self.power, 1))
+        return look
+
+    def end_state(self) -> EndState:
+        state = super().end_state()
+        if self.laser_mode:
+            state.emitters = frozenset({self.mapping.laser_address()})
+        return state

@@ -1,0 +1,532 @@
+"""Compare two simulations at their synchronisation points (a meaning diff, after sqlglot's semantic diff).
+
+The source job and its translation are walked together, working move by working move.  A source move
+is matched with the output moves that make it: usually one, several when an arc became segments (each
+segment must stay on the source's arc, within the chord tolerance).  A move one side has and the other
+has not is found by looking a few moves ahead on each side.  Lines the translator adds (header, footer,
+re-homing) are not working moves, so they do not count; what they change shows in the state of the moves
+that follow.
+
+For each matched pair every aspect is compared (trace.ASPECTS): where the move ends, the path, what it
+deposits, the feed, and the state it runs in (head, set-point and wait, fan, flow, beds, spindle, laser,
+aux, workspace, units).  A difference that lasts over many moves is one ``Difference`` with a count.
+Finally the end states are compared: what is still hot, blowing, spinning or emitting.
+
+A difference is *explained* when the translation reported a warning-level TR finding for it: a finding
+whose aspects include the difference's, on a source line between the last move where the aspect agreed
+and the move where it first differs (for the end state: anywhere).
+"""
+
+from __future__ import annotations
+
+import math
+from bisect import bisect_right
+from collections import deque
+from collections.abc import Iterable, Iterator
+from dataclasses import dataclass, field
+
+from gclint.simulate.trace import ASPECTS, NATIVE, EndState, Move
+
+POSITION_TOLERANCE = 0.002  # mm: the translator writes 4 decimals; inches converted from 4 decimals
+CHORD_TOLERANCE = 0.02  # mm: the largest distance allowed between a segment and the arc it replaces
+FEED_TOLERANCE = 0.011  # mm/min (the translator writes 2 decimals)
+FAN_TOLERANCE = 0.005  # of full speed (one step of 255)
+LOOKAHEAD = 8  # moves looked ahead on each side to tell a missing move from an extra one
+MAX_SEGMENTS = 20000  # output moves one source move may become (an arc's segments)
+
+
+@dataclass
+class Difference:
+    aspect: str
+    source_line: int | None
+    output_line: int | None
+    source: str
+    output: str
+    count: int = 1
+    explained_by: tuple[str, int] | None = None  # (TR code, source line)
+
+    def to_dict(self) -> dict:
+        return {
+            "aspect": self.aspect,
+            "source_line": self.source_line,
+            "output_line": self.output_line,
+            "source": self.source,
+            "output": self.output,
+            "count": self.count,
+            "explained_by": (
+                {"code": self.explained_by[0], "line": self.explained_by[1]} if self.explained_by else None
+            ),
+        }
+
+
+@dataclass
+class Explanations:
+    """Warning-level TR findings, by aspect: ``entries`` is a list of (code, aspects, sorted lines)."""
+
+    entries: list[tuple[str, frozenset[str], list[int]]] = field(default_factory=list)
+
+    def find(self, aspect: str, lo: int, hi: int) -> tuple[str, int] | None:
+        """The first finding for ``aspect`` on a line in (lo, hi]."""
+        best: tuple[str, int] | None = None
+        for code, aspects, lines in self.entries:
+            if aspect not in aspects and "*" not in aspects:
+                continue
+            i = bisect_right(lines, lo)
+            if i < len(lines) and lines[i] <= hi and (best is None or lines[i] < best[1]):
+                best = (code, lines[i])
+        return best
+
+
+class _Peek:
+    """An iterator with a look-ahead buffer."""
+
+    def __init__(self, items: Iterable[Move]) -> None:
+        self.it = iter(items)
+        self.buffer: deque[Move] = deque()
+        self.done = False
+
+    def get(self, i: int) -> Move | None:
+        buffer = self.buffer
+        while len(buffer) <= i and not self.done:
+            try:
+                buffer.append(next(self.it))
+            except StopIteration:
+                self.done = True
+        return buffer[i] if i < len(buffer) else None
+
+    def pop(self) -> Move:
+        self.get(0)
+        return self.buffer.popleft()
+
+
+def _close(a: float | None, b: float | None, tol: float = POSITION_TOLERANCE) -> bool:
+    if a is None or b is None:
+        return a is b
+    return abs(a - b) <= tol
+
+
+def _xy_match(a: tuple, b: tuple) -> bool:
+    return _close(a[0], b[0]) and _close(a[1], b[1])
+
+
+def _plane_axes(plane: int) -> tuple[int, int]:
+    return {17: (0, 1), 18: (2, 0), 19: (1, 2)}.get(plane, (0, 1))
+
+
+def _arc_progress(point: tuple, move: Move, before: float) -> float | None:
+    """How far round the source arc an output point is (radians from its start, in its direction), if it
+    lies on the arc beyond ``before``; None if not (off the circle, backwards, or past the end)."""
+    plane, (cu, cv), r, clockwise, a0, turn = move.arc  # type: ignore[misc]
+    u, v = _plane_axes(plane)
+    pu, pv = point[u], point[v]
+    if pu is None or pv is None or abs(math.hypot(pu - cu, pv - cv) - r) > CHORD_TOLERANCE + POSITION_TOLERANCE:
+        return None
+    angle = math.atan2(pv - cv, pu - cu)
+    step = ((a0 - angle) if clockwise else (angle - a0)) % (2 * math.pi)
+    laps = max(0.0, (before - step) // (2 * math.pi) + 1) if step < before - 1e-6 else 0.0
+    progress = step + 2 * math.pi * laps
+    if progress < before - 1e-6 or progress > turn + 1e-6:
+        return None
+    return progress
+
+
+def _on_path(point: tuple, move: Move) -> bool:
+    """Whether an output point lies on the source move's path (an intermediate segment end)."""
+    if move.arc is not None:
+        return _arc_progress(point, move, 0.0) is not None
+    start, end = move.start, move.end
+    if any(start[i] is None or end[i] is None or point[i] is None for i in (0, 1)):
+        return False
+    return _distance_to_segment(point, start, end) <= POSITION_TOLERANCE
+
+
+def _distance_to_segment(p: tuple, a: tuple, b: tuple) -> float:
+    ax, ay, bx, by, px, py = a[0], a[1], b[0], b[1], p[0], p[1]
+    dx, dy = bx - ax, by - ay
+    length2 = dx * dx + dy * dy
+    t = 0.0 if length2 == 0 else max(0.0, min(1.0, ((px - ax) * dx + (py - ay) * dy) / length2))
+    return math.hypot(px - (ax + t * dx), py - (ay + t * dy))
+
+
+def align(source: Iterable[Move], output: Iterable[Move]) -> Iterator[tuple[Move | None, list[Move], int | None]]:
+    """Triples (source move, the output moves that make it, None); (move, [], None) for a source move the
+    output has not; (None, [move], line) for an output move the source has not, with the line of the next
+    source move (None at the end)."""
+    src, out = _Peek(source), _Peek(output)
+    while True:
+        s = src.get(0)
+        if s is None:
+            while out.get(0) is not None:
+                yield None, [out.pop()], None
+            return
+        if out.get(0) is None:
+            yield src.pop(), [], None
+            continue
+        run = _run(s, out)
+        if run:
+            src.pop()
+            yield s, run, None
+            continue
+        o = out.get(0)
+        assert o is not None
+        missing = _ahead(src, o.end)  # is the output move a later source move? the ones before it are missing
+        if missing:
+            for _ in range(missing):
+                yield src.pop(), [], None
+            continue
+        extra = _ahead(out, s.end)  # is the source move a later output move? the ones before it are extra
+        if extra:
+            for _ in range(extra):
+                yield None, [out.pop()], s.line
+            continue
+        yield src.pop(), [out.pop()], None  # the same move, ending elsewhere
+
+
+def _ahead(moves: _Peek, end: tuple) -> int:
+    """How many moves ahead (1 to LOOKAHEAD) one ends at ``end``'s X Y; 0 if none does."""
+    for i in range(1, LOOKAHEAD + 1):
+        later = moves.get(i)
+        if later is None:
+            return 0
+        if _xy_match(later.end, end):
+            return i
+    return 0
+
+
+def _run(s: Move, out: _Peek) -> list[Move] | None:
+    """The output moves that make source move ``s``: intermediate ends on its path (going forward round an
+    arc), the last at its end."""
+    k = 0
+    limit = MAX_SEGMENTS if s.arc is not None else 64
+    progress = 0.0
+    while k < limit:
+        o = out.get(k)
+        if o is None:
+            return None
+        if _xy_match(o.end, s.end) and (s.arc is None or k == 0 or _arc_done(o.end, s, progress)):
+            return [out.pop() for _ in range(k + 1)]
+        if _xy_match(o.end, s.start):
+            return None  # a move that stays at the start is not a piece of this one
+        if s.arc is not None:
+            ahead = _arc_progress(o.end, s, progress)
+            if ahead is None:
+                return None
+            progress = ahead
+        elif not _on_path(o.end, s):
+            return None
+        k += 1
+    return None
+
+
+def _arc_done(point: tuple, move: Move, progress: float) -> bool:
+    """Whether an output point at the arc's end point closes it (and is not the end of an earlier lap)."""
+    turn = move.arc[5]  # type: ignore[index]
+    return progress > turn - 2 * math.pi + 1e-6 or turn <= 2 * math.pi + 1e-6
+
+
+# -- describing values ------------------------------------------------------------------------------------
+
+
+def _num(v: float | None, places: int = 4) -> str:
+    if v is None:
+        return "unknown"
+    text = f"{v:.{places}f}".rstrip("0").rstrip(".")
+    return "0" if text in ("-0", "") else text
+
+
+def _position(end: tuple, axes: Iterable[int]) -> str:
+    return " ".join(f"{'XYZAB'[i]}{_num(end[i])}" for i in axes)
+
+
+def _e(value) -> str:
+    if value is None:
+        return "nothing"
+    if value == NATIVE:
+        return "native flow (computed by Hyrel)"
+    return f"E {_num(value, 5)}"
+
+
+def _head(value) -> str:
+    if value is None:
+        return "none"
+    return f"T{value}" if isinstance(value, int) else str(value)
+
+
+def _temp(value: tuple) -> str:
+    target, ready = value
+    if target is None:
+        return "no set-point"
+    return f"{_num(target, 1)} °C ({'waited for' if ready else 'not waited for'})"
+
+
+def _beds(value: tuple) -> str:
+    if not value:
+        return "none"
+    return ", ".join(f"T{a} {_num(t, 1)} °C ({'waited for' if w else 'not waited for'})" for a, t, w in value)
+
+
+def _spindle(value) -> str:
+    if value is None:
+        return "off"
+    direction, pct = value
+    return f"{direction} {_num(pct, 1) + ' %' if pct is not None else '(speed unknown)'}"
+
+
+def _aux(value: tuple) -> str:
+    return (
+        ", ".join(
+            f"{name} {_num(v, 1)} %" if v <= 1.0 and "fan" in name else f"{name} {_num(v, 1)}" for name, v in value
+        )
+        or "none"
+    )
+
+
+_DESCRIBE = {
+    "head": _head,
+    "temp": _temp,
+    "fan": lambda v: f"{_num(v * 100, 1)} %",
+    "flow": lambda v: _num(v, 4),
+    "beds": _beds,
+    "spindle": _spindle,
+    "laser": lambda v: "off" if v is None else f"{_num(v, 1)} %",
+    "aux": _aux,
+    "wcs": lambda v: v or "no fixture offsets",
+    "units": str,
+}
+
+
+def _same(aspect: str, a, b) -> bool:
+    if aspect == "fan":
+        return abs(a - b) <= FAN_TOLERANCE
+    if aspect == "flow":
+        return abs(a - b) <= 1e-4
+    if aspect == "temp":
+        return a[1] == b[1] and _close(a[0], b[0], 1e-6)
+    if aspect == "spindle":
+        if a is None or b is None:
+            return a is b
+        return a[0] == b[0] and _close(a[1], b[1], 0.11)
+    if aspect == "laser":
+        return _close(a, b, 0.11)
+    if aspect == "aux":
+        return len(a) == len(b) and all(x[0] == y[0] and abs(x[1] - y[1]) <= 0.5 for x, y in zip(a, b, strict=True))
+    return a == b
+
+
+_LOOK_ASPECTS = ("head", "temp", "fan", "flow", "beds", "spindle", "laser", "aux", "wcs", "units")
+
+
+# -- the diff -----------------------------------------------------------------------------------------------
+
+
+class Diff:
+    """Walks two simulations and gathers the differences."""
+
+    def __init__(self, explanations: Explanations | None = None) -> None:
+        self.explanations = explanations
+        self.differences: list[Difference] = []
+        self.open: dict[str, Difference] = {}
+        self.last_ok: dict[str, int] = {}
+        self.last_all_ok = 0
+        self.pairs = 0  # matched moves
+
+    def run(self, source: Iterable[Move], output: Iterable[Move]) -> None:
+        for s, run, next_line in align(source, output):
+            if s is None:
+                o = run[0]
+                where = f"a working move to {_position(o.end, (0, 1, 2))}"
+                self.differ("moves", next_line, o.line, "nothing", where, hi=next_line if next_line else 1 << 62)
+                continue
+            if not run:
+                self.differ("moves", s.line, None, f"a working move to {_position(s.end, (0, 1, 2))}", "nothing")
+                continue
+            self.pairs += 1
+            self.compare(s, run)
+
+    def compare(self, s: Move, run: list[Move]) -> None:
+        o = run[-1]
+        first = run[0]
+        bad: list[str] = []
+        # where it ends
+        axes = [i for i in range(5) if not _close(s.end[i], o.end[i])]
+        if axes:
+            bad.append("position")
+            self.differ("position", s.line, o.line, _position(s.end, axes), _position(o.end, axes))
+        # the path
+        deviation = _deviation(s, run)
+        if deviation is not None:
+            bad.append("path")
+            self.differ(
+                "path",
+                s.line,
+                first.line,
+                "the source's " + ("arc" if s.arc else "line"),
+                f"deviates {_num(deviation, 3)} mm",
+            )
+        # what it deposits
+        e_out = _sum_e(run)
+        if not _same_e(s.e, e_out, len(run)):
+            bad.append("e")
+            self.differ("e", s.line, first.line, _e(s.e), _e(e_out))
+        # feed
+        for m in run:
+            if not _close(s.feed, m.feed, FEED_TOLERANCE):
+                bad.append("feed")
+                self.differ("feed", s.line, m.line, _feed(s.feed), _feed(m.feed))
+                break
+        # the state it runs in
+        a, b = s.look, first.look
+        if a != b:
+            for aspect in _LOOK_ASPECTS:
+                if aspect == "laser" and s.e is None and first.e is None:
+                    continue  # the power matters while the laser fires
+                va, vb = getattr(a, aspect), getattr(b, aspect)
+                if not _same(aspect, va, vb):
+                    bad.append(aspect)
+                    describe = _DESCRIBE[aspect]
+                    self.differ(aspect, s.line, first.line, describe(va), describe(vb))
+        if not bad:
+            if self.open:
+                for aspect in list(self.open):
+                    self.close(aspect)
+            self.last_all_ok = s.line
+            return
+        for aspect in list(self.open):
+            if aspect not in bad:
+                self.close(aspect)
+                self.last_ok[aspect] = s.line
+        for aspect in ASPECTS:
+            if aspect not in bad and aspect != "moves":
+                self.last_ok[aspect] = s.line
+
+    def differ(self, aspect: str, source_line, output_line, source: str, output: str, hi: int | None = None) -> None:
+        """A difference on this pair; one going on since an earlier pair only counts."""
+        current = self.open.get(aspect)
+        if current is not None:
+            current.count += 1
+            return
+        diff = Difference(aspect, source_line, output_line, source, output)
+        if self.explanations is not None:
+            lo = max(self.last_all_ok, self.last_ok.get(aspect, 0))
+            top = hi if hi is not None else (source_line if source_line is not None else 1 << 62)
+            diff.explained_by = self.explanations.find(aspect, lo, top)
+        self.open[aspect] = diff
+        self.differences.append(diff)
+
+    def close(self, aspect: str) -> None:
+        self.open.pop(aspect, None)
+
+    def finish(self, source: EndState, output: EndState) -> None:
+        for aspect in list(self.open):
+            self.close(aspect)
+        for name, a, b in (
+            ("heaters", source.heaters, output.heaters),
+            ("fans", source.fans, output.fans),
+            ("spindles", source.spindles, output.spindles),
+            ("emitters", {k: "on" for k in source.emitters}, {k: "on" for k in output.emitters}),
+            ("aux", source.aux, output.aux),
+        ):
+            if _same_end(a, b):
+                continue
+            percent = name == "fans"
+            diff = Difference(
+                "end",
+                source.line or None,
+                output.line or None,
+                f"{name}: {_end(a, percent)}",
+                f"{name}: {_end(b, percent)}",
+            )
+            if self.explanations is not None:
+                for aspect in ("end", *_END_ASPECT[name]):
+                    diff.explained_by = self.explanations.find(aspect, 0, 1 << 62)
+                    if diff.explained_by:
+                        break
+            self.differences.append(diff)
+
+
+_END_ASPECT = {
+    "heaters": ("temp", "beds"),
+    "fans": ("fan", "aux"),
+    "spindles": ("spindle",),
+    "emitters": ("laser",),
+    "aux": ("aux",),
+}
+
+
+def _same_end(a: dict, b: dict) -> bool:
+    if set(a) != set(b):
+        return False
+    for k, v in a.items():
+        w = b[k]
+        if isinstance(v, float) and isinstance(w, float | int):
+            if abs(v - w) > 0.006 and abs(v - w) > 1e-6 * abs(v):
+                return False
+        elif v != w:
+            return False
+    return True
+
+
+def _end(d: dict, percent: bool = False) -> str:
+    if not d:
+        return "all off"
+    parts = []
+    for k, v in sorted(d.items(), key=lambda kv: str(kv[0])):
+        key = f"T{k}" if isinstance(k, int) else str(k)
+        if percent and isinstance(v, float | int):
+            parts.append(f"{key} {_num(v * 100, 1)} %")
+        else:
+            parts.append(f"{key} {_num(v, 3) if isinstance(v, float) else v}")
+    return ", ".join(parts)
+
+
+def _feed(v: float | None) -> str:
+    return "unknown" if v is None else f"F{_num(v, 2)}"
+
+
+def _sum_e(run: list[Move]):
+    total = None
+    for m in run:
+        if m.e == NATIVE:
+            return NATIVE
+        if m.e is not None:
+            total = (total or 0.0) + m.e
+    return total
+
+
+def _same_e(a, b, segments: int) -> bool:
+    if a is None or b is None or a == NATIVE or b == NATIVE:
+        return a == b
+    return abs(a - b) <= 2e-5 * segments + 1e-6 * abs(a) + 1e-9
+
+
+def _deviation(s: Move, run: list[Move]) -> float | None:
+    """How far the output's way from the source's start to its end strays from the source's path, when
+    more than the tolerance allows (None: within it)."""
+    if s.arc is not None:
+        plane, (cu, cv), r, clockwise = s.arc[:4]
+        u, v = _plane_axes(plane)
+        if len(run) == 1 and run[0].arc is not None:
+            _, (ou, ov), orad, ocw = run[0].arc[:4]
+            if _close(ou, cu) and _close(ov, cv) and ocw == clockwise:
+                return None
+            return max(math.hypot(ou - cu, ov - cv), abs(orad - r))
+        worst = 0.0
+        previous = s.start
+        for m in run:
+            a, b = previous, m.end
+            previous = b
+            if a[u] is None or a[v] is None or b[u] is None or b[v] is None:
+                continue
+            radial = abs(math.hypot(b[u] - cu, b[v] - cv) - r)
+            chord = math.hypot(b[u] - a[u], b[v] - a[v])
+            sagitta = r - math.sqrt(max(r * r - chord * chord / 4, 0.0)) if chord < 2 * r else r
+            worst = max(worst, radial, sagitta)
+        return worst if worst > CHORD_TOLERANCE + POSITION_TOLERANCE else None
+    if len(run) == 1:
+        return None
+    worst = 0.0
+    for m in run[:-1]:
+        if m.end[0] is None or m.end[1] is None or s.start[0] is None or s.start[1] is None:
+            continue
+        worst = max(worst, _distance_to_segment(m.end, s.start, s.end))
+    return worst if worst > POSITION_TOLERANCE else None

@@ -1,0 +1,310 @@
+"""Marlin and RepRapFirmware, as the source of a translation (research/dialects.md 1.1-1.5; the Marlin and
+RepRapFirmware G-code references it quotes; the 2015 RepRap G-code page in the seeds).
+
+What differs from Hyrel and matters for the diff: G0 is G1 (it extrudes, and shares G1's F); Marlin's
+G90/G91 also set the E mode; M106 S is 0-255 (RepRapFirmware: 0-1 too); M221 is a percentage; G28 with
+no axis homes all axes; M220 scales every feed; M3 S is a PWM value 0-255 on Marlin (O too), rpm on
+RepRapFirmware; RepRapFirmware's M0, M1 and M2 end the job, M116 waits for every set-point, G10 P S and
+M568 set a tool's temperature, M109 T selects the tool.
+"""
+
+from __future__ import annotations
+
+from gclint.simulate.heat import ToolHeat
+from gclint.simulate.machine import Simulator, number
+from gclint.simulate.trace import AUX_PORTS, EndState, Look, Move
+from gclint.syntax.nodes import Command
+
+
+def _index(text: str | None) -> int | None:
+    value = number(text)
+    if value is None or value < 0 or value != int(value):
+        return None
+    return int(value)
+
+
+class MarlinSimulator(Simulator):
+    G0_FEED = "modal"
+    G0_EXTRUDES = True
+    E_FOLLOWS_G90 = True
+    RRF = False
+
+    def __init__(self, dialect, mapping=None, *, cnc: bool = False) -> None:
+        super().__init__(dialect, mapping, cnc=cnc)
+        self.heat = ToolHeat(self.mapping)
+        self.feed_factor = 1.0  # M220
+        self.spindle: tuple | None = None
+        self.coolant: dict[str, bool] = {}
+        self._g53_line = -1
+
+    def table(self):
+        h = {
+            "G0": self.g0,
+            "G1": self.g1,
+            "G2": self.arc,
+            "G3": self.arc,
+            "G17": self.set_plane,
+            "G18": self.set_plane,
+            "G19": self.set_plane,
+            "G20": self.units,
+            "G21": self.units,
+            "G28": self.home,
+            "G53": self.g53,
+            "G90": self.positioning,
+            "G91": self.positioning,
+            "G92": self.set_position,
+            "G92.1": self.clear_offsets,
+            "M82": self.e_mode,
+            "M83": self.e_mode,
+            "M104": self.m104,
+            "M109": self.m109,
+            "M140": self.bed,
+            "M190": self.bed,
+            "M141": self.bed,
+            "M191": self.bed,
+            "M106": self.m106,
+            "M107": self.m107,
+            "M220": self.m220,
+            "M221": self.m221,
+            "M3": self.spindle_on,
+            "M4": self.spindle_on,
+            "M5": self.spindle_off,
+            "M7": self.coolant_on,
+            "M8": self.coolant_on,
+            "M9": self.coolant_off,
+        }
+        for n in range(54, 60):
+            h[f"G{n}"] = self.workspace
+        return h
+
+    def plain_moves(self) -> bool:
+        return self.feed_factor == 1.0 and super().plain_moves()
+
+    # -- motion ---------------------------------------------------------------------------------------
+
+    def motion(self, mode: str, params: dict, n: int) -> Move | None:
+        if self._g53_line == n:
+            return self.machine_move(mode, params, n)
+        move = super().motion(mode, params, n)
+        if move is not None and self.feed_factor != 1.0 and move.feed is not None:
+            move.feed *= self.feed_factor
+        return move
+
+    def g53(self, cmd: Command, n: int) -> None:
+        # Marlin: G53 makes the move on its line use machine coordinates (no workspace offsets)
+        self._g53_line = n
+
+    def machine_move(self, mode: str, params: dict, n: int) -> Move | None:
+        saved, self.wcs = self.wcs, "G53"
+        shift = list(self.shift)
+        self.shift = [0.0] * 5
+        self.dirty()
+        try:
+            move = super().motion(mode, params, n)
+        finally:
+            self.shift = shift
+            self.wcs = saved
+            self.dirty()
+        return move
+
+    def clear_offsets(self, cmd: Command, n: int) -> None:
+        self.clear_shift()
+
+    def home(self, cmd: Command, n: int) -> None:
+        listed = "".join(a for a in "XYZ" if a in cmd.params)
+        self.home_axes(listed or "XYZ")
+
+    def m220(self, cmd: Command, n: int) -> None:
+        s = number(cmd.params.get("S"))
+        if s is not None:
+            self.feed_factor = s / 100
+
+    # -- tools and heat -------------------------------------------------------------------------------
+
+    def tool_command(self, cmd: Command, n: int) -> None:
+        text = (cmd.code or "T")[1:]
+        if text == "-1":
+            self.heat.tool = None
+        elif text.isdigit() and len(text) <= 2:
+            self.heat.tool = int(text)
+        else:
+            return  # vendor pseudo-tools (T1000...) and queries: no tool change
+        self.dirty()
+
+    def m104(self, cmd: Command, n: int) -> None:
+        s = number(cmd.params.get("S"))
+        if s is None:
+            return
+        self.heat.set_temp(_index(cmd.params.get("T")), s, wait=False)
+        self.dirty()
+
+    def m109(self, cmd: Command, n: int) -> None:
+        params = cmd.params
+        value = number(params.get("S")) if "S" in params else number(params.get("R"))
+        tool = _index(params.get("T"))
+        if self.RRF and tool is not None:
+            self.heat.tool = tool  # RepRapFirmware: M109 T also selects the tool
+        self.heat.set_temp(tool, value, wait=True)
+        self.dirty()
+
+    def _slot(self, cmd: Command) -> int:
+        chamber = cmd.code in ("M141", "M191")
+        default = self.mapping.chamber if chamber else self.mapping.bed
+        slot = _index(cmd.params.get("P")) if self.RRF else None
+        if slot == 1 and default == 24:
+            return 25
+        return default
+
+    def bed(self, cmd: Command, n: int) -> None:
+        params = cmd.params
+        wait = cmd.code in ("M190", "M191")
+        value = number(params.get("S")) if "S" in params else (number(params.get("R")) if wait else None)
+        if value is None and not wait:
+            return
+        self.heat.set_bed(self._slot(cmd), value, wait)
+        self.dirty()
+
+    def fan_value(self, cmd: Command) -> float | None:
+        if "S" not in cmd.params:
+            return 1.0  # Marlin: M106 without S is full speed
+        s = number(cmd.params.get("S"))
+        return None if s is None else s / 255
+
+    def m106(self, cmd: Command, n: int) -> None:
+        value = self.fan_value(cmd)
+        if value is None:
+            return
+        self.heat.set_fan(_index(cmd.params.get("P")) or 0, value)
+        self.dirty()
+
+    def m107(self, cmd: Command, n: int) -> None:
+        self.heat.set_fan(_index(cmd.params.get("P")) or 0, 0.0)
+        self.dirty()
+
+    def m221(self, cmd: Command, n: int) -> None:
+        s = number(cmd.params.get("S"))
+        if s is None:
+            return
+        self.heat.set_flow(_index(cmd.params.get("D" if self.RRF else "T")), s / 100)
+        self.dirty()
+
+    # -- spindle and coolant --------------------------------------------------------------------------
+
+    def spindle_percent(self, cmd: Command) -> float | None:
+        params = cmd.params
+        s = number(params.get("S"))
+        if s is None and "O" in params:  # Marlin: O is the power as PWM 0-255
+            o = number(params.get("O"))
+            return None if o is None else max(0.0, min(100.0, o / 255 * 100))
+        if s is None:
+            return None
+        return max(0.0, min(100.0, s / 255 * 100))  # Marlin's default cutter unit: PWM 0-255
+
+    def spindle_on(self, cmd: Command, n: int) -> None:
+        pct = self.spindle_percent(cmd)
+        if pct is not None and pct == 0:
+            self.spindle = None
+        else:
+            self.spindle = (cmd.code, None if pct is None else round(pct, 1))
+        self.dirty()
+
+    def spindle_off(self, cmd: Command, n: int) -> None:
+        self.spindle = None
+        self.dirty()
+
+    def coolant_on(self, cmd: Command, n: int) -> None:
+        self.coolant[cmd.code] = True  # type: ignore[index]
+        self.dirty()
+
+    def coolant_off(self, cmd: Command, n: int) -> None:
+        self.coolant.clear()
+        self.dirty()
+
+    # -- Hyrel terms --------------------------------------------------------------------------------------
+
+    def build_look(self) -> Look:
+        heat = self.heat
+        temp, flow = heat.working()
+        aux = heat.aux_fans() + tuple((AUX_PORTS[code], 100.0) for code in sorted(self.coolant))
+        return Look(
+            head=heat.head(),
+            temp=temp,
+            fan=round(heat.fans.get(0, 0.0), 3),
+            flow=round(flow, 4),
+            beds=heat.bed_look(),
+            spindle=self.spindle,
+            aux=aux,
+            wcs=self.wcs,
+        )
+
+    def end_state(self) -> EndState:
+        heat = self.heat
+        spindles = {self.mapping.spindle_address(): self.spindle[0]} if self.spindle else {}
+        return EndState(
+            heaters=heat.end_heaters(),
+            fans=heat.end_fans(),
+            spindles=spindles,
+            aux={AUX_PORTS[code]: 100.0 for code in self.coolant},
+        )
+
+
+class RepRapSimulator(MarlinSimulator):
+    E_FOLLOWS_G90 = False  # "extrusion is NOT set to absolute using G90"
+    RRF = True
+
+    def table(self):
+        h = super().table()
+        h.update(
+            {
+                "G10": self.g10,
+                "M568": self.m568,
+                "M116": self.m116,
+                "M0": self.end_program,
+                "M1": self.end_program,
+                "M2": self.end_program,
+            }
+        )
+        return h
+
+    def home(self, cmd: Command, n: int) -> None:
+        listed = "".join(a for a in "XYZ" if a in cmd.params)
+        self.home_axes(listed or "XYZ")
+
+    def g10(self, cmd: Command, n: int) -> None:
+        params = cmd.params
+        if "P" in params and "L" not in params and "S" in params:
+            s = number(params.get("S"))
+            if s is not None:
+                self.heat.set_temp(_index(params.get("P")), s, wait=False)
+                self.dirty()
+
+    def m568(self, cmd: Command, n: int) -> None:
+        s = number(cmd.params.get("S"))
+        if s is not None:
+            self.heat.set_temp(_index(cmd.params.get("P")), s, wait=False)
+            self.dirty()
+
+    def m116(self, cmd: Command, n: int) -> None:
+        self.heat.wait_all()
+        self.dirty()
+
+    def fan_value(self, cmd: Command) -> float | None:
+        params = cmd.params
+        if "S" not in params:
+            if any(letter in params for letter in "CLXBHTRAF"):
+                return None  # fan configuration, no speed
+            return 1.0
+        s = number(params.get("S"))
+        if s is None:
+            return None
+        return s if s <= 1.0 else s / 255  # RepRapFirmware: 0-1, or 0-255 above 1
+
+    def spindle_percent(self, cmd: Command) -> float | None:
+        s = number(cmd.params.get("S"))
+        if s is None or s <= 0:
+            return s
+        top = self.mapping.spindle_max_rpm
+        if top is None:
+            self.note_once("rpm", "spindle rpm with no known maximum (set spindle-max-rpm)")
+            return None  # rpm with no known maximum: compared as unknown
+        return max(0.0, min(100.0, s / top * 100))

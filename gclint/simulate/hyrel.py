@@ -1,0 +1,390 @@
+"""Hyrel (Repetrel v5, and v4 through its addresses), as the target of a translation.  Every fact is from the
+Hyrel Gcode page in the seeds (section named) or T_v5:
+
+* G0 is a rapid, non-working move with a one-shot F; G1 is a working move whose F persists (G0, G1).
+* Flow: without ``M229 E1`` any E marks a printing move and Hyrel computes the flow (native); with
+  ``M229 E1 D1`` the E values are used (M229, "Controlling Material Flow"), as absolute or relative
+  amounts (M82, M83).  Arcs compute their flow natively even under M229 E1 (research/dialects.md 1.1, G2).
+* ``M104``/``M109 T# S``: a head's set-point; M109 waits, ``W0`` waits only at ``M116`` (M109, M116).
+* ``M106 T# S`` is a share of the range ``C`` (default C100, "use C255 to be compatible with most
+  slicers"), which holds until M30; ``P`` is the duty during extrusion moves only; M107 is M106 S0.
+* ``M221 T# S`` is a flow multiplier (1.0 = as the head stores it).
+* ``T#`` focuses a head; ``G28`` homes only the listed axes and clears G92 and fixture offsets (G28);
+  ``G53`` clears fixture offsets (modal); ``G54``-``G59`` invoke stored offsets; ``G93`` clears G92 offsets.
+* ``M3``/``M4 T# S`` run a spindle at a percent, S0 is off; ``M5 T#`` stops it.
+* ``M620 T# E1`` enables a laser or UV emitter, ``M621 P`` sets its power; it fires on printing moves.
+* ``M7``/``M8 S`` Aux1/Aux2 (default S100), ``M9`` both off; ``M679`` vacuum, ``M685`` air, ``M670`` light.
+* ``M30`` ends the job ("No gcode after an M30 will be executed as part of the previous job") and resets
+  M229, the M106 range, fixture offsets, the head index (to 0).
+* ``M18``/``M84`` cut the motors: "All axes with homes must be rehomed after an M18".
+"""
+
+from __future__ import annotations
+
+from gclint.dialects.addressing import resolve_v5
+from gclint.simulate.machine import Simulator, number
+from gclint.simulate.trace import AUX_PORTS, EndState, Look, Move
+from gclint.syntax.nodes import Command
+
+_GROUP_HEADS = {
+    40: range(0, 20),
+    47: range(0, 20),
+    41: range(0, 5),
+    42: range(5, 10),
+    43: range(10, 15),
+    44: range(15, 20),
+}
+
+
+class Head:
+    __slots__ = ("target", "waited", "fan", "fan_p", "flow")
+
+    def __init__(self) -> None:
+        self.target: float | None = None
+        self.waited: float | None = None
+        self.fan = 0.0  # S, in the range's units
+        self.fan_p: float | None = None  # P: duty during extrusion moves
+        self.flow = 1.0
+
+
+class HyrelSimulator(Simulator):
+    G0_FEED = "one-shot"
+    G0_EXTRUDES = False
+
+    def __init__(self, dialect, mapping=None, *, cnc: bool = False) -> None:
+        super().__init__(dialect, mapping, cnc=cnc)
+        self.resolve_variable = dialect.extras.get("resolve_variable", resolve_v5)
+        self.resolve_command = dialect.extras.get("resolve_command", resolve_v5)
+        self.evalues = False
+        self.focus: int | None = None
+        self.heads: dict[int, Head] = {}
+        self.fan_range = 100.0
+        self.spindles: dict[int, tuple[str, float | None]] = {}
+        self.emitters: set[int] = set()
+        self.laser_power: float | None = None
+        self.aux: dict[str, float] = {}
+        self.pending_w0: set[int] = set()
+        self.ran = False  # a command ran since the last M30 (the job's end state is worth keeping)
+
+    def table(self):
+        h = {
+            "G0": self.g0,
+            "G1": self.g1,
+            "G2": self.arc,
+            "G3": self.arc,
+            "G20": self.units,
+            "G21": self.units,
+            "G28": self.home,
+            "G53": self.g53,
+            "G90": self.positioning,
+            "G91": self.positioning,
+            "G92": self.set_position,
+            "G93": self.g93,
+            "M82": self.e_mode,
+            "M83": self.e_mode,
+            "M229": self.m229,
+            "M104": self.m104,
+            "M109": self.m109,
+            "M116": self.m116,
+            "M140": self.bed,
+            "M190": self.bed,
+            "M141": self.bed,
+            "M191": self.bed,
+            "M106": self.m106,
+            "M107": self.m107,
+            "M221": self.m221,
+            "M3": self.spindle_on,
+            "M4": self.spindle_on,
+            "M5": self.spindle_off,
+            "M620": self.m620,
+            "M621": self.m621,
+            "M7": self.aux_on,
+            "M8": self.aux_on,
+            "M679": self.aux_on,
+            "M685": self.aux_on,
+            "M670": self.aux_on,
+            "M9": self.aux_off,
+            "M18": self.motors_off,
+            "M84": self.motors_off,
+            "M30": self.m30,
+        }
+        for n in range(54, 60):
+            h[f"G{n}"] = self.workspace
+        return h
+
+    # -- addresses ----------------------------------------------------------------------------------------
+
+    def addresses(self, cmd: Command, default_focus: bool = True) -> list[int]:
+        """The v5 addresses a command's T variable designates (a group: its heads); no T: the focused head."""
+        text = cmd.params.get("T")
+        value = number(text) if text is not None else None
+        if value is None or value != int(value):
+            return [self.focus] if default_focus and self.focus is not None else []
+        address = self.resolve_variable(int(value)).v5
+        if address is None:
+            return []
+        if address in _GROUP_HEADS:
+            return [a for a in _GROUP_HEADS[address] if a in self.heads] or []
+        return [address]
+
+    def head(self, address: int) -> Head:
+        head = self.heads.get(address)
+        if head is None:
+            head = self.heads[address] = Head()
+        return head
+
+    def tool_command(self, cmd: Command, n: int) -> None:
+        text = (cmd.code or "T")[1:]
+        if not text.isdigit():
+            return
+        address = self.resolve_command(int(text)).v5
+        if address is not None:
+            self.focus = address
+            self.dirty()
+
+    def dirty(self) -> None:
+        super().dirty()
+        self.ran = True
+
+    # -- motion and flow --------------------------------------------------------------------------------
+
+    def motion(self, mode: str, params: dict, n: int) -> Move | None:
+        self.ran = True
+        if mode == "G0" and "E" in params:
+            params = {k: v for k, v in params.items() if k != "E"}  # [fw] G0 E is stripped
+        return super().motion(mode, params, n)
+
+    def sync(self, start, arc, delta, feed, rapid, native=False):
+        if not self.evalues and delta is not None and not rapid:
+            native = True  # any E (even a negative one) marks a printing move in native flow
+        return super().sync(start, arc, delta, feed, rapid, native=native)
+
+    def arc(self, cmd: Command, n: int) -> Move | None:
+        saved = self.plane
+        self.plane = 17  # plain G2/G3 draw XY arcs with I/J (the planes apply to G2.x/G3.x)
+        try:
+            return super().arc(cmd, n)
+        finally:
+            self.plane = saved
+
+    def arc_native(self, params: dict) -> bool:
+        return "E" in params
+
+    def m229(self, cmd: Command, n: int) -> None:
+        e = number(cmd.params.get("E"))
+        if e is not None:
+            self.evalues = e == 1
+
+    def home(self, cmd: Command, n: int) -> None:
+        listed = "".join(a for a in "XYZAB" if a in cmd.params)
+        self.clear_shift()  # offsets cleared; an axis not homed keeps its (machine) position
+        self.home_axes(listed)
+        self.wcs = None
+        self.dirty()
+
+    def g53(self, cmd: Command, n: int) -> None:
+        self.wcs = None
+        self.dirty()
+
+    def g93(self, cmd: Command, n: int) -> None:
+        self.clear_shift()
+
+    def motors_off(self, cmd: Command, n: int) -> None:
+        self.forget("XY")
+
+    def m30(self, cmd: Command, n: int) -> None:
+        self.end_line = n
+        self.trace.end = self.end_state()
+        self.trace.end.line = n
+        self.evalues = False
+        self.fan_range = 100.0
+        self.wcs = None
+        self.focus = 0
+        self.dirty()
+        self.ran = False
+
+    # -- heat, fans, flow -----------------------------------------------------------------------------------
+
+    def m104(self, cmd: Command, n: int) -> None:
+        s = number(cmd.params.get("S"))
+        if s is None:
+            return
+        for address in self.addresses(cmd):
+            head = self.head(address)
+            head.target = s
+            self.pending_w0.discard(address)
+        self.dirty()
+
+    def m109(self, cmd: Command, n: int) -> None:
+        s = number(cmd.params.get("S"))
+        w0 = number(cmd.params.get("W")) == 0 and "W" in cmd.params
+        for address in self.addresses(cmd):
+            head = self.head(address)
+            if s is not None:
+                head.target = s
+            if w0:
+                self.pending_w0.add(address)
+            else:
+                head.waited = head.target
+                self.pending_w0.discard(address)
+        self.dirty()
+
+    def m116(self, cmd: Command, n: int) -> None:
+        for address in self.pending_w0:
+            head = self.head(address)
+            head.waited = head.target
+        self.pending_w0.clear()
+        self.dirty()
+
+    def bed(self, cmd: Command, n: int) -> None:
+        wait = cmd.code in ("M190", "M191")
+        s = number(cmd.params.get("S"))
+        addresses = self.addresses(cmd, default_focus=False) or [24]
+        for address in addresses:
+            head = self.head(address)
+            if s is not None:
+                head.target = s
+            if wait and "W" not in cmd.params:
+                head.waited = head.target
+        self.dirty()
+
+    def m106(self, cmd: Command, n: int) -> None:
+        params = cmd.params
+        c = number(params.get("C"))
+        if c is not None and c > 0:
+            self.fan_range = c
+        if "S" not in params and "P" not in params and c is not None:
+            return  # the range only
+        if "T" in params:
+            targets = self.addresses(cmd, default_focus=False)
+        else:  # "(on all tools)"
+            targets = sorted({a for a in self.heads if a < 20} | ({self.focus} if self.focus is not None else set()))
+        s = number(params.get("S")) if "S" in params else (100.0 if "P" not in params else None)
+        p = number(params.get("P"))
+        for address in targets:
+            head = self.head(address)
+            if s is not None:
+                head.fan = s / self.fan_range
+            if p is not None:
+                head.fan_p = p / 100  # P is a percent of the duty cycle
+        self.dirty()
+
+    def m107(self, cmd: Command, n: int) -> None:
+        targets = self.addresses(cmd, default_focus=False) if "T" in cmd.params else list(self.heads)
+        for address in targets:
+            head = self.head(address)
+            head.fan = 0.0
+            head.fan_p = None
+        self.dirty()
+
+    def m221(self, cmd: Command, n: int) -> None:
+        s = number(cmd.params.get("S"))
+        if s is None:
+            return
+        for address in self.addresses(cmd):
+            self.head(address).flow = s
+        self.dirty()
+
+    # -- spindles, emitters, aux --------------------------------------------------------------------------
+
+    def spindle_on(self, cmd: Command, n: int) -> None:
+        s = number(cmd.params.get("S"))
+        for address in self.addresses(cmd):
+            if s is not None and s == 0:
+                self.spindles.pop(address, None)  # "S0 is the same as turning it off"
+            else:
+                self.spindles[address] = (cmd.code, None if s is None else round(s, 1))  # type: ignore[assignment]
+        self.dirty()
+
+    def spindle_off(self, cmd: Command, n: int) -> None:
+        for address in self.addresses(cmd):
+            self.spindles.pop(address, None)
+        self.dirty()
+
+    def m620(self, cmd: Command, n: int) -> None:
+        e = number(cmd.params.get("E"))
+        for address in self.addresses(cmd, default_focus=False):  # "MUST be specified, can NOT be inherited"
+            if e == 1:
+                self.emitters.add(address)
+            else:
+                self.emitters.discard(address)
+        self.dirty()
+
+    def m621(self, cmd: Command, n: int) -> None:
+        p = number(cmd.params.get("P"))
+        if p is not None:
+            self.laser_power = p
+            self.dirty()
+
+    def aux_on(self, cmd: Command, n: int) -> None:
+        s = number(cmd.params.get("S"))
+        value = 100.0 if s is None else s
+        name = AUX_PORTS[cmd.code]  # type: ignore[index]
+        if value > 0:
+            self.aux[name] = value
+        else:
+            self.aux.pop(name, None)
+        self.dirty()
+
+    def aux_off(self, cmd: Command, n: int) -> None:
+        self.aux.pop("aux1", None)
+        self.aux.pop("aux2", None)
+        self.dirty()
+
+    # -- Hyrel terms ------------------------------------------------------------------------------------------
+
+    def fan_of(self, head: Head) -> float:
+        value = head.fan_p if head.fan_p is not None else head.fan
+        return round(max(0.0, min(1.0, value)), 3)
+
+    def build_look(self) -> Look:
+        focus = self.focus
+        head = self.heads.get(focus) if focus is not None else None
+        if head is None:
+            temp: tuple = (None, False)
+            fan, flow = 0.0, 1.0
+        else:
+            temp = (head.target, head.target is not None and head.waited == head.target)
+            fan, flow = self.fan_of(head), round(head.flow, 4)
+        beds = tuple(
+            sorted(
+                (a, h.target, h.waited == h.target)
+                for a, h in self.heads.items()
+                if a in (24, 25) and h.target is not None
+            )
+        )
+        spindle = None
+        if self.spindles:
+            spindle = self.spindles[focus] if focus in self.spindles else self.spindles[min(self.spindles)]
+        fans = tuple(
+            (f"T{a} fan", self.fan_of(h)) for a, h in sorted(self.heads.items()) if a >= 20 and self.fan_of(h) > 0
+        )
+        return Look(
+            head=focus,
+            temp=temp,
+            fan=fan,
+            flow=flow,
+            beds=beds,
+            spindle=spindle,
+            laser=self.laser_power if self.emitters else None,
+            aux=fans + tuple(sorted(self.aux.items())),
+            wcs=self.wcs,
+            units="inch" if self.scale != 1.0 else "mm",
+        )
+
+    def end_state(self) -> EndState:
+        if not self.ran and self.trace.end.line:
+            return self.trace.end  # the last M30 ended the job: what was on then
+        heaters = {a: h.target for a, h in self.heads.items() if h.target is not None and h.target > 0}
+        fans: dict = {}
+        for a, h in self.heads.items():
+            value = round(max(0.0, min(1.0, h.fan)), 3)
+            if value > 0:
+                fans[a if a < 20 else f"T{a} fan"] = value
+        return EndState(
+            heaters=heaters,
+            fans=fans,
+            spindles={a: d for a, (d, _) in self.spindles.items()},
+            emitters=frozenset(self.emitters),
+            aux=dict(self.aux),
+        )

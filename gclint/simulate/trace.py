@@ -1,0 +1,137 @@
+"""What a simulation yields: the working moves of a job (its synchronisation points) and its end state,
+each described in Hyrel terms so that a source job and its translation can be compared.
+
+A ``Move`` is one printing move (FDM jobs: a move that deposits material) or one cutting move (CNC jobs:
+a G1/G2/G3 feed move), with where it ends (machine coordinates, mm), how much it deposits, its feed and
+a ``Look``: the head doing the work and that head's set-point, readiness, fan and flow, the beds, the
+spindle, the laser and the workspace, all as a Hyrel printer would see them.  ``Mapping`` says how a
+source machine's tools, fans and devices correspond to Hyrel addresses (the user's configuration:
+``--tool-map``, ``fan-map``, ``bed``...), so a source simulation can describe itself in Hyrel terms.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+NATIVE = "native"  # Hyrel computes the flow itself (native flow, or an arc): no E amount to compare
+AXES = "XYZAB"
+ASPECTS = (
+    "moves",  # a working move one job has and the other has not
+    "position",
+    "path",  # the way between two points (arc chords, a line that became something else)
+    "e",  # material deposited on the move
+    "feed",
+    "head",  # the head doing the work (the focused head)
+    "temp",  # the working head's set-point and whether it was waited for
+    "fan",  # the working head's part-cooling fan
+    "flow",  # the working head's flow multiplier (M221)
+    "beds",  # beds and chambers: set-points and waits
+    "spindle",
+    "laser",
+    "aux",  # other fans and aux ports (air, vacuum)
+    "wcs",  # the fixture offsets (workspace) applied
+    "units",
+    "end",  # what is still on when the job ends
+)
+
+
+@dataclass
+class Mapping:
+    """Source devices -> Hyrel addresses (the user's translation configuration)."""
+
+    tool_map: dict[int, int] = field(default_factory=dict)
+    fan_map: dict[int, int] = field(default_factory=dict)
+    bed: int = 24
+    chamber: int = 24
+    spindle: int | None = None
+    laser: int | None = None
+    spindle_max_rpm: float | None = None
+    positions: tuple[int, ...] = (0, 1, 2, 3)
+    air: str = "M7"  # where a CNC source's air goes (Hyrel aux port code)
+
+    def head(self, tool: int) -> int | str:
+        """The Hyrel head of source tool ``tool``, or a label when the printer has none for it."""
+        address = self.tool_map.get(tool, tool)
+        if address in self.positions:
+            return address
+        return f"tool {tool} (no head)"
+
+    def spindle_address(self) -> int:
+        return self.spindle if self.spindle is not None else self.tool_map.get(0, 0)
+
+    def laser_address(self) -> int:
+        return self.laser if self.laser is not None else self.tool_map.get(0, 0)
+
+    @classmethod
+    def from_options(cls, options) -> Mapping:
+        """From a ``TranslateOptions`` (the same settings ``gclint translate`` takes)."""
+        return cls(
+            tool_map=dict(options.tool_map),
+            fan_map=dict(options.fan_map),
+            bed=options.bed,
+            chamber=options.chamber,
+            spindle=options.spindle,
+            laser=options.laser,
+            spindle_max_rpm=options.spindle_max_rpm,
+            positions=tuple(options.printer.positions),
+            air=options.air,
+        )
+
+
+# Hyrel's aux ports by what they are (Gcode page, Controlling Aux Devices): the name the diff shows.
+AUX_PORTS = {"M7": "aux1", "M8": "aux2", "M679": "vacuum", "M685": "air", "M670": "light"}
+
+
+@dataclass(frozen=True)
+class Look:
+    """The state a working move runs in, in Hyrel terms (compared aspect by aspect)."""
+
+    head: int | str | None = None
+    temp: tuple[float | None, bool] = (None, False)  # (set-point, waited for at that set-point)
+    fan: float = 0.0  # fraction of full speed
+    flow: float = 1.0  # multiplier
+    beds: tuple = ()  # ((address, set-point, waited), ...) for beds/chambers with a set-point
+    spindle: tuple | None = None  # (direction "M3"/"M4", percent or None)
+    laser: float | None = None  # power percent while firing
+    aux: tuple = ()  # ((device, value), ...) other fans and aux ports that are on
+    wcs: str | None = None
+    units: str = "mm"
+
+
+class Move:
+    """One synchronisation point."""
+
+    __slots__ = ("line", "start", "end", "arc", "e", "feed", "look", "rapid")
+
+    def __init__(self, line, start, end, arc, e, feed, look, rapid=False) -> None:
+        self.line = line  # 1-based line number in its file
+        self.start = start  # (x, y, z, a, b) machine mm, None where unknown
+        self.end = end
+        self.arc = arc  # None, or (plane, centre (u, v), radius, clockwise) in machine mm
+        self.e = e  # deposited E (mm of filament), NATIVE, or None (nothing deposited / no extruder)
+        self.feed = feed  # mm/min, None unknown
+        self.look = look
+        self.rapid = rapid
+
+    def __repr__(self) -> str:  # pragma: no cover - debugging aid
+        return f"Move(line={self.line}, end={self.end}, e={self.e}, feed={self.feed})"
+
+
+@dataclass
+class EndState:
+    """What is still on when the job ends, in Hyrel terms."""
+
+    line: int = 0
+    heaters: dict = field(default_factory=dict)  # address -> set-point (> 0 only)
+    fans: dict = field(default_factory=dict)  # address -> fraction (> 0 only)
+    spindles: dict = field(default_factory=dict)  # address -> direction
+    emitters: frozenset = frozenset()
+    aux: dict = field(default_factory=dict)
+
+
+@dataclass
+class Trace:
+    """A finished simulation: its moves were streamed; this is what remains."""
+
+    end: EndState = field(default_factory=EndState)
+    notes: list[str] = field(default_factory=list)

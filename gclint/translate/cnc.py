@@ -1,0 +1,74 @@
+"""What the CNC sources (Machinekit/LinuxCNC and Carvera) share: one handler table for their common
+rows, the LinuxCNC-style tool change (``T`` prepares, ``M6`` changes), G53 machine-coordinate moves and
+the end of program codes.  research/dialects.md 2.2 and 2.3.
+"""
+
+from __future__ import annotations
+
+from typing import ClassVar
+
+from gclint.syntax.nodes import Command
+from gclint.translate.base import HyrelTranslator
+from gclint.translate.output import rewrite
+from gclint.translate.words import fast_float
+
+# The rows Machinekit and Carvera share (the rows every source shares are HyrelTranslator.HANDLERS).
+CNC_HANDLERS: dict[str, str] = {
+    "G4": "dwell_seconds",  # G4 P is seconds (LinuxCNC, Carvera grbl mode); Hyrel P is milliseconds
+    "G53": "g53",
+    "M0": "stop",
+    "M2": "end_program",
+    "M30": "end_program",
+    "M3": "spindle",
+    "M4": "spindle",
+    "M5": "spindle_stop",
+    "M6": "tool_change",
+}
+
+
+class CncTranslator(HyrelTranslator):
+    """Base of the CNC source translators."""
+
+    HANDLERS: ClassVar[dict[str, str]] = CNC_HANDLERS
+    CHECK_EXPRESSIONS = True
+    END_CODES: ClassVar[frozenset[str]] = frozenset({"M2", "M30"})
+    MACHINE = "the source machine's"  # whose machine coordinates G53 names (messages)
+    DEFAULT_WORKSPACE = "G54"
+    FEED_ON_ANY_COMMAND = True  # LinuxCNC and the Carvera start in G54 (research/dialects.md 1.1, G54-G59)
+
+    def __init__(self, source, target, options=None) -> None:
+        super().__init__(source, target, options)
+        self.prepared: int | None = None  # the tool a T word prepared for the next M6
+
+    def modal_feed(self, cmd: Command) -> None:
+        """An F word on a line with no motion (``G54 G18 G21 F400``): LinuxCNC and the Carvera set the feed
+        of later moves from it.  Hyrel's G1 feed is modal: the F is dropped here and written on the next
+        working move that needs it."""
+        f = fast_float(cmd.params.get("F"))
+        if f is None:
+            return
+        self.state.feed = f
+        self.replace(cmd, rewrite(cmd, drop="F"))
+
+    def tool_command(self, cmd: Command) -> None:
+        number = (cmd.code or "T")[1:]
+        if not number.lstrip("-").isdigit() or len(number) > 6:
+            self.untranslatable(cmd, "a tool given by an expression cannot be translated", key="T?")
+            return
+        # LinuxCNC and Carvera: T prepares the tool, M6 changes to it (T6M6)
+        self.prepared = int(number)
+        self.consume(cmd)
+
+    def g53(self, cmd: Command) -> None:
+        self.untranslatable(
+            cmd,
+            f"machine-coordinate move (G53): {self.MACHINE} coordinates mean nothing on the Hyrel",
+            key="G53",
+        )
+
+    def stop(self, cmd: Command) -> None:
+        """M0: a pause on both sides."""
+        self.pause_command(cmd, "M0")
+
+    def spindle_stop(self, cmd: Command) -> None:
+        self.spindle_off(cmd)

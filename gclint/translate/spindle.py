@@ -1,0 +1,87 @@
+"""Spindles: rpm -> percent of the Hyrel spindle's maximum, on/off with the head's address, a stop before
+a change of direction (Hyrel Gcode page, M3).
+
+A mixin of ``HyrelTranslator``.
+"""
+
+from __future__ import annotations
+
+from gclint.syntax.nodes import Command
+from gclint.translate.findings import TR_APPROX
+from gclint.translate.output import fmt
+from gclint.translate.words import fast_float
+
+
+class Spindles:
+    def speed_word(self, cmd: Command) -> None:
+        """An S word outside M3/M4: the spindle speed (rpm) for the next M3, or a speed change now."""
+        s = fast_float(cmd.params.get("S"))
+        if s is None:
+            return
+        self.rpm = s
+        address = self.opts.spindle_address()
+        running = self.hy.spindles_on.get(address)
+        line = self.line
+        if line is not None and any(c.code in ("M3", "M4") for c in line.parsed.commands[self.index + 1 :]):
+            return  # the M3/M4 on this line carries the speed
+        if running is not None:
+            self.before(f"{running} T{address} S{self.rpm_percent(s, self.MAX_RPM)}", note="spindle speed")
+
+    def spindle_on(self, cmd: Command, percent: str | None) -> None:
+        address = self.opts.spindle_address()
+        code = cmd.code or "M3"
+        words = [code, f"T{address}"]
+        if percent is not None:
+            words.append("S" + percent)
+        running = self.hy.spindles_on.get(address)
+        if running is not None and running != code:
+            # "DO NOT CHANGE DIRECTION while the spindle is in motion" (Hyrel Gcode page, M3).  The page gives
+            # no spin-down time: wait the configured one, else pause until the operator resumes.
+            dwell = self.opts.spindle_stop_dwell
+            wait = (
+                f"G4 S{fmt(dwell)}"
+                if dwell is not None
+                else "M0 ; gclint: spindle stopped; resume when it stands still"
+            )
+            self.before(f"M5 T{address}", wait, note="stop and wait before changing direction")
+            self.report(
+                TR_APPROX,
+                "spindle direction changed while running: Hyrel needs it stopped first; M5 and "
+                + (f"a {fmt(dwell)} s dwell added" if dwell is not None else "a pause added (set spindle-stop-dwell)"),
+                key="M3-M4",
+                cmd=cmd,
+                aspects="spindle",
+            )
+        self.replace(cmd, " ".join(words))
+        if percent is not None and float(percent) == 0:  # "S0 is the same as turning it off" (M3)
+            self.hy.spindles_on.pop(address, None)
+        else:
+            self.hy.spindles_on[address] = code
+
+    def spindle_off(self, cmd: Command) -> None:
+        address = self.opts.spindle_address()
+        self.replace(cmd, f"M5 T{address}")
+        self.hy.spindles_on.pop(address, None)
+
+    def rpm_percent(self, rpm: float, assumed_max: float | None = None) -> str:
+        """Spindle rpm -> percent of the Hyrel spindle's maximum (configuration spindle-max-rpm)."""
+        top = self.opts.spindle_max_rpm
+        if top is None:
+            top = assumed_max or 15000.0
+            self.report(
+                TR_APPROX,
+                f"spindle rpm converted to percent of an assumed {fmt(top)} rpm maximum; set "
+                "spindle-max-rpm to the Hyrel spindle's",
+                key="rpm-assumed",
+                aspects="spindle",
+            )
+        pct = rpm / top * 100
+        if pct > 100:
+            self.report(
+                TR_APPROX,
+                f"{fmt(rpm)} rpm is above the spindle's {fmt(top)} rpm: clamped to 100 %",
+                key="rpm-clamp",
+                aspects="spindle",
+            )
+            pct = 100
+        return fmt(max(pct, 0.0), 1)
