@@ -6,6 +6,8 @@ appear in the explanation (in order), texts that must not."""
 from __future__ import annotations
 
 import json
+import string
+from dataclasses import replace
 
 import pytest
 
@@ -259,3 +261,36 @@ def test_every_dialect_explains_every_code_it_lists():
             for line in (code, f"{code} X1 Y2 S3 P4 T0 E1 F100 H1 R2 I1 J1 L1 D1"):
                 explained = explain_text(line, dialect)
                 assert explained and explained[0].title, (dialect.name, line)
+
+
+def test_table_readings_are_well_formed():
+    """``Param.says`` has no placeholder but ``{value}``; ``Param.values`` are keyed by numbers as written."""
+    for dialect in dialects.all_dialects():
+        for spec in dialect.codes.values():
+            for param in (spec.params or {}).values():
+                fields = {name for _, name, _, _ in string.Formatter().parse(param.says) if name is not None}
+                assert fields <= {"value"}, (dialect.name, spec.code, param.letter, fields)
+                for key in param.values or {}:
+                    float(key)
+
+
+def test_readings_come_from_the_dialect_table():
+    """What a word does, what the code does and what happens without a word are read from the code table:
+    a dialect that words M621 otherwise is explained in its own words."""
+    hyrel = dialects.get("hyrel")
+    m621 = hyrel.spec("M621")
+    reworded = replace(
+        m621,
+        does=("fire the laser",),
+        params={
+            "P": replace(m621.params["P"], says="{value} percent while printing"),
+            "D": replace(m621.params["D"], absent="no D: pierce at P"),
+        },
+    )
+    dialect = hyrel.derive("hyrel-reworded", "Hyrel, reworded", add=[reworded])
+    rendered = explain_text("M620 T21 E1\nM621 P40", dialect)[1].render()
+    assert rendered.splitlines()[1:] == [
+        "** note: fire the laser",
+        "** P40 (40 percent while printing)",
+        "** note: no D: pierce at P",
+    ]

@@ -20,6 +20,12 @@ class Param:
     ``minimum``/``maximum`` bound the value; ``integer`` requires a whole number; ``choices`` lists the
     only allowed values; ``forbidden`` letters must not appear at all.  ``rule`` names the rule that reports a value outside these bounds (``DL003``
     by default); ``source`` names the section of the seed document the fact comes from.
+
+    How ``gclint explain`` reads the word, in the words of the page's "decoded and executed by the
+    printer as follows" sections: ``says`` is a phrase with ``{value}`` for the value written (for a T
+    variable, the device it addresses); ``values`` gives the phrase for particular values as written
+    (``{"1": "enable"}``); ``absent`` is what happens when the letter is not written.  ``meaning`` stays
+    the short name that findings quote.
     """
 
     letter: str
@@ -32,6 +38,9 @@ class Param:
     rule: str = "DL003"
     source: str = ""
     forbidden: bool = False  # the letter must not appear at all (the meaning says why)
+    says: str = ""
+    values: Mapping[str, str] | None = None
+    absent: str = ""
 
     @property
     def constrained(self) -> bool:
@@ -62,6 +71,13 @@ class Param:
             return f"{self.letter}{_fmt(value)} is above the maximum {_fmt(self.maximum)}"
         return None
 
+    def reading(self, value: str | None) -> str:
+        """What ``gclint explain`` says of this word written with ``value`` (as written, None for a letter
+        alone): the phrase for that value, else ``says`` with the value in it."""
+        if self.values is not None and value in self.values:
+            return self.values[value]
+        return self.says.format(value=value)
+
 
 @dataclass(frozen=True)
 class Code:
@@ -69,7 +85,9 @@ class Code:
 
     ``params`` is None when the parameters are not catalogued (any letter is accepted); otherwise it
     maps each accepted letter to its ``Param``.  ``supported`` is False for codes the dialect documents
-    as not supported (Hyrel's G10/G11).
+    as not supported (Hyrel's G10/G11).  ``does`` (what the command does) and ``notes`` (what else to
+    know about it) are what ``gclint explain`` says besides the words (``does`` usually before them,
+    ``notes`` after).
     """
 
     code: str
@@ -78,6 +96,8 @@ class Code:
     supported: bool = True
     source: str = ""
     meanings: Mapping[str, str] | None = None  # letter -> meaning when ``params`` is not catalogued (explain)
+    does: tuple[str, ...] = ()
+    notes: tuple[str, ...] = ()
 
     def param(self, letter: str) -> Param | None:
         return None if self.params is None else self.params.get(letter)
@@ -91,12 +111,19 @@ class Code:
 
 
 def code(
-    name: str, summary: str = "", *params: Param, source: str = "", supported: bool = True, open_params: bool = False
+    name: str,
+    summary: str = "",
+    *params: Param,
+    source: str = "",
+    supported: bool = True,
+    open_params: bool = False,
+    does: tuple[str, ...] = (),
+    notes: tuple[str, ...] = (),
 ) -> Code:
     """Shorthand for a ``Code`` whose parameters are listed (``open_params`` leaves them unchecked)."""
     table = None if open_params else {p.letter: p for p in params}
     meanings = {p.letter: p.meaning for p in params} if open_params and params else None
-    return Code(name, summary, table, supported, source, meanings)
+    return Code(name, summary, table, supported, source, meanings, does, notes)
 
 
 def describe(

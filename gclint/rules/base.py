@@ -24,7 +24,7 @@ from typing import TYPE_CHECKING, ClassVar
 from gclint.syntax.nodes import Command, Comment, Line, Node
 
 if TYPE_CHECKING:
-    from gclint.engine import FileContext
+    from gclint.filecontext import FileContext
 
 
 class Severity(IntEnum):

@@ -1,0 +1,90 @@
+"""Hyrel arcs and spirals: G2/G3, the G2.1/G2.2 spirals (and G3.x), the G2.3 arcs in 3-space.  The words'
+readings are the table's; what depends on a number (S: a segment length below 3, a segment count from 3)
+or on the job (relative or absolute ends, the arc plane) is read here."""
+
+from __future__ import annotations
+
+from gclint.dialects.base import Code
+from gclint.explain.generic import absent, does, generic, notes, read, read_or_absent
+from gclint.explain.job import Decoder, Job
+from gclint.explain.model import Explanation, fmt, number
+from gclint.explain.motion import axis_text
+from gclint.syntax.nodes import Command
+
+# The arc planes of G2.x/G3.x (G16 Arc Plane: Any ... G19 Arc Plane: YZ; G2.3: "If we are in G16 mode, Un,
+# Vn, Wn define the vector normal to the work plane")
+PLANES = {16: "any plane (U V W give the normal vector)", 17: "X/Y plane", 18: "X/Z plane", 19: "Y/Z plane"}
+
+
+def arc(job: Job, exp: Explanation, cmd: Command, spec: Code | None) -> None:
+    does(exp, spec)
+    for letter in "XYZ":
+        word = cmd.param(letter)
+        if word is not None:
+            exp.add(word.text.strip(), axis_text(job, letter, word.value))
+    read(exp, cmd, spec, "I")
+    read(exp, cmd, spec, "J")
+    segments(exp, cmd, spec)
+    read(exp, cmd, spec, "E")
+    read_or_absent(exp, cmd, spec, "F")
+    notes(exp, spec)
+    generic(job.dialect, exp, cmd, spec, skip="XYZIJSEF")
+
+
+def segments(exp: Explanation, cmd: Command, spec: Code | None) -> None:
+    """S: "S values less than 3.0 dictate the length in mm of each segment ...; S values of 3.0 or more
+    dictate how many total segments comprise this element - only allowed on complete circles" (G2)."""
+    word = cmd.param("S")
+    if word is None:
+        exp.note(absent(spec, "S"))
+        return
+    value = number(word.value)
+    if value is None:
+        exp.add(word.text.strip(), "segment length or count")
+    elif value < 3:
+        exp.add(word.text.strip(), f"segments {word.value} mm long")
+    else:
+        exp.add(word.text.strip(), f"made up of {fmt(value)} segments (only allowed on complete 360° circles)")
+
+
+def spiral(job: Job, exp: Explanation, cmd: Command, spec: Code | None) -> None:
+    laps_around_start = (cmd.code or "").endswith(".1")  # G2.1/G3.1: no X/Y, an R direction flag
+    does(exp, spec)
+    for letter in "XYZ":
+        word = cmd.param(letter)
+        if word is not None:
+            exp.add(word.text.strip(), (spec.meaning(letter) if spec is not None else None) or letter)
+    read(exp, cmd, spec, "I")
+    read(exp, cmd, spec, "J")
+    read_or_absent(exp, cmd, spec, "L")
+    read(exp, cmd, spec, "P")
+    read(exp, cmd, spec, "E")
+    segments(exp, cmd, spec)
+    if laps_around_start:
+        r = cmd.param("R")
+        if r is not None:
+            values = spec.params["R"].values or {}  # type: ignore[union-attr,index]
+            exp.add(r.text.strip(), values.get(r.value or "", "unknown spiral direction flag"))
+        else:
+            exp.note(absent(spec, "R"))
+    read_or_absent(exp, cmd, spec, "F")
+    generic(job.dialect, exp, cmd, spec, skip="XYZIJLPESRF")
+
+
+def arc3(job: Job, exp: Explanation, cmd: Command, spec: Code | None) -> None:
+    does(exp, spec)
+    exp.note(f"arc plane: {PLANES.get(job.state.plane, 'X/Y plane')}")
+    segments(exp, cmd, spec)
+    generic(job.dialect, exp, cmd, spec, skip="S")
+
+
+def decoders(family: str) -> dict[str, Decoder]:
+    if family != "hyrel":
+        return {}
+    return {
+        "G2": arc,
+        "G3": arc,
+        **dict.fromkeys(("G2.1", "G3.1", "G2.2", "G3.2"), spiral),
+        "G2.3": arc3,
+        "G3.3": arc3,
+    }

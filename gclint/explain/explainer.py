@@ -1,0 +1,132 @@
+"""The walker: explains lines in order through the machine ``Interpreter``, so "the head with current
+focus", relative moves, the fan range and stored offsets are the ones the job set up.  A command goes to
+its topic's decoder when it has one (``TOPICS``), else it is read from the dialect's table alone."""
+
+from __future__ import annotations
+
+import re
+from collections.abc import Iterable, Iterator
+
+from gclint.dialects.base import Dialect
+from gclint.explain import addressing, arcs, fans, flow, jobflow, lasers_spindles, motion, offsets, temperature
+from gclint.explain.generic import generic, title, unknown
+from gclint.explain.job import Decoder, Job
+from gclint.explain.model import Explanation
+from gclint.machine.state import MachineState
+from gclint.syntax.nodes import ASSIGNMENT, EXTENDED, GCODE, IMPLICIT, META, OWORD, PERCENT, TEXT, Command, Line
+from gclint.syntax.parse import parse_line
+from gclint.syntax.source import Source
+
+# One module per topic; each says which codes it decodes for a dialect family (``decoders(family)``).
+TOPICS = (motion, offsets, temperature, fans, arcs, flow, addressing, lasers_spindles, jobflow)
+
+
+class Explainer(Job):
+    """Explains lines in order, keeping the machine state between them."""
+
+    def __init__(self, dialect: Dialect, state: MachineState | None = None) -> None:
+        super().__init__(dialect, state)
+        self._decoders: dict[str, Decoder] = {}
+        for topic in TOPICS:
+            self._decoders.update(topic.decoders(self.family))
+
+    def explain_line(self, line: Line) -> list[Explanation]:
+        out = []
+        self.state.line_number = line.number
+        for cmd in line.commands:
+            out.append(self.explain_command(cmd, line))
+            self.interpreter.apply(cmd, line)
+        return out
+
+    def explain_command(self, cmd: Command, line: Line) -> Explanation:
+        code = cmd.code
+        if cmd.kind == GCODE and code:
+            if code[0] == "T" and code[1:].lstrip("-").isdigit():
+                return addressing.tool(self, cmd, line)
+            spec = self.dialect.spec(code)
+            exp = Explanation(line.number, line.raw, code, title(self.dialect, code, spec))
+            if not self.dialect.knows(code):
+                unknown(self.dialect, exp, cmd)
+                return exp
+            if spec is not None and not spec.supported:
+                exp.warn(f"{self.dialect.title} does not support {code}")
+            decoder = self._decoders.get(code)
+            if decoder is not None:
+                decoder(self, exp, cmd, spec)
+            else:
+                generic(self.dialect, exp, cmd, spec)
+            return exp
+        return self._other(cmd, line)
+
+    def _other(self, cmd: Command, line: Line) -> Explanation:
+        """Lines that are not a G/M/T code: modal axis words, free text, Klipper, RepRapFirmware meta
+        commands, O-words, parameter assignments, ``%``."""
+        kind = cmd.kind
+        if kind == IMPLICIT:
+            mode = self.state.motion_mode
+            if mode is None:
+                exp = Explanation(
+                    line.number, line.raw, None, "axis words with no motion code: no modal motion is active"
+                )
+                generic(self.dialect, exp, cmd, None)
+                return exp
+            exp = Explanation(line.number, line.raw, None, f"modal {mode} move: the words repeat the last motion code")
+            motion.move(self, exp, cmd, self.dialect.spec(mode), mode)
+            return exp
+        if kind == TEXT:
+            spec = self.dialect.spec(cmd.code or "")
+            exp = Explanation(line.number, line.raw, cmd.code, title(self.dialect, cmd.code or "", spec))
+            text = cmd.args.text.strip() if cmd.args is not None else ""
+            if text:
+                exp.add(text, "the text")
+            return exp
+        if kind == EXTENDED:
+            exp = Explanation(line.number, line.raw, cmd.code, "Klipper extended command (or a macro of that name)")
+            for key, value in cmd.params.items():
+                exp.add(f"{key}={value}", f"{key.lower()} = {value}")
+            if not self.dialect.extended_commands:
+                exp.warn(f"{self.dialect.title} has no Klipper-style commands")
+            return exp
+        if kind == META:
+            exp = Explanation(
+                line.number, line.raw, cmd.code, "RepRapFirmware meta command (conditional code, variables, messages)"
+            )
+            if not self.dialect.meta_commands:
+                exp.warn(f"{self.dialect.title} has no meta commands")
+            return exp
+        if kind == OWORD:
+            exp = Explanation(
+                line.number,
+                line.raw,
+                cmd.code,
+                f"O-word {cmd.params.get('keyword') or ''} (LinuxCNC subroutine or control flow)".replace("  ", " "),
+            )
+            if not self.dialect.owords:
+                exp.warn(f"{self.dialect.title} has no O-words")
+            return exp
+        if kind == ASSIGNMENT:
+            return Explanation(
+                line.number, line.raw, None, f"set parameter {cmd.params.get('target')} to {cmd.params.get('value')}"
+            )
+        if kind == PERCENT:
+            return Explanation(line.number, line.raw, "%", "program start/end marker")
+        return Explanation(line.number, line.raw, cmd.code, f"{kind} command")
+
+
+def explain_lines(
+    lines: Iterable[tuple[str, str]], dialect: Dialect, state: MachineState | None = None
+) -> Iterator[Explanation]:
+    """Explanations of ``(text, ending)`` lines, in order."""
+    explainer = Explainer(dialect, state)
+    for number, (raw, ending) in enumerate(lines, start=1):
+        yield from explainer.explain_line(Line(number, raw, ending, parse_line(raw)))
+
+
+def explain_text(text: str, dialect: Dialect, state: MachineState | None = None) -> list[Explanation]:
+    """Explain G-code given as text (one or more lines)."""
+    return list(explain_lines(((line, "\n") for line in re.split(r"\r\n|\r|\n", text)), dialect, state))
+
+
+def explain_source(source: Source, dialect: Dialect, state: MachineState | None = None) -> Iterator[Explanation]:
+    """Explain a whole file, streaming."""
+    return explain_lines(source.lines(), dialect, state)

@@ -1,0 +1,28 @@
+"""Job flow on Hyrel: M0 and the actions it runs from its comment (SAY, PIC, VID, SEND, BEEP, SHELL)."""
+
+from __future__ import annotations
+
+from gclint.dialects.base import Code
+from gclint.dialects.hyrel import ACTIONS
+from gclint.explain.generic import does
+from gclint.explain.job import Decoder, Job
+from gclint.explain.model import Explanation
+from gclint.syntax.nodes import Command
+
+
+def stop(job: Job, exp: Explanation, cmd: Command, spec: Code | None) -> None:
+    does(exp, spec)
+    line = exp.source
+    comment = line.split(";", 1)[1] if ";" in line else ""
+    for part in comment.split(";"):  # "Note that multiple options can be combined."
+        part = part.strip()
+        keyword = part.split(" ", 1)[0].upper() if part else ""
+        if keyword in ACTIONS:
+            argument = part[len(keyword) :].strip()
+            exp.add(part, f"{ACTIONS[keyword]}: {argument}" if argument else ACTIONS[keyword])
+            if keyword == "SHELL":
+                exp.warn("SHELL runs a program on the Repetrel computer when the job reaches this line")
+
+
+def decoders(family: str) -> dict[str, Decoder]:
+    return {"M0": stop} if family == "hyrel" else {}

@@ -1,0 +1,130 @@
+"""Moves and modes: G0/G1 (and axis words repeating the modal motion), G4, G90/G91, M82/M83.  Where a
+move goes depends on the job (absolute or relative, inches or mm, the feed set earlier, the flow mode,
+the M660 registers stored); what its words mean is the dialect table's."""
+
+from __future__ import annotations
+
+from gclint.dialects.base import Code
+from gclint.explain.generic import does, generic, reading
+from gclint.explain.job import Decoder, Job
+from gclint.explain.model import Explanation, Item, fmt, number
+from gclint.machine.state import EVALUES
+from gclint.syntax.nodes import Command
+
+
+def axis_text(job: Job, letter: str, value: str | None) -> str:
+    unit = "in" if job.state.units == "inch" else "mm"
+    if value is None:
+        return f"{letter} with no value"
+    if job.state.absolute:
+        return f"to {letter}{value}"
+    n = number(value)
+    if n is None:
+        return f"by {value} {unit} in {letter}"
+    return f"{'+' if n >= 0 else ''}{fmt(n)} {unit} in {letter}"
+
+
+def move(job: Job, exp: Explanation, cmd: Command, spec: Code | None, mode: str) -> None:
+    """A G0 or G1 (or axis words under modal ``mode``).  ``spec`` is the mode's; what the words of a
+    straight move mean is read from G0's or G1's."""
+    p = cmd.params
+    line = job.dialect.spec("G0" if mode == "G0" else "G1")
+    if mode == "G0":
+        exp.note("rapid (non-working) straight line move from the current location")
+    elif line is not None and line.does:
+        does(exp, line)
+    else:
+        exp.note("straight line move")
+    for letter in "XYZAB":
+        word = cmd.param(letter)
+        if word is not None:
+            exp.add(word.text.strip(), axis_text(job, letter, word.value))
+    if job.hyrel:
+        for letter in "AB":
+            if letter not in p and any(a in p for a in "XYZ"):
+                exp.note(line.params[letter].absent)  # type: ignore[union-attr,index]
+    e = cmd.param("E")
+    if e is not None:
+        if mode == "G0":
+            exp.items.append(Item(e.text.strip(), "E on a G0 does nothing: G0 never works", job.hyrel))
+        elif job.hyrel and job.state.flow_mode != EVALUES:
+            exp.add(e.text.strip(), reading(line, "E", e.value))
+        elif job.state.e_absolute:
+            exp.add(e.text.strip(), f"extrude until the E position is {e.value}")
+        else:
+            exp.add(
+                e.text.strip(),
+                f"extrude {e.value} mm of filament"
+                if number(e.value) and (number(e.value) or 0) > 0
+                else f"E by {e.value} (retract)",
+            )
+    f = cmd.param("F")
+    if f is not None:
+        if mode == "G0" and job.interpreter.g0_feed_one_shot:
+            exp.add(f.text.strip(), f"one-time speed of {f.value} mm/min, not persistent")
+        else:
+            exp.add(f.text.strip(), f"moving at {f.value} mm/min")
+    elif mode == "G0" and job.hyrel:
+        exp.note(line.params["F"].absent)  # type: ignore[union-attr,index]
+    elif job.state.feed is not None:
+        exp.note(f"using the previously set F{fmt(job.state.feed)}")
+    h = cmd.param("H")
+    if h is not None and job.hyrel:
+        _height_register(job, exp, h.text.strip(), h.value, line)
+    s = cmd.param("S")
+    if s is not None:
+        if job.hyrel and mode == "G1":
+            exp.add(s.text.strip(), reading(spec, "S", s.value))
+        elif job.family == "reprap":
+            exp.add(s.text.strip(), "S1 on G1: endstop-checking move (homing)" if s.value == "1" else f"S{s.value}")
+        else:
+            exp.add(s.text.strip(), (spec.meaning("S") if spec is not None else None) or f"S{s.value}")
+    generic(job.dialect, exp, cmd, spec, skip="XYZABEFHS")
+
+
+def _height_register(job: Job, exp: Explanation, word: str, value: str | None, line: Code | None) -> None:
+    """``H`` on a Hyrel move: the register an M660 stored earlier in the job, and what it holds."""
+    register = number(value)
+    offsets = job.state.tool_height_offsets
+    whole = register is not None and register == int(register)
+    stored = offsets.get(int(register)) if whole else None  # type: ignore[arg-type]
+    if whole and int(register) in offsets:  # type: ignore[arg-type]
+        extra = f": Z{'+' if (stored or 0) >= 0 else ''}{fmt(stored)} stored by M660" if stored is not None else ""
+        exp.add(word, reading(line, "H", str(int(register))) + extra)  # type: ignore[arg-type]
+    else:
+        exp.add(word, reading(line, "H", value))
+        exp.warn(f"no M660 H{value} stored an offset before this line")
+
+
+def dwell(job: Job, exp: Explanation, cmd: Command, spec: Code | None) -> None:
+    s = number(cmd.raw("S"))
+    p = number(cmd.raw("P"))
+    p_seconds = job.family in ("linuxcnc", "smoothie")  # Machinekit/LinuxCNC and Carvera: P is seconds
+    if cmd.has("S"):
+        exp.add(cmd.param("S").text.strip(), f"{cmd.raw('S')} s")  # type: ignore[union-attr]
+    if cmd.has("P"):
+        exp.add(cmd.param("P").text.strip(), f"{cmd.raw('P')} {'s' if p_seconds else 'ms'}")  # type: ignore[union-attr]
+    total = (s or 0) + ((p or 0) if p_seconds else (p or 0) / 1000)
+    if s is not None and p is not None:
+        exp.note(f"pause for {fmt(total)} s in all (S and P add up)")
+    elif s is None and p is None:
+        exp.note("no S or P: no pause")
+
+
+def _mode(text: str) -> Decoder:
+    def decode(job: Job, exp: Explanation, cmd: Command, spec: Code | None) -> None:
+        exp.note(text)
+
+    return decode
+
+
+def decoders(family: str) -> dict[str, Decoder]:
+    return {
+        "G0": lambda job, exp, cmd, spec: move(job, exp, cmd, spec, "G0"),
+        "G1": lambda job, exp, cmd, spec: move(job, exp, cmd, spec, "G1"),
+        "G4": dwell,
+        "G90": _mode("positions (X Y Z A B) are absolute from here on"),
+        "G91": _mode("positions (X Y Z A B) are relative to the last position from here on"),
+        "M82": _mode("E values are absolute from here on"),
+        "M83": _mode("E values are relative from here on"),
+    }

@@ -1,0 +1,177 @@
+"""``FileContext``: the per-file world a rule sees (``self.ctx``): the dialect, the printer, the options,
+the machine state and interpreter, and the findings with their bounds and suppressions.  The engine makes
+one per file; ``gclint.rules.base`` names it only as a type."""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+
+from gclint.context import Context
+from gclint.dialects.base import Dialect
+from gclint.machine.interpreter import Interpreter
+from gclint.machine.profiles import PrinterProfile, get_profile
+from gclint.machine.state import MachineState
+from gclint.noqa import DIRECTIVE, INLINE_UNSUPPRESSIBLE, NOQA, selectors
+from gclint.options import Options
+from gclint.rules.base import Finding, Fix, Rule, Severity, matches
+from gclint.syntax.nodes import Line
+
+# Findings stay bounded whatever the input (a 3 MB line of "X1" once gave a million findings and 1.1 GB):
+# at most PER_LINE findings of one code are listed for one line and the rest are counted on the last one
+# listed ("(and N more on this line)"; a few distinct findings on one line, such as one per head left on
+# at M30, stay visible), at most MAX_FINDINGS are kept per file (later ones are counted on the last kept
+# finding of their code), and a finding keeps at most SOURCE_LIMIT characters of its line for the reports.
+PER_LINE = 10
+MAX_FINDINGS = 20_000
+SOURCE_LIMIT = 2048
+_MAX_MERGED_EDITS = 64  # fixes merged into one finding (the rest is fixed by running --fix again)
+_REMEMBERED_LINE = 1024  # comment lines longer than this are not remembered as "no directive"
+
+
+class FileContext:
+    """The per-file world a rule sees: dialect, printer, options, machine state, and the findings."""
+
+    def __init__(
+        self, path: str, dialect: Dialect, profile: PrinterProfile, options: Options, context: Context | None = None
+    ) -> None:
+        self.path = path
+        self.dialect = dialect
+        self.profile = profile
+        self.options = options
+        # what the file was read as; rules that rest on an assumed printer model say so (``model_note``)
+        self.context = context if context is not None else Context(dialect.name, printer=profile.name)
+        self.state = MachineState(loaded_heads=options.loaded)
+        self.interpreter = Interpreter(dialect, self.state)
+        self.findings: list[Finding] = []
+        self._current: Line | None = None
+        self.enabled_codes: frozenset[str] = frozenset()
+        self.shared: dict[str, object] = {}  # objects several rules of this file share (by name)
+        self.noqa: dict[int, tuple[str, ...]] = {}
+        self.noqa_used: set[tuple[int, str]] = set()  # (line, selector) that suppressed a finding
+        self.directives: list[tuple[int, str, tuple[str, ...]]] = []
+        self._plain_comments: set[str] = set()  # lines whose comments hold no noqa or gclint directive
+        # code -> [its latest finding, that finding's own message, more on its line, more later in the file,
+        #          findings of the code listed on that line]
+        self._latest: dict[str, list] = {}
+
+    def enabled(self, code: str) -> bool:
+        """Whether the rule ``code`` is selected for this run."""
+        return code in self.enabled_codes
+
+    def severity_of(self, code: str, default: Severity) -> Severity:
+        """The level of a finding: the configuration's ``severity`` table (the longest matching code or
+        prefix) overrides the rule's."""
+        overrides = self.options.severity
+        if overrides:
+            for length in (5, 4, 3, 2):
+                level = overrides.get(code[:length])
+                if level is not None:
+                    return Severity.parse(level)
+        return default
+
+    def model_note(self) -> str:
+        """What a finding that rests on the printer model adds when nobody said which model it is."""
+        return self.context.model_note()
+
+    def on_every_model(self, test: Callable[[PrinterProfile], bool]) -> bool:
+        """Whether ``test`` holds for every model the job fits (only the model itself when it was given or
+        assumed by default): a finding that rests on the model is not made on a guess between models."""
+        names = self.context.printer_candidates or (self.profile.name,)
+        return all(test(get_profile(name)) for name in names)
+
+    def add(
+        self,
+        rule: Rule | type[Rule],
+        line: Line | int,
+        column: int,
+        message: str,
+        *,
+        fix: Fix | None = None,
+        severity: Severity | None = None,
+        end_column: int | None = None,
+    ) -> None:
+        if isinstance(line, Line):
+            number, text = line.number, line.raw
+            if len(text) > SOURCE_LIMIT:
+                text = text[:SOURCE_LIMIT] + "..."
+        else:
+            number, text = line, None
+        code = rule.code
+        severity = self.severity_of(code, severity if severity is not None else rule.severity)
+        latest = self._latest.get(code)
+        same_line = latest is not None and latest[0].line == number
+        if latest is not None and ((same_line and latest[4] >= PER_LINE) or len(self.findings) >= MAX_FINDINGS):
+            self._count(latest, number, severity, fix)
+            return
+        finding = Finding(
+            path=self.path,
+            line=number,
+            column=max(1, column),
+            code=code,
+            severity=severity,
+            message=message,
+            name=rule.name,
+            fix=fix,
+            end_column=end_column,
+            source=text,
+        )
+        self.findings.append(finding)
+        self._latest[code] = [finding, message, 0, 0, latest[4] + 1 if same_line else 1]  # type: ignore[index]
+
+    @staticmethod
+    def _count(latest: list, number: int, severity: Severity, fix: Fix | None) -> None:
+        """Count a finding into the latest one of its code: "(and N more on this line)"."""
+        kept: Finding = latest[0]
+        if kept.line == number:
+            latest[2] += 1
+            if fix is not None and kept.fix is not None and len(kept.fix.edits) < _MAX_MERGED_EDITS:
+                kept.fix = Fix(kept.fix.message, kept.fix.edits + fix.edits, kept.fix.safe and fix.safe)
+        else:
+            latest[3] += 1
+        if severity > kept.severity:
+            kept.severity = severity  # counting never lowers the worst severity (the exit code)
+        message = latest[1]
+        if latest[2]:
+            message += f" (and {latest[2]:,} more on this line)"
+        if latest[3]:
+            message += f" (and {latest[3]:,} more {kept.code} findings later in the file, not listed)"
+        kept.message = message
+
+    # -- suppression ------------------------------------------------------------------------------------
+
+    def read_directives(self, line: Line) -> None:
+        raw = line.raw
+        if raw in self._plain_comments:
+            return
+        found = False
+        for comment in line.parsed.comments:
+            body = comment.body
+            if "noqa" in body or "NOQA" in body or "gclint" in body.lower():
+                found = True
+                m = NOQA.search(body)
+                if m:
+                    self.noqa[line.number] = self.noqa.get(line.number, ()) + selectors(m.group(1))
+                for d in DIRECTIVE.finditer(body):
+                    self.directives.append((line.number, d.group(1).lower(), selectors(d.group(2))))
+        if not found and len(raw) <= _REMEMBERED_LINE:
+            # comment lines repeat (";TYPE:Perimeter"): remember the ones with no directive
+            if len(self._plain_comments) >= 8192:
+                self._plain_comments.clear()
+            self._plain_comments.add(raw)
+
+    def suppressed(self, finding: Finding) -> bool:
+        if finding.code.startswith(INLINE_UNSUPPRESSIBLE):
+            return False
+        codes = self.noqa.get(finding.line)
+        if codes:
+            used = [c for c in codes if c == "ALL" or finding.code.startswith(c)]
+            if used:
+                self.noqa_used.update((finding.line, c) for c in used)
+                return True
+        disabled = False
+        for number, action, codes in self.directives:
+            if number > finding.line:
+                break
+            if matches(finding.code, codes):
+                disabled = action == "disable"
+        return disabled

@@ -1,0 +1,51 @@
+"""``Options``: everything that shapes a check, from the command line and the configuration file.  The
+engine, the rules (``ctx.options``), the runner and the reports read it; it depends on nothing."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+
+@dataclass
+class Options:
+    """Everything that shapes a check, from the command line and the configuration file."""
+
+    dialect: str = "auto"
+    printer: str | None = None  # a Hyrel model; None = read it from the job (else the default, 30m)
+    dialect_origin: str = "option"  # where an explicit dialect/printer came from: option or configuration
+    printer_origin: str = "option"
+    flavor: str | None = None  # the firmware of a Marlin/RepRap/CNC file (klipper); None = read it from the file
+    flavor_origin: str = "option"
+    loaded: frozenset[int] | None = None  # v5 head positions; None = take them from the job header
+    select: list[str] | None = None
+    ignore: list[str] = field(default_factory=list)
+    extend_select: list[str] = field(default_factory=list)
+    per_file_ignores: dict[str, list[str]] = field(default_factory=dict)
+    extend_known_codes: tuple[str, ...] = ()  # codes and command words DL001 accepts (site macros, REMAPs)
+    env_flavor: str | None = None  # SLIC3R_GCODE_FLAVOR for postprocess
+    spindle_max_rpm: float | None = None
+    severity: dict[str, str] = field(default_factory=dict)  # code or prefix -> level (configuration)
+    tool_map: dict[int, int] = field(default_factory=dict)
+    config_path: str | None = None
+
+    def cache_key(self) -> str:
+        return repr(
+            (
+                self.dialect,
+                self.printer,
+                self.dialect_origin,
+                self.printer_origin,
+                self.flavor,
+                self.flavor_origin,
+                sorted(self.loaded) if self.loaded is not None else None,
+                self.select,
+                sorted(self.ignore),
+                sorted(self.extend_select),
+                sorted((k, sorted(v)) for k, v in self.per_file_ignores.items()),
+                sorted(self.extend_known_codes),
+                self.env_flavor,
+                self.spindle_max_rpm,
+                sorted(self.severity.items()),
+                sorted(self.tool_map.items()),
+            )
+        )
