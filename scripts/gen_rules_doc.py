@@ -32,6 +32,10 @@ def built_in_rules() -> list[dict]:
     return [rule.doc() for rule in all_rules().values() if rule.__module__.startswith("gclint.")]
 
 
+sys.path.insert(0, str(ROOT))
+from gclint.rules.base import FIX_USAGE  # noqa: E402
+
+
 def _cell(text: str) -> str:
     return text.replace("|", "\\|").replace("\n", " ")
 
@@ -64,13 +68,15 @@ def render(docs: list[dict]) -> str:
             out += [f"### {d['code']}", "", f"`{d['name']}` ({d['severity']}): {d['summary']}", ""]
             if d["explanation"]:
                 out += [d["explanation"], ""]
+            if d["example_options"]:
+                out += [f"Examples checked with `{' '.join(d['example_options'])}`.", ""]
             if d["example_bad"]:
                 out += ["Bad:", "", "```gcode", d["example_bad"], "```", ""]
             if d["example_good"]:
                 out += ["Good:", "", "```gcode", d["example_good"], "```", ""]
             facts = [f"Applies to: {', '.join(d['applies_to'])}"]
             if d["fixable"]:
-                facts.append("fix: `gclint check --fix`")
+                facts.append(f"fix: {FIX_USAGE[d['fix_applicability']]}")
             if d["source"]:
                 facts.append(f"Source: {d['source']}")
             out += ["; ".join(facts) + ".", ""]

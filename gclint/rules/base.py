@@ -13,6 +13,7 @@ a module (importing it registers its rules) or a ``Rule`` subclass.
 from __future__ import annotations
 
 import os
+import re
 import textwrap
 from collections.abc import Iterable
 from dataclasses import dataclass, field
@@ -172,6 +173,8 @@ class Rule:
     on_numbered: ClassVar[bool] = False  # call check_line for lines with an N number or a checksum
     on_issue: ClassVar[bool] = False  # call check_issues for lines with syntax issues
     fixable: ClassVar[bool] = False
+    # "safe" (--fix applies it), "unsafe" (--unsafe-fixes), or "sometimes" (depends on the finding)
+    fix_applicability: ClassVar[str] = "safe"
     default_enabled: ClassVar[bool] = True
 
     def __init__(self, ctx: FileContext) -> None:
@@ -235,18 +238,22 @@ class Rule:
     @classmethod
     def doc(cls) -> dict:
         """The rule's documentation as data (``gclint rules --format json``)."""
+        bad, bad_options = _example(cls.example_bad)
+        good, good_options = _example(cls.example_good)
         return {
             "code": cls.code,
             "name": cls.name,
             "severity": cls.severity.label,
             "summary": cls.summary,
             "explanation": textwrap.dedent(cls.explanation).strip(),
-            "example_bad": textwrap.dedent(cls.example_bad).strip("\n"),
-            "example_good": textwrap.dedent(cls.example_good).strip("\n"),
+            "example_bad": bad,
+            "example_good": good,
+            "example_options": bad_options or good_options,  # ["--printer ehr"]: how the examples are checked
             "source": cls.source,
             "listens_to": list(cls.codes),
             "applies_to": list(cls.dialects or cls.families or ["all"]),
             "fixable": cls.fixable,
+            "fix_applicability": cls.fix_applicability if cls.fixable else None,
             "url": rule_url(cls.code),
         }
 
@@ -258,15 +265,42 @@ class Rule:
         if d["explanation"]:
             parts += ["## Why", "", d["explanation"], ""]
         if d["example_bad"]:
-            parts += ["## Example", "", "Bad:", "", textwrap.indent(d["example_bad"], "    "), ""]
+            parts += ["## Example", ""]
+            if d["example_options"]:
+                parts += [f"(checked with {' '.join(d['example_options'])})", ""]
+            parts += ["Bad:", "", textwrap.indent(d["example_bad"], "    "), ""]
         if d["example_good"]:
             parts += ["Good:", "", textwrap.indent(d["example_good"], "    "), ""]
         parts += [f"Applies to: {', '.join(d['applies_to'])}"]
         if d["source"]:
             parts += [f"Source: {d['source']}"]
         if d["fixable"]:
-            parts += ["Fix: available (gclint check --fix)"]
+            parts += [f"Fix: {FIX_USAGE[cls.fix_applicability]}"]
         return "\n".join(parts).rstrip() + "\n"
+
+
+# How a rule's fixes are applied, by their applicability (Rule.fix_applicability), for its documentation.
+FIX_USAGE = {
+    "safe": "gclint check --fix",
+    "unsafe": "gclint check --fix --unsafe-fixes (the fix may change what the line does)",
+    "sometimes": "gclint check --fix, or --unsafe-fixes where the fix may change what the line does",
+}
+
+# A rule's examples are also its test fixtures: "; gclint-test: printer=ehr" lines set the options the
+# example is checked with (tests/test_rule_fixtures.py).  The documentation shows them as options.
+_EXAMPLE_OPTIONS = re.compile(r"^;\s*gclint-test:\s*(.*)\n?", re.MULTILINE)
+
+
+def _example(text: str) -> tuple[str, list[str]]:
+    """(the example without its test lines, the command-line options those lines stand for)."""
+    text = textwrap.dedent(text).strip("\n")
+    options = [
+        f"--{key} {value}"
+        for m in _EXAMPLE_OPTIONS.finditer(text)
+        for key, _, value in (item.partition("=") for item in m.group(1).split())
+        if key != "expect"
+    ]
+    return _EXAMPLE_OPTIONS.sub("", text).strip("\n"), options
 
 
 _REGISTRY: dict[str, type[Rule]] = {}

@@ -110,6 +110,7 @@ class ChecksumMismatch(Rule):
     source = "Marlin queue.cpp, RepRap G-code page (checksums)"
     on_numbered = True
     fixable = True
+    fix_applicability = "unsafe"
 
     def check_line(self, line: Line) -> None:
         checksum = line.parsed.checksum

@@ -263,6 +263,7 @@ class V4AddressingInV5(Rule):
     name = "v4-addressing-in-v5"
     severity = Severity.WARNING
     fixable = True
+    fix_applicability = "sometimes"
     summary = "A file checked as v5 whose addresses are v4 numbers (T11-T15, T21-T25, T90-T92, T100...)"
     explanation = """
         Before Repetrel v5, "the nomenclature for T Commands and the T Variables were not the same": a

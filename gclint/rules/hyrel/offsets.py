@@ -229,6 +229,7 @@ class M6UsedAsToolChange(Rule):
     name = "m6-used-as-tool-change"
     severity = Severity.ERROR
     fixable = True
+    fix_applicability = "unsafe"
     summary = "M6 written as a tool change (M6 T1, T1 M6): on Hyrel M6 declares head offsets"
     explanation = """
         On CNC controllers and in some slicers `M6` (with `T1 M6` or `M6 T1`) changes the tool.  On Hyrel
