@@ -393,9 +393,9 @@ def check(
             sys.exit(2 if any(r.error for r in results + problems) else 1 if fixed else 0)
     # a file found in a folder that is something else (a NetCDF .nc, an ANTLR .g): skipped, with a note
     for r in results:
-        if r.not_gcode and r.path in walked:
+        if runner.skippable(r, walked):
             _note(f"{r.error}: skipped")
-    results = problems + [r for r in results if not (r.not_gcode and r.path in walked)]
+    results = problems + [r for r in results if not runner.skippable(r, walked)]
     for note in cache.notes if cache is not None else ():
         _note(note)
     for r in results:

@@ -20,6 +20,15 @@ if TYPE_CHECKING:
     from gclint.cache import ResultCache
 
 GCODE_EXTENSIONS = (".gcode", ".gco", ".g", ".nc", ".ngc", ".cnc", ".tap")
+# Extensions only G-code uses: such a file that is not G-code is broken (exit 2), not something else.  The
+# others are shared (a NetCDF .nc, an ANTLR .g, TAP output .tap): a walk skips those with a note.
+OWN_EXTENSIONS = (".gcode", ".gco")
+
+
+def skippable(result: FileResult, walked: set[str]) -> bool:
+    """Whether ``result`` is a file found in a folder (or named under --force-exclude) that is another
+    format with a shared extension: skipped with a note rather than an error."""
+    return result.not_gcode and result.path in walked and not result.path.lower().endswith(OWN_EXTENSIONS)
 
 
 def collect(

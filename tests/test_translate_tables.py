@@ -231,7 +231,8 @@ MARLIN = [
     Row("2.1 M84 X Y E: all motors", "M84 X Y E", "M84", "TR003"),
     Row("2.1 M84 E only", "M84 E", "", "TR002"),
     Row("2.1 M84 S (timeout)", "M84 S600", "", "TR002"),
-    Row("2.1 a move after M84: re-home", "M84\nG1 X5", "M84\nG28 X0 Y0\nT0\nG1 X5", "TR003"),
+    Row("2.1 a move after M84: re-home", "M84\nG1 X5", "M84\nG28 X0 Y0 Z0\nT0\nG1 X5", "TR003"),
+    Row("2.1 G28 X Y after M84 homes Z too", "M84\nG28 X Y\nG1 X5", "M84\nG28 X0 Y0 Z0\nT0\nG1 X5", "TR003"),
     Row("2.1 M30 (delete file)", "M30 old.gco", "", "TR005"),
     # M82/M83
     Row("2.1 M82 evalues", "M82", "M82"),

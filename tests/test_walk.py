@@ -163,3 +163,20 @@ def test_show_settings_says_where_the_cache_is(tmp_path: Path) -> None:
     proc = run_cli("check", "--show-settings", str(jobs), env={"XDG_CACHE_HOME": str(tmp_path / "xdg")})
     shown = proc.stdout.decode()
     assert proc.returncode == 0 and f"Result cache: {tmp_path / 'xdg' / 'gclint' / 'projects'}" in shown, shown
+
+
+def test_other_formats_with_a_shared_extension_are_skipped_but_a_broken_gcode_file_is_not(tmp_path: Path) -> None:
+    from tests.conftest import run_cli
+
+    folder = tmp_path / "jobs"
+    folder.mkdir()
+    (folder / "ok.gcode").write_text("; gclint: dialect=marlin\nG28\nG1 X1 F600\n")
+    (folder / "data.nc").write_bytes(b"CDF\x01\x00\x00\x00\x00binary netcdf")
+    (folder / "Expr.g").write_text("grammar Expr;\nexpr : term ('+' term)* ;\n")
+    proc = run_cli("check", str(folder))
+    err = proc.stderr.decode()
+    assert proc.returncode == 0, err
+    assert "data.nc" in err and "Expr.g" in err and err.count("skipped") == 2
+    (folder / "broken.gcode").write_bytes(bytes(range(256)) * 4)  # a .gcode is G-code by name: broken
+    proc = run_cli("check", str(folder))
+    assert proc.returncode == 2 and "broken.gcode" in proc.stderr.decode() and "binary" in proc.stderr.decode()

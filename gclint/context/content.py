@@ -49,6 +49,7 @@ class ContentReading:
     aux_codes: dict[str, Seen] = field(default_factory=dict)  # model-specific aux ports (M670-M689)
     e_amounts: Seen | None = None  # a working move with a fractional E before any M229 E1
     m229_e1: bool = False
+    lines_read: set[str] = field(default_factory=set)  # the lines parsed (a repeated line is read once)
 
 
 def candidates() -> tuple[Dialect, ...]:
@@ -98,6 +99,7 @@ def read_content(head: str, complete: bool, tail: str | None = None) -> ContentR
 
 def _read_lines(reading: ContentReading, lines) -> None:
     plain = PLAIN_MOVE.fullmatch
+    done = reading.lines_read
     for number, raw in lines:
         stripped = raw.lstrip()
         if not stripped or stripped[0] in ";(" or len(raw) > _LINE_LIMIT:
@@ -109,6 +111,9 @@ def _read_lines(reading: ContentReading, lines) -> None:
                 if e is not None and "." in e and e.strip("0").strip(".").strip("-+") not in ("", "1"):
                     reading.e_amounts = Seen(number, raw.strip()[:40])
             continue
+        if raw in done:
+            continue  # a line read before says nothing new (only where each clue is first seen is kept)
+        done.add(raw)
         for cmd in parse_line(raw).commands:
             _read_command(reading, cmd, number)
 

@@ -136,15 +136,28 @@ class MarlinToHyrel(HyrelTranslator):
     def home(self, cmd: Command) -> None:
         if not self.hy.started_motion:
             self.before_motion(focus=False)
+        motors_were_off = self.hy.motors_off
         self.hy.motors_off = False
         params = cmd.params
         axes = [a for a in "XYZ" if a in params]
+        if motors_were_off and axes and len(axes) < 3:
+            # "All axes with homes must be rehomed after an M18" (Hyrel Gcode page, M18)
+            missing = [a for a in "XYZ" if a not in axes]
+            axes = [a for a in "XYZ" if a in axes or a in missing]
+            self.report(
+                TR_APPROX,
+                f"G28 after M18/M84 homes {' '.join(missing)} too: Hyrel must re-home every axis after the "
+                "motors were disengaged",
+                key="G28-rehome",
+                cmd=cmd,
+                aspects="position",
+            )
         if "A" in params and "A" in self.opts.printer.axes:
             axes.append("A")
         if "B" in params and "B" in self.opts.printer.axes:
             axes.append("B")
         if not axes:
-            home_z = self.opts.homes_z()
+            home_z = self.opts.homes_z() or motors_were_off  # (every axis after M18/M84)
             axes = ["X", "Y", "Z"] if home_z else ["X", "Y"]
             if not home_z:
                 self.report(

@@ -17,7 +17,7 @@ class Program:
     def rehome(self) -> None:
         """A move after M18/M84: "All axes with homes must be rehomed after an M18" (Hyrel Gcode page)."""
         self.hy.motors_off = False
-        lines = ["G28 X0 Y0"]
+        lines = ["G28 X0 Y0 Z0"]
         address = self.hy.focus if self.hy.focus is not None else self.focus_address()
         if address is not None:
             self.hy.focus = address
@@ -25,7 +25,7 @@ class Program:
         self.before(*lines, note="re-home after M18/M84")
         self.report(
             TR_APPROX,
-            "a move after the motors were disengaged: Hyrel must re-home first, G28 X0 Y0 added",
+            "a move after the motors were disengaged: Hyrel must re-home every axis first, G28 X0 Y0 Z0 added",
             key="rehome",
             aspects="position",
         )
