@@ -33,6 +33,39 @@ def corpus_available() -> bool:
 
 needs_corpus = pytest.mark.skipif(not corpus_available(), reason=f"corpus not found at {CORPUS}")
 
+# The corpus-wide equivalence tests (fast path against grammar, plain route against general route) read
+# big jobs as a sample by default: the head and the tail, where slicers put everything but the repeated
+# moves.  GCLINT_SLOW=1 reads every line of every job (before a release, or after touching those routes).
+SLOW = bool(os.environ.get("GCLINT_SLOW"))
+SAMPLE_HEAD, SAMPLE_TAIL = 4000, 1500  # lines kept of a job longer than both
+_SAMPLES: dict[Path, str] = {}
+
+
+def sample_bytes(data: bytes) -> bytes:
+    """``data`` (a job's bytes), or its first and last lines when it is long and GCLINT_SLOW is not set."""
+    if SLOW:
+        return data
+    lines = data.splitlines(keepends=True)
+    if len(lines) <= SAMPLE_HEAD + SAMPLE_TAIL:
+        return data
+    return b"".join(lines[:SAMPLE_HEAD] + lines[-SAMPLE_TAIL:])
+
+
+def corpus_job(path: Path) -> str:
+    """The path of ``path`` as a test reads it: the file itself, or a sample of it (``sample_bytes``) in a
+    temporary copy with the same name (a regular file, as the original: its tail is read as a file's)."""
+    if SLOW or path.stat().st_size < 200_000:
+        return str(path)
+    sample = _SAMPLES.get(path)
+    if sample is None:
+        import tempfile
+
+        folder = Path(tempfile.mkdtemp(prefix="gclint-sample-"))
+        target = folder / path.name
+        target.write_bytes(sample_bytes(path.read_bytes()))
+        sample = _SAMPLES[path] = str(target)
+    return sample
+
 
 def run_cli(
     *args: str,

@@ -33,7 +33,7 @@ from gclint.syntax.source import Source
 from gclint.translate import TranslationResult, translate_source, translator_for
 from gclint.translate.options import TranslateOptions
 
-from .conftest import CORPUS, needs_corpus, run_cli
+from .conftest import CORPUS, needs_corpus, run_cli, sample_bytes
 
 
 def diff_texts(source_dialect: str, source: str, output: str, to: str = "hyrel", **settings: str):
@@ -286,8 +286,6 @@ FLOWS = [
     ("carvera", "carvera", "evalues"),
     ("hyrel", "hyrel-v4", "evalues"),
 ]
-SLOW = bool(os.environ.get("GCLINT_SLOW"))
-HEAD, TAIL = 4000, 1500  # lines of a sampled job
 
 
 def _jobs(folder: str) -> list[Path]:
@@ -303,12 +301,7 @@ def _sample(path: Path) -> bytes | None:
     data = path.read_bytes()
     if b"\0" in data[:4096]:
         return None  # binary (the translator refuses it)
-    if SLOW:
-        return data
-    lines = data.splitlines(keepends=True)
-    if len(lines) <= HEAD + TAIL:
-        return data
-    return b"".join(lines[:HEAD] + lines[-TAIL:])
+    return sample_bytes(data)
 
 
 @needs_corpus
