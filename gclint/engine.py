@@ -9,7 +9,7 @@ from __future__ import annotations
 
 import os
 from collections.abc import Callable, Iterable
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 
 from gclint import dialects, firmware, globs
 from gclint.context import Context, infer_source
@@ -120,9 +120,36 @@ class Linter:
         result.findings = [
             f for f in ctx.findings if not ctx.suppressed(f) and not (ignored and matches(f.code, ignored))
         ]
+        if source.byte_view is not None and source.byte_view.lines:
+            result.findings += self._byte_view_findings(path, source.byte_view.lines, ignored)
         self._check_suppressions(ctx, result)
         result.findings.sort(key=Finding.sort_key)
         return result
+
+    def _byte_view_findings(self, path: str, lines: list[tuple[int, str]], ignored: tuple[str, ...]) -> list[Finding]:
+        """The security findings of a UTF-16/32 file's lines as a firmware that reads bytes sees them
+        (``Source.byte_view``), on line 1 of the file, each naming the line of that view it is on."""
+        codes = [cls.code for cls in self.rule_classes if cls.code.startswith("SC") and not matches(cls.code, ignored)]
+        if not codes:
+            return []
+        view = Linter(
+            Options(select=codes, severity=self.options.severity, spindle_max_rpm=self.options.spindle_max_rpm)
+        )
+        numbers = [number for number, _ in lines]
+        checked = view.check_text("\n".join(text for _, text in lines) + "\n", path)
+        return [
+            replace(
+                f,
+                line=1,
+                column=1,
+                end_column=None,
+                fix=None,
+                message=f"read as bytes (as a firmware that ignores the byte order mark does), line "
+                f"{numbers[f.line - 1] if f.line <= len(numbers) else '?'}: {f.message}",
+            )
+            for f in checked.findings
+            if f.code.startswith("SC")
+        ]
 
     def _check_suppressions(self, ctx: FileContext, result: FileResult) -> None:
         """A ``noqa`` or ``gclint: disable`` naming no rule is an error (exit 2, with what was meant); with

@@ -47,6 +47,44 @@ _LINES = re.compile(r"([^\r\n]*)(\r\n|\r|\n)")
 _TEXT = itemgetter(0)
 
 
+class ByteView:
+    """The lines of a UTF-16/32 file as a firmware that reads bytes sees them (``fgets``: lines end at a
+    ``\n`` byte, text at the first NUL).  Plain UTF-16 text gives nothing there (a NUL follows or precedes
+    every ASCII character), but a file can be made to read as a harmless comment when decoded and as
+    commands when read as bytes: the engine checks these lines with the security rules too.
+
+    Only lines of two characters or more are kept; a file whose byte view holds more than ``LIMIT``
+    characters is refused (no UTF-16 G-code looks like that)."""
+
+    LIMIT = 16 << 20
+
+    def __init__(self, display: str) -> None:
+        self.display = display
+        self.lines: list[tuple[int, str]] = []  # (byte-view line number, text)
+        self._pending = b""
+        self._number = 0
+        self._size = 0
+
+    def feed(self, data: bytes, final: bool) -> None:
+        pending = self._pending + data if self._pending else data
+        parts = pending.split(b"\n")
+        self._pending = b"" if final else parts.pop()
+        if len(self._pending) > LINE_LIMIT:  # a line is read up to its first NUL: keep no more than that
+            self._pending = self._pending[: self._pending.find(b"\0") + 1 or LINE_LIMIT]
+        for part in parts:
+            self._number += 1
+            text = part.split(b"\0", 1)[0].strip(b" \t\r")
+            if len(text) < 2:
+                continue
+            self._size += len(text)
+            if self._size > self.LIMIT:
+                raise SourceError(
+                    f"{self.display}: its bytes, read without the byte order mark, are other text than the "
+                    "decoded file (a file that reads two ways); not checked"
+                )
+            self.lines.append((self._number, text.decode("utf-8", "surrogateescape")))
+
+
 class SourceError(Exception):
     """A file that cannot be read as G-code; the message is one line for the user."""
 
@@ -124,6 +162,8 @@ class Source:
                 _refuse_binary(head, display)
         self._head = head
         self._consumed = False
+        # For a UTF-16/32 file: the lines a reader that ignores the byte order mark sees (ByteView)
+        self.byte_view: ByteView | None = None
 
     @property
     def sha256(self) -> str | None:
@@ -268,11 +308,13 @@ class Source:
 
     def _decoded_chunks(self) -> Iterator[list[tuple[str, str]]]:
         decoder = codecs.getincrementaldecoder(self.encoding)("surrogatepass")
+        view = self.byte_view = ByteView(self.display)
 
         def pieces() -> Iterator[str]:
             data = self._head
             final = self._head_eof
             while True:
+                view.feed(data, final)
                 try:
                     text = decoder.decode(data, final=final)
                 except UnicodeDecodeError:  # a byte count that does not fit the encoding, or not that encoding
