@@ -159,16 +159,24 @@ class Linter:
         named = [(line, codes) for line, codes in ctx.noqa.items()]
         named += [(line, codes) for line, _, codes in ctx.directives]
         problems: list[str] = []
+        verdicts: dict[tuple[str, ...], str | None] = {}  # a list repeated on many lines is resolved once
         for line, codes in named:
-            if NO_CODES in codes:
-                problems.append(f"{result.path}:{line}: a 'noqa:' or 'disable=' with no rule code after it")
-                continue
-            try:
-                resolve_selectors(c for c in codes if c != "ALL")
-            except UnknownSelector as exc:
-                problems.append(f"{result.path}:{line}: a noqa or disable names an {exc}")
+            if codes not in verdicts:
+                if NO_CODES in codes:
+                    verdicts[codes] = "a 'noqa:' or 'disable=' with no rule code after it"
+                else:
+                    try:
+                        resolve_selectors(c for c in codes if c != "ALL")
+                        verdicts[codes] = None
+                    except UnknownSelector as exc:
+                        verdicts[codes] = f"a noqa or disable names an {exc}"
+            problem = verdicts[codes]
+            if problem is not None:
+                problems.append(f"{result.path}:{line}: {problem}")
+                if len(problems) > 5:
+                    break
         if problems:  # every one in one line: the job's own comments are a usage error, as --select HY999 is
-            message = "; ".join(problems[:5]) + (f" (and {len(problems) - 5} more)" if len(problems) > 5 else "")
+            message = "; ".join(problems[:5]) + (" (and more)" if len(problems) > 5 else "")
             result.error = message if result.error is None else f"{result.error}; {message}"
         if "SX008" not in ctx.enabled_codes:
             return

@@ -4,6 +4,7 @@ one per file; ``gclint.rules.base`` names it only as a type."""
 
 from __future__ import annotations
 
+from bisect import bisect_right
 from collections.abc import Callable
 
 from gclint.context import Context
@@ -49,6 +50,7 @@ class FileContext:
         self.noqa: dict[int, tuple[str, ...]] = {}
         self.noqa_used: set[tuple[int, str]] = set()  # (line, selector) that suppressed a finding
         self.directives: list[tuple[int, str, tuple[str, ...]]] = []
+        self._directives_by_code: dict[str, tuple[list[int], list[bool], int]] = {}
         self._plain_comments: set[str] = set()  # lines whose comments hold no noqa or gclint directive
         # code -> [its latest finding, that finding's own message, more on its line, more later in the file,
         #          findings of the code listed on that line]
@@ -168,10 +170,22 @@ class FileContext:
             if used:
                 self.noqa_used.update((finding.line, c) for c in used)
                 return True
-        disabled = False
-        for number, action, codes in self.directives:
-            if number > finding.line:
-                break
-            if matches(finding.code, codes):
-                disabled = action == "disable"
-        return disabled
+        if not self.directives:
+            return False
+        # the last disable/enable naming the code at or above the finding's line decides (an index per
+        # code, so that time does not grow with directives x findings)
+        lines, disabling = self._directive_index(finding.code)
+        at = bisect_right(lines, finding.line)
+        return at > 0 and disabling[at - 1]
+
+    def _directive_index(self, code: str) -> tuple[list[int], list[bool]]:
+        index = self._directives_by_code.get(code)
+        if index is None or index[2] != len(self.directives):
+            lines: list[int] = []
+            disabling: list[bool] = []
+            for number, action, codes in self.directives:  # (in line order)
+                if matches(code, codes):
+                    lines.append(number)
+                    disabling.append(action == "disable")
+            index = self._directives_by_code[code] = (lines, disabling, len(self.directives))
+        return index[0], index[1]

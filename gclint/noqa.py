@@ -6,7 +6,7 @@ fix write them."""
 from __future__ import annotations
 
 import re
-from functools import cache
+from functools import cache, lru_cache
 
 # "noqa" starts a comment or follows a ";" inside one ("; SAY hi ; noqa: HY029"): a word or a path that merely
 # contains it ("SHELL C:\\tools\\noqa.exe") is text, not a suppression.
@@ -23,17 +23,31 @@ INLINE_UNSUPPRESSIBLE = ("SC",)
 _COMMENT_START = re.compile(r"[;(]")
 
 
+MAX_SELECTORS = 200  # distinct codes kept from one noqa or disable (there are fewer rules than that)
+
+
 def selectors(text: str | None) -> tuple[str, ...]:
     """The codes a ``noqa:`` or ``disable=`` names (``ALL`` for a bare ``noqa``; rule names read as their
-    codes), up to the first word that is not one (a reason may follow).  ``(NO_CODES,)`` when there is a
-    colon and no code."""
+    codes), up to the first word that is not one (a reason may follow), each once.  ``(NO_CODES,)`` when
+    there is a colon and no code.  A repeated comment gives the same tuple (memory stays flat)."""
     if text is None:
         return ("ALL",)
-    out: list[str] = []
+    return _selectors(text) if len(text) <= 2048 else _read_selectors(text)
+
+
+@lru_cache(maxsize=4096)
+def _selectors(text: str) -> tuple[str, ...]:
+    return _read_selectors(text)
+
+
+def _read_selectors(text: str) -> tuple[str, ...]:
+    out: dict[str, None] = {}
     for word in re.split(r"[,\s]+", text.strip()):
         if not word or not _SELECTOR.fullmatch(word):
             break
-        out.append(_NAMES().get(word.lower(), word.upper()) if "-" in word else word.upper())
+        out[_NAMES().get(word.lower(), word.upper()) if "-" in word else word.upper()] = None
+        if len(out) >= MAX_SELECTORS:
+            break
     return tuple(out) if out else (NO_CODES,)
 
 

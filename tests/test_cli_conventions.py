@@ -202,3 +202,19 @@ def test_clean_removes_nested_projects_and_all(tmp_path: Path) -> None:
     run_cli("check", ".", cwd=project, env=env)
     assert b"removed 2 cached results" in run_cli("clean", "--all", cwd=tmp_path, env=env).stdout
     assert entries() == 0
+
+
+def test_suppression_lists_are_read_once_and_bounded() -> None:
+    from gclint.engine import Linter, Options
+    from gclint.noqa import MAX_SELECTORS, selectors
+
+    assert selectors(",".join(["HY001"] * 16000)) == ("HY001",)  # each code once
+    assert len(selectors(" ".join(f"HY{n:03d}" for n in range(1000)))) == MAX_SELECTORS
+    assert selectors("HY001, HY002") is selectors("HY001, HY002")  # a repeated comment: one tuple
+    # disable/enable regions: the last directive at or above a line decides, per code
+    text = (
+        "; gclint: dialect=hyrel\n; gclint: disable=HY003\nM109 T40 S200\n; gclint: enable=HY003\n"
+        "M109 T40 S200\n; gclint: disable=HY\nM109 T40 S200\n; gclint: enable=HY003\nM109 T40 S200\nM30\n"
+    )
+    lines = [f.line for f in Linter(Options()).check_text(text, "j.gcode").findings if f.code == "HY003"]
+    assert lines == [5, 9]
