@@ -174,8 +174,10 @@ def infer_source(source, path: str | None = None, **options) -> Context:
     """The context of a ``gclint.syntax.source.Source`` (not consumed): its head, read on past comment
     blocks such as thumbnails, and the tail of a regular file (slicers' end code, Hyrel's footer)."""
     head = source.head_text()
-    if not source.head_is_whole and _mostly_comments(head):
-        head = source.head_text(_FAR)
+    limit = len(head)
+    while not source.head_is_whole and limit < _FAR and _mostly_comments(head):
+        limit = min(_FAR, limit * 4)  # past the comment block, in steps (thumbnails are 10 KB to 1 MB)
+        head = source.head_text(limit)
     return infer(
         head,
         source.display if path is None else path,
