@@ -8,6 +8,7 @@ from __future__ import annotations
 
 import os
 import sys
+from collections.abc import Callable
 
 import click
 
@@ -651,6 +652,38 @@ def summary(
 # -- translate -------------------------------------------------------------------------------------------
 
 
+def _translation_options(command: Callable) -> Callable:
+    """The options translate and diff share: the target printer, the tool map, the flow, settings, config."""
+    for option in reversed(
+        (
+            click.option("--printer", "-p", metavar="MODEL", help="Hyrel model of the target."),
+            click.option("--tool-map", metavar="0=T2,...", help="Source tool index -> Hyrel head address."),
+            click.option(
+                "--flow",
+                type=click.Choice(["evalues", "native"]),
+                default=None,
+                help="Hyrel flow: keep the E amounts with M229 E1 D1 (evalues, default) or native flow (E1 markers).",
+            ),
+            click.option(
+                "--set",
+                "settings",
+                multiple=True,
+                metavar="KEY=VALUE",
+                help="Translation setting (repeatable): retract, fan-map, bed, chamber, temp-window, spindle, "
+                "laser, air, max-feed, home-z, spindle-max-rpm, spindle-stop-dwell.  See docs/translation.md.",
+            ),
+            click.option(
+                "--config",
+                "config_file",
+                type=click.Path(dir_okay=False),
+                help="Configuration file (else found upward).",
+            ),
+        )
+    ):
+        command = option(command)
+    return command
+
+
 @main.command()
 @click.argument("input_path", metavar="INPUT", type=click.Path(allow_dash=True), default="-")
 @click.option("--from", "source", required=True, metavar="D", help="Dialect of the input.")
@@ -671,25 +704,7 @@ def summary(
     help="What to do with constructs that cannot be translated exactly.",
 )
 @click.option("--annotate", is_flag=True, help="Add a '; gclint: ...' comment on each changed or dropped line.")
-@click.option("--printer", "-p", metavar="MODEL", help="Hyrel model of the target.")
-@click.option("--tool-map", metavar="0=T2,...", help="Source tool index -> Hyrel head address.")
-@click.option(
-    "--flow",
-    type=click.Choice(["evalues", "native"]),
-    default=None,
-    help="Hyrel flow: keep the E amounts with M229 E1 D1 (evalues, default) or native flow (E1 markers).",
-)
-@click.option(
-    "--set",
-    "settings",
-    multiple=True,
-    metavar="KEY=VALUE",
-    help="Translation setting (repeatable): retract, fan-map, bed, chamber, temp-window, spindle, laser, "
-    "air, max-feed, home-z, spindle-max-rpm.  See docs/translation.md.",
-)
-@click.option(
-    "--config", "config_file", type=click.Path(dir_okay=False), help="Configuration file (else found upward)."
-)
+@_translation_options
 def translate(
     input_path: str,
     source: str,
@@ -760,13 +775,7 @@ def translate(
     help="Exit 1 on any difference, or only on one no TR finding explains.",
 )
 @click.option("--no-explain", is_flag=True, help="Do not translate SOURCE to explain the differences.")
-@click.option("--printer", "-p", metavar="MODEL", help="Hyrel model of the target.")
-@click.option("--tool-map", metavar="0=T2,...", help="Source tool index -> Hyrel head address.")
-@click.option("--flow", type=click.Choice(["evalues", "native"]), default=None, help="As given to translate.")
-@click.option("--set", "settings", multiple=True, metavar="KEY=VALUE", help="Translation setting, as for translate.")
-@click.option(
-    "--config", "config_file", type=click.Path(dir_okay=False), help="Configuration file (else found upward)."
-)
+@_translation_options
 def diff(
     source_path: str,
     output_path: str,
