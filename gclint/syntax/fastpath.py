@@ -21,17 +21,25 @@ import re
 from operator import itemgetter
 
 from gclint.syntax.build import TEXT_CODES, assemble
-from gclint.syntax.nodes import GCODE, NUMBER, Command, Comment, ParsedLine, Word, normalize_code
+from gclint.syntax.nodes import (
+    FAST_NUMBER,
+    FAST_WORD,
+    GCODE,
+    NUMBER,
+    Command,
+    Comment,
+    ParsedLine,
+    Word,
+    normalize_code,
+)
 
-# Unambiguous ("\d+\.?\d*" can split a run of digits many ways: exponential backtracking on a long
-# line of words that ends in junk).  The canonical pattern also uses possessive quantifiers: it never
+# Numbers as nodes.FAST_NUMBER reads them; the canonical pattern also uses possessive quantifiers: it never
 # needs to backtrack, and that makes it about 25% faster.
-# At most 30 digits before and after the point: longer numbers are reported (SX006) by the grammar path.
-_NUM = r"[-+]?(?:\d{1,30}(?:\.\d{0,30})?|\.\d{1,30})"
+_NUM = FAST_NUMBER
 _NUM_P = r"[-+]?+(?:\d{1,30}+(?:\.\d{0,30}+)?+|\.\d{1,30}+)"
 _CANON = re.compile(rf"[ \t]*+[A-Z]{_NUM_P}(?:[ \t]++[A-Z]{_NUM_P})*+[ \t]*+")
 _GENERAL = re.compile(rf"[ \t]*(?:[A-Za-z][ \t]*{_NUM}[ \t]*)+")
-_WORD = re.compile(rf"([A-Za-z])[ \t]*({_NUM})")
+_WORD = FAST_WORD
 # A G0/G1 with only plain X Y Z E F words in the order slicers write them (F first or last, not both), no
 # comment: the route for lines that need no tree (Linter._run, translate_source).  Same number syntax as
 # _CANON.  Groups: 1 the digit of G0/G1, 2 F (first), 3-6 X Y Z E, 7 F (last).
@@ -138,14 +146,3 @@ def _general(raw: str, body: str, comments: tuple[Comment, ...]) -> ParsedLine |
             return None
     pieces.extend(comments)
     return assemble(pieces, None, line_number)
-
-
-def materialize_words(src: str, span: tuple[int, int], kind: str) -> tuple[Word | None, tuple[Word, ...]]:
-    """Build the code word and parameter words of a command the canonical tier left unbuilt."""
-    start, end = span
-    words = []
-    for m in _WORD.finditer(src, start, end):
-        words.append(Word(m.group(1).upper(), m.group(2), NUMBER, m.group(0), m.start() + 1))
-    if kind == GCODE and words:
-        return words[0], tuple(words[1:])
-    return None, tuple(words)  # pragma: no cover - only G/M/T commands are left unbuilt

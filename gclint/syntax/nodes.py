@@ -36,6 +36,11 @@ PERCENT = "percent"  # % program delimiter
 WORD_LETTERS = frozenset("ABCDEFGHIJKLMNOPQRSTUVWXYZ@^$")
 
 _STRICT_NUMBER = re.compile(r"[-+]?(?:\d+(?:\.\d*)?|\.\d+)|0x[0-9A-Fa-f]+")  # unambiguous: linear time
+# A number as the fast path reads it (gclint.syntax.fastpath).  Unambiguous ("\d+\.?\d*" can split a run of
+# digits many ways: exponential backtracking on a long line of words that ends in junk), at most 30 digits
+# before and after the point: longer numbers are reported (SX006) by the grammar path.
+FAST_NUMBER = r"[-+]?(?:\d{1,30}(?:\.\d{0,30})?|\.\d{1,30})"
+FAST_WORD = re.compile(rf"([A-Za-z])[ \t]*({FAST_NUMBER})")  # a letter and a number: group 1, group 2
 
 
 class Node:
@@ -306,9 +311,16 @@ class Command:
         return self._words  # type: ignore[return-value]
 
     def _materialize(self) -> None:
-        from gclint.syntax.fastpath import materialize_words
-
-        self._word, self._words = materialize_words(self._src, self._span, self.kind)  # type: ignore[arg-type]
+        """Build the code word and parameter words the fast path's canonical tier left unbuilt."""
+        start, end = self._span  # type: ignore[misc]
+        words = [
+            Word(m.group(1).upper(), m.group(2), NUMBER, m.group(0), m.start() + 1)
+            for m in FAST_WORD.finditer(self._src, start, end)  # type: ignore[arg-type]
+        ]
+        if self.kind == GCODE and words:
+            self._word, self._words = words[0], tuple(words[1:])
+        else:  # pragma: no cover - only G/M/T commands are left unbuilt
+            self._word, self._words = None, tuple(words)
 
     def nodes(self) -> Iterator[Node]:
         """The nodes that make up the command's source (a text command's words lie inside its args)."""
