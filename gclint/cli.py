@@ -439,7 +439,7 @@ def _apply_fixes(
     as the files are now and the number of findings fixed (or that would be)."""
     from gclint import runner
     from gclint.fixes import fix_file
-    from gclint.reports.common import printable
+    from gclint.textsafe import human
 
     out: list[FileResult] = []
     fixed = 0
@@ -456,7 +456,7 @@ def _apply_fixes(
             if show and outcome.applied:
                 from collections import Counter
 
-                click.echo(f"Fixed in {printable(r.path)}:")
+                click.echo(f"Fixed in {human(r.path)}:")
                 names = {f.code: f.name for f in outcome.applied}
                 for code, n in sorted(Counter(f.code for f in outcome.applied).items()):
                     click.echo(f"  {n} x {code} ({names[code]})")
@@ -892,6 +892,7 @@ def clean(paths: tuple[str, ...], everything: bool, cache_dir: str | None) -> No
     from pathlib import Path
 
     from gclint import cache
+    from gclint.textsafe import human
 
     if cache_dir:
         folders = [Path(cache_dir)]
@@ -906,9 +907,9 @@ def clean(paths: tuple[str, ...], everything: bool, cache_dir: str | None) -> No
     for folder in folders:
         removed = cache.clean(folder)
         if removed:
-            click.echo(f"removed {removed} cached result{'s' if removed != 1 else ''} from {folder}")
+            click.echo(f"removed {removed} cached result{'s' if removed != 1 else ''} from {human(str(folder))}")
         else:
-            click.echo(f"no cached results in {folder}")
+            click.echo(f"no cached results in {human(str(folder))}")
 
 
 # -- explain ---------------------------------------------------------------------------------------------
@@ -966,9 +967,7 @@ def explain(file: str | None, expressions: tuple[str, ...], dialect: str | None,
             return
         click.echo(f"; dialect: {found.name} ({found.title})")
         if context.origin not in ("option", "configuration", "directive"):
-            from gclint.reports.common import printable
-
-            click.echo(f"; read as {context.label()}: {printable(context.why())}")
+            click.echo(f"; read as {human(context.label())}: {human(context.why())}")
         last = None
         for e in items:
             e = e.masked()
@@ -1089,11 +1088,13 @@ def cura_script(folder: str | None, to_stdout: bool) -> None:
     except OSError as exc:
         _fail(f"{folder or '.'}: cannot write {cs.SCRIPT_NAME}: {exc.strerror or exc}")
         return
-    click.echo(f"wrote {path}")
+    from gclint.textsafe import human
+
+    click.echo(f"wrote {human(str(path))}")
     folders = cs.cura_script_folders()
     if folder is None:
         if folders:
-            click.echo("Copy it into Cura's scripts folder, e.g.: " + str(folders[0]))
+            click.echo("Copy it into Cura's scripts folder, e.g.: " + human(str(folders[0])))
         else:
             click.echo(
                 "Copy it into the 'scripts' folder of Cura's configuration folder (Help > Show Configuration Folder)."

@@ -15,6 +15,7 @@ from gclint.machine.state import MachineState
 from gclint.noqa import DIRECTIVE, INLINE_UNSUPPRESSIBLE, NOQA, selectors
 from gclint.options import Options
 from gclint.rules.base import Finding, Fix, Rule, Severity, matches
+from gclint.secrets import mask_quoted
 from gclint.syntax.nodes import Line
 
 # Findings stay bounded whatever the input (a 3 MB line of "X1" once gave a million findings and 1.1 GB):
@@ -105,6 +106,8 @@ class FileContext:
         if latest is not None and ((same_line and latest[4] >= PER_LINE) or len(self.findings) >= MAX_FINDINGS):
             self._count(latest, number, severity, fix)
             return
+        if isinstance(line, Line):  # once, for every output and the cache: a rule may quote a secret word
+            message = mask_quoted(message, line.raw)
         finding = Finding(
             path=self.path,
             line=number,

@@ -8,7 +8,9 @@ a file worse.
   tied to one line), and the file is checked again; what was taken back is reported.
 * The file is written only if its bytes are still the ones that were checked (a file that changed since
   it was read is not fixed), through a temporary file renamed over it (a failure leaves it untouched).
-* ``write=False`` (``--diff``) writes nothing and returns the diff instead.
+* ``write=False`` (``--diff``) writes nothing and returns the diff instead.  The diff is for people: its
+  lines are shown as the text format shows file text (``gclint.textsafe.human``: secrets masked, control
+  and invisible characters escaped), so it is not a patch to apply.
 """
 
 from __future__ import annotations
@@ -24,6 +26,7 @@ from gclint.io import AtomicWriter, OutputError
 from gclint.noqa import INLINE_UNSUPPRESSIBLE, with_noqa
 from gclint.rules.base import Edit, Finding, Fix
 from gclint.syntax.source import Source, SourceError
+from gclint.textsafe import human
 
 _ROUNDS = 4  # checks of the fixed text at most (each round takes back at least one fix)
 
@@ -223,7 +226,8 @@ def _diff(path: str, edits: dict[int, list[Edit]], context: int = 3) -> Iterator
             ranges[-1][1] = last
         else:
             ranges.append([first, last])
-    yield f"--- {path}\n+++ {path} (fixed)\n"
+    shown = human(path)
+    yield f"--- {shown}\n+++ {shown} (fixed)\n"
     index, lines = 0, []
     for number, raw, text, _ in _fixed_lines(Source.open(path), edits):
         first, last = ranges[index]
@@ -243,9 +247,9 @@ def _hunk(start: int, lines: list[tuple[str, str]]) -> Iterator[str]:
     yield f"@@ -{start},{len(lines)} +{start},{len(lines)} @@\n"
     for raw, text in lines:
         if raw == text:
-            yield f" {raw}\n"
+            yield f" {human(raw)}\n"
         else:
-            yield f"-{raw}\n+{text}\n"
+            yield f"-{human(raw)}\n+{human(text)}\n"
 
 
 def _edit(raw: str, edits: list[Edit]) -> str:

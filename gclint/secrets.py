@@ -15,8 +15,10 @@ All patterns are bounded (possessive where giving characters back could only fai
 literal, so that a 1 MB adversarial line is scanned in linear time; a cheap test of hint substrings skips
 the patterns for ordinary comments (``;TYPE:WALL-OUTER``).
 
-Besides comments, one G-code command carries a secret by design: RepRapFirmware ``M587 S"network"
-P"password"`` (and ``M589`` for the access point) stores a WiFi password; its ``P`` value is masked too.
+Besides comments, three G-code commands carry a secret by design: RepRapFirmware ``M587 S"network"
+P"password"`` (and ``M589`` for the access point) stores a WiFi password, ``M551 P"password"`` the
+machine's password.  Their ``P`` value is masked however it is written: ``"..."``, ``'...'``, unquoted
+(``M551 Psecret``) or with an unterminated quote (to the end of the line).
 """
 
 from __future__ import annotations
@@ -24,7 +26,7 @@ from __future__ import annotations
 import re
 from dataclasses import dataclass
 
-__all__ = ["Secret", "find", "mask", "has_secret", "MASK_CHAR"]
+__all__ = ["Secret", "find", "mask", "mask_quoted", "has_secret", "MASK_CHAR"]
 
 MASK_CHAR = "*"
 
@@ -54,8 +56,8 @@ _AFTER_KEYWORD = re.compile(
 _URL_CREDENTIALS = re.compile(r"(?i)\b[a-z][a-z0-9+.-]{0,20}://[^\s/@:;\"'<>]{1,256}:([^\s/@;\"'<>]{1,256})@")
 _BEARER = re.compile(r"(?i)\bbearer[ \t]{1,8}+([A-Za-z0-9._~+/=-]{8,512}+)")
 _TOKENS = re.compile(
-    r"\b(?:"
-    r"gh[pousr]_[A-Za-z0-9]{36}"  # GitHub tokens
+    r"(?<![A-Za-z0-9])(?:"  # ("_" may come before: "x_ghp_...")
+    r"gh[pousr]_[A-Za-z0-9]{30,255}+"  # GitHub tokens (36 characters today; GitHub may change the length)
     r"|github_pat_[A-Za-z0-9_]{22,255}+"
     r"|AKIA[0-9A-Z]{16}"  # AWS access key id
     r"|xox[baprs]-[A-Za-z0-9-]{10,200}+"  # Slack
@@ -67,10 +69,19 @@ _TOKENS = re.compile(
 # OctoPrint API keys are 32 upper-case hex digits (uuid4().hex.upper()).
 _HEX_KEY = re.compile(r"(?<![0-9A-Za-z_-])(?=[0-9A-F]{0,31}[A-F])(?=[0-9A-F]{0,31}[0-9])[0-9A-F]{32}(?![0-9A-Za-z_-])")
 _PRIVATE_KEY = re.compile(r"-----BEGIN [A-Z ]{0,40}PRIVATE KEY-----")
-# RepRapFirmware WiFi credentials: M587 S"ssid" P"password" (M589: access point).
-_WIFI = re.compile(
-    r'(?i)(?<![A-Za-z0-9])M0{0,4}58[79](?![\d.])[^;\r\n]{0,300}?(?<![A-Za-z0-9])P[ \t]{0,4}+"((?:[^"\r\n]|""){1,256}+)"'
+# Docker's config.json ("auths": {"registry": {"auth": "<base64 of user:password>"}}) and "auth = ..."
+# settings: "auth" alone as the key name ("printhost_authorization_type = key" is not one).
+_AUTH = re.compile(
+    r"""(?i)(?<![A-Za-z0-9])auth["']?[ \t]*+[=:][ \t]*+(?:"([^"\r\n]{1,2048}+)"|'([^'\r\n]{1,2048}+)'|([^\s,;"'}][^\s,;}]{0,2047}+))"""
 )
+# RepRapFirmware commands whose P is a password: M551 (the machine's), M587 (a WiFi network's), M589 (the
+# access point's).  Their words are read one by one (a P inside another word's quoted string is not the P).
+_PASSWORD_CODE = re.compile(r"(?i)(?<![A-Za-z0-9])M0{0,4}+(551|58[79])(?![\d.])")
+_PASSWORD_KIND = {"551": "password", "587": "WiFi password", "589": "WiFi password"}
+# One word: a letter, then a value "..." (RepRapFirmware writes a quote inside as ""), '...', either with
+# its closing quote missing (the value runs to the end of the line), or unquoted (to a blank or ";").
+_WORD = re.compile(r"""[ \t]*+([A-Za-z])[ \t]*+("(?:[^"\r\n]|"")*+"?|'[^'\r\n]*+'?|[^\s;"']*+)""")
+_WORDS_READ = 16
 
 _HEX_RUN = re.compile(r"[0-9A-F]{32}")
 
@@ -94,6 +105,8 @@ def _hinted(text: str) -> bool:
         or "sk-" in t
         or "eyj" in t
         or "58" in t
+        or "551" in t
+        or "auth" in t
     )
 
 
@@ -182,10 +195,13 @@ def find(text: str) -> list[Secret]:
             found.append(Secret(m.start(1), m.end(1), "bearer token"))
         for m in _TOKENS.finditer(text):
             found.append(Secret(m.start(), m.end(), "access token"))
-        if "58" in text:
-            for m in _WIFI.finditer(text):
-                if not _placeholder(m.group(1)):
-                    found.append(Secret(m.start(1), m.end(1), "WiFi password"))
+        if "auth" in text.lower():
+            for m in _AUTH.finditer(text):
+                group = m.lastindex or 3
+                if not _placeholder(m.group(group)):
+                    found.append(Secret(m.start(group), m.end(group), "credentials"))
+        if "58" in text or "551" in text:
+            found.extend(_command_passwords(text))
     if len(found) <= 1:
         return found
     found.sort(key=lambda s: (s.start, -s.end))
@@ -198,6 +214,28 @@ def find(text: str) -> list[Secret]:
             continue
         merged.append(s)
     return merged
+
+
+def _command_passwords(text: str) -> list[Secret]:
+    """The ``P`` values of ``M551``/``M587``/``M589`` in ``text`` (in a comment too: a copy is as secret)."""
+    found = []
+    pos = 0
+    while (m := _PASSWORD_CODE.search(text, pos)) is not None:
+        pos = m.end()  # (the next code is looked for after these words: "M551 P\"M551 P\"..." is linear)
+        for _ in range(_WORDS_READ):
+            word = _WORD.match(text, pos)
+            if word is None or word.end() == pos:
+                break  # a comment, a checksum, the end of the line
+            pos = word.end()
+            if word.group(1) not in "Pp":
+                continue
+            value, start = word.group(2), word.start(2)
+            if value[:1] in ("'", '"'):
+                closed = len(value) > 1 and value[-1] == value[0]
+                value, start = value[1 : -1 if closed else None], start + 1
+            if value and not _placeholder(value):  # (every P: a repeated one may be the one used)
+                found.append(Secret(start, start + len(value), _PASSWORD_KIND[m.group(1)]))
+    return found
 
 
 def has_secret(text: str) -> bool:
@@ -221,3 +259,13 @@ def mask(text: str) -> str:
         pos = s.end
     parts.append(text[pos:])
     return "".join(parts)
+
+
+def mask_quoted(text: str, line: str) -> str:
+    """``text``, a message about ``line``, with its own secrets masked and every secret value of ``line``
+    it quotes: a message may quote a word without what makes it a secret ("P"pass1234" is repeated in
+    M587" has no M587 before the P)."""
+    values = sorted({line[s.start : s.end] for s in find(line)}, key=len, reverse=True) if line else ()
+    for value in values:
+        text = text.replace(value, MASK_CHAR * len(value))
+    return mask(text)

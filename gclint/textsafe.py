@@ -5,8 +5,9 @@ bidirectional overrides, characters XML cannot carry, undecodable bytes kept as 
 
 * ``clean``: undecodable bytes as ``\\xNN`` (any encoder can write the text);
 * ``printable``: also control characters except tab and line feed (XML, multi-line fields);
-* ``human``: secrets masked and every control, line break and bidirectional character escaped, for a
-  line a person reads on a terminal (text, full, grouped, github, explain, error lines, reports);
+* ``human``: secrets masked and every control, line break and invisible format character (Unicode
+  category Cf: bidirectional overrides, soft hyphen, zero-width spaces) escaped, for a line a person reads
+  (text, full, grouped, github, html, explain, the --diff, error lines and notes, reports);
 * ``json_safe``: encoded JSON with the characters a terminal acts on written as ``\\uNNNN``.
 
 ``human`` is idempotent, so text escaped once (an error message) can go through it again.
@@ -42,21 +43,28 @@ def printable(text: str) -> str:
     return text
 
 
-# For text shown on a terminal as one line: the controls above plus line breaks (a file name with a newline
-# would forge a line of its own) and the invisible bidirectional and line-separator characters (they
-# reorder or split what a terminal or a browser shows).  Tabs stay.
-_HUMAN = re.compile("[\x00-\x08\x0a-\x1f\x7f-\x9f\u061c\u200e\u200f\u2028-\u202e\u2066-\u2069\ufffe\uffff]")
-_HUMAN_LINES = re.compile(
-    "[\x00-\x08\x0b\x0c\x0e-\x1f\x7f-\x9f\u061c\u200e\u200f\u2028-\u202e\u2066-\u2069\ufffe\uffff]"
+# The invisible format characters (Unicode category Cf, as of Unicode 15.1): bidirectional overrides and
+# isolates (they reorder what a terminal or a browser shows), the soft hyphen, zero-width spaces and joiners,
+# the BOM, tag characters (they hide text).  Escaped in every human output, as the parser's messages
+# (SX001, Python's repr) already do.  A test checks this against unicodedata.
+_FORMAT_CHARACTERS = (
+    "\u00ad\u0600-\u0605\u061c\u06dd\u070f\u0890\u0891\u08e2\u180e\u200b-\u200f\u202a-\u202e\u2060-\u2064"
+    "\u2066-\u206f\ufeff\ufff9-\ufffb\U000110bd\U000110cd\U00013430-\U0001343f\U0001bca0-\U0001bca3"
+    "\U0001d173-\U0001d17a\U000e0001\U000e0020-\U000e007f"
 )
+# For text shown on a terminal as one line: the controls above plus line breaks (a file name with a newline
+# would forge a line of its own), the line and paragraph separators (they split what a terminal or a browser
+# shows) and the format characters.  Tabs stay.
+_HUMAN = re.compile(f"[\x00-\x08\x0a-\x1f\x7f-\x9f\u2028\u2029{_FORMAT_CHARACTERS}\ufffe\uffff]")
+_HUMAN_LINES = re.compile(f"[\x00-\x08\x0b\x0c\x0e-\x1f\x7f-\x9f\u2028\u2029{_FORMAT_CHARACTERS}\ufffe\uffff]")
 # In JSON text (a machine format) such characters are written as \u escapes: the same data, nothing raw.
-_JSON_UNSAFE = re.compile("[\x7f-\x9f\u061c\u200e\u200f\u2028-\u202e\u2066-\u2069]")
+_JSON_UNSAFE = re.compile(f"[\x7f-\x9f\u2028\u2029{_FORMAT_CHARACTERS}]")
 
 
 def human(text: str, *, keep_line_breaks: bool = False) -> str:
-    """``text`` for a line of human output (text, full, grouped, github, explain, error lines, the
-    postprocess report): secrets masked, undecodable bytes and every control character shown as
-    ``\\xNN``/``\\uNNNN``, never raw.  ``keep_line_breaks`` for a format that encodes them itself
+    """``text`` for a line of human output (text, full, grouped, github, html, explain, --diff, error
+    lines, the postprocess report): secrets masked, undecodable bytes, every control character and every
+    invisible format character shown as ``\\xNN``/``\\uNNNN``, never raw.  ``keep_line_breaks`` for a format that encodes them itself
     (GitHub workflow commands write them as ``%0A``)."""
     text = clean(text)
     pattern = _HUMAN_LINES if keep_line_breaks else _HUMAN
@@ -67,11 +75,19 @@ def human(text: str, *, keep_line_breaks: bool = False) -> str:
 
 def _escape(m: re.Match) -> str:
     code = ord(m.group())
-    return f"\\x{code:02x}" if code < 0x100 else f"\\u{code:04x}"
+    return f"\\x{code:02x}" if code < 0x100 else f"\\u{code:04x}" if code < 0x10000 else f"\\U{code:08x}"
+
+
+def _json_escape(m: re.Match) -> str:
+    code = ord(m.group())
+    if code < 0x10000:
+        return f"\\u{code:04x}"
+    code -= 0x10000  # JSON writes a character beyond the BMP as a surrogate pair
+    return f"\\u{0xD800 + (code >> 10):04x}\\u{0xDC00 + (code & 0x3FF):04x}"
 
 
 def json_safe(text: str) -> str:
     """Encoded JSON with the characters a terminal would act on written as ``\\uNNNN`` (still valid JSON)."""
     if _JSON_UNSAFE.search(text):
-        text = _JSON_UNSAFE.sub(lambda m: f"\\u{ord(m.group()):04x}", text)
+        text = _JSON_UNSAFE.sub(_json_escape, text)
     return text

@@ -3,17 +3,22 @@ Hyrel addresses, declared heads, axes and model-specific codes (for the firmware
 
 One pass over the head's lines with the real parser (parses are cached by text, so the check that
 follows gets these lines for free).  Plain moves (``G1 X.. Y.. E..``) carry no clue and are skipped.
+
+What was seen is kept as a short text for the user (``M587 S"home" P"***" at line 2``), the evidence every
+output and the cache show: its secrets are masked here, where it is made (``_seen``), with the masking
+the findings use (gclint.secrets), so no output has to remember to.
 """
 
 from __future__ import annotations
 
 from dataclasses import dataclass, field
 
+from gclint import secrets
 from gclint.dialects import Dialect, all_dialects, get
 from gclint.dialects.base import Clue
 from gclint.firmware import all_firmware
 from gclint.syntax.fastpath import PLAIN_MOVE
-from gclint.syntax.nodes import GCODE, TEXT, Command
+from gclint.syntax.nodes import GCODE, TEXT, Command, Word
 from gclint.syntax.parse import parse_line
 
 _LINE_LIMIT = 2000  # longer lines are not read for clues (they are reported by the check itself)
@@ -109,57 +114,57 @@ def _read_lines(reading: ContentReading, lines) -> None:
             if reading.e_amounts is None and not reading.m229_e1 and move.group(1) == "1":
                 e = move.group(6)
                 if e is not None and "." in e and e.strip("0").strip(".").strip("-+") not in ("", "1"):
-                    reading.e_amounts = Seen(number, raw.strip()[:40])
+                    reading.e_amounts = Seen(number, secrets.mask(raw.strip())[:_SHOWN])
             continue
         if raw in done:
             continue  # a line read before says nothing new (only where each clue is first seen is kept)
         done.add(raw)
         for cmd in parse_line(raw).commands:
-            _read_command(reading, cmd, number)
+            _read_command(reading, cmd, number, raw)
 
 
-def _read_command(reading: ContentReading, cmd: Command, number: int) -> None:
+def _read_command(reading: ContentReading, cmd: Command, number: int, raw: str) -> None:
     code = cmd.code
     seen = None
     for candidate, clue in _BY_CODE.get(code, ()) if code is not None else ():  # type: ignore[arg-type]
-        seen = _match(reading, candidate, clue, cmd, number, seen)
+        seen = _match(reading, candidate, clue, cmd, number, raw, seen)
     for candidate, clue in _GENERAL:
-        seen = _match(reading, candidate, clue, cmd, number, seen)
+        seen = _match(reading, candidate, clue, cmd, number, raw, seen)
     for firmware, clue in _FLAVOR_BY_CODE.get(code, ()) if code is not None else ():  # type: ignore[arg-type]
-        seen = _match(reading, firmware, clue, cmd, number, seen, reading.flavor_clues)
+        seen = _match(reading, firmware, clue, cmd, number, raw, seen, reading.flavor_clues)
     for firmware, clue in _FLAVOR_GENERAL:
-        seen = _match(reading, firmware, clue, cmd, number, seen, reading.flavor_clues)
+        seen = _match(reading, firmware, clue, cmd, number, raw, seen, reading.flavor_clues)
     if code is None or cmd.kind not in (GCODE, TEXT):
         return
     params = cmd.params
     letter = code[0]
     if letter in "GM" and code not in reading.codes:
-        reading.codes[code] = seen or _seen(cmd, number)
+        reading.codes[code] = seen or _seen(cmd, number, raw)
     if letter == "T":
         tail = code[1:]
         if tail.isdigit() and int(tail) not in reading.tool_commands:
-            reading.tool_commands[int(tail)] = _seen(cmd, number)
+            reading.tool_commands[int(tail)] = _seen(cmd, number, raw)
         return
     if code in _T_VARIABLE_CODES:
-        _address(reading, cmd, "T", number)
+        _address(reading, cmd, "T", number, raw)
         if code in ("M703", "M704"):
-            _address(reading, cmd, "S", number)
+            _address(reading, cmd, "S", number, raw)
     if code == "M6" and "O" in params:
         head = _whole(params.get("T"))
         if head is not None and head not in reading.declarations:
-            reading.declarations[head] = _seen(cmd, number)
+            reading.declarations[head] = _seen(cmd, number, raw)
     elif code in ("M109", "M190", "M191") and _whole(params.get("W")) == 0 and reading.waits_w0 is None:
-        reading.waits_w0 = _seen(cmd, number)
+        reading.waits_w0 = _seen(cmd, number, raw)
     elif code == "M229" and _whole(params.get("E")) == 1:
         reading.m229_e1 = True
     elif code == "M116" and reading.m116 is None:
-        reading.m116 = _seen(cmd, number)
+        reading.m116 = _seen(cmd, number, raw)
     elif code in ("M253", "M254") and reading.lathe is None:
-        reading.lathe = _seen(cmd, number)
+        reading.lathe = _seen(cmd, number, raw)
     elif code in _MODEL_AUX and code not in reading.aux_codes:
-        reading.aux_codes[code] = _seen(cmd, number)
+        reading.aux_codes[code] = _seen(cmd, number, raw)
     if code in _AXIS_CODES and reading.rotary_axes is None and ("A" in params or "B" in params):
-        reading.rotary_axes = _seen(cmd, number)
+        reading.rotary_axes = _seen(cmd, number, raw)
 
 
 def _match(
@@ -168,6 +173,7 @@ def _match(
     clue: Clue,
     cmd: Command,
     number: int,
+    raw: str,
     seen: Seen | None,
     into: dict[str, dict[Clue, Seen]] | None = None,
 ) -> Seen | None:
@@ -179,18 +185,18 @@ def _match(
     except (TypeError, ValueError, AttributeError):  # a clue never stops the reading
         matched = False
     if matched:
-        seen = seen or _seen(cmd, number)
+        seen = seen or _seen(cmd, number, raw)
         found[clue] = seen
     return seen
 
 
-def _address(reading: ContentReading, cmd: Command, letter: str, number: int) -> None:
+def _address(reading: ContentReading, cmd: Command, letter: str, number: int, raw: str) -> None:
     value = _whole(cmd.params.get(letter))
     if value is None:
         return
     key = (cmd.code or "", letter, value)
     if key not in reading.addresses:
-        reading.addresses[key] = _seen(cmd, number)
+        reading.addresses[key] = _seen(cmd, number, raw)
 
 
 def _whole(text: str | None) -> int | None:
@@ -203,7 +209,30 @@ def _whole(text: str | None) -> int | None:
     return int(value) if value == int(value) else None
 
 
-def _seen(cmd: Command, number: int) -> Seen:
-    params = " ".join(f"{k}{v if v is not None else ''}" for k, v in list(cmd.params.items())[:4])
+_SHOWN = 40  # characters of a command shown as evidence
+
+
+def _seen(cmd: Command, number: int, raw: str) -> Seen:
+    """``cmd`` (on line ``raw``) as evidence: its code and first words, secrets masked.
+
+    The words are rendered from the parse (``M109 T0 S215``), so a secret is masked on the line first and
+    each word that touches it is shown from the masked line: ``M551 Phunter2`` parses as ``P``, ``H``,
+    ``U``... and would otherwise show the password's letters.  Masked before it is cut short (a cut
+    ``P"pass`` would no longer look like a password)."""
+    spans = secrets.find(raw)
+    masked = secrets.mask(raw) if spans else raw
+    parts = []
+    for letter, value in list(cmd.params.items())[:4]:
+        word = cmd.param(letter) if spans else None
+        if word is not None and _touches(word, spans):
+            parts.append(masked[word.column - 1 : word.end_column - 1].replace(" ", "").replace("\t", ""))
+        else:
+            parts.append(f"{letter}{value if value is not None else ''}")
+    params = " ".join(parts)
     text = f"{cmd.code} {params}".strip() if cmd.kind in (GCODE, TEXT) else (cmd.code or cmd.kind)
-    return Seen(number, text[:40])
+    return Seen(number, secrets.mask(text)[:_SHOWN])
+
+
+def _touches(word: Word, spans: list[secrets.Secret]) -> bool:
+    start, end = word.column - 1, word.end_column - 1
+    return any(s.start < end and start < s.end for s in spans)

@@ -4,6 +4,8 @@ from __future__ import annotations
 
 from dataclasses import asdict, dataclass, fields
 
+from gclint.secrets import mask
+
 # Where the dialect came from, strongest first.
 OPTION = "option"  # --dialect / --printer on the command line
 CONFIGURATION = "configuration"  # gclint.toml / pyproject.toml
@@ -29,6 +31,11 @@ class Context:
     ``version_evidence`` is what the file's own Hyrel addresses say (4, 5, or None when they say
     nothing or are even), whatever version the file is checked as: HY008 reports v4 numbers in a file
     checked as v5 only when the file's evidence says v4.
+
+    The evidence texts quote the file (``M587 S"home" P"..." at line 2``), and every output shows them
+    (``why()``, ``to_dict()``: notes, SARIF, JUnit, HTML, explain, the cache): their secrets are masked
+    here, once, as the context is made (gclint.context.content masks what it quotes before cutting it
+    short; this catches the rest: header lines, a context built by ``from_dict``).
     """
 
     dialect: str
@@ -46,6 +53,18 @@ class Context:
     printer_candidates: tuple[str, ...] = ()  # every model the job fits as well (the first is ``printer``)
     flavor: str | None = None  # the firmware a Marlin-flavour file was written for (gclint.firmware)
     flavor_reasons: tuple[str, ...] = ()
+
+    def __post_init__(self) -> None:
+        for name in _EVIDENCE:
+            value = getattr(self, name)
+            if isinstance(value, str):
+                shown = mask(value)
+            elif isinstance(value, tuple):
+                shown = tuple(mask(text) if isinstance(text, str) else text for text in value)
+            else:
+                continue  # (not evidence text: from_dict's caller rejects it)
+            if shown != value:
+                object.__setattr__(self, name, shown)
 
     @property
     def printer_assumed(self) -> bool:
@@ -123,3 +142,7 @@ class Context:
         known = {f.name for f in fields(cls)}
         values = {k: (tuple(v) if isinstance(v, list) else v) for k, v in data.items() if k in known}
         return cls(**values)
+
+
+# The fields that quote the file (what the user is told as evidence).
+_EVIDENCE = ("reasons", "conflict", "firmware_reasons", "printer_reasons", "flavor_reasons")

@@ -12,6 +12,8 @@ from dataclasses import dataclass, field, replace
 from functools import cache
 from typing import Any
 
+from gclint.secrets import mask
+
 
 @dataclass(frozen=True)
 class Param:
@@ -224,7 +226,8 @@ class HeadScan:
         return self.found(pattern) is not None
 
     def found(self, pattern: str) -> str | None:
-        """The text ``pattern`` matches first in the head (stripped, at most 80 characters), or None."""
+        """The text ``pattern`` matches first in the head (stripped, at most 80 characters, secrets masked:
+        it is shown as evidence), or None."""
         if pattern in self._seen:
             return self._seen[pattern]
         compiled, needed, ignore_case = _plan(pattern)
@@ -236,7 +239,7 @@ class HeadScan:
                 self._seen[pattern] = None
                 return None
         m = compiled.search(self.head)
-        found = self._seen[pattern] = None if m is None else (m.group(0).strip()[:80] or m.group(0)[:80])
+        found = self._seen[pattern] = None if m is None else (mask(m.group(0).strip())[:80] or m.group(0)[:80])
         return found
 
 

@@ -1,7 +1,9 @@
 """``--format html``: one self-contained page (no external files, no network) from a jinja2 template.
 
 For each file: a summary (dialect and why, lines, counts), the findings with their source lines (secrets
-masked), and an inline SVG plot of the XY toolpath per head with the flagged lines marked.  The
+masked), and an inline SVG plot of the XY toolpath per head with the flagged lines marked.  A page is for
+people: file text on it is shown as on a terminal (``human``: secrets masked, control and invisible format
+characters escaped).  The
 template is rendered with autoescaping on, so file text is always text, never markup; the page's only
 script carries a per-report nonce that its Content-Security-Policy requires.
 """
@@ -15,7 +17,7 @@ from datetime import UTC, datetime
 from typing import TextIO
 
 from gclint.engine import FileResult
-from gclint.reports.common import clean, codes_in, message, printable, rule_docs, source_line, totals
+from gclint.reports.common import codes_in, human, message, rule_docs, source_line, totals
 from gclint.reports.toolpath import Toolpath, read_toolpath
 
 PLOT_WIDTH = 640
@@ -145,6 +147,7 @@ class FileView:
     dialect_reason: str
     read_as: str
     weak: bool
+    error: str | None = None  # why the file could not be checked
     omitted: int = 0  # findings not listed on the page (see HTML_FINDINGS)
     summary: list[str] = field(default_factory=list)  # the job summary (gclint summary), one fact a line
 
@@ -168,7 +171,7 @@ def _file_view(index: int, result: FileResult, plot_budget: int) -> FileView:
                 "name": f.name,
                 "severity": f.severity.label,
                 "message": message(f),
-                "fix": printable(f.fix.message) if f.fix is not None else None,
+                "fix": human(f.fix.message) if f.fix is not None else None,
                 "fix_safe": f.fix.safe if f.fix is not None else None,
                 # the line in three parts so the template can highlight the columns the finding covers
                 "before": line[:start] if line is not None else None,
@@ -180,20 +183,21 @@ def _file_view(index: int, result: FileResult, plot_budget: int) -> FileView:
     plot_error = None
     if result.error is None:
         toolpath = read_toolpath(result.path, result.dialect, {f.line for f in result.findings}, budget=plot_budget)
-        plot_error = clean(toolpath.error) if toolpath.error else None
+        plot_error = human(toolpath.error) if toolpath.error else None
         plot = build_plot(toolpath, result) if toolpath.error is None else None
         if plot is None and plot_error is None:
             plot_error = "no XY moves in this file"
     return FileView(
-        path=printable(result.path),
+        path=human(result.path),
         anchor=f"file-{index}",
         result=result,
         counts=result.counts(),
         findings=findings,
         plot=plot,
         plot_error=plot_error,
-        dialect_reason=printable(result.dialect_reason),
-        read_as=printable(result.read_as),
+        dialect_reason=human(result.dialect_reason),
+        read_as=human(result.read_as),
+        error=human(result.error) if result.error is not None else None,
         weak=result.context is not None and result.context.weak,
         omitted=max(0, len(result.findings) - HTML_FINDINGS),
         summary=_summary(result),
@@ -213,7 +217,7 @@ def _summary(result: FileResult) -> list[str]:
         facts = render_summary(summarize(source, result.context)).splitlines()[1:]
     except (OSError, SourceError, ValueError):
         return []
-    return [printable(line.strip()) for line in facts]
+    return [human(line.strip()) for line in facts]
 
 
 def render(results: list[FileResult], ctx, plot_budget: int = 6000) -> str:

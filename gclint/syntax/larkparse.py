@@ -14,6 +14,7 @@ from pathlib import Path
 from lark import Lark, Token, Tree
 from lark.exceptions import LarkError, UnexpectedCharacters, UnexpectedInput
 
+from gclint.secrets import mask
 from gclint.syntax.build import PARSE_ERROR, Assignment, TextCommand, assemble
 from gclint.syntax.nodes import (
     EXPRESSION,
@@ -84,14 +85,17 @@ def _error_line(raw: str, exc: Exception) -> ParsedLine:
     column = getattr(exc, "column", None)
     if not isinstance(column, int) or column < 1:
         column = 1
+    # The message quotes the line, cut short: quoted from the masked line, as a cut secret ("'x' P'hunte")
+    # would no longer be recognised as one by the reports (mask keeps lengths, so columns stay).
+    shown_line = mask(raw)
     if isinstance(exc, UnexpectedCharacters):
-        ch = raw[column - 1 : column]
+        ch = shown_line[column - 1 : column]
         shown = repr(ch) if ch.isprintable() else f"character {ch.encode('utf-8', 'surrogateescape')!r}"
         message = f"unexpected {shown}"
     elif column > len(raw):
         message = "unexpected end of line"
     else:
-        message = f"unexpected {raw[column - 1 : column + 9]!r}"
+        message = f"unexpected {shown_line[column - 1 : column + 9]!r}"
     return ParsedLine(
         extra=(Unparsed(raw, 1),) if raw else (),
         issues=(Issue(PARSE_ERROR, column, f"cannot parse line: {message}"),),
