@@ -297,7 +297,10 @@ def check(
 
     walk_notes: list[str] = []
     walked: set[str] = set()
-    from gclint.excludes import Excluder
+    from gclint.excludes import Excluder, LeftOut
+
+    left_out: list[LeftOut] = []
+    walk_roots: dict[str, str] = {}  # file found in a walk -> the real path of the folder walked
 
     excluder = Excluder(
         exclude=_split(exclude) or None,
@@ -308,18 +311,18 @@ def check(
     )
     if stdin_filename and not paths:
         paths = ("-",)  # --stdin-filename alone reads standard input (ruff)
-    files, problems = runner.collect(paths or (".",), walk_notes, excluder, walked)
+    files, problems = runner.collect(paths or (".",), walk_notes, excluder, walked, left_out, walk_roots)
     if force_exclude:  # (pre-commit passes every staged .nc and .g by name: one that is not G-code is skipped)
         walked.update(f for f in files if f != "-")
-    if "-" in files and stdin_filename and excluder.reason(stdin_filename, False, named=True) is not None:
+    if "-" in files and stdin_filename and (why := excluder.excluded(stdin_filename, False, named=True)):
         files = [f for f in files if f != "-"]  # --force-exclude: the file it stands for is excluded
+        left_out.append(LeftOut(stdin_filename, why))
         if fix:
             sys.stdout.buffer.write(sys.stdin.buffer.read())  # --fix -: the text goes through unchanged
             sys.exit(0)
     for note in walk_notes:
         _note(note)
-    if not files and not problems:
-        _note("no files left to check (all excluded)")
+    _left_out_notes(left_out, verbose, nothing_left=not files and not problems)
     if output not in (None, "-") and (checked := _same_file(output, files)) is not None:
         _fail(f"{output}: is {checked}, one of the files to check: the report would overwrite it")
     jobs = _cap_jobs(jobs)
@@ -381,6 +384,11 @@ def check(
     finally:
         if bar is not None:
             bar.close()
+    if fix or show_diff or add_noqa:  # never through a link put in a walked folder since it was walked
+        for i, r in enumerate(results):
+            if (target := runner.outside_walk(r.path, walk_roots)) is not None:
+                error = f"{r.path}: now a link to {target}, outside the folder: not fixed"
+                results[i] = FileResult(r.path, error=error)
     if add_noqa:
         sys.exit(_add_noqa(problems + results))
     fixed = None
@@ -540,6 +548,20 @@ def _cache_where(files: list[str], cache_dir: str | None, no_cache: bool) -> str
 _QUIET: list[bool] = []  # check --quiet: notes are not shown (errors still are)
 
 
+def _left_out_notes(left_out: list, verbose: bool, *, nothing_left: bool) -> None:
+    """What a walk or --force-exclude left out: one line (how many, why, the first few), each with -v."""
+    from gclint.excludes import summary
+
+    if verbose:
+        for item in left_out:
+            _note(item.describe())
+    said = summary(left_out)
+    if nothing_left:
+        _note(f"no files left to check (all excluded){': ' + said if said else ''}")
+    elif said:
+        _note(said if verbose else f"{said}; -v lists them")
+
+
 def _note(text: str, *, always: bool = False) -> None:
     """A note on stderr (``--quiet`` drops it, but never one that says a security rule is switched off)."""
     if _QUIET and not always:
@@ -625,7 +647,12 @@ def summary(
         overrides["dialect"] = _check_dialect(dialect)
     if printer is not None:
         overrides["printer"] = _check_printer(printer)
-    files, problems = runner.collect(paths or (".",))
+    walk_notes: list[str] = []
+    left_out: list = []
+    files, problems = runner.collect(paths or (".",), walk_notes, left_out=left_out)
+    for note in walk_notes:
+        _note(note)
+    _left_out_notes(left_out, False, nothing_left=not files and not problems)
     for r in problems:
         _error(r.error or "")
     out = []
