@@ -55,6 +55,7 @@ from gclint.rules.base import RuleError, Severity
 )
 @click.option(
     "--format",
+    "--output-format",  # ruff's spelling
     "-f",
     "fmt",
     default="text",
