@@ -338,6 +338,23 @@ def test_one_hyrel_only_code_beats_the_extension(line: str, extension: str) -> N
     assert context.dialect == "hyrel", context.why()
 
 
+PLAIN_HEATING_JOB = "G21\nG90\nG28 X0 Y0\nM104 T0 S215\nM109 T0 S215\nT0\nG1 X50 Y50 E1 F1800\nG1 X60 Y50 E2\nM107\nM30\n"
+
+
+@pytest.mark.parametrize("extension", [".nc", ".cnc", ".tap", ".ngc"])
+def test_content_that_rules_out_the_extensions_dialect_rules_out_the_extension(
+    tmp_path: Path, extension: str
+) -> None:
+    """Nothing in this job is one dialect's alone, but Carvera has no M104 and Machinekit moves carry no E:
+    the CNC extensions do not make it a CNC program (it was checked as Machinekit, with two false errors)."""
+    job = tmp_path / ("job" + extension)
+    job.write_text(PLAIN_HEATING_JOB)
+    proc = run_cli("check", str(job))
+    assert proc.returncode == 0, proc.stdout
+    assert b"Checked as hyrel" in proc.stdout
+    assert b"not read as" in proc.stderr  # the note says why the extension did not decide
+
+
 def test_the_hyrel_mistakes_do_not_outvote_hyrel_only_content() -> None:
     job = "M6 T0 O1 X0 Y0 Z0\nM229 E1 D1\nG21\nG90\nG28\nT0\nM109 R215\nM106 S255\nG1 X1 Y1 F100\nG1 X2 E1.5\nM30\n"
     result = check(job, "conflict.gcode")

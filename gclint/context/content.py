@@ -53,6 +53,7 @@ class ContentReading:
     lathe: Seen | None = None  # M253/M254
     aux_codes: dict[str, Seen] = field(default_factory=dict)  # model-specific aux ports (M670-M689)
     e_amounts: Seen | None = None  # a working move with a fractional E before any M229 E1
+    e_moves: Seen | None = None  # a move with an E word (Machinekit has none: gclint.dialects Dialect.move_letters)
     m229_e1: bool = False
     lines_read: set[str] = field(default_factory=set)  # the lines parsed (a repeated line is read once)
 
@@ -68,6 +69,7 @@ _HYREL = get("hyrel")
 _T_VARIABLE_CODES = frozenset(c for c, spec in _HYREL.codes.items() if spec.params and "T" in spec.params)
 # Codes whose A and B are axes on Hyrel (Gcode page: G0/G1 note on axes; G28, G92, M203, G54-G59, M6; G38)
 _AXIS_CODES = frozenset({"G0", "G1", "G2", "G3", "G28", "G92", "M203", "M6", "G38", *(f"G{n}" for n in range(54, 60))})
+_MOVES = frozenset({"G0", "G1", "G2", "G3"})
 _MODEL_AUX = frozenset(f"M{n}" for n in range(670, 690))
 
 
@@ -111,6 +113,8 @@ def _read_lines(reading: ContentReading, lines) -> None:
             continue
         move = plain(raw)
         if move is not None:
+            if reading.e_moves is None and move.group(6) is not None:
+                reading.e_moves = Seen(number, secrets.mask(raw.strip())[:_SHOWN])
             if reading.e_amounts is None and not reading.m229_e1 and move.group(1) == "1":
                 e = move.group(6)
                 if e is not None and "." in e and e.strip("0").strip(".").strip("-+") not in ("", "1"):
@@ -163,6 +167,8 @@ def _read_command(reading: ContentReading, cmd: Command, number: int, raw: str) 
         reading.lathe = _seen(cmd, number, raw)
     elif code in _MODEL_AUX and code not in reading.aux_codes:
         reading.aux_codes[code] = _seen(cmd, number, raw)
+    if code in _MOVES and "E" in params and reading.e_moves is None:
+        reading.e_moves = _seen(cmd, number, raw)
     if code in _AXIS_CODES and reading.rotary_axes is None and ("A" in params or "B" in params):
         reading.rotary_axes = _seen(cmd, number, raw)
 

@@ -254,6 +254,22 @@ class _Points:
                                 (1, seen.line, f"{seen}: {code} is not a {' or '.join(missing)} code")
                             )
 
+        self.reading, self.table = reading, table
+
+    def misfit(self, name: str) -> str | None:
+        """What in the content ``name`` would never have: a code its table lacks and another dialect's has,
+        or a word its moves do not carry (Machinekit's E); None when it fits."""
+        dialect = self.table[name]
+        for code, seen in self.reading.codes.items():
+            if not (dialect.knows(code) or _has(dialect, code)) and any(
+                _has(other, code) for other in self.table.values()
+            ):
+                return f"{seen}: {code} is not a {name} code"
+        moves = self.reading.e_moves
+        if moves is not None and "E" in dialect.not_move_words:
+            return f"{moves}: E is not a word of {name} moves"
+        return None
+
     @staticmethod
     def score(evidence: Evidence) -> int:
         return sum(weight for weight, _, _ in evidence)
@@ -315,13 +331,19 @@ def _weigh(
         strength = STRONG if best >= _STRONG and lead >= _LEAD and not conflict else WEAK
     else:
         pool = top if best >= _LEANS else groups  # a tie: the extension may break it, among the tied only
-        by_extension = [
+        named = [
             n
             for n in names
             if group_of[n] in pool
             and dialects.get(n).detection.has_extension(path)
             and not path.lower().endswith(_GENERIC)
         ]
+        # content that rules a dialect out rules out its extension too (a Hyrel job saved as .nc)
+        by_extension = [n for n in named if points.misfit(n) is None]
+        if named and not by_extension:
+            conflict = "; ".join(
+                f"the extension {_extension(path)} is {n}'s, but {points.misfit(n)}: not read as {n}" for n in named
+            )
         if len(by_extension) == 1:
             group, origin = group_of[by_extension[0]], EXTENSION
             reasons = (f"the extension {_extension(path)}",) + _top_reasons(points.group[group], 2)
@@ -329,7 +351,7 @@ def _weigh(
             group, origin = ("hyrel" if "hyrel" in top else top[0]), CONTENT
             reasons = _top_reasons(points.group[group])
         else:
-            return "hyrel", DEFAULT, (), NONE, ""
+            return "hyrel", DEFAULT, (), NONE, conflict
         strength = WEAK
     return _member(points, group, header, header_texts, path, origin, reasons, strength, conflict)
 

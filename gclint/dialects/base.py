@@ -327,7 +327,8 @@ class Dialect:
     ``extended_commands`` accepts Klipper-style ``NAME KEY=VALUE`` commands; ``meta_commands`` accepts
     RepRapFirmware's ``if``/``var``/``echo``...; ``owords`` accepts LinuxCNC O-words and ``#`` parameters;
     ``words`` are command words the dialect accepts without having those (Smoothieware's console ``echo``
-    on Carvera), upper case.
+    on Carvera), upper case.  ``not_move_words`` are letters a move never carries in this dialect
+    (Machinekit: E, its extruder is the A axis).
     ``open_codes`` is a predicate for codes the dialect accepts without listing them (user M-codes,
     macros).  ``unknown_severity`` is how serious an unknown code is on this firmware.
     """
@@ -342,6 +343,7 @@ class Dialect:
     meta_commands: bool = False
     owords: bool = False
     words: frozenset[str] = frozenset()
+    not_move_words: str = ""
     open_codes: Callable[[str], bool] | None = None
     unknown_severity: str = "warning"
     description: str = ""

@@ -214,6 +214,7 @@ MACHINEKIT = Dialect(
         clues=MACHINEKIT_CLUES,
     ),
     owords=True,
+    not_move_words="E",  # research/dialects.md 1.1 (G1, Machinekit: A = extruder) and 1.8 [MK]
     open_codes=_open,
     unknown_severity="error",  # the LinuxCNC interpreter stops on an unknown code
     description="Machinekit's FDM configuration of the LinuxCNC interpreter; also plain LinuxCNC programs.",
