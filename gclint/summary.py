@@ -61,6 +61,7 @@ class JobSummary:
     feed_range: tuple[float, float] | None = None  # mm/min, working moves
     printing_mm: float = 0.0
     travel_mm: float = 0.0
+    unmeasured_moves: int = 0  # moves from (or to) a position the state does not know: not in the metres
     time_s: float = 0.0
     error: str | None = None
 
@@ -113,11 +114,15 @@ def summarize(source: Source, context: Context) -> JobSummary:
                 if code not in ("G0", "G1", "G2", "G3", None) or cmd.kind not in ("gcode", "implicit"):
                     continue
                 after = _where(st)
+                # None: the move starts (or ends) where the state does not know; it is still a move, and
+                # still prints, with its known end in the extent; only its length (and time) is unknown
                 length = _length(before, after, cmd)
                 if length is None:
-                    continue
+                    summary.unmeasured_moves += 1
                 feed = st.feed
-                working = code != "G0"
+                # Marlin and RRF: G0 is G1 ("E allowed (extrudes)", research/dialects.md), so a G0 that
+                # extrudes prints (slicers' purge lines); elsewhere G0 is a rapid, non-working move
+                working = code != "G0" or dialect.family == "reprap"
                 printing = working and _printed(e_before, st.e_position, cmd, interpreter)
                 name = _head_name(st.tool, dialect.family)
                 # filament: the net E of every move (a retraction takes back what the unretraction gives)
@@ -126,7 +131,8 @@ def summarize(source: Source, context: Context) -> JobSummary:
                     heads.setdefault(name, HeadUse(name)).extruded_mm += st.e_position - e_before
                 if printing:
                     heads.setdefault(name, HeadUse(name)).printing_moves += 1
-                    summary.printing_mm += length
+                    if length is not None:
+                        summary.printing_mm += length
                     z = after[2]
                     if z is not None and (last_z is None or abs(z - last_z) > 1e-6):
                         if not z_layers or z > z_layers[-1] + 1e-6:
@@ -138,9 +144,9 @@ def summarize(source: Source, context: Context) -> JobSummary:
                             box[2 * i + 1] = max(box[2 * i + 1], value)
                     if feed:
                         feeds.append(feed)
-                else:
+                elif length is not None:
                     summary.travel_mm += length
-                if feed and feed > 0:
+                if feed and feed > 0 and length is not None:
                     summary.time_s += length / feed * 60
             if interpreter.is_hyrel:
                 mode = "E values (M229 E1)" if st.flow_mode == EVALUES else "native"
@@ -215,8 +221,16 @@ def _temperature(summary: JobSummary, heads: dict[str, HeadUse], cmd: Command, s
     kind = _SETS[str(cmd.code)]
     waits = cmd.code in _WAITS and not (interpreter.is_hyrel and "W" in cmd.params)
     if kind == "head":
+        # without T the command acts on the active tool: Marlin and RRF ("T = hotend idx (default
+        # active)", research/dialects.md) and Hyrel (Gcode page, "M109 Wait for Temp (Head)", Example 6:
+        # "(no T# - use head with current focus)"; T_v5, Default Mode)
         address = interpreter.address(cmd) if interpreter.is_hyrel else None
-        tool = address.v5 if address is not None else (cmd.get("T") if not interpreter.is_hyrel else st.tool)
+        if address is not None:
+            tool = address.v5
+        elif not interpreter.is_hyrel and cmd.get("T") is not None:
+            tool = cmd.get("T")
+        else:
+            tool = st.tool
         name = _head_name(int(tool) if tool is not None else None, interpreter.family)
         if address is not None and address.kind != "head":
             name = address.label
@@ -263,10 +277,13 @@ def render(summary: JobSummary) -> str:
         return f"{summary.path}: {summary.error}\n"
     out = [f"{summary.path}: {summary.read_as}, {summary.lines:,} lines"]
     for head in summary.heads:
-        temps = ", ".join(f"{t:g}" for t in dict.fromkeys(head.set_points)) or "none set in the job"
+        if head.set_points:
+            temps = "set-points " + ", ".join(f"{t:g}" for t in dict.fromkeys(head.set_points)) + " °C"
+        else:
+            temps = "no set-point in the job"
         waits = f"; waits for {', '.join(f'{t:g}' for t in dict.fromkeys(head.waits))}" if head.waits else ""
         extruded = f"; {head.extruded_mm:,.1f} mm of filament" if head.extruded_mm else ""
-        out.append(f"  {head.head}: set-points {temps} °C{waits}; {head.printing_moves:,} printing moves{extruded}")
+        out.append(f"  {head.head}: {temps}{waits}; {head.printing_moves:,} printing moves{extruded}")
     for kind, temps in summary.devices.items():
         waits = summary.waited_devices.get(kind, [])
         waited = f"; waits for {', '.join(f'{t:g}' for t in dict.fromkeys(waits))}" if waits else ""
@@ -288,7 +305,11 @@ def render(summary: JobSummary) -> str:
         out.append(extent)
     if summary.feed_range:
         out.append(f"  feed: {summary.feed_range[0]:g} to {summary.feed_range[1]:g} mm/min on printing moves")
-    out.append(f"  moves: {summary.printing_mm / 1000:,.2f} m printing, {summary.travel_mm / 1000:,.2f} m travel")
+    moves = f"  moves: {summary.printing_mm / 1000:,.2f} m printing, {summary.travel_mm / 1000:,.2f} m travel"
+    if summary.unmeasured_moves:
+        n = summary.unmeasured_moves
+        moves += f" (and {n:,} move{'s' if n != 1 else ''} from an unknown position, not measured)"
+    out.append(moves)
     out.append(f"  estimated time: {_duration(summary.time_s)} (moves at their feed plus dwells; no heating)")
     return "\n".join(out) + "\n"
 

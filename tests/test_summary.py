@@ -85,3 +85,109 @@ def test_html_report_has_the_summary_and_counts_in_words(tmp_path: Path) -> None
     assert "Job summary" in html and "layers: 2, Z 0.3 to 0.6 mm" in html
     assert "1 error<" in html and "1 errors" not in html
     assert re.search(r"1 finding in 1 file", html)
+
+
+MARLIN_TWO_TOOLS = "M104 S215\nM109 S215\nG28\nG92 E0\nG1 X10 Y10 E1 F1500\nT1\nM109 S220\nG1 X30 Y10 E2\nM104 S0\nM84\n"
+HYREL_TWO_HEADS = (
+    "M6 T0 O1 X0 Y0 Z0\nM6 T1 O2 X20 Y0 Z0\nT0\nM104 S200\nG1 X10 Y10 E1 F1200\n"
+    "T1\nM109 S230\nG1 X20 Y10 E1\nM104 S0\nM30\n"
+)
+
+
+def test_marlin_temperatures_without_t_go_to_the_active_tool(tmp_path: Path) -> None:
+    # Marlin M104/M109: "T = hotend idx (default active)" (research/dialects.md)
+    job = tmp_path / "mm.gcode"
+    job.write_text(MARLIN_TWO_TOOLS)
+    heads = {h.head: h for h in summarize_path(str(job)).heads}
+    assert heads["extruder 0"].set_points == [215, 215] and heads["extruder 0"].waits == [215]
+    assert heads["extruder 1"].set_points == [220, 0] and heads["extruder 1"].waits == [220]
+    assert heads["extruder 0"].printing_moves == 1 and heads["extruder 1"].printing_moves == 1
+    # an explicit T still wins over the active tool
+    job.write_text(MARLIN_TWO_TOOLS.replace("M104 S0", "M104 T0 S0"))
+    heads = {h.head: h for h in summarize_path(str(job)).heads}
+    assert heads["extruder 0"].set_points == [215, 215, 0] and heads["extruder 1"].set_points == [220]
+
+
+def test_hyrel_temperatures_without_t_go_to_the_focused_head_and_a_first_move_counts(tmp_path: Path) -> None:
+    # Hyrel Gcode page, "M109 Wait for Temp (Head)", Example 6: "(no T# - use head with current focus)"
+    job = tmp_path / "sm.gcode"
+    job.write_text(HYREL_TWO_HEADS)
+    s = summarize_path(str(job))
+    heads = {h.head: h for h in s.heads}
+    assert heads["T0"].set_points == [200] and heads["T0"].waits == []
+    assert heads["T1"].set_points == [230, 0] and heads["T1"].waits == [230]
+    # the first printing move starts where the state does not know: it prints, and its end is known
+    assert heads["T0"].printing_moves == 1 and heads["T1"].printing_moves == 1
+    assert s.x_range == (10, 20) and s.y_range == (10, 10)
+    assert s.printing_mm == pytest.approx(10) and s.unmeasured_moves == 1  # only its length is unknown
+    out = run_cli("summary", str(job)).stdout.decode()
+    assert "(and 1 move from an unknown position, not measured)" in out
+
+
+def test_a_head_with_no_set_point_is_said_in_words(tmp_path: Path) -> None:
+    job = tmp_path / "job.gcode"
+    job.write_text("M104 S215\nG28\nG92 E0\nG1 X10 Y10 E1 F1500\nT1\nG1 X30 Y10 E2\n")
+    out = run_cli("summary", str(job)).stdout.decode()
+    assert "extruder 1: no set-point in the job; 1 printing moves" in out
+    assert "none set in the job °C" not in out
+
+
+def _hand_count(text: str) -> dict[int, tuple[list[float], list[float], int, float]]:
+    """Per tool, by a reading independent of the machine state: set-points (M104/M109 S or R, T or the
+    active tool), waits, printing moves (E advances; relative or absolute E) and net filament."""
+    tool, relative, e = 0, False, None
+    sets: dict[int, list[float]] = {}
+    waits: dict[int, list[float]] = {}
+    moves: dict[int, int] = {}
+    filament: dict[int, float] = {}
+    for raw in text.splitlines():
+        words = raw.split(";")[0].upper().split()
+        if not words:
+            continue
+        code, params = words[0], {w[0]: w[1:] for w in words[1:]}
+        if re.fullmatch(r"T\d+", code):
+            tool = int(code[1:])
+        elif code in ("M82", "M83"):
+            relative = code == "M83"
+        elif code == "G92" and "E" in params:
+            e = float(params["E"])
+        elif code in ("M104", "M109") and ("S" in params or "R" in params):
+            value = float(params.get("S", params.get("R")))
+            target = int(params["T"]) if "T" in params else tool
+            sets.setdefault(target, []).append(value)
+            if code == "M109":
+                waits.setdefault(target, []).append(value)
+        elif code in ("G0", "G1", "G2", "G3") and "E" in params:  # Marlin: G0 extrudes as G1 does
+            value = float(params["E"])
+            step = value if relative else (value - e if e is not None else None)
+            e = e if relative else value
+            if step is not None:
+                filament[tool] = filament.get(tool, 0.0) + step
+                moves[tool] = moves.get(tool, 0) + (step > 0)
+    return {t: (sets.get(t, []), waits.get(t, []), moves.get(t, 0), filament.get(t, 0.0)) for t in moves | sets}
+
+
+@needs_corpus
+@pytest.mark.parametrize(
+    "name", ["prusaslicer-2.8.0-alpha4_mmu_attribute_test.gcode", "prusaslicer-2.5.0_MK3SMMU2S_full_m73.gcode"]
+)
+def test_multi_tool_prusaslicer_jobs_against_hand_counts(name: str) -> None:
+    path = CORPUS / "marlin" / name
+    hand = _hand_count(path.read_text(errors="replace"))
+    assert len(hand) >= 2
+    heads = {h.head: h for h in summarize_path(str(path)).heads}
+    assert set(heads) == {f"extruder {t}" for t in hand}
+    for tool, (sets, waits, moves, filament) in hand.items():
+        head = heads[f"extruder {tool}"]
+        assert head.set_points == sets and head.waits == waits
+        assert head.printing_moves == moves and head.extruded_mm == pytest.approx(filament, abs=0.01)
+
+
+def test_a_marlin_g0_that_extrudes_prints(tmp_path: Path) -> None:
+    # Marlin: G0 is an alias of G1, "E allowed (extrudes)" (research/dialects.md): a slicer's purge line
+    job = tmp_path / "purge.gcode"
+    job.write_text("G28\nM83\nG0 X10 Y0 E5 F500 ; purge\nG0 X20 Y0\nG1 X30 Y0 E1\n")
+    s = summarize_path(str(job))
+    [head] = s.heads
+    assert head.printing_moves == 2 and head.extruded_mm == pytest.approx(6)
+    assert s.printing_mm == pytest.approx(20) and s.travel_mm == pytest.approx(10)
