@@ -434,6 +434,16 @@ def test_a_cnc_program_saved_as_gcode_is_a_cnc_program() -> None:
     assert context.dialect in ("machinekit", "carvera"), context.why()
 
 
+def test_a_directive_that_overrides_the_dialect_option_is_said(tmp_path: Path) -> None:
+    job = tmp_path / "d.gcode"
+    job.write_text("M109 T40 S215\nM30\n; gclint: dialect=marlin\n")
+    proc = run_cli("check", "--dialect", "hyrel", str(job))
+    assert b"Checked as marlin" in proc.stdout
+    assert b"overrides --dialect hyrel" in proc.stderr and b"weak evidence" not in proc.stderr
+    same = run_cli("check", "--dialect", "marlin", str(job))
+    assert b"overrides" not in same.stderr
+
+
 def test_a_directive_that_names_no_dialect_is_said(tmp_path: Path) -> None:
     context = infer("; gclint: dialect=bogus\n" + FLAGSHIP, "a.gcode")
     assert context.dialect == "hyrel" and "names no dialect" in context.conflict and context.weak

@@ -123,6 +123,9 @@ def infer(
     notes = (f"'; gclint: dialect={unknown}' names no dialect: ignored",) if unknown else ()
     if directive is not None:
         name, origin, reasons, strength, conflict = directive, DIRECTIVE, (), EXPLICIT, ""
+        if dialect != "auto" and dialects.get(dialect).name != name:  # the file's word wins, and is said
+            told_by = "--dialect" if dialect_origin == OPTION else "dialect in the configuration"
+            conflict = f"the line overrides {told_by} {dialect}"
     elif dialect != "auto":
         name, origin, reasons, strength, conflict = dialects.get(dialect).name, dialect_origin, (), EXPLICIT, ""
     elif declared is not None:  # the firmware's files are its dialect's

@@ -4,6 +4,7 @@ or conflicting evidence gets a note; files where nothing told the dialect share 
 
 from __future__ import annotations
 
+from gclint.context.model import NONE, WEAK
 from gclint.engine import FileResult
 
 MAX_NOTES = 20  # more weak files than this: the rest are counted (-v lists every file)
@@ -23,7 +24,8 @@ def context_notes(results: list[FileResult], verbose: bool = False) -> list[str]
         elif c.strength == "none" and not c.conflict:
             defaulted.append(r.path)
         elif c.weak:
-            weak.append(f"{r.path}: checked as {c.label()} on weak evidence: {c.why()}")
+            how = " on weak evidence" if c.strength in (WEAK, NONE) else ""
+            weak.append(f"{r.path}: checked as {c.label()}{how}: {c.why()}")
     if verbose:
         return lines
     lines.extend(weak[:MAX_NOTES])
