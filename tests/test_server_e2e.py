@@ -171,6 +171,26 @@ def test_configuration_file_and_client_settings(client, tmp_path):
     assert client.shutdown_and_exit() == 0
 
 
+@pytest.mark.parametrize("bad", [["NOPE"], ["HY999"]])
+def test_an_unknown_rule_code_in_select_is_logged_and_the_setting_left_out(client, tmp_path, bad):
+    client.initialize(options={"gclint": {"select": bad}})
+    uri = (tmp_path / "a.gcode").as_uri()
+    client.open(uri, "M109 T40 S215\n")
+    assert "HY003" in _by_code(client.diagnostics(uri))  # the default selection, not no rule at all
+    [said] = [m for m in client.logs() if repr(bad[0]) in m]
+    assert "unknown rule code" in said and "'select' setting is ignored" in said
+    if bad == ["HY999"]:
+        assert "did you mean" in said
+    # the same through workspace/didChangeConfiguration, for ignore
+    seen = len(client.notifications)
+    client.notify("workspace/didChangeConfiguration", {"settings": {"gclint": {"ignore": ["HY0O3"]}}})
+    client.wait_notification("window/logMessage", lambda p: "'HY0O3'" in p["message"], since=seen)
+    seen = len(client.notifications)
+    client.notify("workspace/didChangeConfiguration", {"settings": {"gclint": {"ignore": ["HY003"]}}})
+    assert "HY003" not in _by_code(client.diagnostics(uri, since=seen))
+    assert client.shutdown_and_exit() == 0
+
+
 def test_markdown_hover_and_configuration_pulled_from_the_client(client, tmp_path):
     client.answers["workspace/configuration"] = lambda request: [{"dialect": "marlin"}]
     caps = {

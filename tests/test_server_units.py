@@ -298,6 +298,17 @@ def test_settings_shapes_and_bad_values():
     assert analysis.parse_settings(None) == (analysis.Settings(), [])
 
 
+def test_settings_with_an_unknown_rule_code_are_said_and_left_out():
+    # a typo in select would otherwise turn every rule off in silence (the CLI exits 2 on it)
+    settings, [problem] = analysis.parse_settings({"gclint": {"select": ["HY999"], "dialect": "hyrel"}})
+    assert settings.select is None and settings.dialect == "hyrel"
+    assert "'HY999'" in problem and "did you mean" in problem and "'select' setting is ignored" in problem
+    settings, [problem] = analysis.parse_settings({"ignore": ["HY0O3", "HY010"], "select": "HY"})
+    assert settings.ignore is None and settings.select == ("HY",) and "'HY0O3'" in problem
+    settings, problems = analysis.parse_settings({"extendSelect": "wait-on-group-address"})  # a rule's name
+    assert settings.extend_select == ("HY003",) and problems == []
+
+
 def test_options_from_the_configuration_file_then_the_settings(tmp_path):
     (tmp_path / "gclint.toml").write_text('dialect = "marlin"\nignore = ["DL"]\nprinter = "esr"\n')
     job = tmp_path / "sub" / "job.gcode"

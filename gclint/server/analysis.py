@@ -66,13 +66,21 @@ class Settings:
 
 
 def _codes(value: object, key: str) -> tuple[str, ...]:
+    """Rule selectors, checked as ``gclint check --select`` checks them: one that matches no rule makes
+    the whole setting wrong (a ``select`` of a typo alone would turn every rule off in silence)."""
+    from gclint.rules.base import RuleError, resolve_selectors
+
     if isinstance(value, str):
         items = re.split(r"[,\s]+", value)
     elif isinstance(value, (list, tuple)) and all(isinstance(v, str) for v in value):
         items = list(value)
     else:
         raise ValueError(f'\'{key}\' must be a list of rule codes or prefixes such as ["HY", "SX002"]')
-    return tuple(v.strip().upper() for v in items if v.strip())
+    codes = [v.strip().upper() for v in items if v.strip()]
+    try:
+        return tuple(resolve_selectors(codes, f"'{key}': "))
+    except RuleError as exc:  # a plugin that does not load: the codes cannot be checked
+        raise ValueError(f"'{key}': {exc}") from None
 
 
 def parse_settings(raw: object) -> tuple[Settings, list[str]]:
@@ -114,7 +122,13 @@ def parse_settings(raw: object) -> tuple[Settings, list[str]]:
             else:
                 problems.append(f"settings: unknown key {key!r} ignored (known: {', '.join(SETTING_KEYS)})")
         except (ValueError, ConfigError, UnknownPrinter, dialects.UnknownDialect) as exc:
-            problems.append(f"settings: {exc}; ignored")
+            if name in ("select", "ignore", "extendSelect"):
+                problems.append(
+                    f"settings: {exc}; the whole '{key}' setting is ignored"
+                    " (the configuration file's or the default applies)"
+                )
+            else:
+                problems.append(f"settings: {exc}; ignored")
     return Settings(**values), problems
 
 
