@@ -13,6 +13,7 @@ from gclint.engine import Linter, Options
 from gclint.machine.interpreter import Interpreter
 from gclint.syntax.nodes import Line
 from gclint.syntax.parse import parse_line
+from tests.conftest import run_cli
 
 
 def lint(text: str, dialect: str = "hyrel", printer: str = "30m", codes: tuple[str, ...] = (), **options):
@@ -249,6 +250,17 @@ def test_hy010_not_for_files_without_moves():
 def test_hy029_says_what_is_lost(line, detail):
     found = lint(line + "\n", codes=("HY029",))
     assert len(found) == 1 and found[0].column == 101 and detail in found[0].message, found
+
+
+def test_hy029_does_not_count_a_trailing_noqa_comment(tmp_path):
+    """As ruff's E501: --add-noqa must not push a line over the limit and make a new finding."""
+    text = "M109 T40 S215 ; " + "x" * 80 + "\nT0\nG1 X1 Y1 F100\nM30\n"
+    assert lint(text + "G1 X1 ; " + "x" * 80 + " ; noqa: HY003\n", codes=("HY029",)) == []
+    assert len(lint("G1 X1 (noqa: HY003) " + "Y2 " * 40 + "\n", codes=("HY029",))) == 1  # words after it are cut
+    job = tmp_path / "an.gcode"
+    job.write_text(text)
+    assert run_cli("check", "--add-noqa", str(job)).returncode == 0
+    assert run_cli("check", str(job)).returncode == 0, job.read_text()
 
 
 def test_hy029_counts_characters_not_bytes():

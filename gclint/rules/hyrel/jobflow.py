@@ -11,6 +11,7 @@ from __future__ import annotations
 from gclint.dialects.base import Param
 from gclint.machine.profiles import PROFILES
 from gclint.machine.state import EVALUES
+from gclint.noqa import NOQA
 from gclint.rules.base import ANY_T, Rule, Severity, register
 from gclint.rules.dialect import ParamTableRule
 from gclint.rules.hyrel.addressing import int_value
@@ -115,7 +116,9 @@ class LineOver100Characters(Rule):
         lines" means the M0/M792 text or every line of the file is not clear, so gclint takes it as
         written (research/dialects.md 3.3): a longer line loses what follows column 100: the end of an
         M0/M792 message or action, a comment, or parameters of the command itself.  The message says
-        which.  Shorten the line or move the comment to a line of its own.
+        which.  Shorten the line or move the comment to a line of its own.  As with ruff's E501, a line
+        whose text up to a trailing `noqa` comment fits is not reported (only the suppression comment is
+        cut, which the printer does not need).
     """
     example_bad = (
         "M0 ; SAY "
@@ -135,6 +138,11 @@ class LineOver100Characters(Rule):
         if len(raw) <= _LIMIT:
             return
         parsed = line.parsed
+        if not any(cmd.code in ("M0", "M792") for cmd in parsed.commands):
+            pragma = NOQA.search(raw)
+            at = pragma.start() if pragma is not None else -1
+            if pragma is not None and raw[at] == ";" and len(raw[:at].rstrip()) <= _LIMIT:  # (";" runs to the end)
+                return
         lost_words = []
         for cmd in parsed.commands:
             if cmd.word is not None and cmd.word.end_column > _LIMIT + 1:
