@@ -300,6 +300,33 @@ def test_bad_input_never_kills_the_server(client, tmp_path):
     assert "Traceback" not in client.stderr
 
 
+def test_a_request_whose_params_do_not_fit_is_answered_invalid_params(client, tmp_path):
+    # pygls alone never answers it (the deserialization error ends in its reader loop, with a cattrs
+    # traceback on standard error), and the client waits forever
+    client.initialize()
+    uri = (tmp_path / "a.gcode").as_uri()
+    client.open(uri, "M109 T40 S215\n")
+    client.diagnostics(uri)
+    bad = [
+        ("textDocument/hover", {"textDocument": {"uri": uri}, "position": {"line": -1, "character": -5}}),
+        ("textDocument/codeAction", {"textDocument": {"uri": uri}}),  # no range, no context
+        ("textDocument/hover", {"textDocument": {"uri": uri}, "position": {"line": "x", "character": 0}}),
+    ]
+    for method, params in bad:
+        response = client.wait_response(client.request_async(method, params), timeout=10)
+        assert response["error"]["code"] == -32602, response  # InvalidParams
+        assert method in response["error"]["message"] and "params" in response["error"]["message"]
+    assert "$.params.position" in " ".join(client.logs())
+    # a notification that does not fit: a line in the log, no answer, and the server goes on
+    seen = len(client.notifications)
+    client.notify("textDocument/didChange", {"textDocument": {"uri": uri, "version": 2}})
+    client.wait_notification("window/logMessage", lambda p: "textDocument/didChange" in p["message"], since=seen)
+    assert _hover(client, uri, 0, 1)["contents"]["value"].startswith("* M109")
+    assert client.shutdown_and_exit() == 0
+    assert "Traceback" not in client.stderr and "cattrs" not in client.stderr
+    assert len(client.stderr.strip().splitlines()) <= len(bad) + 1, client.stderr
+
+
 def test_server_without_the_extra_says_so(tmp_path):
     blocker = "import sys; sys.modules['pygls'] = None; from gclint.cli import main; main(['server'])"
     proc = subprocess.run(

@@ -82,9 +82,62 @@ def _path_of(uri: str) -> str | None:
         return None
 
 
+@dataclass
+class _Unreadable:
+    """A message whose params do not fit the protocol's types (a negative position, a missing field):
+    answered with InvalidParams when it is a request, instead of going unanswered."""
+
+    msg_id: Any  # None for a notification
+    method: str
+    problem: str
+
+
+def _problem(exc: BaseException) -> str:
+    """What is wrong with a message, in one short line (``invalid value @ $.params.position``)."""
+    try:
+        import cattrs
+
+        said = "; ".join(cattrs.transform_error(exc)) if isinstance(exc, cattrs.BaseValidationError) else ""
+    except Exception:
+        said = ""
+    return " ".join((said or f"{type(exc).__name__}: {exc}").split())[:300]
+
+
 class GclintProtocol(LanguageServerProtocol):
     """pygls' protocol without its own copy of the documents (the server keeps them, split into lines
-    the way the protocol counts them); everything else is pygls'."""
+    the way the protocol counts them), and with an answer to a request that cannot be read; everything
+    else is pygls'.
+
+    pygls (2.x) reads a message whose params do not deserialize by raising JsonRpcInvalidParams from the
+    JSON decoder's object hook: the exception ends in its reader loop, which logs it (a cattrs traceback)
+    and never answers, so the client waits forever for that request.  Here such a message becomes an
+    ``_Unreadable``, answered with the JSON-RPC error InvalidParams (-32602) and one line in the log."""
+
+    def structure_message(self, data: dict[str, Any]):
+        if "jsonrpc" in data and "method" in data and "error" not in data:
+            message_type = self.get_message_type(data["method"])
+            if message_type is not None:
+                try:
+                    return self._converter.structure(data, message_type)
+                except Exception as exc:  # what pygls turns into an unanswered JsonRpcInvalidParams
+                    return _Unreadable(data.get("id"), str(data["method"])[:100], _problem(exc))
+        return super().structure_message(data)
+
+    def handle_message(self, message):
+        if not isinstance(message, _Unreadable):
+            return super().handle_message(message)
+        what = f"{message.method}: invalid params ({message.problem})"
+        if message.msg_id is not None and not self._shutdown:
+            self._send_response(
+                message.msg_id, None, lsp.ResponseError(code=lsp.ErrorCodes.InvalidParams, message=what)
+            )
+        if message.msg_id is not None:
+            what = f"request {message.msg_id!r} {what}"
+        server = self._server
+        if isinstance(server, GclintServer):
+            server.log(what, lsp.MessageType.Warning)
+        else:
+            logger.warning("%s", what)
 
     @lsp_method(lsp.TEXT_DOCUMENT_DID_OPEN)
     def lsp_text_document__did_open(self, params: lsp.DidOpenTextDocumentParams):
