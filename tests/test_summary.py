@@ -87,7 +87,9 @@ def test_html_report_has_the_summary_and_counts_in_words(tmp_path: Path) -> None
     assert re.search(r"1 finding in 1 file", html)
 
 
-MARLIN_TWO_TOOLS = "M104 S215\nM109 S215\nG28\nG92 E0\nG1 X10 Y10 E1 F1500\nT1\nM109 S220\nG1 X30 Y10 E2\nM104 S0\nM84\n"
+MARLIN_TWO_TOOLS = (
+    "M104 S215\nM109 S215\nG28\nG92 E0\nG1 X10 Y10 E1 F1500\nT1\nM109 S220\nG1 X30 Y10 E2\nM104 S0\nM84\n"
+)
 HYREL_TWO_HEADS = (
     "M6 T0 O1 X0 Y0 Z0\nM6 T1 O2 X20 Y0 Z0\nT0\nM104 S200\nG1 X10 Y10 E1 F1200\n"
     "T1\nM109 S230\nG1 X20 Y10 E1\nM104 S0\nM30\n"
