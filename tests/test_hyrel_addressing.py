@@ -22,6 +22,11 @@ def lint(text: str, dialect: str = "hyrel", printer: str = "30m", loaded=None, c
     return [f for f in found if not codes or f.code in codes]
 
 
+def own_edit(finding):
+    """The edit of a finding's fix at the finding's own word (an HY008 fix converts the whole file)."""
+    return next(e for e in finding.fix.edits if e.line == finding.line and e.start == finding.column)
+
+
 def where(findings) -> list[tuple[int, str, str]]:
     return [(f.line, f.code, f.severity.label) for f in findings]
 
@@ -135,7 +140,7 @@ def test_hy008_only_in_v5_files():
     assert lint("M109 T12 S200\n", dialect="hyrel-v4", codes=("HY008",)) == []
     found = lint("M109 T12 S200\n", codes=("HY008",))
     assert where(found) == [(1, "HY008", "warning")]
-    assert found[0].fix is not None and found[0].fix.edits[0].text == "T1"
+    assert found[0].fix is not None and own_edit(found[0]).text == "T1"
 
 
 @pytest.mark.parametrize(
@@ -152,7 +157,7 @@ def test_hy008_only_in_v5_files():
 def test_hy008_rewrites_with_the_certain_map(line, v5):
     # in a file whose addresses say v4 (M6 T12 O2, M109 T12: v4 head 2, no head in v5)
     found = lint("M6 T12 O2\nM109 T12 S200\n" + line + "\n", printer="16a-dual", codes=("HY008",))
-    assert [f.fix.edits[0].text for f in found if f.line == 3] == [v5]
+    assert [own_edit(f).text for f in found if f.line == 3] == [v5]
 
 
 def test_hy008_aux_map_is_uncertain():
@@ -181,7 +186,11 @@ def test_hy008_only_where_the_files_addresses_say_v4():
     text = "M6 T12 O2\nM6 T13 O3\nM221 T12 S1\nM190 T24 S60\nM109 T12 S200\n"
     found = lint(text, codes=("HY008",))
     assert where(found) == [(n, "HY008", "warning") for n in (1, 2, 3, 4, 5)]
-    assert [f.fix.safe for f in found] == [True, True, True, False, True]
+    # the file is converted as a whole (a half-converted file means something else): one of its
+    # addresses also reads as v5, so every finding's fix is the whole, unsafe conversion
+    assert [f.fix.safe for f in found] == [False] * 5
+    assert all(f.fix.edits == found[0].fix.edits and len(f.fix.edits) == 5 for f in found)
+    assert ["in v5 write" in f.message for f in found] == [True, True, True, False, True]
 
 
 def test_hy008_takes_over_from_the_other_address_rules():
@@ -321,17 +330,55 @@ def test_cli_fix_rewrites_v4_numbers(tmp_path):
     path = write(
         tmp_path, "job.gcode", "; gclint: dialect=hyrel\nM6 T21 O6 X0 Y0\nM104 T21 S200\nM109 T21 S200\nT5\nM30\n"
     )
+    original = path.read_text(encoding="utf-8")
     run_cli("check", "--fix", "--printer", "16a-dual", str(path))
-    # M6 T21 declares the CO2 laser in v5: a line valid in v5 is not rewritten by a safe fix
-    assert (
-        path.read_text(encoding="utf-8")
-        == "; gclint: dialect=hyrel\nM6 T21 O6 X0 Y0\nM104 T5 S200\nM109 T5 S200\nT5\nM30\n"
-    )
-    # (and once fixed, the file's addresses say v5: M6 T21 is the laser there, and HY008 is silent)
-    assert "HY008" not in run_cli("check", "--printer", "16a-dual", str(path)).stdout.decode()
+    # M6 T21 declares the CO2 laser in v5: a line valid in v5 is not rewritten by a safe fix, and the
+    # others are not rewritten without it (M6 T21 would then declare the laser in a v5 file)
+    assert path.read_text(encoding="utf-8") == original
+    assert "HY008" in run_cli("check", "--printer", "16a-dual", str(path)).stdout.decode()
     path = write(tmp_path, "job2.gcode", "; gclint: dialect=hyrel\nM6 T21 O6 X0 Y0\nM104 T21 S200\nM109 T21 S200\n")
     run_cli("check", "--fix", "--unsafe-fixes", "--printer", "16a-dual", str(path))
     assert path.read_text(encoding="utf-8") == "; gclint: dialect=hyrel\nM6 T5 O6 X0 Y0\nM104 T5 S200\nM109 T5 S200\n"
+
+
+V4_JOB = (
+    "M6 T11 O1 X0 Y0 Z0\nM6 T12 O2 X20 Y0 Z0\nM140 T91 S60\nM109 T11 S215\nM109 T12 S215\nT0\n"
+    "G1 X10 Y10 E1 F1200\nT1\nG1 X20 Y10 E1\nM104 T0 S0\nM140 T0 S0\nM107 T0\nM620 T0 E0\nM30\n"
+)
+
+
+def test_cli_fix_converts_every_v4_address_or_none(tmp_path):
+    # a v4 job checked as v5: v4 T0 is "all devices" (v5 T40, research/hyrel_v4.md section 3, high); the
+    # fix converts it with the others, as the translator does, or the switch-offs would reach head T0 only
+    path = write(tmp_path, "job.gcode", V4_JOB)
+    run_cli("check", "--dialect", "hyrel", "--fix", str(path))
+    assert path.read_text(encoding="utf-8") == V4_JOB  # T0 also reads as v5: the conversion is unsafe
+    proc = run_cli("check", "--dialect", "hyrel", "--unsafe-fixes", "--fix", str(path))
+    fixed = path.read_text(encoding="utf-8")
+    assert "M104 T40 S0\nM140 T40 S0\nM107 T40\nM620 T40 E0\n" in fixed, fixed
+    assert fixed.startswith("M6 T0 O1 X0 Y0 Z0\nM6 T1 O2 X20 Y0 Z0\nM140 T24 S60\nM109 T0 S215\nM109 T1 S215\n")
+    assert "HY008" not in proc.stdout.decode()
+
+
+def test_cli_fix_is_the_translators_conversion(tmp_path):
+    path = write(tmp_path, "job.gcode", V4_JOB)
+    copy = write(tmp_path, "copy.gcode", V4_JOB)
+    run_cli("check", "--dialect", "hyrel", "--unsafe-fixes", "--fix", str(path))
+    out = tmp_path / "out.gcode"
+    run_cli("translate", "--from", "hyrel-v4", "--to", "hyrel", "-o", str(out), str(copy))
+    assert path.read_text(encoding="utf-8") == out.read_text(encoding="utf-8")
+
+
+def test_cli_fix_refuses_a_v4_job_with_an_uncertain_address(tmp_path):
+    # v4 T16 (the aux port) -> v5 T22 is "medium" (research/hyrel_v4.md section 2): nothing is converted,
+    # and the other findings say why
+    job = V4_JOB.replace("M30\n", "M104 T16 S0\nM30\n")
+    path = write(tmp_path, "job.gcode", job)
+    proc = run_cli("check", "--dialect", "hyrel", "--unsafe-fixes", "--fix", "--format", "json", str(path))
+    assert path.read_text(encoding="utf-8") == job
+    found = [f for f in json.loads(proc.stdout) if f["code"] == "HY008"]
+    assert found and all(f.get("fix") is None for f in found)
+    assert "no certain v5 counterpart" in next(f["message"] for f in found if f["line"] == 1)
 
 
 def test_severities_are_the_documented_ones():

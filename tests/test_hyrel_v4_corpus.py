@@ -73,7 +73,8 @@ def test_m703_alias_is_reported_with_both_numbers():
     # "M703 T14 S12": the UV pen in slot 4 answers to head 12 (v4 alias) -> v5 "M703 T3 S1"
     name = "Zmmyslony_Vector_Slicer_GCode__diagonal_1x0.5cm.gcode"
     found = [f for f in findings(name, "hyrel") if f.code == "HY008" and f.line == 45]
-    assert sorted((f.column, f.fix.edits[0].text) for f in found) == [(6, "T3"), (10, "S1")]
+    edits = {(e.line, e.start): e.text for e in found[0].fix.edits}
+    assert sorted((f.column, edits[(f.line, f.column)]) for f in found) == [(6, "T3"), (10, "S1")]
 
 
 def test_fix_rewrites_a_copy_to_v5_numbers(tmp_path):

@@ -198,7 +198,8 @@ def test_noqa_on_an_empty_line():
 
 
 def test_code_actions_per_line_and_kind():
-    text = "M6 T12 O2 X0 Y0 Z0\nM109 T12 S200\nM109 T40 S200\nT1\nN1 G1 F100 X1*12\nM30\n"
+    # (M106 S300: HY011, no fix; a v5 group such as M109 T40 would leave HY008's v4 conversion unfixable)
+    text = "M6 T12 O2 X0 Y0 Z0\nM109 T12 S200\nM106 S300\nT1\nN1 G1 F100 X1*12\nM30\n"
     result = Linter(Options(dialect="hyrel")).check_text(text, "job.gcode")
     geo = convert.Geometry(Snapshot(text))
     actions = convert.code_actions("file:///job.gcode", result.findings, geo, 0, 0)
@@ -218,7 +219,7 @@ def test_code_actions_per_line_and_kind():
     only = convert.code_actions("file:///job.gcode", result.findings, geo, 0, 0, only=["source.fixAll"], version=3)
     assert [a.kind for a in only] == [convert.FIX_ALL_KIND]
     assert only[0].edit is not None and only[0].edit.document_changes[0].text_document.version == 3
-    # line 3 (HY003, no fix): noqa only, and fix-all stays available as a source action
+    # line 3 (HY011, no fix): noqa only, and fix-all stays available as a source action
     third = convert.code_actions("file:///job.gcode", result.findings, geo, 2, 2)
     assert [a.kind for a in third] == ["quickfix", convert.FIX_ALL_KIND]
     assert convert.kind_wanted("source.fixAll.gclint", ["source"]) and not convert.kind_wanted("quickfix", ["source"])

@@ -12,6 +12,8 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
+from gclint.syntax.nodes import is_number, to_number
+
 # Kinds of address.
 HEAD = "head"
 SPINDLE = "spindle"
@@ -212,3 +214,72 @@ _ANY_DEVICE = frozenset({HEAD, VIRTUAL, GROUP, SPINDLE, LASER, AUX, BED})
 def fits(code: str, address: Address) -> bool:
     """Whether ``code``'s T variable can sensibly name ``address`` (a bed for M140, a head for M104...)."""
     return address.kind != RESERVED and address.kind in _FITS.get(code, _ANY_DEVICE)
+
+
+# -- renumbering one command between v4 and v5 ---------------------------------------------------------
+
+# M702-M704 S: v5 a squad or the head to copy, v4 an alias or a group (hyrel_v4.md section 4)
+SQUAD_CODES = frozenset({"M702", "M703", "M704"})
+
+
+@dataclass(frozen=True)
+class Renumbering:
+    """One number of a command in the other numbering (``renumberings``)."""
+
+    node: object  # the Word holding the number (the code word of a T command)
+    letter: str  # "T" or "S" (M702-M704)
+    number: int
+    new: int | None  # None: no certain counterpart (research/hyrel_v4.md confidence medium or low, or none)
+    tool_command: bool  # a T command line (a tool number) rather than a T variable
+
+    @property
+    def changes(self) -> bool:
+        return self.new is not None and self.new != self.number
+
+    def text(self) -> str:
+        """The word's text with the new number (``T12`` -> ``T1``; spaces inside the word kept)."""
+        word = self.node
+        text: str = word.text  # type: ignore[attr-defined]
+        value = text[1:] if self.tool_command else word.value  # type: ignore[attr-defined]
+        if value and text.endswith(value):
+            return text[: len(text) - len(value)] + str(self.new)
+        return text[:1] + str(self.new)
+
+
+def address_number(text: str | None) -> int | None:
+    """A T (or squad S) value as a whole number >= 0, or None (not a number, a fraction, too long)."""
+    if not text or not is_number(text) or len(text) > 12:
+        return None
+    value = to_number(text)  # (hex such as "0x1" included; float() would raise on it)
+    return int(value) if value is not None and value == int(value) and value >= 0 else None
+
+
+def renumberings(cmd, to_v5: bool = True) -> list[Renumbering]:
+    """Every address of ``cmd`` (a parsed Command) in the other numbering, v4 -> v5 (``to_v5``) or back:
+    a T command's tool number, every T variable, and M702-M704's S when it names a head.  Only the
+    certain part of the map gives a number (V4_TO_V5_VARIABLE, V4_TO_V5_COMMAND and their inverses);
+    the rest comes back with ``new=None``.  The translator (gclint/translate/renumber.py) and HY008's fix
+    both renumber through this, so they never disagree."""
+    code = cmd.code or ""
+    out: list[Renumbering] = []
+    if code[:1] == "T":
+        number = address_number(code[1:])
+        if number is not None:
+            commands = V4_TO_V5_COMMAND if to_v5 else V5_TO_V4_COMMAND
+            out.append(Renumbering(cmd.word, "T", number, commands.get(number), True))
+        return out
+    variables = V4_TO_V5_VARIABLE if to_v5 else V5_TO_V4_VARIABLE
+    for w in cmd.words:
+        letter = w.letter
+        if not (letter == "T" or (letter == "S" and code in SQUAD_CODES)) or w.value is None:
+            continue
+        number = address_number(w.value)
+        if number is None:
+            continue
+        new = variables.get(number)
+        if new is not None and letter == "S":
+            # a squad (v5 30-39 / v4 groups 50-57, correspondence uncertain) or a head to copy
+            kind = resolve_v4_variable(number).kind if to_v5 else resolve_v5(number).kind
+            new = new if kind == HEAD else None
+        out.append(Renumbering(w, letter, number, new, False))
+    return out

@@ -17,6 +17,7 @@ import re
 from collections.abc import Iterator
 
 from gclint.dialects.addressing import (
+    SQUAD_CODES,
     V4_TO_V5_COMMAND,
     V4_TO_V5_COMMAND_INFERRED,
     V4_TO_V5_VARIABLE,
@@ -25,18 +26,15 @@ from gclint.dialects.addressing import (
     V5_TO_V4_COMMAND_INFERRED,
     V5_TO_V4_VARIABLE,
     V5_TO_V4_VARIABLE_INFERRED,
-    resolve_v4_variable,
-    resolve_v5,
+    renumberings,
 )
 from gclint.dialects.base import Dialect
 from gclint.rules.base import Finding
 from gclint.rules.translation import TR_NAME, TR_SEVERITY
-from gclint.syntax.nodes import GCODE, Command, Line, Word, is_number, to_number
+from gclint.syntax.nodes import GCODE, Command, Line, Word
 from gclint.syntax.parse import parse_line
 from gclint.translate.engine import TranslationResult, Translator
 from gclint.translate.output import LineEdit
-
-_SQUAD_CODES = frozenset({"M702", "M703", "M704"})
 
 
 class Renumber(Translator):
@@ -88,71 +86,39 @@ class Renumber(Translator):
 
     def _command(self, cmd: Command, line: Line, result: TranslationResult) -> str | None:
         code = cmd.code or ""
-        if code[0] == "T":
-            number = _integer(code[1:])
-            if number is None:
-                return None
-            new = self.commands.get(number)
-            if new is None:
-                self._report(
-                    line,
-                    cmd,
-                    result,
-                    f"T{number} (tool number) has no certain "
-                    f"{'v5' if self.to_v5 else 'v4'} counterpart{self._likely('T', number, self.inferred_commands)}; "
-                    "left unchanged",
-                    ("cmd", number),
-                )
-                return None
-            if new == number:
-                return None
-            word = cmd.word
-            assert word is not None
-            return _splice(line, cmd, {word: _renumbered(word.text, code[1:], new)})
-        changes: dict = {}
-        if code in _SQUAD_CODES and "S" not in cmd.params:
+        target = "v5" if self.to_v5 else "v4"
+        if code in SQUAD_CODES and "S" not in cmd.params:
             self._report(
                 line,
                 cmd,
                 result,
-                f"{code} without S has no certain {'v5' if self.to_v5 else 'v4'} form "
+                f"{code} without S has no certain {target} form "
                 "(v5 needs a squad or a head in S); T renumbered, the rest left as it is",
                 (code, "noS"),
             )
-        for w in cmd.words:
-            letter = w.letter
-            if letter == "T" or (letter == "S" and code in _SQUAD_CODES):
-                if w.value is None:
-                    continue
-                number = _integer(w.value)
-                if number is None:
-                    continue
-                new = self._variable(number, letter == "S")
-                if new is None:
-                    what = "alias/squad" if letter == "S" else "address"
-                    self._report(
-                        line,
-                        cmd,
-                        result,
-                        f"{code} {letter}{number}: this {what} has no certain "
-                        f"{'v5' if self.to_v5 else 'v4'} counterpart"
-                        f"{self._likely(letter, number, self.inferred_variables)}; left unchanged",
-                        (code, letter, number),
+        changes: dict = {}
+        for r in renumberings(cmd, self.to_v5):
+            number = r.number
+            if r.new is None:
+                if r.tool_command:
+                    message = (
+                        f"T{number} (tool number) has no certain {target} counterpart"
+                        f"{self._likely('T', number, self.inferred_commands)}; left unchanged"
                     )
-                    continue
-                if new != number:
-                    changes[w] = _renumbered(w.text, w.value, new)
+                    key: tuple = ("cmd", number)
+                else:
+                    what = "alias/squad" if r.letter == "S" else "address"
+                    message = (
+                        f"{code} {r.letter}{number}: this {what} has no certain {target} counterpart"
+                        f"{self._likely(r.letter, number, self.inferred_variables)}; left unchanged"
+                    )
+                    key = (code, r.letter, number)
+                self._report(line, cmd, result, message, key)
+            elif r.changes:
+                changes[r.node] = r.text()
         if not changes:
             return None
         return _splice(line, cmd, changes)
-
-    def _variable(self, number: int, heads_only: bool) -> int | None:
-        new = self.variables.get(number)
-        if new is None or not heads_only:
-            return new
-        # M702-M704 S: a squad (v5 30-39 / v4 groups 50-57, correspondence uncertain) or a head to copy
-        kind = resolve_v4_variable(number).kind if self.to_v5 else resolve_v5(number).kind
-        return new if kind == "head" else None
 
     def _likely(self, letter: str, number: int, inferred: dict[int, int]) -> str:
         """Where research/hyrel_v4.md infers a counterpart: say which, and that the map is uncertain there."""
@@ -182,20 +148,6 @@ class Renumber(Translator):
         )
         result.findings.append(finding)
         self._reported[key] = [finding, 1]
-
-
-def _integer(text: str) -> int | None:
-    if not text or not is_number(text) or len(text) > 12:
-        return None
-    value = to_number(text)  # (hex such as "0x1" included; float() would raise on it)
-    return int(value) if value is not None and value == int(value) and value >= 0 else None
-
-
-def _renumbered(text: str, value: str, new: int) -> str:
-    """A word's text with its value replaced (``T12`` -> ``T1``; spaces inside the word kept)."""
-    if text.endswith(value):
-        return text[: len(text) - len(value)] + str(new)
-    return text[:1] + str(new)
 
 
 def _splice(line: Line, cmd: Command, changes: dict) -> str:

@@ -20,17 +20,21 @@ from gclint.dialects.addressing import (
     GROUP,
     HEAD,
     RESERVED,
+    SQUAD_CODES,
     V4_STYLE_VARIABLES,
     VIRTUAL,
     Address,
+    Renumbering,
     fits,
+    renumberings,
+    resolve_v4_command,
     resolve_v4_variable,
     resolve_v5,
 )
 from gclint.dialects.base import Dialect, Param
 from gclint.rules.base import ANY_T, Edit, Fix, Rule, Severity, register
 from gclint.rules.dialect import ParamTableRule
-from gclint.syntax.nodes import Command, Line, Word, is_number, to_number
+from gclint.syntax.nodes import GCODE, Command, Line, Node, Word, is_number, to_number
 
 # -- helpers shared by the HY rules ------------------------------------------------------------------
 
@@ -255,6 +259,11 @@ class ToolBeyondModel(Rule):
 
 
 _MAX_KEPT = 50_000  # findings kept for the end of the file (memory stays bounded on absurd files)
+# Words the conversion of one file may change.  Every HY008 finding carries the whole conversion (all of
+# it or none applies, whichever finding's fix is chosen), so the output grows with the square of this.
+_MAX_FIX_EDITS = 200
+_T_ONLY = frozenset("T")
+_T_AND_S = frozenset("TS")
 
 
 @register
@@ -276,15 +285,23 @@ class V4AddressingInV5(Rule):
         The rule speaks only when a file is checked as v5 (`--dialect hyrel`, `dialect = "hyrel"` in the
         configuration, or `; gclint: dialect=hyrel`) while its own addresses say v4: more of its T
         variables fit their commands in v4 numbering than in v5 (gclint weighs every address; `M116`
-        and `W0` count for v5).  It reports every v4-style number then.  Where the v5 reading makes no
-        sense (a head the model lacks, an address no device has), the fix to the v5 number is safe; where
-        the line also means something in v5 (`M140 T24` is Bed1 in v5), the fix is unsafe
-        (`--unsafe-fixes`).  In a file whose addresses say v5, a v4-style number is what it is in v5
-        (HY007, HY047 report it, with its v4 meaning as a hint): nothing re-reads a v5 file as v4.
-        With `--dialect auto` (the default) a v4 file is checked as `hyrel-v4` and this rule is silent.
+        and `W0` count for v5) and at least one is a v4-style number.  It reports every address whose
+        v4 meaning differs from its v5 one then: the v4-style numbers, and with them v4 `T0` ("all
+        devices", v5 `T40`), `T20`, `T41` and the tool numbers `T11`-`T14` of T commands, which alone
+        are read as v5.  In a file whose addresses say v5, a v4-style number is what
+        it is in v5 (HY007, HY047 report it, with its v4 meaning as a hint): nothing re-reads a v5 file
+        as v4.  With `--dialect auto` (the default) a v4 file is checked as `hyrel-v4` and this rule is
+        silent.
 
-        Fixes use the v4 -> v5 map where it is certain (research/hyrel_v4.md, confidence "high"); other
-        numbers are reported without a fix.  Never in a file with a parse error.
+        The fix converts the whole file, as `gclint translate --from hyrel-v4 --to hyrel` does (the same
+        v4 -> v5 map, where it is certain: research/hyrel_v4.md, confidence "high"): a file half in v4
+        and half in v5 numbering means something else again (`M104 T0 S0` left alone would switch off
+        head T0 only).  Every finding carries the same fix.  It is safe when no converted line also
+        means something in v5 (a head the model lacks, an address no device has); when one does (`M140
+        T24` is Bed1 in v5, `M104 T0` head T0), the whole fix is unsafe (`--unsafe-fixes`).  A file
+        with an address that has no certain v5 counterpart (v4 `T16`, the aux port: "medium"; a number
+        no v4 device has) gets no fix at all, nor does one with more than 200 addresses to convert (use the translator), nor a
+        file with a parse error.
     """
     example_bad = """
         ; gclint: dialect=hyrel
@@ -305,29 +322,56 @@ class V4AddressingInV5(Rule):
 
     def __init__(self, ctx) -> None:
         super().__init__(ctx)
-        self.codes = t_variable_codes(ctx.dialect) if reads_v4_numbers(ctx) else ()  # type: ignore[misc]
+        self.active = reads_v4_numbers(ctx)
+        if self.active:
+            # every command: the fix converts the file as the translator does (any T word, T commands)
+            self.codes = (ANY_T, *ctx.dialect.codes)  # type: ignore[misc]
+            self.on_unknown_code = True  # type: ignore[misc]
+        else:
+            self.codes = ()  # type: ignore[misc]
         self.unparsable = False
-        # reported at the end, when it is known whether the file parses (fixes only then)
-        self.found: list[tuple[Line, Word, str, int | None, bool]] = []
+        # reported at the end, when it is known whether the file parses and the whole conversion
+        self.found: list[tuple[Line, Node, str, int | None, bool]] = []
+        self.conversion: dict[int, tuple[Line, list[Renumbering]]] = {}  # line -> its renumbered words
+        self.converted = 0  # words the conversion changes
+        self.unsafe: bool = False  # some word of the conversion also means something in v5
+        self.blocked: str | None = None  # the first word with no certain v5 counterpart
+        self.v4_only = False  # a v4-style number (T11-T16, T21-T26, T90-T92, T100) was seen
+
+    def trigger_letters(self, code: str) -> frozenset[str] | None:
+        if code[:1] == "T":
+            return None
+        return _T_AND_S if code in SQUAD_CODES else _T_ONLY
 
     def check_issues(self, line: Line) -> None:
         if any(issue.code == "SX001" for issue in line.issues):
             self.unparsable = True  # a fix is never applied to a file that does not parse
 
     def check(self, line: Line, cmd: Command) -> None:
-        params = cmd.params
-        number = int_value(params.get("T"))
-        if number in V4_STYLE_VARIABLES:
-            self._variable(line, cmd, number)  # type: ignore[arg-type]
-        if cmd.code in ("M703", "M704"):
-            number = int_value(params.get("S"))
-            if number in V4_STYLE_VARIABLES:
-                self._copied_head(line, cmd, number)  # type: ignore[arg-type]
+        if cmd.kind != GCODE:
+            return  # (the translator renumbers G/M/T commands only)
+        for r in renumberings(cmd):
+            if r.new is None:
+                if self.blocked is None:
+                    what = f"T{r.number}" if r.tool_command else f"{cmd.code} {r.letter}{r.number}"
+                    self.blocked = f"line {line.number} ({what})"
+            elif r.changes:
+                self.converted += 1
+                if self.converted <= _MAX_FIX_EDITS:
+                    self.conversion.setdefault(line.number, (line, []))[1].append(r)
+            if r.tool_command:
+                if r.changes:
+                    self._tool_command(line, cmd, r)
+            elif r.letter == "T":
+                if r.number in V4_STYLE_VARIABLES:
+                    self.v4_only = True
+                if r.changes or r.number in V4_STYLE_VARIABLES:
+                    self._variable(line, cmd, r)
+            elif cmd.code in ("M703", "M704") and r.number in V4_STYLE_VARIABLES:
+                self._copied_head(line, cmd, r)
 
-    def _variable(self, line: Line, cmd: Command, number: int) -> None:
-        word = cmd.param("T")
-        if word is None:
-            return
+    def _variable(self, line: Line, cmd: Command, r: Renumbering) -> None:
+        number = r.number
         v4, v5 = resolve_v4_variable(number), resolve_v5(number)
         problem = self._misfit(cmd.code, v5)  # type: ignore[arg-type]
         if problem is None:
@@ -339,24 +383,31 @@ class V4AddressingInV5(Rule):
             message = (
                 f"{cmd.code} T{number} is v4 numbering: in v4 it is {v4.label}; in v5 T{number} is {v5.label}{problem}"
             )
-        self._report(line, word, message, v4.v5 if v4.certain else None, safe=problem is not None)
+        self._report(line, r, message, problem is not None)
 
-    def _copied_head(self, line: Line, cmd: Command, number: int) -> None:
+    def _tool_command(self, line: Line, cmd: Command, r: Renumbering) -> None:
+        v4, v5 = resolve_v4_command(r.number), resolve_v5(r.number)
+        problem = ", a line that selects no head" if v5.kind == RESERVED else self._beyond(v5)
+        message = (
+            f"{cmd.code} is a v4 tool number: in v4 it selects {v4.label}; in v5 {cmd.code} selects {v5.label}{problem}"
+        )
+        self._report(line, r, message, bool(problem))
+
+    def _copied_head(self, line: Line, cmd: Command, r: Renumbering) -> None:
         # M703/M704 S: in v4 an alias (a device address, "M703 T14 S12": the pen answers to head 12);
         # in v5 a squad (30-39) or "the head which T# will duplicate" (T_v5, M703).
+        number = r.number
         v4 = resolve_v4_variable(number)
         if v4.kind != HEAD:
             return
+        self.v4_only = True
         v5 = resolve_v5(number)
-        word = cmd.param("S")
-        if word is None:
-            return
         valid_in_v5 = v5.kind == HEAD and v5.position in self.ctx.profile.positions
         message = (
             f"{cmd.code} S{number} is v4 numbering: in v4 S{number} is {v4.label}; in v5 S names the "
             f"head to copy, and S{number} is {v5.label}{self._beyond(v5)}"
         )
-        self._report(line, word, message, v4.v5 if v4.certain else None, safe=not valid_in_v5)
+        self._report(line, r, message, not valid_in_v5)
 
     def _misfit(self, code: str, v5: Address) -> str | None:
         """Why the v5 reading does not fit the command, or None when it does."""
@@ -376,32 +427,61 @@ class V4AddressingInV5(Rule):
             )
         return ""
 
-    def _report(self, line: Line, word: Word, message: str, target: int | None, safe: bool) -> None:
+    def _report(self, line: Line, r: Renumbering, message: str, safe: bool) -> None:
+        if r.changes and not safe:
+            self.unsafe = True
         if len(self.found) < _MAX_KEPT:
-            self.found.append((line, word, message, target, safe))
+            self.found.append((line, r.node, message, r.new if r.changes else None, safe))  # type: ignore[arg-type]
 
     def finish(self) -> None:
+        if not self.v4_only:
+            # T0, T20, T41 and tool numbers T11-T14 mean something in both numberings: alone they are
+            # read as v5 (HY046, HY007... report them); they are converted with the v4-only numbers
+            return
+        edits, why_not = self._conversion()
         for found in self.found:
-            self._emit(*found)
+            self._emit(*found, edits, why_not)
 
-    def _emit(self, line: Line, word: Word, message: str, target: int | None, safe: bool) -> None:
-        letter = word.text[0]
+    def _conversion(self) -> tuple[tuple[Edit, ...], str]:
+        """The edits that convert every address of the file (all of them or none: a file half in v4 and
+        half in v5 numbering means something else), or why there are none."""
+        if self.unparsable or not self.converted:
+            return (), ""
+        translate = "gclint translate --from hyrel-v4 --to hyrel (and check its TR006 notes)"
+        if self.blocked is not None:
+            return (), (
+                f"; no fix: the file's v4 addresses are converted all together or not at all, and the one at "
+                f"{self.blocked} has no certain v5 counterpart (research/hyrel_v4.md): convert by hand or with "
+                f"{translate}"
+            )
+        if self.converted > _MAX_FIX_EDITS:
+            return (), (
+                f"; no fix: the file has {self.converted:,} v4 addresses to convert together, more than one fix "
+                f"carries ({_MAX_FIX_EDITS}): convert it with {translate}"
+            )
+        edits: list[Edit] = []
+        for line, words in self.conversion.values():
+            edits.extend(Edit(line.number, w.node.column, w.node.end_column, w.text()) for w in words)  # type: ignore[attr-defined]
+        return tuple(edits), ""
+
+    def _emit(
+        self, line: Line, word: Word, message: str, target: int | None, safe: bool, edits: tuple, why_not: str
+    ) -> None:
+        letter = word.text[0].upper()
         if target is None:
             self.report(line, f"{message}; the v4 -> v5 map is uncertain here: check the address by hand", node=word)
             return
         fix = None
-        if not self.unparsable:
-            fix = Fix(
-                f"Replace {word.text} with {letter}{target}",
-                (Edit(line.number, word.column, word.end_column, f"{letter}{target}"),),
-                safe=safe,
+        if edits:
+            others = self.converted - 1
+            also = (
+                f" and the file's {others} other v4 address{'es' if others != 1 else ''} with their v5 numbers"
+                if others
+                else ""
             )
-        advice = (
-            f"in v5 write {letter.upper()}{target}"
-            if safe
-            else f"if it is the v4 number, write {letter.upper()}{target}"
-        )
-        self.report(line, f"{message}; {advice}", node=word, fix=fix)
+            fix = Fix(f"Replace {word.text} with {letter}{target}{also}", edits, safe=not self.unsafe)
+        advice = f"in v5 write {letter}{target}" if safe else f"if it is the v4 number, write {letter}{target}"
+        self.report(line, f"{message}; {advice}{why_not}", node=word, fix=fix)
 
 
 # -- HY022 ---------------------------------------------------------------------------------------------
