@@ -111,6 +111,7 @@ def test_v4_jobs_are_read_as_v4(name: str) -> None:
 def test_directive_and_explicit_dialect_win() -> None:
     assert check("; gclint: dialect=marlin\n" + FLAGSHIP).dialect == "marlin"
     assert check(FLAGSHIP, dialect="carvera").dialect == "carvera"
+    assert check("; gclint: dialect=marlin\n" + FLAGSHIP, dialect="carvera").dialect == "carvera"
     assert check(FLAGSHIP, dialect="hyrel").context.origin == "option"
 
 
@@ -434,14 +435,19 @@ def test_a_cnc_program_saved_as_gcode_is_a_cnc_program() -> None:
     assert context.dialect in ("machinekit", "carvera"), context.why()
 
 
-def test_a_directive_that_overrides_the_dialect_option_is_said(tmp_path: Path) -> None:
+def test_the_dialect_option_and_configuration_beat_the_files_directive(tmp_path: Path) -> None:
+    """A job does not choose how the gate reads it (a directive switched a CI gate's dialect off): the
+    explicit dialect wins and the ignored line is said."""
     job = tmp_path / "d.gcode"
     job.write_text("M109 T40 S215\nM30\n; gclint: dialect=marlin\n")
     proc = run_cli("check", "--dialect", "hyrel", str(job))
-    assert b"Checked as marlin" in proc.stdout
-    assert b"overrides --dialect hyrel" in proc.stderr and b"weak evidence" not in proc.stderr
+    assert b"Checked as hyrel" in proc.stdout and b"HY003" in proc.stdout
+    assert b"line is ignored: --dialect says hyrel" in proc.stderr and b"weak evidence" not in proc.stderr
+    (tmp_path / "gclint.toml").write_text('dialect = "hyrel"\n')
+    configured = run_cli("check", str(job), cwd=tmp_path)
+    assert b"HY003" in configured.stdout and b"dialect in the configuration says hyrel" in configured.stderr
     same = run_cli("check", "--dialect", "marlin", str(job))
-    assert b"overrides" not in same.stderr
+    assert b"ignored" not in same.stderr
 
 
 def test_a_directive_that_names_no_dialect_is_said(tmp_path: Path) -> None:

@@ -165,12 +165,12 @@ def test_configuration_file_and_client_settings(client, tmp_path):
     client.notify("workspace/didChangeConfiguration", {"settings": {"gclint": {"dialect": "marlin", "bogus": 1}}})
     assert "HY003" not in _by_code(client.diagnostics(uri, since=seen))
     assert any("unknown key 'bogus'" in m for m in client.logs())
-    # a `; gclint: dialect=` directive in the file wins over both
+    # a `; gclint: dialect=` directive in the file does not override them (a job does not choose how it is read)
     client.notify(
         "textDocument/didChange",
         {"textDocument": {"uri": uri, "version": 2}, "contentChanges": [{"text": "; gclint: dialect=hyrel\n" + text}]},
     )
-    assert "HY003" in _by_code(client.diagnostics(uri, version=2))
+    assert "HY003" not in _by_code(client.diagnostics(uri, version=2))
     assert client.shutdown_and_exit() == 0
 
 
@@ -211,14 +211,14 @@ def test_markdown_hover_and_configuration_pulled_from_the_client(client, tmp_pat
     assert hover["contents"]["kind"] == "markdown"
     value = hover["contents"]["value"]
     assert value.startswith("**M109**") and "dialect: marlin" in value and "`R180` **" in value
-    # positions in UTF-8 bytes, as negotiated: "T40" after "(😀) M109 " is at byte 12 (character 9)
     other = (tmp_path / "b.gcode").as_uri()
-    client.open(other, f"; gclint: dialect=hyrel\n({EMOJI}) M109 T40 S200\n")
-    hy003 = _by_code(client.diagnostics(other))["HY003"]
-    assert hy003["range"] == {"start": {"line": 1, "character": 12}, "end": {"line": 1, "character": 15}}
+    # positions in UTF-8 bytes: the repeated "S210" after "(😀) M109 S200 " is at byte 17 (character 14)
+    client.open(other, f"({EMOJI}) M109 S200 S210\n")
+    sx002 = _by_code(client.diagnostics(other))["SX002"]
+    assert sx002["range"]["start"] == {"line": 0, "character": 17}
     actions = client.request(
         "textDocument/codeAction",
-        {"textDocument": {"uri": other}, "range": hy003["range"], "context": {"diagnostics": [hy003]}},
+        {"textDocument": {"uri": other}, "range": sx002["range"], "context": {"diagnostics": [sx002]}},
     )
     noqa = next(a for a in actions if "noqa" in a["title"])
     assert noqa["edit"]["documentChanges"][0]["textDocument"] == {"uri": other, "version": 1}

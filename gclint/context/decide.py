@@ -121,13 +121,13 @@ def infer(
 
     directive, unknown = _directive(scan)
     notes = (f"'; gclint: dialect={unknown}' names no dialect: ignored",) if unknown else ()
-    if directive is not None:
-        name, origin, reasons, strength, conflict = directive, DIRECTIVE, (), EXPLICIT, ""
-        if dialect != "auto" and dialects.get(dialect).name != name:  # the file's word wins, and is said
-            told_by = "--dialect" if dialect_origin == OPTION else "dialect in the configuration"
-            conflict = f"the line overrides {told_by} {dialect}"
-    elif dialect != "auto":
+    if dialect != "auto":  # the user's word beats the file's: a job does not choose how the gate reads it
         name, origin, reasons, strength, conflict = dialects.get(dialect).name, dialect_origin, (), EXPLICIT, ""
+        if directive is not None and directive != name:
+            told_by = "--dialect" if dialect_origin == OPTION else "dialect in the configuration"
+            conflict = f"its '; gclint: dialect={directive}' line is ignored: {told_by} says {name}"
+    elif directive is not None:
+        name, origin, reasons, strength, conflict = directive, DIRECTIVE, (), EXPLICIT, ""
     elif declared is not None:  # the firmware's files are its dialect's
         name, origin, reasons, strength, conflict = declared.dialect, flavor_origin, told, EXPLICIT, ""
     else:
