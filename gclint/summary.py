@@ -30,6 +30,7 @@ _WAITS = {"M109": "head", "M190": "bed", "M191": "chamber"}
 _SETS = {"M104": "head", "M109": "head", "M140": "bed", "M190": "bed", "M141": "chamber", "M191": "chamber"}
 _BED = re.compile(r"(?im)^;\s*(?:bed_shape|printable_area)\s*=\s*([-\d.x, ]+)$")
 _AXES = "XYZ"
+MAX_VALUES = 64  # distinct set-points listed per head or device (a job that sweeps them is not a list)
 
 
 @dataclass
@@ -37,8 +38,9 @@ class HeadUse:
     """One head (or extruder) of a job."""
 
     head: str
-    set_points: list[float] = field(default_factory=list)  # in the order the job sets them
-    waits: list[float] = field(default_factory=list)  # the set-points it waits for
+    set_points: list[float] = field(default_factory=list)  # distinct, in the order the job first sets them
+    waits: list[float] = field(default_factory=list)  # the set-points it waits for (distinct)
+    more_set_points: int = 0  # settings of a value not listed (past MAX_VALUES distinct ones): counted
     extruded_mm: float = 0.0  # filament (E) the head's printing moves advance; native flow: not metered
     printing_moves: int = 0
 
@@ -49,8 +51,9 @@ class JobSummary:
     read_as: str
     lines: int = 0
     heads: list[HeadUse] = field(default_factory=list)
-    devices: dict[str, list[float]] = field(default_factory=dict)  # beds, chambers -> set-points
+    devices: dict[str, list[float]] = field(default_factory=dict)  # beds, chambers -> distinct set-points
     waited_devices: dict[str, list[float]] = field(default_factory=dict)
+    more_device_set_points: dict[str, int] = field(default_factory=dict)  # past MAX_VALUES, per device
     flow: str = ""
     layers: int = 0
     z_range: tuple[float, float] | None = None
@@ -91,10 +94,11 @@ def summarize(source: Source, context: Context) -> JobSummary:
     interpreter = Interpreter(dialect)
     st = interpreter.state
     heads: dict[str, HeadUse] = {}
-    z_layers: list[float] = []
+    layers = 0  # printing heights above every one before (the layers), counted, with the lowest and top
+    z_low = z_top = None
     last_z: float | None = None
     flows: list[str] = []
-    feeds: list[float] = []
+    feed_low, feed_high = math.inf, -math.inf
     box = [math.inf, -math.inf, math.inf, -math.inf, math.inf, -math.inf]
     number = 0
     for chunk in source.chunks():
@@ -135,15 +139,17 @@ def summarize(source: Source, context: Context) -> JobSummary:
                         summary.printing_mm += length
                     z = after[2]
                     if z is not None and (last_z is None or abs(z - last_z) > 1e-6):
-                        if not z_layers or z > z_layers[-1] + 1e-6:
-                            z_layers.append(z)
+                        if z_top is None or z > z_top + 1e-6:
+                            layers += 1
+                            z_top = z
+                            z_low = z if z_low is None else min(z_low, z)
                         last_z = z
                     for i, value in enumerate(after):
                         if value is not None:
                             box[2 * i] = min(box[2 * i], value)
                             box[2 * i + 1] = max(box[2 * i + 1], value)
                     if feed:
-                        feeds.append(feed)
+                        feed_low, feed_high = min(feed_low, feed), max(feed_high, feed)
                 elif length is not None:
                     summary.travel_mm += length
                 if feed and feed > 0 and length is not None:
@@ -155,15 +161,15 @@ def summarize(source: Source, context: Context) -> JobSummary:
     summary.lines = number
     summary.heads = list(heads.values()) + [h for h in summary.heads if h.head not in heads]
     summary.flow = " then ".join(flows) if flows else "E amounts (extruder position)"
-    summary.layers = len(z_layers)
-    if z_layers:
-        summary.z_range = (min(z_layers), max(z_layers))
+    summary.layers = layers
+    if z_low is not None and z_top is not None:
+        summary.z_range = (z_low, z_top)
     if box[0] <= box[1]:
         summary.x_range = (box[0], box[1])
     if box[2] <= box[3]:
         summary.y_range = (box[2], box[3])
-    if feeds:
-        summary.feed_range = (min(feeds), max(feeds))
+    if feed_low <= feed_high:
+        summary.feed_range = (feed_low, feed_high)
     if summary.bed and summary.x_range and summary.y_range:
         x0, y0, x1, y1 = summary.bed
         summary.outside_bed = (
@@ -235,13 +241,25 @@ def _temperature(summary: JobSummary, heads: dict[str, HeadUse], cmd: Command, s
         if address is not None and address.kind != "head":
             name = address.label
         head = heads.setdefault(name, HeadUse(name))
-        head.set_points.append(value)
+        if not _note(head.set_points, value):
+            head.more_set_points += 1
         if waits:
-            head.waits.append(value)
+            _note(head.waits, value)
         return
-    summary.devices.setdefault(kind, []).append(value)
+    if not _note(summary.devices.setdefault(kind, []), value):
+        summary.more_device_set_points[kind] = summary.more_device_set_points.get(kind, 0) + 1
     if waits:
-        summary.waited_devices.setdefault(kind, []).append(value)
+        _note(summary.waited_devices.setdefault(kind, []), value)
+
+
+def _note(values: list[float], value: float) -> bool:
+    """Add ``value`` to the distinct ``values`` unless there (True) or the list is full (False: one more)."""
+    if value in values:
+        return True
+    if len(values) >= MAX_VALUES:
+        return False
+    values.append(value)
+    return True
 
 
 def _dwell(cmd: Command, family: str) -> float:
@@ -278,7 +296,7 @@ def render(summary: JobSummary) -> str:
     out = [f"{summary.path}: {summary.read_as}, {summary.lines:,} lines"]
     for head in summary.heads:
         if head.set_points:
-            temps = "set-points " + ", ".join(f"{t:g}" for t in dict.fromkeys(head.set_points)) + " °C"
+            temps = "set-points " + _listed(head.set_points, head.more_set_points) + " °C"
         else:
             temps = "no set-point in the job"
         waits = f"; waits for {', '.join(f'{t:g}' for t in dict.fromkeys(head.waits))}" if head.waits else ""
@@ -287,7 +305,8 @@ def render(summary: JobSummary) -> str:
     for kind, temps in summary.devices.items():
         waits = summary.waited_devices.get(kind, [])
         waited = f"; waits for {', '.join(f'{t:g}' for t in dict.fromkeys(waits))}" if waits else ""
-        out.append(f"  {kind}: set-points {', '.join(f'{t:g}' for t in dict.fromkeys(temps))} °C{waited}")
+        listed = _listed(temps, summary.more_device_set_points.get(kind, 0))
+        out.append(f"  {kind}: set-points {listed} °C{waited}")
     out.append(f"  flow: {summary.flow}")
     if summary.z_range:
         out.append(f"  layers: {summary.layers:,}, Z {summary.z_range[0]:g} to {summary.z_range[1]:g} mm")
@@ -318,3 +337,8 @@ def _duration(seconds: float) -> str:
     minutes, secs = divmod(int(round(seconds)), 60)
     hours, minutes = divmod(minutes, 60)
     return f"{hours} h {minutes:02d} min" if hours else f"{minutes} min {secs:02d} s"
+
+
+def _listed(values: list[float], more: int) -> str:
+    text = ", ".join(f"{t:g}" for t in values)
+    return f"{text} (and {more:,} more settings not listed)" if more else text

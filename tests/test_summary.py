@@ -101,13 +101,13 @@ def test_marlin_temperatures_without_t_go_to_the_active_tool(tmp_path: Path) -> 
     job = tmp_path / "mm.gcode"
     job.write_text(MARLIN_TWO_TOOLS)
     heads = {h.head: h for h in summarize_path(str(job)).heads}
-    assert heads["extruder 0"].set_points == [215, 215] and heads["extruder 0"].waits == [215]
+    assert heads["extruder 0"].set_points == [215] and heads["extruder 0"].waits == [215]
     assert heads["extruder 1"].set_points == [220, 0] and heads["extruder 1"].waits == [220]
     assert heads["extruder 0"].printing_moves == 1 and heads["extruder 1"].printing_moves == 1
     # an explicit T still wins over the active tool
     job.write_text(MARLIN_TWO_TOOLS.replace("M104 S0", "M104 T0 S0"))
     heads = {h.head: h for h in summarize_path(str(job)).heads}
-    assert heads["extruder 0"].set_points == [215, 215, 0] and heads["extruder 1"].set_points == [220]
+    assert heads["extruder 0"].set_points == [215, 0] and heads["extruder 1"].set_points == [220]
 
 
 def test_hyrel_temperatures_without_t_go_to_the_focused_head_and_a_first_move_counts(tmp_path: Path) -> None:
@@ -181,7 +181,8 @@ def test_multi_tool_prusaslicer_jobs_against_hand_counts(name: str) -> None:
     assert set(heads) == {f"extruder {t}" for t in hand}
     for tool, (sets, waits, moves, filament) in hand.items():
         head = heads[f"extruder {tool}"]
-        assert head.set_points == sets and head.waits == waits
+        # (the summary lists each value once, in the order the job first sets it)
+        assert head.set_points == list(dict.fromkeys(sets)) and head.waits == list(dict.fromkeys(waits))
         assert head.printing_moves == moves and head.extruded_mm == pytest.approx(filament, abs=0.01)
 
 
@@ -193,3 +194,17 @@ def test_a_marlin_g0_that_extrudes_prints(tmp_path: Path) -> None:
     [head] = s.heads
     assert head.printing_moves == 2 and head.extruded_mm == pytest.approx(6)
     assert s.printing_mm == pytest.approx(20) and s.travel_mm == pytest.approx(10)
+
+
+def test_a_job_that_sweeps_set_points_and_layers_stays_small(tmp_path: Path) -> None:
+    """Memory: distinct set-points are listed up to MAX_VALUES, the rest counted; layers are counted."""
+    from gclint.summary import MAX_VALUES, render
+
+    job = tmp_path / "sweep.gcode"
+    job.write_text("".join(f"G1 Z{i / 10:g} E1 F100\nM104 T0 S{100 + i}\nM140 T24 S{i}\n" for i in range(1, 301)))
+    s = summarize_path(str(job))
+    head = next(h for h in s.heads if h.head == "T0")
+    assert len(head.set_points) == MAX_VALUES and head.more_set_points == 300 - MAX_VALUES
+    assert len(s.devices["bed"]) == MAX_VALUES and s.more_device_set_points["bed"] == 300 - MAX_VALUES
+    assert s.layers == 300 and s.z_range == (0.1, 30)
+    assert f"(and {300 - MAX_VALUES:,} more settings not listed)" in render(s)
