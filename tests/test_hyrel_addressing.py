@@ -381,6 +381,37 @@ def test_cli_fix_refuses_a_v4_job_with_an_uncertain_address(tmp_path):
     assert "no certain v5 counterpart" in next(f["message"] for f in found if f["line"] == 1)
 
 
+def test_cli_fix_recomputes_a_right_checksum(tmp_path):
+    # a CRLF v4 job with right checksums: the fix rewrites the T words and recomputes each checksum
+    def numbered(lines):
+        out = []
+        for n, text in enumerate(lines, 1):
+            body = f"N{n} {text}"
+            out.append(f"{body}*{_xor(body)}")
+        return "\r\n".join(out) + "\r\n"
+
+    before = ["M6 T11 O1 X0 Y0 Z0", "M109 T11 S215", "T0", "G1 X10 Y10 E1 F1200", "M104 T100 S0", "M30"]
+    after = ["M6 T0 O1 X0 Y0 Z0", "M109 T0 S215", "T0", "G1 X10 Y10 E1 F1200", "M104 T47 S0", "M30"]
+    path = tmp_path / "cs.gcode"
+    path.write_bytes(numbered(before).encode())
+    proc = run_cli("check", "--dialect", "hyrel", "--fix", str(path))
+    assert path.read_bytes() == numbered(after).encode(), proc.stderr
+    assert b"not applied" not in proc.stderr
+    # a checksum that was already wrong stays wrong (SX004 reports it; recomputing would bless the damage)
+    text = numbered(before).replace("*24\r\n", "*25\r\n")
+    assert "N2 M109 T11 S215*25" in text
+    path.write_bytes(text.encode())
+    run_cli("check", "--dialect", "hyrel", "--fix", str(path))
+    assert b"N2 M109 T0 S215*25\r\n" in path.read_bytes()
+
+
+def _xor(text: str) -> int:
+    value = 0
+    for byte in text.encode():
+        value ^= byte
+    return value
+
+
 def test_severities_are_the_documented_ones():
     from gclint.rules.base import all_rules
 

@@ -3,7 +3,7 @@ name them, document them and check what needs more than one line (N numbers, che
 
 from __future__ import annotations
 
-from gclint.rules.base import Rule, Severity, register
+from gclint.rules.base import Edit, Rule, Severity, register
 from gclint.syntax.nodes import Line
 
 
@@ -121,7 +121,7 @@ class ChecksumMismatch(Rule):
         if actual is None:
             return  # reported by SX001
         if actual != expected:
-            from gclint.rules.base import Edit, Fix
+            from gclint.rules.base import Fix
 
             # Unsafe: a wrong checksum is how a host finds a line damaged in transfer; recomputing it would
             # bless the damage.  Only the user knows the line's words are what they meant.
@@ -140,6 +140,21 @@ def compute_checksum(text: str) -> int:
     for byte in text.encode("utf-8", "surrogateescape"):
         value ^= byte
     return value
+
+
+def with_checksum(line: Line, edits: list[Edit]) -> list[Edit]:
+    """``edits`` (of one line, before its ``*`` checksum) and, when the line's checksum was right, the edit
+    that recomputes it over the edited text: a fix must not turn a good line into a damaged one (SX004).
+    A wrong checksum is left as it is (SX004 reports it; recomputing it would bless the damage)."""
+    checksum = line.parsed.checksum
+    if checksum is None or not edits:
+        return edits
+    text = line.raw[: checksum.column - 1]
+    if checksum.value != compute_checksum(text) or any(e.end > checksum.column for e in edits):
+        return edits
+    for e in sorted(edits, key=lambda e: e.start, reverse=True):
+        text = text[: e.start - 1] + e.text + text[e.end - 1 :]
+    return [*edits, Edit(line.number, checksum.column, checksum.end_column, f"*{compute_checksum(text)}")]
 
 
 @register

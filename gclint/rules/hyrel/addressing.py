@@ -34,6 +34,7 @@ from gclint.dialects.addressing import (
 from gclint.dialects.base import Dialect, Param
 from gclint.rules.base import ANY_T, Edit, Fix, Rule, Severity, register
 from gclint.rules.dialect import ParamTableRule
+from gclint.rules.syntax import with_checksum
 from gclint.syntax.nodes import GCODE, Command, Line, Node, Word, is_number, to_number
 
 # -- helpers shared by the HY rules ------------------------------------------------------------------
@@ -301,7 +302,7 @@ class V4AddressingInV5(Rule):
         T24` is Bed1 in v5, `M104 T0` head T0), the whole fix is unsafe (`--unsafe-fixes`).  A file
         with an address that has no certain v5 counterpart (v4 `T16`, the aux port: "medium"; a number
         no v4 device has) gets no fix at all, nor does one with more than 200 addresses to convert (use the translator), nor a
-        file with a parse error.
+        file with a parse error.  A right `*` checksum on a converted line is recomputed.
     """
     example_bad = """
         ; gclint: dialect=hyrel
@@ -461,7 +462,8 @@ class V4AddressingInV5(Rule):
             )
         edits: list[Edit] = []
         for line, words in self.conversion.values():
-            edits.extend(Edit(line.number, w.node.column, w.node.end_column, w.text()) for w in words)  # type: ignore[attr-defined]
+            line_edits = [Edit(line.number, w.node.column, w.node.end_column, w.text()) for w in words]  # type: ignore[attr-defined]
+            edits.extend(with_checksum(line, line_edits))
         return tuple(edits), ""
 
     def _emit(
