@@ -412,6 +412,35 @@ def _xor(text: str) -> int:
     return value
 
 
+MIXED_V5 = (
+    "M6 T0 O1 X0 Y0 Z0\nM109 T0 S215 W0\nM190 T91 S60 W0\nM116\nT0\nG1 X1 Y1 E1 F100\nM104 T100 S0\nM140 T90 S0\nM30\n"
+)
+
+
+def test_cli_unsafe_fix_writes_the_v5_address_of_a_v4_footer(tmp_path):
+    # a v5 job (W0, M116) with Hyrel's old footer: T100, T90, T91 name nothing in v5 and map to v5 T47,
+    # T46, T24 with high confidence (research/hyrel_v4.md sections 2 and 3): an unsafe HY047 fix
+    path = write(tmp_path, "job.gcode", MIXED_V5)
+    run_cli("check", "--dialect", "hyrel", "--fix", str(path))
+    assert path.read_text(encoding="utf-8") == MIXED_V5  # the file mixes numberings: not a safe fix
+    proc = run_cli("check", "--dialect", "hyrel", "--unsafe-fixes", "--fix", str(path))
+    assert path.read_text(encoding="utf-8") == MIXED_V5.replace("T91", "T24").replace("T100", "T47").replace(
+        "T90", "T46"
+    )
+    assert "HY047" not in proc.stdout.decode()
+
+
+def test_hy047_fix_only_in_a_file_whose_addresses_say_v5():
+    # a v4 file with HY008 ignored: converting one number would leave the others in v4 (HY008's job)
+    options = Options(dialect="hyrel", ignore=["HY008"])
+    found = Linter(options).check_text("M6 T12 O2\nM109 T12 S200\nM104 T100 S0\n").findings
+    found = [f for f in found if f.code == "HY047"]
+    assert where(found) == [(3, "HY047", "error")] and found[0].fix is None
+    # and only where the device fits the command (v4 T91 is a bed: not for M104)
+    found = lint("M109 T0 S200 W0\nM116\nM104 T91 S0\n", codes=("HY047",))
+    assert where(found) == [(3, "HY047", "error")] and found[0].fix is None
+
+
 def test_severities_are_the_documented_ones():
     from gclint.rules.base import all_rules
 

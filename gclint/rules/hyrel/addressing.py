@@ -638,6 +638,8 @@ class AddressOutOfTable(Rule):
     code = "HY047"
     name = "address-out-of-table"
     severity = Severity.ERROR
+    fixable = True
+    fix_applicability = "unsafe"
     summary = "A T number that no device has, or a T command that focuses a bed, an aux port or a group"
     explanation = """
         The T_v5 "Chart of Addresses" lists every address: T0-T19 heads, T20 spindle, T21 CO2 laser,
@@ -649,6 +651,12 @@ class AddressOutOfTable(Rule):
         A T command changes which head "has the focus of the motion controller and is executing the
         gcode": focusing a bed, an aux port or a group of devices is almost certainly a T variable
         written as a T command (warning).
+
+        In a v5 file (its addresses say v5), a number that is an address only in v4 numbering (T26,
+        T90-T92, T100: the v4 spindle, beds and wildcards, as in Hyrel's old standard footer `M104 T100
+        S0`, `M140 T90 S0`) is reported with its v4 meaning, and an unsafe fix (`--unsafe-fixes`) writes
+        the v5 address that meaning has, where research/hyrel_v4.md rates the map "high" (sections 2
+        and 3) and the device fits the command.  A file whose addresses say v4 is HY008's.
     """
     example_bad = "M104 T27 S200"
     example_good = "M104 T2 S200"
@@ -678,12 +686,34 @@ class AddressOutOfTable(Rule):
             return
         address = interpreter.address(cmd)
         if address is not None and address.kind == RESERVED:
+            word = cmd.param("T")
+            fix, advice = self._v4_fix(line, cmd, word, address.number)
             self.report(
                 line,
                 f"{cmd.code} T{cmd.params['T']}: {address.label}: the command addresses nothing"
-                f"{v4_hint(self.ctx, address.number)}",
-                node=cmd.param("T"),
+                f"{v4_hint(self.ctx, address.number)}{advice}",
+                node=word,
+                fix=fix,
             )
+
+    def _v4_fix(self, line: Line, cmd: Command, word: Word | None, number: int) -> tuple[Fix | None, str]:
+        """In a file whose addresses say v5: the fix to the v5 address a v4 number (T26, T90-T92, T100)
+        means, where research/hyrel_v4.md rates the map "high" and the device fits the command.  Unsafe:
+        the file mixes numberings, and only its author knows this line is the v4 one."""
+        if word is None or number not in V4_STYLE_VARIABLES or not is_v5(self.ctx):
+            return None, ""
+        v4 = resolve_v4_variable(number)
+        if v4.v5 is None:
+            return None, ""
+        if not v4.certain:
+            return None, "; the v4 -> v5 map is uncertain here (research/hyrel_v4.md): check the address by hand"
+        if self.ctx.context.version_evidence != 5 or not fits(str(cmd.code), resolve_v5(v4.v5)):
+            return None, ""  # a v4 file (HY008 converts it whole) or a device the command does not address
+        text = f"{word.text[0]}{v4.v5}"
+        edits = with_checksum(line, [Edit(line.number, word.column, word.end_column, text)])
+        return Fix(f"Replace {word.text} with {text} (its v4 meaning)", tuple(edits), safe=False), (
+            f"; if it is the v4 number, write {text}"
+        )
 
 
 # -- HY048 ---------------------------------------------------------------------------------------------
