@@ -645,14 +645,24 @@ _CONFIG_OVERRIDE = {
 }
 
 
+# Codes that replace the printer's firmware (research/firmware_codes.md: section 1 Prusa Buddy M997 firmware
+# update; section 5 Marlin M997 firmware update, M936 OTA update; section 6 RepRapFirmware M997 firmware update).
+_FIRMWARE_UPDATE = {
+    "M997": "starts a firmware update (Marlin, Prusa Buddy, RepRapFirmware): a job must not replace the printer's"
+    " firmware",
+    "M936": "starts an over-the-air firmware update (Marlin)",
+}
+
+
 @register
 class ChangesPrinterFiles(_SecurityRule):
     code = "SC005"
     name = "changes-printer-files"
     severity = Severity.ERROR
     summary = (
-        "The job deletes, writes or renames files on the printer (M30 <file>, M28, M471, M472, M559, M560,"
-        " echo >file, M929 into a non-log file, M500/M502/M504, Klipper SAVE_CONFIG and SAVE_VARIABLE)"
+        "The job deletes, writes or renames files on the printer, or replaces its firmware (M30 <file>, M28, M471,"
+        " M472, M559, M560, echo >file, M928/M929 into a non-log file, M500/M502/M504, M505, M997, M936, Klipper"
+        " SAVE_CONFIG and SAVE_VARIABLE)"
     )
     explanation = """
         In Marlin and RepRapFirmware "M30 file" deletes that file from the SD card, M28 writes the
@@ -665,7 +675,10 @@ class ChangesPrinterFiles(_SecurityRule):
         config-override file, M502 deletes it and M504 writes a named one (RepRapFirmware's M500 writes
         config-override.g); in a job read as Marlin they are the EEPROM settings and not reported.
         Klipper's SAVE_CONFIG overwrites the printer's config file and restarts the host, and SAVE_VARIABLE
-        writes a variable to disk.
+        writes a variable to disk.  Marlin's M928 logs the commands that follow into a named file on the SD
+        card (a .txt or .log file is not reported, as for M929); RepRapFirmware's M505 makes another folder
+        the system folder, so the printer reads its config.g from there; M997 (Marlin, Prusa, RepRapFirmware)
+        and M936 (Marlin) update the firmware.
 
         A job that changes the printer's files outlives the print: it can break the next job, the
         machine's limits or its safety settings.  Plain "M30" (end of program) is fine, as are a bare M471
@@ -675,6 +688,9 @@ class ChangesPrinterFiles(_SecurityRule):
         runs it.  The same holds for RepRapFirmware system and macro files: a macro package that writes
         its own files is reported, and a configuration repository silences this code for those files
         with per-file-ignores.
+
+        Smoothieware (Carvera) runs every G and M code of a line, so "G0 X0 M502" is reported (on the
+        M502) in every dialect; the dialect's own exemptions still hold.
     """
     example_bad = "M30 /sys/config.g"
     example_good = "M30"
@@ -682,7 +698,9 @@ class ChangesPrinterFiles(_SecurityRule):
         "RepRap G-code page (M28, M30, M471, M559, M560); research/firmware_codes.md sections 6 (M472 delete, M929"
         " logging, M500-M503 config-override) and 8 (M500, M502 delete override file, M504); RepRapFirmware"
         " StringParser.cpp ProcessEchoCommand (echo >file, >>file); Klipper docs/G-Codes.md [configfile]"
-        " SAVE_CONFIG and [save_variables] SAVE_VARIABLE"
+        " SAVE_CONFIG and [save_variables] SAVE_VARIABLE; research/firmware_codes.md sections 2 and 5 (M928 SD"
+        " logging into a file), 6 (M505 set system folder), 1, 5 and 6 (M997 firmware update), 5 (M936 OTA"
+        " update), 8 (several G/M words on one line are split at each G/M)"
     )
     codes = (
         "M30",
@@ -698,6 +716,10 @@ class ChangesPrinterFiles(_SecurityRule):
         "echo",
         "SAVE_CONFIG",
         "SAVE_VARIABLE",
+        "M928",
+        "M505",
+        "M997",
+        "M936",
     )
 
     def inspect(self, line: Line, code: str, rest: str, column: int, cmd: Command | None) -> None:
@@ -714,6 +736,9 @@ class ChangesPrinterFiles(_SecurityRule):
                 else "writes a variable to the printer's [save_variables] file"
             )
             self.report_masked(line, f"{code} {what}", where)
+            return
+        if code in _FIRMWARE_UPDATE:
+            self.report_masked(line, f"{code} {_FIRMWARE_UPDATE[code]}{_excerpt(rest)}", column)
             return
         if code in _CONFIG_OVERRIDE:
             if self.ctx.dialect.name != "marlin":
@@ -734,6 +759,24 @@ class ChangesPrinterFiles(_SecurityRule):
             return
         if code == "M929":
             self._logging(line, argument, column, cmd)
+            return
+        if code == "M928":
+            name = argument.strip().strip('"')
+            if name and not (_LOG_FILE.search(name) and "{" not in name):  # (as M929: a .txt/.log file is a log)
+                self.report_masked(
+                    line,
+                    f"M928 starts logging the commands that follow into the file {_quote(name)}"
+                    " on the printer's SD card (Marlin, Prusa MK3)",
+                    column,
+                )
+            return
+        if code == "M505":
+            self.report_masked(
+                line,
+                f"M505 moves RepRapFirmware's system folder{_excerpt(argument)}: the printer then reads config.g and"
+                " its other system files from there",
+                column,
+            )
             return
         if code in ("M471", "M472") and not argument.strip():
             return  # Carvera: pair the wireless probe, switch its laser on
