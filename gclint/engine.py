@@ -263,6 +263,12 @@ class Linter:
         numbered_hooks = tuple(r.check_line for r in rules if r.on_numbered)
         issue_hooks = tuple(r.check_issues for r in rules if r.on_issue)
         comment_hooks = tuple(r.check_comment for r in rules if r.on_comment)
+        # (security rules: lines a firmware edits before it reads them, read again as it does; rules/security.py)
+        views: dict = {}  # (one search per line for the rules that share a pattern)
+        for r in rules:
+            if getattr(r, "on_line_matching", None) is not None:
+                views.setdefault(r.on_line_matching.search, []).append(r.check_view)
+        view_hooks = tuple((wants, tuple(hooks)) for wants, hooks in views.items())
         for r in rules:
             for c in r.codes:
                 if c == ANY_T:
@@ -283,7 +289,7 @@ class Linter:
             # rest of this file and go on.  The loops below iterate over tuples, so replacing them here
             # does not skip the other rules' hooks on the current line.
             nonlocal line_hooks, numbered_hooks, issue_hooks, comment_hooks, long_hooks, after_end_hooks, plain
-            nonlocal start_hooks
+            nonlocal start_hooks, view_hooks
             rule = getattr(hook, "__self__", None)
             if rule is None or rule not in rules:  # pragma: no cover - hooks are bound rule methods
                 raise exc
@@ -298,6 +304,7 @@ class Linter:
             after_end_hooks = keep(after_end_hooks)
             long_hooks = tuple((n, h) for n, h in long_hooks if getattr(h, "__self__", None) is not rule)
             start_hooks = tuple((c, h) for c, h in start_hooks if getattr(h, "__self__", None) is not rule)
+            view_hooks = tuple((wants, keep(hooks)) for wants, hooks in view_hooks)
             for code, handlers in list(by_code.items()):
                 by_code[code] = list(keep(handlers))
             any_t[:] = keep(any_t)
@@ -426,6 +433,13 @@ class Linter:
                                 except Exception as exc:
                                     disable(handler, exc, number)
                     apply(cmd, line)
+                for wants, hooks in view_hooks:
+                    if wants(raw) is not None:
+                        for hook in hooks:
+                            try:
+                                hook(line)
+                            except Exception as exc:
+                                disable(hook, exc, number)
         result.lines = number
         state.line_number = number
         for r in list(rules):

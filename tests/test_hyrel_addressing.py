@@ -441,6 +441,21 @@ def test_hy047_fix_only_in_a_file_whose_addresses_say_v5():
     assert where(found) == [(3, "HY047", "error")] and found[0].fix is None
 
 
+@pytest.mark.parametrize("dialect", ["hyrel", "hyrel-v4"])
+def test_cli_reports_t_values_that_are_no_address(tmp_path, dialect):
+    # a fraction or a number beyond every address: the Chart of Addresses has no such device
+    job = (
+        "M104 T0.5 S200\nM104 T99999999999999999999 S200\nM6 T99999999999999999999 O2\n"
+        "T99999999999999999999\nM109 T0 S200\nT0\nG1 X1 Y1 F100\nM30\n"
+    )
+    path = write(tmp_path, "t.gcode", job)
+    proc = run_cli("check", "--dialect", dialect, "--format", "json", str(path))
+    found = sorted((f["line"], f["code"]) for f in json.loads(proc.stdout) if f["code"] == "HY047")
+    assert found == [(1, "HY047"), (2, "HY047"), (3, "HY047"), (4, "HY047")]
+    # a long spelling of a real address is that address
+    assert lint("M104 T000000000000001 S200\n", codes=("HY047",)) == []
+
+
 def test_severities_are_the_documented_ones():
     from gclint.rules.base import all_rules
 

@@ -7,7 +7,9 @@ These rules apply to every dialect: a hostile job can claim any flavour in its h
 trust the dialect.  Messages and ``Finding.source`` go through ``gclint.secrets.mask``.
 
 Lines the grammar cannot parse (``M0 SHELL C:\\x.exe`` without a ``;``, ``M1000 rm -rf /sd``) are still
-read: each rule also looks at the start of lines with a parse error.
+read: each rule also looks at the start of lines with a parse error.  Each rule also reads a line as the
+firmwares that edit it before parsing read it (``firmware_views``: Marlin's backspaces, Klipper's
+``strip()`` and ``upper()``, Smoothieware running every M code of a line), reporting on the line as written.
 
 Where a firmware documents a line as something harmless the rule says so, but the finding stays unless the
 dialect the job is read as documents it otherwise (the SC003 and SC005 explanations list those cases).
@@ -16,16 +18,20 @@ dialect the job is read as documents it otherwise (the SC003 and SC005 explanati
 from __future__ import annotations
 
 import re
+import threading
 import unicodedata
 
 from gclint import secrets
 from gclint.rules.base import Rule, Severity, register
 from gclint.syntax.nodes import ASSIGNMENT, GCODE, IMPLICIT, META, OWORD, Command, Comment, Line
+from gclint.syntax.parse import parse_line
 
 # "M792", "N10 M0", "/M98", "m0792": the code at the start of a line the grammar could not parse.
 _LEADING_CODE = re.compile(
     r"[ \t]*+(?:/[ \t]*+)?(?:[Nn][ \t]*+\d{1,12}+[ \t]*+)?([Mm])[ \t]*+(\d{1,8}+(?:\.\d{1,4}+)?)(?![\d.])"
 )
+# "RUN_SHELL_COMMAND", "N5 save_config": a Klipper command name at the start of a line the grammar refused.
+_LEADING_NAME = re.compile(r"[ \t]*+(?:[Nn][ \t]*+\d{1,12}+[ \t]*+)?([A-Za-z_][A-Za-z0-9_]*+)")
 _NUMBER = re.compile(r"[-+]?\d+(?:\.\d*)?")
 
 
@@ -49,8 +55,160 @@ def _strip_comment(text: str) -> str:
 
 
 def _starts_line(line: Line, cmd: Command | None) -> bool:
-    """Marlin and RepRapFirmware run the first command of a line; "(note about M30 ...)" is prose."""
+    """Marlin and RepRapFirmware run the first command of a line; "(note about M30 ...)" is prose.  (The
+    other commands of the line are read in Smoothieware's view of it: ``firmware_views``.)"""
     return cmd is None or line.parsed.commands[0] is cmd
+
+
+# -- the line as each firmware reads it ----------------------------------------------------------------------
+#
+# gclint parses the line as it is written; firmwares edit it first.  ``firmware_views`` gives the other texts a
+# firmware may read for a line, and every SC rule also reads each of them (``_SecurityRule.check_view``,
+# called by the engine for lines ``on_line_matching`` finds), reporting on the line itself with the view named.
+
+# Views are read for the first 100,000 characters of a line (the grammar parses no longer line either:
+# syntax/parse.py), so that a long line costs linear time and bounded memory.
+VIEW_LIMIT = 100_000
+
+# C0 control characters other than tab, and DEL (the line breaks end the line before a rule sees it).
+_CONTROL = re.compile("[\x00-\x08\x0b-\x1f\x7f]")
+# A line some firmware reads differently from gclint: a character other than printable ASCII and tab, or
+# an M code after the first two characters of its code (Smoothieware splits the line there; no SC rule
+# listens to a G code).
+_VIEW_TRIGGER = re.compile("[^\t\x20-\x7e]|^[^;(]{2}[^;(]*?M[ \t]*+[0-9]")
+# Smoothieware's GcodeDispatch: comments start at the first ";" or "(", and the rest is cut before each "G"
+# and "M" from its third character on ("find_first_of("GM", 2)"); M117 and M1000 take the rest of the line.
+_SMOOTHIE_COMMENT = re.compile("[;(]")
+_SMOOTHIE_SPLIT = re.compile("[GM]")
+_SMOOTHIE_CODE = re.compile("M[ \t]*+[0-9]")  # (the segments the SC rules listen to: M codes)
+_SMOOTHIE_WHOLE = re.compile("M0*+(?:117|1000)(?![0-9])")
+_KLIPPER_COMMENT = ";"
+
+MARLIN_VIEW = "read as Marlin reads backspaces (src/gcode/queue.cpp process_stream_char)"
+TRIMMED_VIEW = "read trimmed as Klipper trims it (Python's str.strip() drops these spaces and controls)"
+KLIPPER_VIEW = 'read as Klipper reads it (klippy/gcode.py: str.strip(), the text before ";", str.upper())'
+SMOOTHIE_VIEW = "read as Smoothieware (Carvera) splits the line at each G and M (GcodeDispatch)"
+# What other firmwares do with control characters is not in gclint's sources: the two readings a firmware
+# may have are both read (and say so).
+ERASED_VIEW = "read with each backspace or DEL erasing the character before it, comments included (a firmware may)"
+DROPPED_VIEW = "read without its control characters (a firmware may drop them)"
+
+
+def _marlin_reads(raw: str, parens: bool) -> str:
+    """The command Marlin 2 queues for ``raw`` (src/gcode/queue.cpp ``process_stream_char``): the text
+    before ``;`` (and outside ``(...)`` when built with PAREN_COMMENTS), a backslash taking the next
+    character as it is, and a backspace erasing the character queued before it."""
+    out: list[str] = []
+    escaped = in_paren = False
+    for char in raw:
+        if in_paren:
+            if char == ")":
+                in_paren = False
+            continue
+        if escaped:
+            escaped = False
+        elif char == "\\":
+            escaped = True
+            continue
+        elif char == ";":
+            break
+        elif parens and char == "(":
+            in_paren = True
+            continue
+        if char == "\x08":
+            if out:
+                out.pop()
+        else:
+            out.append(char)
+    return "".join(out)
+
+
+def _smoothie_segments(text: str) -> list[tuple[str, int]]:
+    """The M commands after the first command that Smoothieware runs for ``text``, with their offsets."""
+    cut = _SMOOTHIE_COMMENT.search(text)
+    end = cut.start() if cut is not None else len(text)
+    starts = []
+    start = 0
+    while not _SMOOTHIE_WHOLE.match(text, start, end):  # (M117, M1000: the rest of the line is their text)
+        m = _SMOOTHIE_SPLIT.search(text, start + 2, end)
+        if m is None:
+            break
+        start = m.start()
+        starts.append(start)
+    starts.append(end)
+    return [
+        (text[begin:after], begin)
+        for begin, after in zip(starts, starts[1:], strict=False)
+        if _SMOOTHIE_CODE.match(text, begin, after)
+    ]
+
+
+def firmware_views(raw: str) -> list[tuple[str, str, int]]:
+    """The texts firmwares may read for the line ``raw`` other than ``raw`` itself: ``(how, text, offset)``,
+    ``offset`` being where ``text`` starts in ``raw`` (0 where the characters do not line up).
+
+    * Marlin: backspaces erase the character before them (``_marlin_reads``), with and without
+      PAREN_COMMENTS.
+    * A line with spaces or controls at its ends that Python's ``str.strip()`` removes (U+00A0, U+3000,
+      U+2000-U+200A, U+0085, \\x1c-\\x1f...): trimmed, as Klipper does before anything else.
+    * Klipper: trimmed, cut at ``;`` and upper-cased with Python's ``str.upper()`` (U+017F to S, U+0131
+      to I, U+FB01 to FI...), where the command part holds a character that is not ASCII.
+    * Smoothieware: each G or M after the first command of the line, of ``raw`` and of the views above
+      (but Klipper's, which does not split).
+    """
+    views: list[tuple[str, str, int]] = []
+    seen = {raw}
+    raw = raw[:VIEW_LIMIT]
+
+    def add(how: str, text: str, offset: int) -> None:
+        if text not in seen and text.strip(" \t"):
+            seen.add(text)
+            views.append((how, text, offset))
+
+    if "\x08" in raw:
+        add(MARLIN_VIEW, _marlin_reads(raw, False), 0)
+        add(MARLIN_VIEW + " with PAREN_COMMENTS", _marlin_reads(raw, True), 0)
+    if _CONTROL.search(raw) is not None:
+        erased: list[str] = []
+        for char in raw:
+            if char in "\x08\x7f":
+                if erased:
+                    erased.pop()
+            else:
+                erased.append(char)
+        add(ERASED_VIEW, _CONTROL.sub("", "".join(erased)), 0)
+        add(DROPPED_VIEW, _CONTROL.sub("", raw), 0)
+    trimmed = raw.strip()
+    if trimmed != raw.strip(" \t"):
+        lead = len(raw) - len(raw.lstrip())
+        add(TRIMMED_VIEW, trimmed, lead)
+    cut = trimmed.find(_KLIPPER_COMMENT)
+    command = trimmed if cut < 0 else trimmed[:cut]
+    if not command.isascii():
+        add(KLIPPER_VIEW, command.upper(), len(raw) - len(raw.lstrip()))
+    for how, text, offset in [(None, raw, 0), *views]:
+        if how == KLIPPER_VIEW:
+            continue
+        for segment, start in _smoothie_segments(text):
+            label = SMOOTHIE_VIEW if how is None else f"{how}, then as Smoothieware splits it at each G and M"
+            add(label, segment, offset + start if how is None or offset else 0)
+    return views
+
+
+_local = threading.local()
+
+
+def _views_of(line: Line) -> list[tuple[str, Line, int]]:
+    """``firmware_views`` of ``line``, parsed; computed once for all the SC rules that read the line."""
+    cached = getattr(_local, "views", None)
+    if cached is not None and cached[0] is line:
+        return cached[1]
+    views = [
+        (how, Line(line.number, text, line.ending, parse_line(text)), offset)
+        for how, text, offset in firmware_views(line.raw)
+    ]
+    _local.views = (line, views)
+    return views
 
 
 class _SecurityRule(Rule):
@@ -62,6 +220,12 @@ class _SecurityRule(Rule):
     """
 
     on_issue = True
+    # the engine calls check_view for lines this finds (gclint/engine.py)
+    on_line_matching = _VIEW_TRIGGER
+
+    def __init__(self, ctx) -> None:
+        super().__init__(ctx)
+        self._view: tuple[str, Line, int] | None = None  # (how, the line as written, offset) while reading a view
 
     def check(self, line: Line, cmd: Command) -> None:
         word = cmd.word
@@ -72,22 +236,62 @@ class _SecurityRule(Rule):
         if line.parsed.commands and any(c.code in self.codes for c in line.parsed.commands):
             return  # already seen by check()
         m = _LEADING_CODE.match(line.raw)
-        if m is None:
-            return
-        code = _code(m.group(1), m.group(2))
+        if m is not None:
+            code = _code(m.group(1), m.group(2))
+        else:  # a Klipper command ("RUN_SHELL_COMMAND\u00a0CMD=x"): Klipper reads names in any case
+            m = _LEADING_NAME.match(line.raw)
+            if m is None:
+                return
+            code = m.group(1).upper()
         if code in self.codes:
             self.inspect(line, code, line.raw[m.end() :], m.end() + 1, None)
+
+    def check_view(self, line: Line) -> None:
+        """Read ``line`` as each firmware that edits it first reads it (``firmware_views``), reporting on
+        ``line`` with the reading named."""
+        for how, view, offset in _views_of(line):
+            self._view = (how, line, offset)
+            try:
+                parsed = view.parsed
+                for cmd in parsed.commands:
+                    if cmd.code in self.codes:
+                        self.check(view, cmd)
+                if parsed.issues and self.on_issue:
+                    self.check_issues(view)
+                # (no check_line: SC003's console lines are Smoothieware's, which reads its lines as they are)
+            finally:
+                self._view = None
 
     def inspect(self, line: Line, code: str, rest: str, column: int, cmd: Command | None) -> None:
         raise NotImplementedError
 
     def report_masked(self, line: Line, message: str, column: int, severity: Severity | None = None) -> None:
-        """Report with the message and the source line masked (no secret reaches any output)."""
+        """Report with the message and the source line masked (no secret reaches any output).  While a
+        firmware's view of a line is read, the finding goes on the line as written, naming the view, unless
+        the line already has it."""
+        if self._view is not None:
+            how, line, offset = self._view
+            if any(
+                f.line == line.number and f.code == self.code and f.message.endswith(secrets.mask(message))
+                for f in self._findings_on(line.number)
+            ):
+                return
+            message = f"{how}: {message}"
+            column = offset + column if offset else 1
         self.report(line, secrets.mask(message), column=column, severity=severity)
         finding = self.ctx.findings[-1]
         if finding.line == line.number and finding.source is not None:
             # (the line, or its beginning for a very long one)
             finding.source = _mask_machine_password(secrets.mask(finding.source))
+
+    def _findings_on(self, number: int) -> list:
+        """The findings already made on line ``number`` (they are made in line order)."""
+        out = []
+        for finding in reversed(self.ctx.findings):
+            if finding.line != number:
+                break
+            out.append(finding)
+        return out
 
 
 # -- Repetrel host actions (Hyrel M0 / M792) ------------------------------------------------------------
@@ -214,7 +418,20 @@ _ACTION_LINE = re.compile(
 
 def action_shell_column(line: Line) -> int | None:
     """The column of the first SHELL in the text of an M0/M1/M792 on ``line`` (Repetrel would run it as a
-    program), or None.  The translator's guard (translate/engine.py) checks every line it writes with it."""
+    program), in the line as written or as a firmware may read it (``firmware_views``: a leading U+00A0
+    trimmed, backspaces applied...), or None.  The translator's guard (translate/engine.py) checks every line
+    it writes with it."""
+    column = _action_shell_column(line)
+    if column is not None or _VIEW_TRIGGER.search(line.raw) is None:
+        return column
+    for _, text, offset in firmware_views(line.raw):
+        column = _action_shell_column(Line(line.number, text, line.ending, parse_line(text)))
+        if column is not None:
+            return offset + column if offset else 1
+    return None
+
+
+def _action_shell_column(line: Line) -> int | None:
     raw = line.raw
     for cmd in line.parsed.commands:
         if cmd.code in ACTION_CODES and cmd.kind == GCODE:

@@ -644,7 +644,8 @@ class AddressOutOfTable(Rule):
     explanation = """
         The T_v5 "Chart of Addresses" lists every address: T0-T19 heads, T20 spindle, T21 CO2 laser,
         T22/T23 Aux1/Aux2, T24/T25 beds and chambers, T30-T39 virtual heads (clone squads), T40-T48
-        groups.  T26-T29 and T49 and above name nothing (error), and so do v4 numbers outside the v4
+        groups.  T26-T29 and T49 and above name nothing (error), nor does a number that is not whole
+        (`M104 T0.5`: the chart has whole numbers only), and so do v4 numbers outside the v4
         tables in a `hyrel-v4` file (a v4 T command is a tool number 0-9, 10-14 for the aux port, laser,
         spindle and beds; 4.1+ firmware drops other T lines).
 
@@ -682,9 +683,22 @@ class AddressOutOfTable(Rule):
                     severity=Severity.WARNING,
                 )
             return
-        if cmd.params.get("T") is None or reported_as_v4(self.ctx, cmd):
+        if cmd.kind == GCODE and cmd.code and cmd.code[0] == "T":
+            number = _t_number(cmd)
+            if number.isdigit():  # (T0.5 and the like are no Hyrel code: DL001)
+                reason = _not_an_address(number, interpreter.resolve_command)
+                if reason is not None:
+                    self.report(line, f"{reason}: the line selects no head", node=cmd)
+            return
+        value = cmd.params.get("T")
+        if value is None or reported_as_v4(self.ctx, cmd):
             return
         address = interpreter.address(cmd)
+        if address is None:
+            reason = _not_an_address(value, interpreter.resolve_variable)
+            if reason is not None:
+                self.report(line, f"{cmd.code} {reason}: the command addresses nothing", node=cmd.param("T"))
+            return
         if address is not None and address.kind == RESERVED:
             word = cmd.param("T")
             fix, advice = self._v4_fix(line, cmd, word, address.number)
@@ -714,6 +728,20 @@ class AddressOutOfTable(Rule):
         return Fix(f"Replace {word.text} with {text} (its v4 meaning)", tuple(edits), safe=False), (
             f"; if it is the v4 number, write {text}"
         )
+
+
+def _not_an_address(text: str, resolve) -> str | None:
+    """Why a T value that reads as a number but not as an address (``Interpreter.address`` takes whole
+    numbers of up to 12 characters) names no device: a fraction, or a number beyond every address.  None
+    for text that is no number at all (the syntax rules report it) and for a long spelling of an address."""
+    if not is_number(text):
+        return None
+    value = to_number(text)  # (None: too large for a float)
+    if value is not None and value != int(value):
+        return f"T{text} is not a device number (the Chart of Addresses numbers devices with whole numbers)"
+    if value is not None and abs(value) < 1e15 and resolve(int(value)).kind != RESERVED:
+        return None  # ("T000000000000012" is T12, however it is spelled)
+    return f"T{text}: no device has this address"
 
 
 # -- HY048 ---------------------------------------------------------------------------------------------
