@@ -456,6 +456,20 @@ def test_cli_reports_t_values_that_are_no_address(tmp_path, dialect):
     assert lint("M104 T000000000000001 S200\n", codes=("HY047",)) == []
 
 
+def test_cli_reports_a_set_temperature_aimed_at_the_wrong_kind_of_device(tmp_path):
+    # Gcode page: M140 "T# is the target bed", M141 "the target chamber", M104 "T# (target head)"
+    job = (
+        "M109 T0 S200 W0\nM116\nM140 T0 S60\nM141 T1 S40\nM104 T24 S200\nM104 T20 S0\n"
+        "M140 T24 S60\nM141 T25 S40\nM104 T0 S0\nT0\nG1 X1 Y1 F100\nM30\n"
+    )
+    path = write(tmp_path, "job.gcode", job)
+    proc = run_cli("check", "--dialect", "hyrel", "--format", "json", str(path))
+    found = {f["line"]: f["message"] for f in json.loads(proc.stdout) if f["code"] == "HY046"}
+    assert sorted(found) == [3, 4, 5, 6]
+    assert found[3].startswith("M140 sets a bed, but T0 is head T0") and "use M104" in found[3]
+    assert "use M140 (bed) or M141 (chamber)" in found[5]
+
+
 def test_severities_are_the_documented_ones():
     from gclint.rules.base import all_rules
 

@@ -17,6 +17,8 @@ from gclint.syntax.nodes import Command, Line, to_number
 _WAITS = ("M109", "M190", "M191")
 _GROUPS = (("H", "C"), ("L", "U"), ("R",))
 _WAITED = {"M109": "head", "M190": "bed", "M191": "chamber"}
+_SETS = ("M104", "M140", "M141")
+_SET = {"M104": "head", "M140": "bed", "M141": "chamber"}
 
 
 def _device(rule: Rule, cmd: Command) -> int:
@@ -294,23 +296,28 @@ class WaitTargetKind(Rule):
     code = "HY046"
     name = "wait-target-kind"
     severity = Severity.WARNING
-    summary = "M109 addressed to something other than a head, or M190/M191 to something other than a bed/chamber"
+    summary = (
+        "A head temperature command (M104, M109) addressed to something other than a head, or a bed or "
+        "chamber one (M140, M141, M190, M191) to something other than a bed/chamber"
+    )
     explanation = """
         M109 waits for a head ("T# is the target head"), M190 for a bed and M191 for a chamber ("T# is
-        the target bed" / "the target chamber").  In v5, beds and chambers are T24 and T25 ("Bed1 /
-        Chamber1", "Bed2 / Chamber2") and heads T0-T19: `M190 T0` or `M109 T24` waits on the wrong kind
-        of device, most often because the T was copied from another line; the message names the wait
-        for that device.  The 3-phase spindle (T20), the CO2 laser (T21) and the aux ports (T22, T23)
-        are none of these, and the page gives them no temperature to wait for, so no wait command fits
-        them.  (Group addresses are HY003, unknown addresses HY047.)
+        the target bed" / "the target chamber"); M104 sets a head ("T# (target head)"), M140 a bed and
+        M141 a chamber ("T# is the target bed" / "the target chamber").  In v5, beds and chambers are
+        T24 and T25 ("Bed1 / Chamber1", "Bed2 / Chamber2") and heads T0-T19: `M190 T0`, `M140 T0` or
+        `M109 T24` waits for or sets the wrong kind of device, most often because the T was copied from
+        another line; the message names the command for that device.  The 3-phase spindle (T20), the
+        CO2 laser (T21) and the aux ports (T22, T23) are none of these, and the page gives them no
+        temperature, so no temperature command fits them.  (Group addresses are HY003 for the waits,
+        unknown addresses HY047.)  The rule keeps its first name, from when it checked the waits only.
     """
     example_bad = "M190 T0 S60"
     example_good = "M190 T24 S60"
     source = (
-        "Gcode page, M109 / M190 / M191 (T# is the target head / bed / chamber); T_v5, Chart of Addresses "
-        "(catalogue H06)"
+        "Gcode page, M104 / M109 / M140 / M141 / M190 / M191 (T# is the target head / bed / chamber); "
+        "T_v5, Chart of Addresses (catalogue H06)"
     )
-    codes = _WAITS
+    codes = (*_WAITS, *_SETS)
     families = ("hyrel",)
 
     def check(self, line: Line, cmd: Command) -> None:
@@ -319,23 +326,30 @@ class WaitTargetKind(Rule):
         address = self.ctx.interpreter.address(cmd)
         if address is None or address.kind in (VIRTUAL, GROUP, RESERVED):
             return
-        expected = HEAD if cmd.code == "M109" else BED
+        code = str(cmd.code)
+        expected = HEAD if code in ("M104", "M109") else BED
         if address.kind == expected:
             return
+        waits = code in _WAITS
         if address.kind == BED:
-            hint = "; for that device use M190 (bed) or M191 (chamber)"
-        elif address.kind == HEAD:
-            hint = "; for a head use M109"
-        else:
             hint = (
-                ", which is not a head, bed or chamber: the page gives it no temperature to wait for "
-                "(M109 waits for a head, M190 for a bed, M191 for a chamber)"
+                "; for that device use M190 (bed) or M191 (chamber)"
+                if waits
+                else "; for that device use M140 (bed) or M141 (chamber)"
             )
-        self.report(
-            line,
-            f"{cmd.code} waits for a {_WAITED[str(cmd.code)]}, but T{cmd.params['T']} is {address.label}{hint}",
-            node=cmd.param("T"),
-        )
+        elif address.kind == HEAD:
+            hint = "; for a head use M109" if waits else "; for a head use M104"
+        else:
+            hint = ", which is not a head, bed or chamber: the page gives it no temperature to " + (
+                "wait for (M109 waits for a head, M190 for a bed, M191 for a chamber)"
+                if waits
+                else "set (M104 sets a head, M140 a bed, M141 a chamber)"
+            )
+        if waits:
+            what = f"{code} waits for a {_WAITED[code]}"
+        else:
+            what = f"{code} sets a {_SET[code]}"
+        self.report(line, f"{what}, but T{cmd.params['T']} is {address.label}{hint}", node=cmd.param("T"))
 
 
 # -- HY051 ---------------------------------------------------------------------------------------------
