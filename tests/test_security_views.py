@@ -19,7 +19,7 @@ import json
 import pytest
 
 from gclint.engine import Linter, Options
-from gclint.rules.security import action_shell_column, firmware_views
+from gclint.rules.security import action_shell_column, firmware_views, shell_offsets
 from gclint.syntax.nodes import Line
 from gclint.syntax.parse import parse_line
 
@@ -159,3 +159,38 @@ def test_firmware_update_logging_and_system_folder(tmp_path):
     assert proc.returncode == 1 and {(3, "SC005"), (4, "SC005")} <= {(f["line"], f["code"]) for f in found}
     assert {f.code for f in _findings("G28\nM936\nM84\n")} == {"SC005"}
     assert _findings("G28\nM928\nM84\n") == []  # no file named
+
+
+# -- 5. SHELL lookalikes --------------------------------------------------------------------------------------
+
+LOOKALIKES = [
+    "SH\u0640ELL",  # Arabic tatweel
+    "SH\u2800ELL",  # braille blank
+    "S\u3164HELL",  # Hangul filler
+    "SHE\u07faLL",  # NKo lajanyalan
+    "\u0405\u041d\u0415LL",  # Cyrillic
+    "\u0455\u04bb\u0435\u04cf\u04cf",  # Cyrillic small letters
+    "\u0405\u0397\u0395LL",  # Cyrillic S, Greek Eta and Epsilon
+    "\ua731\u029c\u1d07\u029f\u029f",  # small capitals
+    "\U0001d412\U0001d407\U0001d404\U0001d40b\U0001d40b",  # mathematical bold
+    "\uff33\uff28\uff25\uff2c\uff2c",  # full-width
+]
+
+
+@pytest.mark.parametrize("word", LOOKALIKES)
+def test_shell_lookalikes(tmp_path, word):
+    assert shell_offsets(f" ; {word} C:\\x.exe") == [3]
+    line = f"M792 ; {word} C:\\x.exe"
+    assert action_shell_column(Line(2, line, "\n", parse_line(line))) == 8  # the translator's guard
+    proc, found = _check(tmp_path, "r6.gcode", f"G28 X0 Y0\n{line}\nM30\n".encode())
+    assert proc.returncode == 1 and [f["code"] for f in found if f["code"].startswith("SC")] == ["SC001"], found
+
+
+def test_shell_lookalikes_are_not_read_into_words():
+    assert shell_offsets(" ; Sheila changes the filament") == []
+    assert shell_offsets(" ; shelf") == []
+
+
+def test_translator_guard_reads_firmware_views():
+    for line in ("\u00a0M792 ; SHELL C:\\x.exe", "M117 x\x08\x08\x08\x08\x08\x08M0 ; SHELL x"):
+        assert action_shell_column(Line(1, line, "\n", parse_line(line))) is not None, line

@@ -308,14 +308,16 @@ ACTION_CODES = ("M0", "M1", "M792")
 # tests/test_security_review.py checks this list against the translators.
 PAUSE_CODES = ("M6", "M226", "M291", "M600", "M601")
 
-# Characters a program comparing text can skip (.NET's culture-aware comparison ignores U+00AD, for one):
-# control characters other than tab, and Unicode's default-ignorable code points (soft hyphen, combining
-# grapheme joiner, zero-width spaces and joiners, bidirectional marks, invisible operators, variation
-# selectors, the BOM, tag characters...).
+# Characters a program comparing text can skip (.NET's culture-aware comparison ignores U+00AD, for one), or
+# that a reader does not see between two letters: control characters other than tab, Unicode's
+# default-ignorable code points (soft hyphen, combining grapheme joiner, zero-width spaces and joiners,
+# bidirectional marks, invisible operators, variation selectors, the BOM, tag characters, the Hangul
+# fillers U+115F, U+1160, U+3164, U+FFA0...), and fillers that print as nothing or as a stretch of the line
+# (Arabic tatweel U+0640, NKo lajanyalan U+07FA, the blank Braille pattern U+2800).
 _IGNORABLE = (
-    "\x00-\x08\x0a-\x1f\x7f-\x9f\u00ad\u034f\u061c\u115f\u1160\u17b4\u17b5\u180b-\u180f\u200b-\u200f"
-    "\u202a-\u202e\u2060-\u206f\u3164\ufe00-\ufe0f\ufeff\uffa0\ufff0-\ufff8"
-    "\U0001bca0-\U0001bca3\U0001d173-\U0001d17a\U000e0000-\U000e0fff"
+    "\x00-\x08\x0a-\x1f\x7f-\x9f\u00ad\u034f\u061c\u0640\u07fa\u115f\u1160\u17b4\u17b5\u180b-\u180f"
+    "\u200b-\u200f\u202a-\u202e\u2060-\u206f\u2800\u3164\ufe00-\ufe0f\ufeff\uffa0\ufff0-\ufff8"
+    "\U0001bca0-\U0001bca3\U0001d159\U0001d173-\U0001d17a\U000e0000-\U000e0fff"
 )
 _GAP = f"[{_IGNORABLE}]*+"
 _IGNORABLE_RUN = re.compile(f"[{_IGNORABLE}]++")
@@ -335,22 +337,42 @@ def _visible(text: str) -> str:
 # (in C) that lets the exact, character by character reading below run only where it can find something.
 _FOLDED_HINT = re.compile("[^\x20-\x7e]*+".join("shell"))
 
+# Letters of other scripts that look like S, H, E and L and that NFKD does not fold (it folds the full-width,
+# mathematical, circled and modifier forms): Cyrillic, Greek, Latin small capitals and letters with a
+# stroke or hook, Cherokee, Lisu, Coptic (after Unicode's confusables.txt).  A reader sees SHELL; whether
+# Repetrel compares them as SHELL is not documented, so they are read as SHELL.
+_CONFUSABLE = str.maketrans(
+    {
+        **dict.fromkeys("\u0405\u0455\ua731\u13da\ua4e2\u054f\u0282\u023f\u10bd", "s"),
+        **dict.fromkeys("\u041d\u043d\u0397\u029c\u04bb\u13bb\ua4e7\u2c8e\u0127\u0126\u0266\u04a2\u04a3", "h"),
+        **dict.fromkeys("\u0415\u0435\u0395\u1d07\u13ac\ua4f0\u2c88\u04bd\u0247\u0246", "e"),
+        **dict.fromkeys(
+            "\u029f\u13de\ua4e1\u2cd0\u04c0\u04cf\u0399\u0406\u01c0\u0142\u0141\u019a\u026b\u026d\u2113", "l"
+        ),
+    }
+)
+
+
+def _fold(text: str) -> str:
+    """``text`` as the letters it shows: confusable letters mapped, then NFKD and case folding."""
+    return unicodedata.normalize("NFKD", text.translate(_CONFUSABLE)).translate(_CONFUSABLE).casefold()
+
 
 def _folded_shell(text: str) -> int | None:
     """Where SHELL starts in ``text`` once compatibility forms are folded (full-width ＳＨＥＬＬ, letters
-    with combining marks) and ignorable characters dropped, or None.  Only for text with non-ASCII
-    characters (the regular expression has already looked at the rest)."""
-    if _FOLDED_HINT.search(unicodedata.normalize("NFKD", text).casefold()) is None:
+    with combining marks), letters of other scripts that look like its letters mapped (Cyrillic ЅНЕLL,
+    small capitals ꜱʜᴇʟʟ: ``_CONFUSABLE``) and ignorable characters dropped, or None.  Only for text with
+    non-ASCII characters (the regular expression has already looked at the rest)."""
+    if _FOLDED_HINT.search(_fold(text)) is None:
         return None
     folded: list[str] = []
     where: list[int] = []
     for index, char in enumerate(text):
-        for part in unicodedata.normalize("NFKD", char):
+        for part in _fold(char):
             if unicodedata.category(part) in ("Mn", "Me", "Cf", "Cc") or _IGNORABLE_RUN.match(part):
                 continue
-            for low in part.casefold():
-                folded.append(low)
-                where.append(index)
+            folded.append(part)
+            where.append(index)
     found = "".join(folded).find("shell")
     return where[found] if found >= 0 else None
 
@@ -465,8 +487,10 @@ class HostRunsProgram(_SecurityRule):
 
         The Hyrel pages show the form "M0 ; SHELL C:\\program.exe" but do not say how strictly Repetrel
         reads it, so any SHELL in the text of M0, M1 or M792 is reported: in any case, anywhere in the
-        text ("SAY hi SHELL x", "SHELLC:\\x.exe", "-SHELL", "SHELL=x"), and with invisible characters
-        (soft hyphen, zero-width space) or full-width letters inside the word.  M1 is not on the Hyrel
+        text ("SAY hi SHELL x", "SHELLC:\\x.exe", "-SHELL", "SHELL=x"), with invisible characters or
+        fillers inside the word (soft hyphen, zero-width space, Arabic tatweel, the blank Braille pattern,
+        Hangul fillers), and in letters that look like its own: full-width and mathematical forms, small
+        capitals, Cyrillic and Greek lookalikes ("ЅНЕLL").  M1 is not on the Hyrel
         pages; gclint's translator writes it as M0, so it is read the same way.  The same holds for the
         codes gclint's translator turns into Hyrel's pause M0 (M600, M601, M226, M291, M6 on Carvera and
         Machinekit): text on them is text after M0 once the job is translated ("gclint translate" removes
