@@ -11,6 +11,9 @@ references; the Machinekit FDM README in the seeds):
 * The part-cooling fan (fan 0, ``M106``/``M107`` without ``P``) is one fan: it cools whatever the active
   tool prints.  Other fan indices are other devices.
 * ``M221`` is a percentage per extruder (a multiplier of 1.0 = 100 %).
+* RepRapFirmware: ``M563 P<tool> F<fans>`` gives a tool fans of its own, and ``M106`` without ``P`` drives
+  "fans of current tool" (research/dialects.md 1.3 M106, 1.8 M563).  A fan that one tool owns is that
+  tool's head's fan (Hyrel's fans are per head); fan 0 of tools that declare none is the part fan above.
 """
 
 from __future__ import annotations
@@ -32,6 +35,7 @@ class ToolHeat:
         self.fans: dict[int, float] = {}  # fan index -> fraction
         self.beds: dict[int, tuple[float, float | None]] = {}  # Hyrel address -> (set-point, waited)
         self.used: set[int] = set()  # tools that printed
+        self.tool_fans: dict[int, tuple[int, ...]] = {}  # RepRapFirmware M563 F: a tool's own fans
 
     # -- commands --------------------------------------------------------------------------------------
 
@@ -77,6 +81,20 @@ class ToolHeat:
     def set_fan(self, index: int, fraction: float) -> None:
         self.fans[index] = max(0.0, min(1.0, fraction))
 
+    def owner(self, fan: int) -> int | None:
+        """The tool that alone lists ``fan`` among its own (M563 F), or None."""
+        owners = [tool for tool, fans in self.tool_fans.items() if fan in fans]
+        return owners[0] if len(owners) == 1 else None
+
+    def own_fan(self, tool: int | None) -> float | None:
+        """The value of the fans ``tool`` owns alone (the most of them), or None when it has none."""
+        if tool is None:
+            return None
+        fans = [f for f in self.tool_fans.get(tool, ()) if self.owner(f) == tool]
+        if not fans:
+            return None
+        return max(self.fans.get(f, 0.0) for f in fans)
+
     # -- what the working head sees --------------------------------------------------------------------
 
     def working(self) -> tuple[tuple[float | None, bool], float]:
@@ -105,7 +123,7 @@ class ToolHeat:
     def aux_fans(self) -> tuple:
         out = []
         for index, value in sorted(self.fans.items()):
-            if index == 0 or value <= 0:
+            if index == 0 or value <= 0 or self.owner(index) is not None:
                 continue
             address = self.mapping.fan_map.get(index)
             out.append((f"T{address} fan" if address is not None else f"fan {index}", round(value, 3)))
@@ -131,8 +149,12 @@ class ToolHeat:
     def end_fans(self) -> dict:
         out: dict = {}
         part = self.fans.get(0, 0.0)
-        if part > 0 and self.tool is not None:
+        if part > 0 and self.tool is not None and self.owner(0) is None:
             out[self.mapping.head(self.tool)] = round(part, 3)
+        for tool in sorted(self.tool_fans):
+            value = self.own_fan(tool)
+            if value:
+                out[self.mapping.head(tool)] = round(value, 3)
         for label, value in self.aux_fans():
             out[label] = value
         return out

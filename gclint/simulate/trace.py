@@ -101,9 +101,9 @@ class Look:
 class Move:
     """One synchronisation point."""
 
-    __slots__ = ("line", "start", "end", "arc", "e", "feed", "look", "rapid")
+    __slots__ = ("line", "start", "end", "arc", "e", "feed", "look", "rapid", "frames", "anchors")
 
-    def __init__(self, line, start, end, arc, e, feed, look, rapid=False) -> None:
+    def __init__(self, line, start, end, arc, e, feed, look, rapid=False, frames=(None,) * 5, anchors=(0,) * 5) -> None:
         self.line = line  # 1-based line number in its file
         self.start = start  # (x, y, z, a, b) machine mm, None where unknown
         self.end = end
@@ -112,6 +112,8 @@ class Move:
         self.feed = feed  # mm/min, None unknown
         self.look = look
         self.rapid = rapid
+        self.frames = frames  # per axis: the workspace its coordinate is in (None: machine coordinates)
+        self.anchors = anchors  # per axis: the line that last set it outright (absolute move, homing, G92)
 
     def __repr__(self) -> str:  # pragma: no cover - debugging aid
         return f"Move(line={self.line}, end={self.end}, e={self.e}, feed={self.feed})"

@@ -23,7 +23,9 @@ class CarveraToHyrel(CncTranslator):
     MAX_RPM = 15000.0  # Carvera C1 (research/dialects.md 2.3; gclint/dialects/carvera.py extras)
     EXTRA_LETTERS: ClassVar[frozenset[str]] = frozenset("SABE")
 
-    MACHINE = "the Carvera's machine"
+    MACHINE = "the Carvera's"
+    G53_ALONE = "next"  # "Must be on a line by itself OR the first G code on a line, the directly following G0/G1
+    # will be executed in MCS" (research/dialects.md 1.1 G53)
     END_CODES: ClassVar[frozenset[str]] = frozenset({"M2"})  # "M30 End of the program, no action on the Carvera"
     HANDLERS: ClassVar[dict[str, str]] = {  # besides cnc.CNC_HANDLERS
         "M30": "m30",

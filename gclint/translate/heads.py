@@ -155,7 +155,7 @@ class Heads:
                 "each head that prints gets the nozzle's set-point, wait and flow",
                 key="single-nozzle",
             )
-        if tools.fan or self.hy.part_fan_heads:
+        if (tools.fan or self.hy.part_fan_heads) and self.part_fan_follows(self.current_tool()):
             for other in sorted(self.hy.part_fan_heads - {address}):
                 if self.hy.head(other).fan:
                     lines.append(f"M107 T{other}")
@@ -168,6 +168,8 @@ class Heads:
                     lines.append(f"M107 T{address}")
                 state.fan = tools.fan
             self.hy.part_fan_heads = {address} if tools.fan else set()
+            if tools.fan and self.current_tool() != 0:
+                self.part_fan_note()
         if flow is not None and state.flow != flow:  # explicit, not the head's stored value (X2)
             lines.append(f"M221 T{address} S{fmt(flow, 4)}")
             state.flow = flow
@@ -226,13 +228,23 @@ class Heads:
             if others:
                 self.after(*(f"M104 T{a} S0" for a in others), note="the single nozzle is off on every head")
 
-    def fan(self, cmd: Command, address: int | None, value: float | None, index: int | None = 0) -> None:
+    def part_fan_note(self) -> None:
+        """The part fan (M106 without P) drives a tool other than tool 0: dialect note (Marlin)."""
+
+    def part_fan_follows(self, tool: int) -> bool:
+        """Whether the part fan follows ``tool`` to its head (RepRapFirmware: not for a tool with fans of its
+        own)."""
+        return True
+
+    def fan(
+        self, cmd: Command, address: int | None, value: float | None, index: int | None = 0, own: bool = False
+    ) -> None:
         """``M106 T# S<0-255>`` (with ``M106 C255`` once before) or M107.  ``index`` 0 (or None): the part
-        fan, which follows the active tool."""
+        fan, which follows the active tool; ``own``: a tool's own fan (its head's, RepRapFirmware M563 F)."""
         if value is None:
             value = self.FAN_MAX
         s = max(0, min(255, round(value / self.FAN_MAX * 255)))
-        part = not index
+        part = not index and not own
         if part:
             self.tools.fan = s
         if address is None:
@@ -244,8 +256,8 @@ class Heads:
         if part:
             self.hy.part_fan_heads.add(address)
 
-    def fan_off(self, cmd: Command, address: int | None, index: int | None = 0) -> None:
-        part = not index
+    def fan_off(self, cmd: Command, address: int | None, index: int | None = 0, own: bool = False) -> None:
+        part = not index and not own
         if part:
             self.tools.fan = 0
         if address is None:

@@ -79,11 +79,7 @@ class MarlinToHyrel(HyrelTranslator):
     RRF = False
     E_MODE_FOLLOWS_POSITIONING: str | None = "Marlin's G90/G91 also set the E mode"
     EXTRA_LETTERS: ClassVar[frozenset[str]] = frozenset("SABUVWCHK")
-
-    def __init__(self, source, target, options=None) -> None:
-        super().__init__(source, target, options)
-        self.wcs = "G54"
-        self.wcs_selected = False  # the job selected a workspace (G54-G59) itself
+    G53_ALONE = "keep"  # Marlin: G53 "alone on a line activates native workspace" (modal, as Hyrel's)
 
     # -- motion ---------------------------------------------------------------------------------------
 
@@ -150,7 +146,7 @@ class MarlinToHyrel(HyrelTranslator):
                 "motors were disengaged",
                 key="G28-rehome",
                 cmd=cmd,
-                aspects="position",
+                aspects="position:" + "".join(missing),
             )
         if "A" in params and "A" in self.opts.printer.axes:
             axes.append("A")
@@ -166,7 +162,7 @@ class MarlinToHyrel(HyrelTranslator):
                     "is not homed here (G28 X0 Y0; set home-z=true for Z0)",
                     key="G28",
                     cmd=cmd,
-                    aspects="position",
+                    aspects="position:Z",  # X and Y are homed as in the source
                 )
         others = [letter for letter in params if letter not in "XYZAB"]
         if others:
@@ -176,35 +172,8 @@ class MarlinToHyrel(HyrelTranslator):
             self.replace(cmd, text)
         self.refocus()
 
-    def machine_coordinates(self, cmd: Command) -> None:
-        line = self.line
-        assert line is not None
-        rest = line.commands[self.index + 1 :]
-        if any(c.code in ("G0", "G1", "G2", "G3") for c in rest):
-            # G53 applies to the rest of the line in the source; Hyrel's G53 is modal "clear offsets"
-            self.remove(
-                cmd,
-                TR_APPROX,
-                "G53 prefix: written as G53 before the move (Hyrel's G53 is modal, and G92 and head "
-                "offsets still apply)" + (f"; {self.wcs} invoked again after it" if self.wcs_selected else ""),
-                key="G53",
-                aspects=("position", "wcs"),
-            )
-            self.before("G53", note="G53 prefix: machine coordinates")
-            if self.wcs_selected:
-                # Hyrel's G53 stays in force; the workspace the source had selected is invoked again.  A job
-                # that never selected one had no fixture offsets, and Hyrel has none after G53 either.
-                self.after(self.wcs, note="the workspace again after the G53 move")
-        elif self.RRF:
-            self.remove(cmd, TR_DROPPED, "G53 alone does nothing in RepRapFirmware", key="G53-alone")
-
-    def workspace(self, cmd: Command) -> None:
-        self.wcs = cmd.code or "G54"
-        self.wcs_selected = True
-        super().workspace(cmd)
-
     def workspace_extra(self, cmd: Command) -> None:
-        self.untranslatable(cmd, "Hyrel has no G59.1-G59.3 workspaces", aspects=("wcs", "position"))
+        self.untranslatable(cmd, "Hyrel has no G59.1-G59.3 workspaces", aspects=("wcs", "position", "offsets"))
 
     def clear_g92(self, cmd: Command) -> None:
         self.replace(cmd, "G93")
@@ -449,16 +418,32 @@ class MarlinToHyrel(HyrelTranslator):
     def _fan_value(self, cmd: Command) -> float | None:
         return num(cmd.params.get("S"))
 
+    def part_fan_note(self) -> None:
+        """Marlin's M106/M107 without P drive "the one part fan whichever extruder is active"; on a printer
+        built with a fan per extruder they drive the active extruder's own fan instead.  How many fans the
+        printer has is firmware configuration, not in the file: the one-fan reading is kept, with a note."""
+        self.report(
+            TR_NOTE,
+            "M106/M107 without P while a tool other than T0 is active: taken as the one part fan, moved to the head "
+            "that prints; on a Marlin printer with a fan per extruder it is that extruder's own fan (the fan "
+            "count is firmware configuration, not in the file)",
+            key="fan-count",
+        )
+
     def m106(self, cmd: Command) -> None:
         params = cmd.params
         if "T" in params and not self.RRF:
             self.report(TR_NOTE, "M106 T (secondary fan speed) dropped", key="M106-T", cmd=cmd)
         index = self._tool_index(cmd, "P")
+        if index is None and self.current_tool() != 0:
+            self.part_fan_note()
         address = self.head(index if index is not None else 0, "fan")
         self.fan(cmd, address, self._fan_value(cmd), index=index)
 
     def m107(self, cmd: Command) -> None:
         index = self._tool_index(cmd, "P")
+        if index is None and self.current_tool() != 0:
+            self.part_fan_note()
         self.fan_off(cmd, self.head(index if index is not None else 0, "fan"), index=index)
 
     def m200(self, cmd: Command) -> None:

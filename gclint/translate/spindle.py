@@ -34,7 +34,8 @@ class Spindles:
         if percent is not None:
             words.append("S" + percent)
         running = self.hy.spindles_on.get(address)
-        if running is not None and running != code:
+        stops = percent is not None and float(percent) == 0  # "S0 is the same as turning it off" (M3)
+        if running is not None and running != code and not stops:
             # "DO NOT CHANGE DIRECTION while the spindle is in motion" (Hyrel Gcode page, M3).  The page gives
             # no spin-down time: wait the configured one, else pause until the operator resumes.
             dwell = self.opts.spindle_stop_dwell
@@ -53,7 +54,7 @@ class Spindles:
                 aspects="spindle",
             )
         self.replace(cmd, " ".join(words))
-        if percent is not None and float(percent) == 0:  # "S0 is the same as turning it off" (M3)
+        if stops:
             self.hy.spindles_on.pop(address, None)
         else:
             self.hy.spindles_on[address] = code
