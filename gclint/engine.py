@@ -258,6 +258,8 @@ class Linter:
         long_hooks = tuple((r.on_line_longer_than, r.check_line) for r in rules if r.on_line_longer_than is not None)
         shortest_long = min((n for n, _ in long_hooks), default=None)
         after_end_hooks = tuple(r.check_line for r in rules if r.on_line_after_m30)
+        start_hooks = tuple((r.on_line_starting_with, r.check_line) for r in rules if r.on_line_starting_with)
+        first_chars = frozenset().union(*(chars for chars, _ in start_hooks))
         numbered_hooks = tuple(r.check_line for r in rules if r.on_numbered)
         issue_hooks = tuple(r.check_issues for r in rules if r.on_issue)
         comment_hooks = tuple(r.check_comment for r in rules if r.on_comment)
@@ -281,6 +283,7 @@ class Linter:
             # rest of this file and go on.  The loops below iterate over tuples, so replacing them here
             # does not skip the other rules' hooks on the current line.
             nonlocal line_hooks, numbered_hooks, issue_hooks, comment_hooks, long_hooks, after_end_hooks, plain
+            nonlocal start_hooks
             rule = getattr(hook, "__self__", None)
             if rule is None or rule not in rules:  # pragma: no cover - hooks are bound rule methods
                 raise exc
@@ -294,6 +297,7 @@ class Linter:
             issue_hooks, comment_hooks = keep(issue_hooks), keep(comment_hooks)
             after_end_hooks = keep(after_end_hooks)
             long_hooks = tuple((n, h) for n, h in long_hooks if getattr(h, "__self__", None) is not rule)
+            start_hooks = tuple((c, h) for c, h in start_hooks if getattr(h, "__self__", None) is not rule)
             for code, handlers in list(by_code.items()):
                 by_code[code] = list(keep(handlers))
             any_t[:] = keep(any_t)
@@ -325,7 +329,7 @@ class Linter:
         # them: no rule listens to the code unless the line has a letter a plain move never carries, and
         # the interpreter's own motion handler applies it.  tests/test_plain_moves.py checks that the
         # findings are the same with and without this route on every corpus file.
-        plain = self._plain_moves(build, interpreter, line_hooks)
+        plain = self._plain_moves(build, interpreter, line_hooks) if "G" not in first_chars else None
         long_limit = shortest_long if shortest_long is not None else 1 << 62
         plain_match = PLAIN_MOVE.fullmatch
         plain_move = interpreter.plain_move
@@ -396,6 +400,13 @@ class Linter:
                         hook(line)
                     except Exception as exc:
                         disable(hook, exc, number)
+                if first_chars and raw[:1] in first_chars:
+                    for chars, hook in start_hooks:
+                        if raw[:1] in chars:
+                            try:
+                                hook(line)
+                            except Exception as exc:
+                                disable(hook, exc, number)
                 for cmd in parsed.commands:
                     entry = get(cmd.code)
                     if entry is None:

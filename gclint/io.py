@@ -9,11 +9,14 @@ never leaves a half-written job; special files (/dev/stdout, pipes, /dev/full) a
 * The temporary file is created exclusively (``mkstemp``) in the target's folder, so it never follows a
   link either; the rename replaces the directory entry, never what it points to.
 * Mode, owner and group of a replaced file are kept where the system allows it.
+* A named pipe is opened without waiting: one that nothing reads is refused with one line (a FIFO planted
+  where ``postprocess`` writes its report would otherwise hang the slicer's export).
 * SIGTERM while a temporary file exists removes it before the process ends (a killed job leaves nothing).
 """
 
 from __future__ import annotations
 
+import errno
 import os
 import signal
 import stat
@@ -22,6 +25,7 @@ import threading
 from typing import BinaryIO
 
 _NOFOLLOW = getattr(os, "O_NOFOLLOW", 0)
+_NONBLOCK = getattr(os, "O_NONBLOCK", 0)
 _SYSTEM_LINKS = ("/dev/", "/proc/")  # /dev/stdout -> /proc/self/fd/1 -> a pipe, a tty or a redirected file
 
 
@@ -80,6 +84,7 @@ class AtomicWriter:
         self._discarded = False
         self._direct = False
         self._via_link = False
+        self._fifo = False
 
     def _where(self) -> None:
         """Decide what to write: the target file and whether it is written directly (a stream) or replaced."""
@@ -110,6 +115,7 @@ class AtomicWriter:
         if stat.S_ISBLK(st.st_mode):
             raise OutputError(f"{self.path}: is a disk device; gclint does not write to it")
         self._direct = True  # a terminal, a pipe, /dev/null, /dev/full
+        self._fifo = stat.S_ISFIFO(st.st_mode)
 
     def __enter__(self) -> AtomicWriter:
         try:
@@ -118,7 +124,7 @@ class AtomicWriter:
             raise OutputError(f"{self.path}: cannot write: {exc.strerror or exc}") from None
         try:
             if self._direct:
-                fd = os.open(self._target, os.O_WRONLY | os.O_TRUNC | (0 if self._via_link else _NOFOLLOW))
+                fd = _open_direct(self._target, self._fifo, follow=self._via_link)
                 self._fh = os.fdopen(fd, "wb")
             else:
                 _install_sigterm()
@@ -128,6 +134,8 @@ class AtomicWriter:
                 self._fh = os.fdopen(fd, "wb")
         except OSError as exc:
             self._cleanup()
+            if self._fifo and exc.errno == errno.ENXIO:
+                raise OutputError(f"{self.path}: is a named pipe that nothing reads") from None
             raise OutputError(f"{self.path}: cannot write: {exc.strerror or exc}") from None
         return self
 
@@ -196,6 +204,23 @@ class AtomicWriter:
                 pass
             _LIVE.discard(self._tmp)
             self._tmp = None
+
+
+def _open_direct(path: str, fifo: bool, *, follow: bool) -> int:
+    """Open a stream file for writing.  A named pipe is opened without waiting: with nothing reading it,
+    opening would block for ever (a FIFO planted where a report goes must not hang a slicer's export); it
+    fails with ENXIO instead.  Once open, writes block as usual."""
+    flags = os.O_WRONLY | os.O_TRUNC | (0 if follow else _NOFOLLOW)
+    if not fifo or not _NONBLOCK:
+        return os.open(path, flags)
+    fd = os.open(path, flags | _NONBLOCK)
+    try:
+        import fcntl
+
+        fcntl.fcntl(fd, fcntl.F_SETFL, fcntl.fcntl(fd, fcntl.F_GETFL) & ~_NONBLOCK)
+    except (ImportError, OSError):
+        pass
+    return fd
 
 
 def _umask() -> int:

@@ -13,7 +13,7 @@ from typing import TYPE_CHECKING
 
 from gclint.config import ConfigError, apply, config_for, find_config
 from gclint.engine import FileResult, Linter, Options
-from gclint.excludes import Excluder
+from gclint.excludes import TOOL_FOLDER, Excluder, Exclusion, LeftOut
 from gclint.syntax.source import Source, SourceError
 
 if TYPE_CHECKING:
@@ -36,15 +36,22 @@ def collect(
     notes: list[str] | None = None,
     excluder: Excluder | None = None,
     walked: set[str] | None = None,
+    left_out: list[LeftOut] | None = None,
+    roots: dict[str, str] | None = None,
 ) -> tuple[list[str], list[FileResult]]:
     """Expand folders into their G-code files (sorted; hidden folders included, excluded and .gitignored
-    paths left out, symbolic links to folders not followed: as ruff does).
+    paths left out, symbolic links to folders not followed: as ruff does; files git tracks are never left
+    out by .gitignore or the default tool folders, and links to files outside the folder are not read).
 
     Returns the files to check and results for the paths that cannot be checked (missing, empty or
     unreadable folder, a pipe or device found in a folder).  ``notes`` receives what was left out on purpose
-    (links to folders), for the user; ``walked`` the files found in folders (not named).
+    (links), for the user; ``left_out`` the G-code files excluded, and why; ``walked`` the files found in
+    folders (not named); ``roots`` each of those with the real path of the folder it was found in.
     """
     excluder = excluder if excluder is not None else Excluder()
+    notes = notes if notes is not None else []
+    left_out = left_out if left_out is not None else []
+    roots = roots if roots is not None else {}
     files: list[str] = []
     problems: list[FileResult] = []
     seen: set[str] = set()
@@ -53,64 +60,188 @@ def collect(
             files.append(path)
             continue
         if os.path.isdir(path):
-            found: list[str] = []
-            before = len(problems)
-            _walk(path, found, problems, notes if notes is not None else [], excluder)
+            walk = _Walk(path, excluder, problems, notes, left_out, roots)
+            walk.run()
             if walked is not None:
-                walked.update(found)
-            if not found and len(problems) == before:
+                walked.update(walk.found)
+            if not walk.found and not walk.skipped and len(problems) == walk.problems_before:
                 problems.append(
                     FileResult(path, error=f"{path}: no G-code files in this folder ({' '.join(GCODE_EXTENSIONS)})")
                 )
-            for f in found:
+            for f in walk.found:
                 if f not in seen:
                     seen.add(f)
                     files.append(f)
         elif os.path.lexists(path):
-            if excluder.reason(path, False, named=True) is not None:
-                continue  # --force-exclude: named, but excluded (as pre-commit passes every staged file)
+            why = excluder.excluded(path, False, named=True)
+            if why is not None:  # --force-exclude: named, but excluded (as pre-commit passes every staged file)
+                left_out.append(LeftOut(path, why))
+                continue
             if path not in seen:
                 seen.add(path)
                 files.append(path)
         else:
             problems.append(FileResult(path, error=f"{path}: no such file or folder"))
+    notes.extend(excluder.notes)
+    excluder.notes.clear()
     return files, problems
 
 
-def _walk(top: str, found: list[str], problems: list[FileResult], notes: list[str], excluder: Excluder) -> None:
-    """Depth first, files of a folder before its sub-folders, each sorted by name.  A folder that cannot be
-    read is a problem (exit 2), never skipped in silence; links to folders are not followed (no loops)."""
-    stack = [top]
-    while stack:
-        folder = stack.pop()
-        try:
-            with os.scandir(folder) as listing:
-                entries = sorted(listing, key=lambda e: e.name)
-        except OSError as exc:
-            problems.append(FileResult(folder, error=f"{folder}: cannot read this folder: {exc.strerror or exc}"))
-            continue
-        subfolders = []
-        for entry in entries:
+# Entries listed, in all, to count the G-code files of excluded folders (a gitignored output folder, a
+# node_modules inside a jobs folder); past it an excluded folder is named rather than counted.
+COUNT_BUDGET = 100_000
+
+
+class _Walk:
+    """One folder walk: depth first, files of a folder before its sub-folders, each sorted by name.
+
+    A folder that cannot be read is a problem (exit 2), never skipped in silence; links to folders are not
+    followed (no loops), links to files outside the folder are not read (a committed link must not pull
+    ~/.ssh/id_ed25519 into a report, nor let a fix write outside the tree), both with a note.  Excluded
+    folders are entered only to find the files git tracks in them (checked unless the user's own patterns
+    exclude them) and to count the G-code files left out; a tool folder where one is expected (.venv,
+    node_modules beside .git, or at the top of a folder outside any repository) is not counted at all."""
+
+    def __init__(
+        self,
+        top: str,
+        excluder: Excluder,
+        problems: list[FileResult],
+        notes: list[str],
+        left_out: list[LeftOut],
+        roots: dict[str, str],
+    ) -> None:
+        self.top = top
+        self.top_real = os.path.realpath(top)
+        self.outside_repository = excluder.repository_root(top) is None
+        self.excluder = excluder
+        self.problems = problems
+        self.problems_before = len(problems)
+        self.notes = notes
+        self.left_out = left_out
+        self.roots = roots
+        self.found: list[str] = []
+        self.skipped = 0  # G-code files found but not checked (excluded, links out): the folder is not empty
+        self.budget = COUNT_BUDGET
+
+    def run(self) -> None:
+        stack: list[tuple[str, Exclusion | None]] = [(self.top, None)]
+        while stack:
+            folder, inherited = stack.pop()
             try:
-                if entry.is_dir(follow_symlinks=False):
-                    if excluder.reason(entry.path, True) is None:
-                        subfolders.append(entry.path)
-                    continue
-                if entry.is_symlink() and entry.is_dir():
-                    notes.append(
-                        f"{entry.path}: a symbolic link to a folder, not followed (name the folder to check it)"
-                    )
-                    continue
-            except OSError:
-                pass
-            if not entry.name.lower().endswith(GCODE_EXTENSIONS) or excluder.reason(entry.path, False) is not None:
+                with os.scandir(folder) as listing:
+                    entries = sorted(listing, key=lambda e: e.name)
+            except OSError as exc:
+                if inherited is None:
+                    error = f"{folder}: cannot read this folder: {exc.strerror or exc}"
+                    self.problems.append(FileResult(folder, error=error))
+                elif not inherited.quiet:
+                    self._leave_out(LeftOut(_shown(folder), inherited, folder=True))
                 continue
-            kind = _not_regular(entry.path)
-            if kind is not None:
-                problems.append(FileResult(entry.path, error=f"{entry.path}: not a regular file ({kind}): not read"))
-                continue
-            found.append(entry.path[2:] if entry.path.startswith("./") else entry.path)  # "a.gcode", as ruff
-        stack.extend(reversed(subfolders))
+            if inherited is not None and not inherited.quiet:
+                self.budget -= len(entries)
+            subfolders = []
+            for entry in entries:
+                try:
+                    if entry.is_dir(follow_symlinks=False):
+                        enter, why = self._subfolder(entry.path, folder, inherited)
+                        if enter:
+                            subfolders.append((entry.path, why))
+                        continue
+                    if entry.is_symlink() and entry.is_dir():
+                        if inherited is None:
+                            self.notes.append(
+                                f"{entry.path}: a symbolic link to a folder, not followed (name the folder to check it)"
+                            )
+                        continue
+                except OSError:
+                    pass
+                if entry.name.lower().endswith(GCODE_EXTENSIONS):
+                    self._file(entry, inherited)
+            stack.extend(reversed(subfolders))
+
+    def _subfolder(self, path: str, parent: str, inherited: Exclusion | None) -> tuple[bool, Exclusion | None]:
+        """Whether to enter the folder ``path``, and why it is excluded (None: it is walked as usual)."""
+        own = self.excluder.why(path, True)
+        if own is None and inherited is None:
+            return True, None
+        if inherited is None:
+            why = own
+            if own.by == TOOL_FOLDER and self._expected(parent):  # type: ignore[union-attr]
+                why = replace(own, quiet=True)  # type: ignore[arg-type]
+                self.left_out.append(LeftOut(_shown(path), why, folder=True))  # for -v
+        elif own is not None and own.by == TOOL_FOLDER:  # a tool folder in an excluded folder: not counted
+            if inherited.chosen:
+                return False, None
+            why = replace(inherited, quiet=True)
+        elif own is not None and own.chosen and not inherited.chosen:
+            why = own
+        else:
+            why = inherited
+        assert why is not None
+        if not why.chosen and self.excluder.holds_tracked(path):
+            return True, why
+        if why.quiet:
+            return False, why
+        if self.budget <= 0:
+            self._leave_out(LeftOut(_shown(path), why, folder=True))
+            return False, why
+        return True, why
+
+    def _expected(self, parent: str) -> bool:
+        """Whether a tool folder in ``parent`` is where one is expected: beside ``.git``, or at the top of
+        a walk outside any repository (``jobs/node_modules`` in a repository is not)."""
+        return os.path.lexists(os.path.join(parent, ".git")) or (self.outside_repository and parent == self.top)
+
+    def _file(self, entry: os.DirEntry, inherited: Exclusion | None) -> None:
+        path = entry.path
+        own = None if inherited is not None and inherited.chosen else self.excluder.why(path, False)
+        why = own if inherited is None or (own is not None and own.chosen) else inherited
+        if why is not None and (why.chosen or not self.excluder.tracked(path)):
+            if not why.quiet:
+                self._leave_out(LeftOut(_shown(path), why))
+            return
+        try:
+            link = entry.is_symlink()
+        except OSError:
+            link = False
+        if link and not _inside(os.path.realpath(path), self.top_real):
+            self.skipped += 1
+            self.notes.append(
+                f"{_shown(path)}: a symbolic link to a file outside {self.top} ({os.path.realpath(path)}), not read"
+                " (name it to check it)"
+            )
+            return
+        kind = _not_regular(path)
+        if kind is not None:
+            self.problems.append(FileResult(path, error=f"{path}: not a regular file ({kind}): not read"))
+            return
+        self.found.append(_shown(path))
+        self.roots[_shown(path)] = self.top_real
+
+    def _leave_out(self, item: LeftOut) -> None:
+        self.skipped += 1
+        self.left_out.append(item)
+
+
+def _shown(path: str) -> str:
+    """A path as the user sees it: "a.gcode", not "./a.gcode" (as ruff)."""
+    return path[2:] if path.startswith("./") else path
+
+
+def _inside(path: str, folder: str) -> bool:
+    """Whether the real path ``path`` is ``folder`` or in it."""
+    return path == folder or path.startswith(folder.rstrip(os.sep) + os.sep)
+
+
+def outside_walk(path: str, roots: dict[str, str]) -> str | None:
+    """For a file found in a folder walk: where it leads when that is now outside the walked folder (a
+    link put there since it was walked), else None.  Nothing is written through such a link."""
+    root = roots.get(path)
+    if root is None:
+        return None
+    target = os.path.realpath(path)
+    return None if _inside(target, root) else target
 
 
 def _not_regular(path: str) -> str | None:
@@ -271,4 +402,13 @@ def default_jobs() -> int:
     return os.cpu_count() or 1
 
 
-__all__ = ["collect", "run", "check_one", "options_for", "GCODE_EXTENSIONS", "default_jobs", "Path"]
+__all__ = [
+    "collect",
+    "run",
+    "check_one",
+    "options_for",
+    "outside_walk",
+    "GCODE_EXTENSIONS",
+    "default_jobs",
+    "Path",
+]

@@ -51,6 +51,8 @@ def test_json_format_fields(tmp_path):
     assert finding["path"] == str(job) and finding["line"] == 1 and finding["column"] == 9
     assert finding["severity"] == "error" and "checksum" in finding["message"]
     assert finding["fix"]["edits"][0]["content"].startswith("*")
+    ruff_spelling = run_cli("check", str(job), "--output-format", "json")  # ruff's name for the option
+    assert json.loads(ruff_spelling.stdout) == data
 
 
 def test_stdin():

@@ -218,3 +218,18 @@ def test_suppression_lists_are_read_once_and_bounded() -> None:
     )
     lines = [f.line for f in Linter(Options()).check_text(text, "j.gcode").findings if f.code == "HY003"]
     assert lines == [5, 9]
+
+
+def test_a_nested_configuration_that_hides_raised_security_levels_is_said(tmp_path: Path) -> None:
+    (tmp_path / "gclint.toml").write_text('severity = { SC004 = "error" }\n')
+    jobs = tmp_path / "jobs"
+    jobs.mkdir()
+    job = jobs / "a.gcode"
+    job.write_text('; gclint: dialect=reprap\nM98 P"x.g"\n')
+    assert run_cli("check", "--no-cache", "--fail-on", "error", str(job)).returncode == 1
+    (jobs / ".gclint.toml").write_text("")  # nearest wins: SC004 is a warning again
+    proc = run_cli("check", "--no-cache", "--fail-on", "error", str(job))
+    err = proc.stderr.decode()
+    assert proc.returncode == 0 and "weakens security rule SC004" in err and "do not inherit" in err, err
+    (jobs / ".gclint.toml").write_text('severity = { SC = "error" }\n')  # raised here too: nothing to say
+    assert "weakens" not in run_cli("check", "--no-cache", str(job)).stderr.decode()

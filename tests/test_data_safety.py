@@ -475,6 +475,11 @@ def test_utf32_is_read_as_utf32(tmp_path: Path) -> None:
         assert proc.returncode == 1 and b"SC001" in proc.stdout, proc.stderr
         out = tmp_path / f"{codec}.out.gcode"
         proc = run_cli("translate", "--from", "marlin", "--to", "marlin", str(path), "-o", str(out))
+        assert proc.returncode == 1 and not out.exists(), proc.stderr  # translate never writes a SHELL action
+        harmless = tmp_path / f"{codec}.harmless.gcode"
+        data = bom + text.replace("SHELL C:\\x.exe", "SAY done").encode(codec)
+        harmless.write_bytes(data)
+        proc = run_cli("translate", "--from", "marlin", "--to", "marlin", str(harmless), "-o", str(out))
         assert proc.returncode == 0 and out.read_bytes() == data, proc.stderr
 
 

@@ -34,6 +34,7 @@ HOSTILE = [
     ('M98 P"0:/macros/prime.g"', {"SC004"}),
     ("M98 Phomez.g", {"SC004"}),
     ("M98.1 L2 {gcodes/test.cnc}", {"SC004"}),
+    ("M98 P1001", {"SC004"}),  # a Carvera runs gcodes/macros/1001.cnc (a LinuxCNC subprogram: not reported there)
     ("M32 !/models/part.gco#", {"SC004"}),
     ("M23 part2.gco", {"SC004"}),
     ("M30 old_job.gco", {"SC005"}),
@@ -57,8 +58,6 @@ HARMLESS = [
     "M0 ; Load the blue filament",
     "M792 ; SAY done ; BEEP ; SEND layer",
     "M1000",
-    "M98 P100 L2",
-    "M98 P1001",
     "M24",
     "M30",
     "M30 ; end",

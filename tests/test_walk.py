@@ -1,6 +1,7 @@
 """Folder walks (issue 12, items 12 and 15): nothing is skipped in silence.  An unreadable folder or file is
 one line on stderr and exit 2 while everything else is still checked; hidden folders are walked and links
-to folders are not followed (as ruff does), with a note; version-control folders are skipped."""
+to folders are not followed (as ruff does), with a note; version-control folders are skipped.  What a
+review found a hostile commit could hide from a walk is in test_walk_review.py."""
 
 from __future__ import annotations
 
@@ -134,12 +135,14 @@ def test_links_to_folders_are_not_followed_and_said_so(tmp_path: Path) -> None:
     (elsewhere / "x.gcode").write_text(HOSTILE)
     (jobs / "linked").symlink_to(elsewhere, target_is_directory=True)
     (jobs / "sub" / "loop").symlink_to(jobs, target_is_directory=True)
-    (jobs / "job-link.gcode").symlink_to(elsewhere / "x.gcode")
+    (jobs / "job-link.gcode").symlink_to(elsewhere / "x.gcode")  # outside the folder: not read either
+    (jobs / "inside-link.gcode").symlink_to(jobs / "sub" / "b.gcode")  # inside: read
     notes: list[str] = []
     files, problems = runner.collect([str(jobs)], notes)
-    assert [os.path.relpath(f, jobs) for f in files] == ["a.gcode", "job-link.gcode", os.path.join("sub", "b.gcode")]
-    assert len(notes) == 2 and all("not followed" in n for n in notes), notes
+    assert [os.path.relpath(f, jobs) for f in files] == ["a.gcode", "inside-link.gcode", os.path.join("sub", "b.gcode")]
+    assert len(notes) == 3 and sum("not followed" in n for n in notes) == 2, notes
     assert any("linked" in n for n in notes) and any("loop" in n for n in notes)
+    assert any("job-link.gcode" in n and "outside" in n and "not read" in n for n in notes)
     from .conftest import run_cli
 
     proc = run_cli("check", "--no-cache", str(jobs), timeout=60)

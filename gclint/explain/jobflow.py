@@ -7,6 +7,7 @@ from gclint.dialects.hyrel import ACTIONS
 from gclint.explain.generic import does
 from gclint.explain.job import Decoder, Job
 from gclint.explain.model import Explanation
+from gclint.rules.security import shell_offsets
 from gclint.syntax.nodes import Command
 
 
@@ -14,6 +15,7 @@ def stop(job: Job, exp: Explanation, cmd: Command, spec: Code | None) -> None:
     does(exp, spec)
     line = exp.source
     comment = line.split(";", 1)[1] if ";" in line else ""
+    warned = False
     for part in comment.split(";"):  # "Note that multiple options can be combined."
         part = part.strip()
         keyword = part.split(" ", 1)[0].upper() if part else ""
@@ -22,6 +24,9 @@ def stop(job: Job, exp: Explanation, cmd: Command, spec: Code | None) -> None:
             exp.add(part, f"{ACTIONS[keyword]}: {argument}" if argument else ACTIONS[keyword])
             if keyword == "SHELL":
                 exp.warn("SHELL runs a program on the Repetrel computer when the job reaches this line")
+                warned = True
+    if not warned and shell_offsets(line.split("M0", 1)[-1]):  # SHELLC:..., SAY hi SHELL..., SHE­LL (SC001)
+        exp.warn("the text holds SHELL: Repetrel may run it as a program (SC001 reports it)")
 
 
 def decoders(family: str) -> dict[str, Decoder]:

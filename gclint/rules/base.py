@@ -168,6 +168,8 @@ class Rule:
     on_line: ClassVar[bool] = False  # call check_line for every line (use sparingly)
     on_line_longer_than: ClassVar[int | None] = None  # call check_line for lines longer than this
     on_line_after_m30: ClassVar[bool] = False  # call check_line for every line once the job has ended
+    # call check_line for lines whose first character is one of these (never "G": plain moves stay fast)
+    on_line_starting_with: ClassVar[frozenset[str]] = frozenset()
     on_comment: ClassVar[bool] = False  # call check_comment for every comment
     on_unknown_code: ClassVar[bool] = False  # call check for codes the dialect does not have
     on_numbered: ClassVar[bool] = False  # call check_line for lines with an N number or a checksum
@@ -193,7 +195,8 @@ class Rule:
 
     def check_line(self, line: Line) -> None:
         """Called for every line (``on_line``), numbered lines (``on_numbered``), long lines
-        (``on_line_longer_than``) or lines after the end of the job (``on_line_after_m30``)."""
+        (``on_line_longer_than``), lines after the end of the job (``on_line_after_m30``) or lines that
+        start with one of ``on_line_starting_with``."""
 
     def check_comment(self, line: Line, comment: Comment) -> None:
         """Called for every comment (``on_comment``)."""

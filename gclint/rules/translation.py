@@ -190,7 +190,12 @@ class CommentBecomesAction(TranslationRule):
         computer will execute the file at the specified location", PIC and VID open files, SAY speaks, SEND
         writes to the Aux port, BEEP beeps.  Carried over as it was, `M0 ; SHELL C:\\evil.exe` would make
         the PC that runs the printer start a program.  The translator removes such a comment from the
-        pause and reports it; the pause itself stays.
+        pause and reports it; the pause itself stays.  Actions are read as the SC rules read them: a
+        keyword starting a segment in any case, or SHELL anywhere, also with invisible characters inside.
+
+        Every line a translation writes is checked the same way: one that would still carry SHELL after
+        M0, M1 or M792 (a Hyrel source's own action, which the identity and the v4/v5 renumbering copy)
+        is an error, and nothing is written (exit 1, whatever --unsupported says).
     """
     example_bad = "M0 ; SHELL C:\\evil.exe"
     example_good = "M0"

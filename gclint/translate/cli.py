@@ -119,17 +119,22 @@ def _collect(src: Source, translator, result: TranslationResult) -> tempfile.Spo
 
 
 def _refused(result: TranslationResult, unsupported: str) -> bool:
+    if result.refused:  # the output would make the host run a program (HostActionGuard): never written
+        return True
     return unsupported == "error" and any(f.severity >= Severity.WARNING for f in result.findings)
 
 
 def _report(result: TranslationResult, unsupported: str) -> None:
-    if unsupported == "ignore":
+    if unsupported == "ignore" and not result.refused:
         return
     from gclint.reports.common import human, message  # masks secrets, escapes file text
 
     for f in result.findings:
-        _say(f"{human(f.path)}:{f.line}:{f.column}: {f.code} {message(f)}")
-    if unsupported == "error" and _refused(result, unsupported):
+        if unsupported != "ignore" or f.severity >= Severity.ERROR:
+            _say(f"{human(f.path)}:{f.line}:{f.column}: {f.code} {message(f)}")
+    if result.refused:
+        _say(f"gclint: {human(result.path)}: not translated: the output would make the host computer run a program")
+    elif unsupported == "error" and _refused(result, unsupported):
         _say(
             f"gclint: {human(result.path)}: not translated: {len(result.findings)} construct(s) cannot be translated "
             "exactly (--unsupported error)"

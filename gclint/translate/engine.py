@@ -5,6 +5,7 @@ so the translators can import it without a cycle."""
 
 from __future__ import annotations
 
+import re
 from array import array
 from collections.abc import Callable, Iterator
 from dataclasses import dataclass, field
@@ -52,6 +53,7 @@ class TranslationResult:
     lines_in: int = 0
     lines_changed: int = 0
     occurrences: dict[tuple[str, frozenset[str]], array] = field(default_factory=dict)
+    refused: bool = False  # the output would run a program on the host (HostActionGuard): write nothing
 
     def record(self, code: str, aspects: frozenset[str], line: int) -> None:
         lines = self.occurrences.get((code, aspects))
@@ -96,7 +98,17 @@ def _keep(g1: bool, number: int, x, y, z, e, f, ending: str) -> bool:
 
 def translate_source(source: Source, translator: Translator, result: TranslationResult) -> Iterator[str]:
     """Yield the translated text of ``source`` (line endings included), one piece per chunk of source
-    lines, so that writers encode and write a few large strings instead of one per line."""
+    lines, so that writers encode and write a few large strings instead of one per line.
+
+    Every piece passes ``HostActionGuard``: a written line that Repetrel would run as a program (SHELL in
+    the text of M0/M1/M792) is an error finding, and the writers (translate/cli.py) then write nothing."""
+    guard = HostActionGuard(result)
+    for text in _translate(source, translator, result):
+        guard.check(text)
+        yield text
+
+
+def _translate(source: Source, translator: Translator, result: TranslationResult) -> Iterator[str]:
     yield from translator.start(result)
     number = 0
     translate = translator.translate_line
@@ -119,3 +131,54 @@ def translate_source(source: Source, translator: Translator, result: Translation
             yield "".join(parts)
     result.lines_in = number
     yield from translator.finish(result)
+
+
+# An M0, M1 or M792 anywhere in a piece of output: only those lines are parsed again by the guard.
+_ACTION_CODE = re.compile(r"[Mm][ \t]*+(?:0*+(?:1|792)|0++)(?![\d.])")
+_LINE_BREAK = re.compile(r"\r\n?|\n")  # the line endings gclint reads (syntax/source.py)
+
+
+class HostActionGuard:
+    """Checks what a translation writes: no line may carry a Repetrel host action that runs a program
+    (SHELL in the text of M0/M1/M792, as SC001 reads it).  The translators remove such text from the
+    pauses they write (TR009); the guard catches what they keep as it is, a Hyrel source's own
+    ``M0 ; SHELL ...`` (the identity and the v4/v5 renumbering copy lines), and anything a translator
+    might get wrong.  A line it finds is a TR009 error finding: ``translate`` then writes nothing."""
+
+    def __init__(self, result: TranslationResult) -> None:
+        self.result = result
+        self.lines = 0  # output lines before the current piece
+
+    def check(self, text: str) -> None:
+        if _ACTION_CODE.search(text) is None:
+            self.lines += text.count("\n") + text.count("\r") - text.count("\r\n")
+            return
+        from gclint.rules.security import action_shell_column
+
+        pieces = _LINE_BREAK.split(text)
+        for index, raw in enumerate(pieces):
+            if _ACTION_CODE.search(raw) is not None:
+                column = action_shell_column(Line(self.lines + index + 1, raw, "", parse_line(raw)))
+                if column is not None:
+                    self.refuse(self.lines + index + 1, column)
+        self.lines += len(pieces) - 1
+
+    def refuse(self, number: int, column: int) -> None:
+        from gclint.rules.base import Severity
+        from gclint.rules.translation import TR_NAME
+
+        self.result.refused = True
+        if any(f.code == "TR009" and f.severity == Severity.ERROR for f in self.result.findings):
+            return  # one is enough: nothing is written
+        self.result.findings.append(
+            Finding(
+                self.result.path,
+                number,
+                column,
+                "TR009",
+                Severity.ERROR,
+                f"output line {number} would make Repetrel run a program (SHELL after M0/M1/M792, see SC001):"
+                " the translation is refused and nothing is written",
+                name=TR_NAME["TR009"],
+            )
+        )

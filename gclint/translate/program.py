@@ -8,7 +8,7 @@ A mixin of ``HyrelTranslator``.
 
 from __future__ import annotations
 
-from gclint.rules.security import host_actions
+from gclint.rules.security import host_actions, shell_offsets
 from gclint.syntax.nodes import GCODE, Command
 from gclint.translate.findings import TR_ACTION, TR_APPROX
 
@@ -105,15 +105,19 @@ class Program:
         """Write a pause (``text``: M0 with the translator's own ``; gclint: ...`` message).  On Hyrel the
         text after M0 is a list of host actions ("SHELL C:\\program.exe - the computer will execute the
         file", Gcode page, M0 and M792): a source comment on the line that reads as one is removed (TR009),
-        since in the source it was only a comment."""
+        since in the source it was only a comment.  Actions are read as the SC rules read them: a keyword
+        starting a segment (any case, without invisible characters), or SHELL anywhere."""
         line = self.line
-        keywords = sorted({k for c in line.parsed.comments for k, _, _ in host_actions(c.text)})  # type: ignore[union-attr]
+        comments = line.parsed.comments  # type: ignore[union-attr]
+        keywords = {k for c in comments for k, _, _ in host_actions(c.text)}
+        if any(shell_offsets(c.text) for c in comments):
+            keywords.add("SHELL")
         if keywords:
             self.replace(cmd, text)
             self._edit().strip_comments = True
             self.report(
                 TR_ACTION,
-                f"the comment on this pause would be a Repetrel action on Hyrel ({', '.join(keywords)}; SHELL "
+                f"the comment on this pause would be a Repetrel action on Hyrel ({', '.join(sorted(keywords))}; SHELL "
                 "runs a program, PIC/VID open files): removed",
                 key="action",
                 cmd=cmd,

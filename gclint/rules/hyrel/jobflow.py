@@ -14,6 +14,7 @@ from gclint.machine.state import EVALUES
 from gclint.rules.base import ANY_T, Rule, Severity, register
 from gclint.rules.dialect import ParamTableRule
 from gclint.rules.hyrel.addressing import int_value
+from gclint.rules.security import ACTIONS, host_actions, shell_offsets
 from gclint.syntax.nodes import Command, Line
 
 # -- HY009 ---------------------------------------------------------------------------------------------
@@ -340,8 +341,6 @@ class StateAssumedAcrossM30(Rule):
 
 # -- HY059 ---------------------------------------------------------------------------------------------
 
-_ACTIONS = ("SAY", "PIC", "VID", "SEND", "BEEP", "SHELL")
-
 
 @register
 class M0UnknownAction(Rule):
@@ -351,10 +350,12 @@ class M0UnknownAction(Rule):
     summary = "Text after ';' on M0/M792 that is not one of the actions SAY, PIC, VID, SEND, BEEP, SHELL"
     explanation = """
         M0 and M792 take actions after a semicolon, one per segment: "M0 ; SAY Hello Wilbur ; PIC
-        C:\\mr_ed.png" (SAY, PIC, VID, SEND, BEEP, SHELL).  Other text is not an action: M0 shows it on the
-        print mask ("All text following the ; will be echoed to the print mask") and M792 does nothing
-        with it.  A misspelt action (SPEAK, BEEEP) is silently lost.  Info only.  (SHELL itself is a
-        security finding, SC001.)
+        C:\\mr_ed.png" (SAY, PIC, VID, SEND, BEEP, SHELL).  Other text is not one of the documented
+        actions: M0 shows it on the print mask ("All text following the ; will be echoed to the print
+        mask"); the Gcode page does not say what M792 does with it.  A misspelt action (SPEAK, BEEEP) may be
+        silently lost.  Info only.  Text that holds SHELL anywhere is not reported here: it is a security
+        finding (SC001), since nothing says Repetrel will not run it.  Actions are read as the SC rules
+        read them (gclint/rules/security.py: any case, without invisible characters, after punctuation).
     """
     example_bad = "M792 ; SPEAK Hello Wilbur"
     example_good = "M792 ; SAY Hello Wilbur"
@@ -374,14 +375,17 @@ class M0UnknownAction(Rule):
             if not stripped.strip():
                 continue
             first = stripped.split(None, 1)[0]
-            if first.upper() in _ACTIONS or first.lower().startswith(("noqa", "gclint")):
+            if host_actions(stripped) or shell_offsets(stripped) or first.lower().startswith(("noqa", "gclint")):
                 continue
             if cmd.code == "M0":
                 message = (
                     f"M0 shows '{stripped.strip()[:40]}' on the print mask; '{first}' is not an action "
-                    f"({', '.join(_ACTIONS)})"
+                    f"({', '.join(ACTIONS)})"
                 )
             else:
-                message = f"M792: '{first}' is not an action ({', '.join(_ACTIONS)}); M792 does nothing with it"
+                message = (
+                    f"M792: '{first}' is not one of the actions ({', '.join(ACTIONS)}); the Gcode page does not "
+                    "say what M792 does with other text"
+                )
             self.report(line, message, column=column)
             return

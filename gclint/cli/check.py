@@ -1,0 +1,485 @@
+"""gclint check: lint files and folders, fix them, report in every format."""
+
+from __future__ import annotations
+
+import os
+import sys
+
+import click
+
+from gclint import __version__
+from gclint.cli.app import (
+    _QUIET,
+    _abandon_stdout,
+    _check_dialect,
+    _check_printer,
+    _error,
+    _fail,
+    _left_out_notes,
+    _note,
+    _same_file,
+    _split,
+    main,
+)
+from gclint.config import ConfigError, check_flavor, parse_heads, parse_known_codes
+from gclint.engine import FileResult, Options
+from gclint.machine.profiles import PROFILES
+from gclint.rules.base import RuleError, Severity
+
+
+@main.command()
+@click.argument("paths", nargs=-1, type=click.Path(allow_dash=True, readable=False))
+@click.option(
+    "--dialect", "-d", metavar="D", help="hyrel, hyrel-v4, marlin, reprap, machinekit, carvera or auto (default)."
+)
+@click.option("--printer", "-p", metavar="MODEL", help=f"Hyrel model: {', '.join(PROFILES)} (default 30m).")
+@click.option(
+    "--flavor",
+    metavar="FIRMWARE",
+    help="The firmware the files are for, when they do not say: prusa-buddy, prusa-mk3, bambu, klipper... "
+    "(else read from each file's slicer settings).",
+)
+@click.option(
+    "--loaded",
+    metavar="T0,T2",
+    help="Head positions loaded on the yoke, in v5 numbering T0-T19 (else from the job header).",
+)
+@click.option("--select", multiple=True, metavar="CODES", help="Only these rule codes or prefixes (comma separated).")
+@click.option("--ignore", multiple=True, metavar="CODES", help="Skip these rule codes or prefixes.")
+@click.option("--extend-select", multiple=True, metavar="CODES", help="Add these to the selected rules.")
+@click.option(
+    "--extend-known-codes",
+    multiple=True,
+    metavar="CODES",
+    help="Codes and command names the machine has besides its firmware's (site macros, REMAPs): never DL001.",
+)
+@click.option(
+    "--format",
+    "--output-format",  # ruff's spelling
+    "-f",
+    "fmt",
+    default="text",
+    show_default=True,
+    metavar="F",
+    help="text, json, sarif, github, junit, html, full, grouped.",
+)
+@click.option(
+    "--output", "-o", type=click.Path(dir_okay=False, writable=True, allow_dash=True), help="Write the report here."
+)
+@click.option("--exclude", "exclude", multiple=True, metavar="GLOB", help="Leave these paths out (replaces exclude).")
+@click.option("--extend-exclude", multiple=True, metavar="GLOB", help="Leave these paths out too.")
+@click.option("--force-exclude", is_flag=True, default=None, help="Exclude files named on the command line too.")
+@click.option(
+    "--respect-gitignore/--no-respect-gitignore", default=None, help="Leave out what .gitignore ignores (default on)."
+)
+@click.option("--exit-zero", is_flag=True, help="Exit 0 even when findings exist.")
+@click.option(
+    "--fail-on",
+    type=click.Choice(["error", "warning", "info"]),
+    default="warning",
+    show_default=True,
+    help="Exit 1 when a finding reaches this level.",
+)
+@click.option(
+    "--statistics",
+    is_flag=True,
+    help="Show the number of findings per code instead of the findings (JSON with -f json).",
+)
+@click.option(
+    "--no-group",
+    is_flag=True,
+    help="Text formats: show every finding (by default a code's findings in a file after the first 3 are one line).",
+)
+@click.option("--jobs", "-j", type=click.IntRange(min=1), default=None, help="Parallel processes (default: CPU count).")
+@click.option(
+    "--config", "config_file", type=click.Path(dir_okay=False), help="Configuration file (else found upward)."
+)
+@click.option("--fix", is_flag=True, help="Apply the safe fixes in place.")
+@click.option("--unsafe-fixes", is_flag=True, help="With --fix or --diff, apply unsafe fixes too.")
+@click.option("--diff", "show_diff", is_flag=True, help="Print the fixes as a unified diff; write nothing.")
+@click.option("--show-fixes", is_flag=True, help="With --fix: list the fixes applied, per file and code.")
+@click.option("--add-noqa", is_flag=True, help="Add '; noqa: CODES' to every line with findings (not SC), then exit.")
+@click.option("--stdin-filename", metavar="NAME", help="Name to use for the file read from '-'.")
+@click.option("--no-cache", is_flag=True, help="Do not read or write the result cache.")
+@click.option(
+    "--cache-dir",
+    type=click.Path(file_okay=False),
+    envvar="GCLINT_CACHE_DIR",
+    help="Cache folder (default: gclint's folder in the user cache folder, per project).",
+)
+@click.option(
+    "--progress/--no-progress", default=None, help="Progress bar on stderr (default: on a terminal, for many files)."
+)
+@click.option(
+    "--verbose",
+    "-v",
+    is_flag=True,
+    help="Say for every file what it was checked as (dialect, firmware, printer) and why.",
+)
+@click.option("--quiet", "-q", is_flag=True, help="No notes on stderr (how files were read, what was skipped).")
+@click.option(
+    "--show-settings",
+    is_flag=True,
+    help="Print the settings each file is checked with and what it would be checked as, then exit.",
+)
+def check(
+    paths: tuple[str, ...],
+    dialect: str | None,
+    printer: str | None,
+    flavor: str | None,
+    loaded: str | None,
+    select: tuple[str, ...],
+    ignore: tuple[str, ...],
+    extend_select: tuple[str, ...],
+    extend_known_codes: tuple[str, ...],
+    fmt: str,
+    output: str | None,
+    exit_zero: bool,
+    fail_on: str,
+    exclude: tuple[str, ...],
+    extend_exclude: tuple[str, ...],
+    force_exclude: bool | None,
+    respect_gitignore: bool | None,
+    statistics: bool,
+    no_group: bool,
+    jobs: int | None,
+    config_file: str | None,
+    fix: bool,
+    unsafe_fixes: bool,
+    stdin_filename: str | None,
+    no_cache: bool,
+    cache_dir: str | None,
+    progress: bool | None,
+    verbose: bool = False,
+    quiet: bool = False,
+    show_settings: bool = False,
+    show_diff: bool = False,
+    show_fixes: bool = False,
+    add_noqa: bool = False,
+) -> None:
+    """Check G-code files and folders (- for standard input)."""
+    if quiet:
+        _QUIET.append(True)
+    from gclint import runner
+    from gclint.reports import MACHINE_FORMATS, ReportContext, formats
+
+    if os.environ.get("PRE_COMMIT") == "1" and paths and "--" not in sys.argv[1:]:
+        # pre-commit appends file names after the hook's args: without "--", a committed file named
+        # "--config=x.gcode" would be read as an option (.pre-commit-hooks.yaml)
+        _fail(
+            "as a pre-commit hook, gclint needs '--' before the file names: end the hook's args with '--'"
+            " (args: [--printer, 30m, --]) so that a file name is never read as an option"
+        )
+    writers = formats()
+    if fmt not in writers:
+        _fail(f"unknown format {fmt!r} (known: {', '.join(sorted(writers))})")
+    overrides: dict = {}
+    if dialect is not None:
+        overrides["dialect"] = _check_dialect(dialect)
+        overrides["dialect_origin"] = "option"
+    if printer is not None:
+        overrides["printer"] = _check_printer(printer)
+        overrides["printer_origin"] = "option"
+    try:
+        if flavor is not None:
+            overrides["flavor"] = check_flavor(flavor, "--flavor")
+            overrides["flavor_origin"] = "option"
+        if loaded is not None:
+            overrides["loaded"] = parse_heads(loaded)
+        if extend_known_codes:
+            overrides["extend_known_codes"] = parse_known_codes(",".join(extend_known_codes))
+    except ConfigError as exc:
+        _fail(str(exc))
+    from gclint.rules.base import UnknownSelector, resolve_selectors
+
+    try:
+        if select:
+            overrides["select"] = resolve_selectors(_split(select), "--select: ")
+            overrides.setdefault("ignore", [])  # as ruff: the command line's selection is a new start
+        if ignore:
+            overrides["ignore"] = resolve_selectors(_split(ignore), "--ignore: ")
+        if extend_select:
+            overrides["extend_select"] = resolve_selectors(_split(extend_select), "--extend-select: ")
+    except (UnknownSelector, RuleError) as exc:
+        _fail(str(exc))
+    if config_file is not None and not os.path.isfile(config_file):
+        _fail(f"{config_file}: configuration file not found")
+
+    walk_notes: list[str] = []
+    walked: set[str] = set()
+    from gclint.excludes import Excluder, LeftOut
+
+    left_out: list[LeftOut] = []
+    walk_roots: dict[str, str] = {}  # file found in a walk -> the real path of the folder walked
+
+    excluder = Excluder(
+        exclude=_split(exclude) or None,
+        extend_exclude=_split(extend_exclude),
+        force=force_exclude,
+        respect_gitignore=respect_gitignore,
+        explicit_config=config_file,
+    )
+    if stdin_filename and not paths:
+        paths = ("-",)  # --stdin-filename alone reads standard input (ruff)
+    files, problems = runner.collect(paths or (".",), walk_notes, excluder, walked, left_out, walk_roots)
+    if force_exclude:  # (pre-commit passes every staged .nc and .g by name: one that is not G-code is skipped)
+        walked.update(f for f in files if f != "-")
+    if "-" in files and stdin_filename and (why := excluder.excluded(stdin_filename, False, named=True)):
+        files = [f for f in files if f != "-"]  # --force-exclude: the file it stands for is excluded
+        left_out.append(LeftOut(stdin_filename, why))
+        if fix:
+            sys.stdout.buffer.write(sys.stdin.buffer.read())  # --fix -: the text goes through unchanged
+            sys.exit(0)
+    for note in walk_notes:
+        _note(note)
+    _left_out_notes(left_out, verbose, nothing_left=not files and not problems)
+    if output not in (None, "-") and (checked := _same_file(output, files)) is not None:
+        _fail(f"{output}: is {checked}, one of the files to check: the report would overwrite it")
+    jobs = _cap_jobs(jobs)
+    from gclint import settings
+
+    if show_settings:
+        for r in problems:
+            _error(r.error or "")
+        try:
+            shown = settings.show_settings(files, overrides, config_file, _cache_where(files, cache_dir, no_cache))
+        except ConfigError as exc:
+            _fail(str(exc))
+        click.echo(shown, nl=False)
+        sys.exit(2 if problems else 0)
+    if unsafe_fixes and not (fix or show_diff):
+        _fail("--unsafe-fixes goes with --fix or --diff")
+    if add_noqa and (fix or show_diff):
+        _fail("--add-noqa writes noqa comments; run it without --fix and --diff")
+    if statistics and fmt in ("sarif", "junit", "html"):
+        _fail(f"--statistics prints a table (text) or JSON (-f json), not {fmt}")
+    if select and not overrides.get("select"):
+        _fail("--select names no rule (an empty --select would check nothing)")
+    if fix and files == ["-"]:  # "--fix -": the fixed text on stdout, the findings left on stderr
+        sys.exit(_fix_stdin(overrides, config_file, stdin_filename or "-", unsafe_fixes, exit_zero, fail_on))
+    if (fix or show_diff) and "-" in files:
+        _fail("--fix and --diff need files; '--fix -' alone fixes standard input to standard output")
+    # a broken configuration is one error before anything is checked (not one per file, as ruff)
+    for path in dict.fromkeys(files):
+        try:
+            runner.options_for(stdin_filename or path if path == "-" else path, Options(), overrides, config_file)
+        except ConfigError as exc:
+            _fail(str(exc))
+    suppressions = settings.security_suppressions(files, overrides, config_file)
+    for note in suppressions:
+        if note.from_config:
+            _note(note.describe(), always=True)
+    from gclint import progress as progress_bar
+    from gclint.cache import ResultCache
+
+    bar = progress_bar.ProgressBar(files) if progress_bar.wanted(progress, fmt, files) else None
+    cache = None if (no_cache or fix or show_diff or add_noqa) else ResultCache(cache_dir)
+    try:
+        from gclint.rules.base import all_rules
+
+        all_rules()
+        results = runner.run(
+            files,
+            Options(),
+            overrides,
+            explicit_config=config_file,
+            jobs=jobs or (runner.default_jobs() if len(files) > 1 else 1),
+            stdin_name=stdin_filename or "-",
+            progress=bar.advance if bar is not None else None,
+            cache=cache,
+        )
+    except RuleError as exc:
+        _fail(str(exc))
+        return
+    finally:
+        if bar is not None:
+            bar.close()
+    if fix or show_diff or add_noqa:  # never through a link put in a walked folder since it was walked
+        for i, r in enumerate(results):
+            if (target := runner.outside_walk(r.path, walk_roots)) is not None:
+                error = f"{r.path}: now a link to {target}, outside the folder: not fixed"
+                results[i] = FileResult(r.path, error=error)
+    if add_noqa:
+        sys.exit(_add_noqa(problems + results))
+    fixed = None
+    if fix or show_diff:
+        results, fixed = _apply_fixes(
+            results, overrides, config_file, unsafe=unsafe_fixes, write=not show_diff, show=show_fixes
+        )
+        if show_diff:
+            remaining = sum(len(r.findings) for r in results)
+            click.echo(f"Would fix {fixed} finding{'s' if fixed != 1 else ''} ({remaining} remaining).", err=True)
+            sys.exit(2 if any(r.error for r in results + problems) else 1 if fixed else 0)
+    # a file found in a folder that is something else (a NetCDF .nc, an ANTLR .g): skipped, with a note
+    for r in results:
+        if runner.skippable(r, walked):
+            _note(f"{r.error}: skipped")
+    results = problems + [r for r in results if not runner.skippable(r, walked)]
+    for note in cache.notes if cache is not None else ():
+        _note(note)
+    for r in results:
+        if r.error:
+            _error(r.error)
+    ctx = ReportContext(
+        tool_version=__version__,
+        fixed=fixed,
+        group=not no_group,
+        suppressions=[n.describe() for n in suppressions],
+    )
+    writer = writers[fmt]
+    if statistics:  # the counts instead of the findings, as ruff does (JSON with --format json)
+        from gclint.reports import json_report, text
+
+        writer = json_report.write_statistics if fmt == "json" else text.write_statistics_report
+    _write_report(writer, results, ctx, output)
+    if verbose or fmt not in MACHINE_FORMATS:  # after the report: a report that cannot be written is one line
+        from gclint.reports.notes import context_notes
+
+        for note in context_notes(results, verbose=verbose):
+            _note(note)
+    if any(r.error for r in results):
+        sys.exit(2)
+    worst = max((f.severity for r in results for f in r.findings), default=None)
+    if not exit_zero and worst is not None and worst >= Severity.parse(fail_on):
+        sys.exit(1)
+
+
+def _apply_fixes(
+    results: list[FileResult],
+    overrides: dict,
+    config_file: str | None,
+    *,
+    unsafe: bool,
+    write: bool,
+    show: bool = False,
+) -> tuple[list[FileResult], int]:
+    """Fix each file (gclint.fixes); with ``write=False`` print the diffs instead.  Returns the results
+    as the files are now and the number of findings fixed (or that would be)."""
+    from gclint import runner
+    from gclint.fixes import fix_file
+    from gclint.textsafe import human
+
+    out: list[FileResult] = []
+    fixed = 0
+    for r in results:
+        if r.error is None:
+            # re-check with the very options of the first check (configuration and command line)
+            options = runner.options_for(r.path, Options(), overrides, config_file)
+            outcome = fix_file(r, runner.linter_for(options), unsafe=unsafe, write=write)
+            fixed += outcome.fixed
+            for note in outcome.reverted:
+                _note(note)
+            if outcome.diff:
+                click.echo(outcome.diff, nl=False)
+            if show and outcome.applied:
+                from collections import Counter
+
+                click.echo(f"Fixed in {human(r.path)}:")
+                names = {f.code: f.name for f in outcome.applied}
+                for code, n in sorted(Counter(f.code for f in outcome.applied).items()):
+                    click.echo(f"  {n} x {code} ({names[code]})")
+            r = outcome.result
+            if outcome.error is not None:
+                r = FileResult(r.path, r.findings, r.dialect, r.dialect_reason, r.lines, outcome.error, r.context)
+        out.append(r)
+    return out, fixed
+
+
+def _add_noqa(results: list[FileResult]) -> int:
+    """``--add-noqa``: suppress what each file has now, line by line; says how many lines it marked."""
+    from gclint.fixes import add_noqa
+
+    added, failed = 0, False
+    for r in results:
+        if r.error is not None:
+            _error(r.error)
+            failed = True
+            continue
+        outcome = add_noqa(r)
+        added += outcome.fixed
+        if outcome.error is not None:
+            _error(outcome.error)
+            failed = True
+    click.echo(f"Added a noqa comment to {added} line{'s' if added != 1 else ''}.")
+    return 2 if failed else 0
+
+
+def _fix_stdin(
+    overrides: dict, config_file: str | None, name: str, unsafe: bool, exit_zero: bool, fail_on: str = "warning"
+) -> int:
+    """``gclint check --fix -`` (what editors run): standard input, fixed, to standard output; the
+    findings that remain on standard error.  Returns the exit code."""
+    import shutil
+    import tempfile
+
+    from gclint import runner
+    from gclint.fixes import fix_stream
+    from gclint.reports.text import write as write_text
+    from gclint.syntax.source import Source, SourceError
+
+    options = runner.options_for(name, Options(), overrides, config_file)
+    linter = runner.linter_for(options)
+    with tempfile.SpooledTemporaryFile(max_size=16 << 20) as buffer:  # read twice: check, then fix
+        shutil.copyfileobj(sys.stdin.buffer, buffer)
+
+        def read() -> Source:
+            buffer.seek(0)
+            return Source(buffer, name)
+
+        try:
+            result = linter.check_source(read())
+        except SourceError as exc:
+            result = FileResult(name, error=str(exc))
+        if result.error is not None:
+            click.echo(f"gclint: {result.error}", err=True)
+            buffer.seek(0)
+            shutil.copyfileobj(buffer, sys.stdout.buffer)  # nothing lost: the text goes through unchanged
+            return 2
+        outcome = fix_stream(result, linter, read, sys.stdout.buffer, unsafe=unsafe)
+    sys.stdout.flush()
+    from gclint.reports import ReportContext
+
+    write_text([outcome.result], sys.stderr, ReportContext(fixed=outcome.fixed))
+    worst = max((f.severity for f in outcome.result.findings), default=None)
+    return 1 if not exit_zero and worst is not None and worst >= Severity.parse(fail_on) else 0
+
+
+def _cache_where(files: list[str], cache_dir: str | None, no_cache: bool) -> str:
+    """Where the result cache of these files lives (for --show-settings)."""
+    from gclint.cache import ResultCache
+
+    if no_cache:
+        return "(not used: --no-cache)"
+    cache = ResultCache(cache_dir)
+    folders = sorted({str(cache.folder_for(f)) for f in files if f != "-"})
+    return ", ".join(folders) if folders else "(nothing to cache)"
+
+
+MAX_JOBS = 64
+
+
+def _cap_jobs(jobs: int | None) -> int | None:
+    """``--jobs`` beyond what the computer can use (4 processes per CPU, at most 64) is capped, with a note."""
+    from gclint import runner
+
+    cap = min(MAX_JOBS, 4 * runner.default_jobs())
+    if jobs is not None and jobs > cap:
+        _note(f"--jobs {jobs} is more than this computer can use; using {cap}")
+        return cap
+    return jobs
+
+
+def _write_report(writer, results: list[FileResult], ctx, output: str | None) -> None:
+    from gclint.io import OutputError, write_text
+
+    if output in (None, "-"):
+        try:
+            writer(results, sys.stdout, ctx)
+            sys.stdout.flush()
+        except BrokenPipeError:  # the reader has gone ("| head"): say nothing; the exit code still tells
+            _abandon_stdout()
+        return
+    try:
+        write_text(output, lambda out: writer(results, out, ctx))  # atomically, never through a link
+    except OutputError as exc:
+        _fail(f"{exc} (the report was not written)")
