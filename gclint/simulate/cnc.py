@@ -144,8 +144,16 @@ class CncSimulator(Simulator):
     def working_head(self) -> int | str | None:
         return self.mapping.spindle_address()
 
+    def spindle_head(self) -> int | str | None:
+        """The head the source's spindle is on in Hyrel terms: the ``spindle`` setting, else the working head
+        (a mapped tool is a spindle head; translate/spindle.py)."""
+        if self.mapping.spindle is not None:
+            return self.mapping.spindle
+        head = self.working_head()
+        return head if isinstance(head, int) else self.mapping.spindle_address()
+
     def end_state(self) -> EndState:
-        spindles = {self.mapping.spindle_address(): self.spindle} if self.spindle else {}
+        spindles = {self.spindle_head(): self.spindle} if self.spindle else {}
         return EndState(spindles=spindles, aux=dict(self.aux))
 
 

@@ -285,10 +285,13 @@ def _head(value) -> str:
 
 
 def _temp(value: tuple) -> str:
-    target, ready = value
+    target, ready, heated = value
     if target is None:
         return "no set-point"
-    return f"{_num(target, 1)} °C ({'waited for' if ready else 'not waited for'})"
+    if ready:
+        return f"{_num(target, 1)} °C (waited for)"
+    before = f"heated to {_num(heated, 1)} °C before" if heated is not None else "never heated before"
+    return f"{_num(target, 1)} °C (not waited for; {before})"
 
 
 def _beds(value: tuple) -> str:
@@ -333,7 +336,9 @@ def _same(aspect: str, a, b) -> bool:
     if aspect == "flow":
         return abs(a - b) <= 1e-4
     if aspect == "temp":
-        return a[1] == b[1] and _close(a[0], b[0], 1e-6)
+        # not waited for at the set-point: how hot the nozzle was waited to before matters (a head never
+        # heated prints cold where the source's nozzle was hot)
+        return a[1] == b[1] and _close(a[0], b[0], 1e-6) and (a[1] or _close(a[2], b[2], 1e-6))
     if aspect == "spindle":
         if a is None or b is None:
             return a is b

@@ -97,8 +97,8 @@ class ToolHeat:
 
     # -- what the working head sees --------------------------------------------------------------------
 
-    def working(self) -> tuple[tuple[float | None, bool], float]:
-        """(set-point and readiness, flow) of the active tool, inferring a shared nozzle when the tool
+    def working(self) -> tuple[tuple[float | None, bool, float | None], float]:
+        """(set-point, readiness and the set-point last waited for, flow) of the active tool, inferring a shared nozzle when the tool
         never got a set-point of its own."""
         tool = self.tool
         if tool is not None:
@@ -111,8 +111,8 @@ class ToolHeat:
         else:
             flow = self.flows.get(tool, 1.0) if tool is not None else 1.0
         if heat is None:
-            return (None, False), flow
-        return (heat[0], heat[1] == heat[0]), flow
+            return (None, False, None), flow
+        return (heat[0], heat[1] == heat[0], heat[1]), flow
 
     def head(self) -> int | str | None:
         return self.mapping.head(self.tool) if self.tool is not None else None

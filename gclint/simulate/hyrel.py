@@ -341,10 +341,10 @@ class HyrelSimulator(Simulator):
         focus = self.focus
         head = self.heads.get(focus) if focus is not None else None
         if head is None:
-            temp: tuple = (None, False)
+            temp: tuple = (None, False, None)
             fan, flow = 0.0, 1.0
         else:
-            temp = (head.target, head.target is not None and head.waited == head.target)
+            temp = (head.target, head.target is not None and head.waited == head.target, head.waited)
             fan, flow = self.fan_of(head), round(head.flow, 4)
         beds = tuple(
             sorted(
@@ -355,7 +355,9 @@ class HyrelSimulator(Simulator):
         )
         spindle = None
         if self.spindles:
-            spindle = self.spindles[focus] if focus in self.spindles else self.spindles[min(self.spindles)]
+            # the spindle that turns where the job works: the focused head's (a spindle left on another head
+            # is not the one cutting); with no head focused, the lowest address that runs
+            spindle = self.spindles.get(focus) if focus is not None else self.spindles[min(self.spindles)]
         fans = tuple(
             (f"T{a} fan", self.fan_of(h)) for a, h in sorted(self.heads.items()) if a >= 20 and self.fan_of(h) > 0
         )

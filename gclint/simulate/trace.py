@@ -22,7 +22,7 @@ ASPECTS = (
     "e",  # material deposited on the move
     "feed",
     "head",  # the head doing the work (the focused head)
-    "temp",  # the working head's set-point and whether it was waited for
+    "temp",  # the working head's set-point, whether it was waited for, and the heat it was last waited at
     "fan",  # the working head's part-cooling fan
     "flow",  # the working head's flow multiplier (M221)
     "beds",  # beds and chambers: set-points and waits
@@ -87,7 +87,8 @@ class Look:
     """The state a working move runs in, in Hyrel terms (compared aspect by aspect)."""
 
     head: int | str | None = None
-    temp: tuple[float | None, bool] = (None, False)  # (set-point, waited for at that set-point)
+    # (set-point, waited for at that set-point, the set-point last waited for: the nozzle is at least that hot)
+    temp: tuple[float | None, bool, float | None] = (None, False, None)
     fan: float = 0.0  # fraction of full speed
     flow: float = 1.0  # multiplier
     beds: tuple = ()  # ((address, set-point, waited), ...) for beds/chambers with a set-point

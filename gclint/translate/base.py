@@ -112,6 +112,7 @@ class HyrelTranslator(LineWriter, Heads, Program, Motion, ArcMoves, Modal, Spind
                 self.handlers[code] = getattr(self, name)
         self.hy = HyrelSide()  # what the Hyrel printer will believe
         self.rpm: float | None = None  # the source's modal spindle speed (S words)
+        self.spindle_percent: str | None = None  # the last spindle speed written (S percent; spindle.py)
         # the workspace the job selected (G54-G59), invoked again after a G53 move (modal.py)
         self.wcs = self.DEFAULT_WORKSPACE or "G54"
         self.wcs_selected = self.DEFAULT_WORKSPACE is not None

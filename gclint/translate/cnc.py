@@ -33,6 +33,7 @@ class CncTranslator(HyrelTranslator):
     CHECK_EXPRESSIONS = True
     END_CODES: ClassVar[frozenset[str]] = frozenset({"M2", "M30"})
     G53_ALONE = "drop"  # LinuxCNC: "Non-modal; requires G0/G1 active"
+    SPINDLE_FOLLOWS_TOOL = True  # a mapped tool is a spindle head (spindle.py)
     DEFAULT_WORKSPACE = "G54"
     FEED_ON_ANY_COMMAND = True  # LinuxCNC and the Carvera start in G54 (research/dialects.md 1.1, G54-G59)
 
@@ -58,6 +59,12 @@ class CncTranslator(HyrelTranslator):
         # LinuxCNC and Carvera: T prepares the tool, M6 changes to it (T6M6)
         self.prepared = int(number)
         self.consume(cmd)
+
+    def focus_address(self) -> int | None:
+        """The head to focus before the first move: the active tool's; for a tool the printer has no head
+        for (reported, TR007), the spindle head, so that the job's moves have a head (mapped tool 0)."""
+        address = self.head(None)
+        return address if address is not None else self.opts.spindle_address()
 
     def stop(self, cmd: Command) -> None:
         """M0: a pause on both sides."""

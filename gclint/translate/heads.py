@@ -73,6 +73,8 @@ class Heads:
         )
         if what == "tool" and self.hy.focus is not None:
             message += f"; the head that was printing (T{self.hy.focus}) goes on printing for it"
+        elif what == "tool" and self.SPINDLE_FOLLOWS_TOOL:  # type: ignore[attr-defined]  (CNC: cnc.focus_address)
+            message += f"; the spindle head (T{self.opts.spindle_address()}) works for it"
         self.report(TR_NO_TOOL, message, key=(what, index))
 
     def current_tool(self) -> int:
@@ -93,7 +95,8 @@ class Heads:
         if address is None:
             self.consume(cmd)
             return
-        self.hy.focus = address
+        old, self.hy.focus = self.hy.focus, address
+        self.spindle_to_head(old, address)  # type: ignore[attr-defined]  (spindle.Spindles)
         text = f"T{address}"
         if cmd.code == text and not cmd.params:
             return
@@ -140,6 +143,21 @@ class Heads:
         lines = []
         if heat is not None:
             target, ready = heat
+            heated = tools.heated()
+            if tools.shared and not ready and heated and state.waited != heated:
+                # the source's one nozzle was waited hot (to ``heated``) and heads towards ``target``; this
+                # head was not: it waits for that heat first, else it would print cold (Hyrel M109 without
+                # a window waits while heating only, research/dialects.md 1.3 M109 [fw])
+                lines.append(f"M109 T{address} S{fmt(heated, 1)}")
+                state.target = state.waited = heated
+                self.hy.temps.pop(address, None)
+                self.hy.nozzle_heads.add(address)
+                self.report(
+                    TR_NOTE,
+                    f"T{address} prints for the single nozzle after a set-point it was not waited for: it waits "
+                    f"for {fmt(heated, 1)} °C, the heat the source's nozzle was waited to, before it prints",
+                    key=("nozzle-wait", address),
+                )
             if state.target != target or (ready and state.waited != target):
                 lines.append(f"{'M109' if ready else 'M104'} T{address} S{fmt(target, 1)}")
                 state.target = target

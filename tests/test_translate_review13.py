@@ -1,0 +1,95 @@
+"""The stranger review of issue 13 (translation): one test (or more) per defect it found, each failing
+without its fix.  The diff's side of the same defects is in tests/test_diff_review13.py."""
+
+from __future__ import annotations
+
+import pytest
+
+from gclint.config import ConfigError, parse_tool_map
+
+from .test_translate_tables import translate
+
+
+def _codes(result, code: str) -> list[str]:
+    return [f.message for f in result.findings if f.code == code]
+
+
+# -- (1) RepRapFirmware mixing: G1 X.. E1:2 -------------------------------------------------------------
+
+
+def test_1_mixing_e_is_reported_not_dropped_silently() -> None:
+    out, result = translate("reprap", "T0\nM83\nG1 X10 Y10 E1:2 F1200\nG1 X20 E3:4\n")
+    assert "G1 X10 Y10 F1200" in out.splitlines() and "E1:2" not in out
+    assert any("E1:2" in m and "mixing" in m for m in _codes(result, "TR005"))
+
+
+# -- (2) a single-nozzle job on several heads: the head first used after an M104 --------------------------
+
+MMU = "M104 S215\nM109 S215\nM83\nT0\nG1 X10 Y10 Z0.2 E1 F1200\nM104 S240\nT1\nG1 X20 Y20 E1\n"
+
+
+def test_2_a_head_first_used_after_an_m104_waits_for_the_nozzle_heat() -> None:
+    out, result = translate("marlin", MMU, tool_map="0=T0,1=T1")
+    lines = out.splitlines()
+    t1 = lines.index("T1")
+    assert lines[t1 + 1 : t1 + 3] == ["M109 T1 S215", "M104 T1 S240"], lines
+    assert lines.index("M109 T1 S215") < lines.index("G1 X20 Y20 E1")
+    assert any("T1" in m and "215" in m for m in _codes(result, "TR004"))
+
+
+def test_2_a_head_waited_already_gets_no_second_wait() -> None:
+    out, _ = translate("marlin", MMU + "T0\nG1 X30 Y30 E1\n", tool_map="0=T0,1=T1")
+    assert out.count("M109 T0") == 1  # T0 was waited at 215: only the new set-point (M104 T0 S240)
+    assert "M104 T0 S240" in out
+
+
+# -- (3) CNC tool change: the spindle on the mapped head; an unmapped tool still gets a head --------------
+
+TC = "G21 G90\nT7 M6\nM3 S10000\nG0 X0 Y0 Z5\nG1 Z-1 F100\nG1 X10\nT3 M6\nM3 S10000\nG1 X20\nM5\nM2\n"
+
+
+@pytest.mark.parametrize("dialect", ["machinekit", "carvera"])
+def test_3_spindle_runs_on_the_mapped_head(dialect: str) -> None:
+    out, _ = translate(dialect, TC, tool_map="7=T3,3=T1")
+    lines = out.splitlines()
+    assert "M3 T3 S66.7" in lines and "M3 T1 S66.7" in lines and "M3 T0 S66.7" not in lines
+    t1 = lines.index("T1")
+    assert lines[t1 + 1] == "M5 T3"  # the spindle stops on the head the tool left
+    assert "M5 T1" in lines and "M5 T0" not in lines
+
+
+def test_3_machinekit_spindle_follows_the_tool_to_its_head() -> None:
+    out, result = translate(
+        "machinekit", "G21 G90\nT7 M6\nM3 S10000\nG1 X10 F100\nT3 M6\nG1 X20\nM2\n", tool_map="7=T3,3=T1"
+    )
+    lines = out.splitlines()
+    t1 = lines.index("T1")
+    assert lines[t1 + 1 : t1 + 3] == ["M5 T3", "M3 T1 S66.7"]  # LinuxCNC's one spindle keeps running
+    assert any("T1" in m for m in _codes(result, "TR004"))
+
+
+def test_3_carvera_spindle_stops_for_the_tool_change() -> None:
+    out, _ = translate("carvera", "G21 G90\nM6 T7\nM3 S10000\nG1 X10 F100\nM6 T3\nG1 X20\nM2\n", tool_map="7=T3,3=T1")
+    lines = out.splitlines()
+    t1 = lines.index("T1")
+    assert lines[t1 + 1] == "M5 T3" and "M3 T1" not in out
+
+
+def test_3_the_spindle_setting_still_wins() -> None:
+    out, _ = translate("machinekit", TC, tool_map="7=T3,3=T1", spindle="T2")
+    assert "M3 T2 S66.7" in out.splitlines() and "M3 T3" not in out
+
+
+def test_3_an_unmapped_tool_still_gets_a_head_before_motion() -> None:
+    out, result = translate("machinekit", "G21 G90\nT7 M6\nM3 S10000\nG0 X0 Y0 Z5\nG1 X10 F100\nM2\n")
+    lines = out.splitlines()
+    assert "T0" in lines and lines.index("T0") < lines.index("G0 X0 Y0 Z5")
+    assert any("T7" in m and "spindle head (T0)" in m for m in _codes(result, "TR007"))
+
+
+# -- (10) small ones ----------------------------------------------------------------------------------------
+
+
+def test_10_tool_map_with_a_tool_twice_is_refused() -> None:
+    with pytest.raises(ConfigError, match="mapped twice"):
+        parse_tool_map("0=T1,0=T2")
