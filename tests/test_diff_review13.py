@@ -9,6 +9,7 @@ import pytest
 from .test_diff import Wrong, diff_texts, translate_and_diff
 
 MMU = "M104 S215\nM109 S215\nM83\nT0\nG1 X10 Y10 Z0.2 E1 F1200\nM104 S240\nT1\nG1 X20 Y20 E1\n"
+SPINDLE = "G21\nG90\nM3 S255\nG0 X0 Y0 Z5\nG1 Z-1 F100\nG1 X10\nM5\n"
 TC = "G21 G90\nT7 M6\nM3 S10000\nG1 X10 F100\nT3 M6\nG1 X20\nM2\n"
 
 WRONG = [
@@ -29,7 +30,30 @@ WRONG = [
         "spindle",
         {"tool_map": "7=T3,3=T1", "spindle_max_rpm": "15000"},
     ),
+    Wrong(
+        "5: a Marlin spindle job that loses its M3 (the diff saw no working move in it)",
+        "marlin",
+        SPINDLE,
+        "G21\nG90\nT0\nG0 X0 Y0 Z5\nG1 Z-1 F100\nG1 X10\nM30\n",
+        "moves",
+    ),
+    Wrong(
+        "5: a Marlin spindle job at the wrong power",
+        "marlin",
+        SPINDLE,
+        "G21\nG90\nM3 T0 S50\nT0\nG0 X0 Y0 Z5\nG1 Z-1 F100\nG1 X10\nM5 T0\nM30\n",
+        "spindle",
+    ),
 ]
+
+
+def test_5_marlin_laser_power_on_moves_is_seen_and_explained() -> None:
+    """Marlin's S on a move is the laser power (research/dialects.md 1.1 G1): dropped by the translator
+    (TR003), which the diff sees as moves that no longer cut, explained by that finding."""
+    source = "G90\nG21\nM4 S0\nG0 X10 Y10\nG1 X20 Y10 S200 F3000\nG1 X20 Y20 S0\nM5\n"
+    _, _, diff = translate_and_diff("marlin", source)
+    assert diff.differences and not diff.unexplained()
+    assert {d.explained_by[0] for d in diff.differences} == {"TR003"}  # type: ignore[index]
 
 
 @pytest.mark.parametrize("row", WRONG, ids=[w.item for w in WRONG])

@@ -34,6 +34,7 @@ class MarlinSimulator(Simulator):
         self.heat = ToolHeat(self.mapping)
         self.feed_factor = 1.0  # M220
         self.spindle: tuple | None = None
+        self.cutter: str | None = None  # M3/M4 until M5: an S on a move is the laser power (dialects.md 1.1 G1)
         self.coolant: dict[str, bool] = {}
         self._g53_line = -1
         self._g53_alone = False
@@ -91,6 +92,9 @@ class MarlinSimulator(Simulator):
             self._g53_alone = False
             self.wcs = None
             self.dirty()
+        if self.cutter is not None and "S" in params and not self.RRF:
+            # Marlin: "S = laser power" on G0/G1/G2/G3 (research/dialects.md 1.1), in the M3/M4 unit
+            self.set_power(self.cutter, self.spindle_percent({"S": params["S"]}))
         move = super().motion(mode, params, n)
         if move is not None and self.feed_factor != 1.0 and move.feed is not None:
             move.feed *= self.feed_factor
@@ -210,8 +214,7 @@ class MarlinSimulator(Simulator):
 
     # -- spindle and coolant --------------------------------------------------------------------------
 
-    def spindle_percent(self, cmd: Command) -> float | None:
-        params = cmd.params
+    def spindle_percent(self, params: dict) -> float | None:
         s = number(params.get("S"))
         if s is None and "O" in params:  # Marlin: O is the power as PWM 0-255
             o = number(params.get("O"))
@@ -221,16 +224,23 @@ class MarlinSimulator(Simulator):
         return max(0.0, min(100.0, s / 255 * 100))  # Marlin's default cutter unit: PWM 0-255
 
     def spindle_on(self, cmd: Command, n: int) -> None:
-        pct = self.spindle_percent(cmd)
+        self.cutter = cmd.code
+        self.set_power(cmd.code, self.spindle_percent(cmd.params))
+
+    def set_power(self, code: str | None, pct: float | None) -> None:
         if pct is not None and pct == 0:
             self.spindle = None
         else:
-            self.spindle = (cmd.code, None if pct is None else round(pct, 1))
+            self.spindle = (code, None if pct is None else round(pct, 1))
         self.dirty()
 
     def spindle_off(self, cmd: Command, n: int) -> None:
         self.spindle = None
+        self.cutter = None
         self.dirty()
+
+    def cutting(self) -> bool:
+        return self.spindle is not None
 
     def coolant_on(self, cmd: Command, n: int) -> None:
         self.coolant[cmd.code] = True  # type: ignore[index]
@@ -339,8 +349,8 @@ class RepRapSimulator(MarlinSimulator):
             return None
         return s if s <= 1.0 else s / 255  # RepRapFirmware: 0-1, or 0-255 above 1
 
-    def spindle_percent(self, cmd: Command) -> float | None:
-        s = number(cmd.params.get("S"))
+    def spindle_percent(self, params: dict) -> float | None:
+        s = number(params.get("S"))
         if s is None or s <= 0:
             return s
         top = self.mapping.spindle_max_rpm

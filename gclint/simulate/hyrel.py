@@ -296,6 +296,9 @@ class HyrelSimulator(Simulator):
                 self.spindles[address] = (cmd.code, None if s is None else round(s, 1))  # type: ignore[assignment]
         self.dirty()
 
+    def cutting(self) -> bool:
+        return bool(self.spindles)
+
     def spindle_off(self, cmd: Command, n: int) -> None:
         for address in self.addresses(cmd):
             self.spindles.pop(address, None)

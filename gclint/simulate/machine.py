@@ -337,6 +337,11 @@ class Simulator:
 
     # -- motion ------------------------------------------------------------------------------------------
 
+    def cutting(self) -> bool:
+        """A spindle or laser runs: every feed move is a working move, as in a CNC job (a Marlin spindle or
+        laser job, research/dialects.md 1.2 M3/M4)."""
+        return False
+
     def g0(self, cmd: Command, n: int) -> Move | None:
         return self.motion("G0", cmd.params, n)
 
@@ -370,7 +375,7 @@ class Simulator:
         if end == start and arc is None:
             return None  # no motion (an extruder-only move, or a feed word)
         printing = native or (delta is not None and delta > 1e-9)
-        if not printing and (rapid or not self.cnc):
+        if not printing and (rapid or not (self.cnc or self.cutting())):
             return None
         e = NATIVE if native else (delta if printing else None)
         return Move(self.line, start, end, arc, e, feed, self.look(), rapid, self.frame, tuple(self.anchor))

@@ -93,7 +93,7 @@ class MarlinToHyrel(HyrelTranslator):
                 "S (laser power) on a move dropped: Hyrel's G1 S is a flow multiplier and G2 S a segment size",
                 key="move-S",
                 cmd=cmd,
-                aspects=("laser", "spindle"),
+                aspects=("laser", "spindle", "moves"),  # the moves it cut do not cut
             )
         if ("A" in params or "B" in params) and "A" not in self.opts.printer.axes:
             drop += "AB"
