@@ -93,3 +93,21 @@ def test_3_an_unmapped_tool_still_gets_a_head_before_motion() -> None:
 def test_10_tool_map_with_a_tool_twice_is_refused() -> None:
     with pytest.raises(ConfigError, match="mapped twice"):
         parse_tool_map("0=T1,0=T2")
+
+
+# -- (7) native flow: a header's job-wide layer height does not override the real layer heights ------------
+
+NATIVE = (
+    ";FLAVOR:Marlin\n;Layer height: 0.2\nM83\nG1 Z0.3 F600\nG1 X10 Y10 E1 F1200\nG1 X20 Y10 E1\nG1 Z0.4\n"
+    "G1 X10 Y10 E1\nG1 X10 Y20 E1\nG1 Z0.5\nG1 X10 Y10 E1\nG1 X10 Y20 E1\n"
+)
+
+
+def test_7_native_flow_layer_heights_are_the_real_ones() -> None:
+    out, _ = translate("marlin", NATIVE, flow="native")
+    assert [line for line in out.splitlines() if line.startswith("M756")] == ["M756 S0.3", "M756 S0.1"]
+
+
+def test_7_per_layer_height_comments_still_win() -> None:
+    out, _ = translate("marlin", NATIVE.replace("G1 Z0.4\n", ";HEIGHT:0.15\nG1 Z0.4\n"), flow="native")
+    assert [line for line in out.splitlines() if line.startswith("M756")] == ["M756 S0.3", "M756 S0.15"]

@@ -269,11 +269,16 @@ class Motion:
         one_move_layer = previous is not None and self.layer_moves <= 1
         self.single_move_layers = self.single_move_layers + 1 if one_move_layer else 0
         self.layer_z, self.layer_moves, self.pending_height = z, 1, None
-        height = self.layer_height or self.default_layer_height
+        # the slicer's per-layer height, else the rise from the layer below: a height stated once for the
+        # job (Cura's header ";Layer height: 0.2") is the nominal one, not the first layer's or a variable
+        # layer's; it serves only when the rise says nothing
+        height = self.layer_height
         if height is None:
             height = z - previous if previous is not None else z
             if not height > 0:
-                return
+                if self.default_layer_height is None:
+                    return
+                height = self.default_layer_height
             if one_move_layer:
                 # the layer below had one move: a spiral (Z rising on every move) has no layer height; wait
                 # for a second move at this height before declaring it
@@ -294,6 +299,7 @@ class Motion:
         self.write_height(height)
 
     def write_height(self, height: float) -> None:
+        height = float(fmt(height, 4))  # rises are float differences (0.5 - 0.4): compare what is written
         if height != self.height_written:
             self.height_before = self.height_written
             self.before(f"M756 S{fmt(height, 4)}", note="native flow: the layer height")
