@@ -68,3 +68,42 @@ def test_the_translation_has_no_difference(row: Wrong) -> None:
     assert [d.aspect for d in diff.differences if d.aspect in (row.aspect, "end")] == [], [
         d.to_dict() for d in diff.differences
     ]
+
+
+# -- (4) a finding explains only differences in what it is about, where it is -------------------------------
+
+
+def test_4_a_g28_finding_does_not_explain_another_axis() -> None:
+    """G28 homes Z in the source, not on Hyrel (TR003 G28, about Z): an X difference later is not that."""
+    from gclint import dialects
+    from gclint.simulate import Mapping, diff_sources
+    from gclint.simulate.translation import explanations_from
+    from gclint.syntax.source import Source
+
+    source = "G28\nG90\nM83\nM104 S200\nM109 S200\nG1 X10 Y10 Z0.2 E1 F1200\nG1 X20 Y10 E1\nG1 X30 Y10 E1\n"
+    _, result, _ = translate_and_diff("marlin", source)
+    assert any(f.code == "TR003" and "G28" in f.message for f in result.findings)
+    wrong = (
+        "M104 T0 S200\nM109 T0 S200\nG21\nG90\nG28 X0 Y0\nT0\nM229 E1 D1\nM83\nG1 X15 Y10 Z0.2 E1 F1200\n"
+        "G1 X20 Y10 E1\nG1 X30 Y10 E1\nM30\n"
+    )
+    diff = diff_sources(
+        Source.from_text(source, "source"),
+        Source.from_text(wrong, "output"),
+        dialects.get("marlin"),
+        dialects.get("hyrel"),
+        Mapping(),
+        explanations_from(result),
+    )
+    position = [d for d in diff.differences if d.aspect == "position" and "X" in d.source]
+    assert position and position[0].explained_by is None, [d.to_dict() for d in diff.differences]
+
+
+# -- (8) inch helices with P turns ---------------------------------------------------------------------------
+
+
+@pytest.mark.parametrize("turns", ["", " P2"])
+def test_8_inch_helix_with_turns_has_no_false_difference(turns: str) -> None:
+    source = f"G20 G90 G17\nG0 X0 Y0 Z0\nG1 X0 F10\nG2 X1 Y0 Z-0.1 I0.5 J0{turns}\nG1 X2\nM2\n"
+    _, _, diff = translate_and_diff("machinekit", source)
+    assert diff.differences == [] and diff.pairs == 2, [d.to_dict() for d in diff.differences]
