@@ -31,6 +31,20 @@ WRONG = [
         {"tool_map": "7=T3,3=T1", "spindle_max_rpm": "15000"},
     ),
     Wrong(
+        "9: Marlin M109 S to a lower temperature written as a cooling wait",
+        "marlin",
+        "M83\nT0\nM109 S210\nG1 X1 E1 F100\nM109 S180\nG1 X2 E1\n",
+        "M229 E1 D1\nM83\nT0\nM109 T0 S210\nG21\nG90\nG1 X1 E1 F100\nM109 T0 S180 R2\nG1 X2 E1\nM30\n",
+        "temp",
+    ),
+    Wrong(
+        "9: a bare M109 after M104 S0 written as a cooling wait (to 0 °C)",
+        "marlin",
+        "M83\nT0\nM109 S180\nG1 X1 E1 F100\nM104 S0\nM109\nG1 X2 E1\n",
+        "M229 E1 D1\nM83\nT0\nM109 T0 S180\nG21\nG90\nG1 X1 E1 F100\nM104 T0 S0\nM109 T0 R2\nG1 X2 E1\nM30\n",
+        "temp",
+    ),
+    Wrong(
         "5: a Marlin spindle job that loses its M3 (the diff saw no working move in it)",
         "marlin",
         SPINDLE,

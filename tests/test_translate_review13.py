@@ -111,3 +111,25 @@ def test_7_native_flow_layer_heights_are_the_real_ones() -> None:
 def test_7_per_layer_height_comments_still_win() -> None:
     out, _ = translate("marlin", NATIVE.replace("G1 Z0.4\n", ";HEIGHT:0.15\nG1 Z0.4\n"), flow="native")
     assert [line for line in out.splitlines() if line.startswith("M756")] == ["M756 S0.3", "M756 S0.15"]
+
+
+# -- (9) Marlin M109 S waits only while heating: never a cooling wait ---------------------------------------
+
+
+def test_9_m109_s_lower_stays_a_heating_only_wait() -> None:
+    out, _ = translate("marlin", "M83\nT0\nM109 S210\nG1 X1 E1 F100\nM109 S180\nG1 X2 E1\n")
+    assert "M109 T0 S180" in out.splitlines() and "R" not in "".join(
+        line for line in out.splitlines() if "M109" in line
+    )
+
+
+def test_9_m109_r_waits_both_ways_with_the_window() -> None:
+    out, _ = translate("marlin", "M83\nT0\nM109 S210\nG1 X1 E1 F100\nM109 R180\nG1 X2 E1\n")
+    assert "M109 T0 S180 R2" in out.splitlines()
+
+
+def test_9_bare_m109_is_no_cooling_wait() -> None:
+    """After M104 S0 a window (R2) would wait for the nozzle to cool to 0 +/- 2 °C: forever."""
+    out, result = translate("marlin", "M83\nT0\nM109 S180\nG1 X1 E1 F100\nM104 S0\nM109\nG1 X2 E1\n")
+    assert "M109 T0" in out.splitlines() and "M109 T0 R2" not in out
+    assert any("without S or R" in m for m in _codes(result, "TR003"))

@@ -247,7 +247,7 @@ class MachinekitSimulator(CncSimulator):
     def m109(self, cmd: Command, n: int) -> None:
         value, index = self._flavour(cmd)
         if value is not None:
-            self.heat.set_temp(index, value, wait=True)
+            self.heat.set_temp(index, value, wait=True, both_ways=True)  # waits on "temp in range" (1.3)
             self.dirty()
 
     def bed(self, cmd: Command, n: int) -> None:

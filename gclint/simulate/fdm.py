@@ -162,7 +162,7 @@ class MarlinSimulator(Simulator):
         tool = _index(params.get("T"))
         if self.RRF and tool is not None:
             self.heat.tool = tool  # RepRapFirmware: M109 T also selects the tool
-        self.heat.set_temp(tool, value, wait=True)
+        self.heat.set_temp(tool, value, wait=True, both_ways="S" not in params and "R" in params)
         self.dirty()
 
     def _slot(self, cmd: Command) -> int:

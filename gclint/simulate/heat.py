@@ -21,6 +21,17 @@ from __future__ import annotations
 from gclint.simulate.trace import Mapping
 
 
+def heat_wait(old: tuple[float, float | None] | None, value: float, both_ways: bool) -> float:
+    """The set-point a wait for ``value`` leaves waited for, from the heater's ``old`` (set-point, waited).
+    A wait that only heats (Marlin and RRF ``M109 S``, "set & wait only when heating"; Hyrel ``M109`` with
+    no C/U/R, "waits until T >= S-1 °C (heating only)": research/dialects.md 1.3 M109) does not wait when
+    the heater was waited to ``value`` or more and not set below it since: the nozzle is hotter, and
+    what it was waited to stays."""
+    if not both_ways and old is not None and old[1] is not None and old[1] > value and old[0] >= value:
+        return old[1]
+    return value
+
+
 class ToolHeat:
     """The set-points, waits, fans and flow of a source printer, per tool index."""
 
@@ -39,8 +50,10 @@ class ToolHeat:
 
     # -- commands --------------------------------------------------------------------------------------
 
-    def set_temp(self, tool: int | None, value: float | None, wait: bool) -> None:
-        """``M104``/``M109`` on ``tool`` (None: the active tool); ``value`` None: wait for the set-point."""
+    def set_temp(self, tool: int | None, value: float | None, wait: bool, both_ways: bool = False) -> None:
+        """``M104``/``M109`` on ``tool`` (None: the active tool); ``value`` None: wait for the set-point.
+        ``both_ways``: the wait cools too (Marlin/RRF ``M109 R``, Machinekit's in-range wait); else it waits
+        only while heating (``M109 S``: research/dialects.md 1.3), see ``heat_wait``."""
         if tool is None:
             tool = self.tool if self.tool is not None else 0
         old = self.nozzle if self.shared else self.temps.get(tool)
@@ -50,7 +63,7 @@ class ToolHeat:
             value = old[0]
         if value < 0:
             value = 0.0  # RepRapFirmware's -273.15: heater off
-        waited = value if wait else (old[1] if old is not None else None)
+        waited = heat_wait(old, value, both_ways) if wait else (old[1] if old is not None else None)
         entry = (value, waited)
         self.temps[tool] = entry
         self.nozzle = entry

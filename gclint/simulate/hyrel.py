@@ -22,6 +22,7 @@ Hyrel Gcode page in the seeds (section named) or T_v5:
 from __future__ import annotations
 
 from gclint.dialects.addressing import resolve_v5
+from gclint.simulate.heat import heat_wait
 from gclint.simulate.machine import Simulator, number
 from gclint.simulate.trace import AUX_PORTS, EndState, Look, Move
 from gclint.syntax.nodes import Command
@@ -218,14 +219,18 @@ class HyrelSimulator(Simulator):
     def m109(self, cmd: Command, n: int) -> None:
         s = number(cmd.params.get("S"))
         w0 = number(cmd.params.get("W")) == 0 and "W" in cmd.params
+        # C, U and R bound the wait from above too; without them it waits while heating only (heat.heat_wait)
+        both_ways = any(letter in cmd.params for letter in "CUR")
         for address in self.addresses(cmd):
             head = self.head(address)
+            old = (head.target, head.waited) if head.target is not None else None
             if s is not None:
                 head.target = s
             if w0:
                 self.pending_w0.add(address)
             else:
-                head.waited = head.target
+                if head.target is not None:
+                    head.waited = heat_wait(old, head.target, both_ways)
                 self.pending_w0.discard(address)
         self.dirty()
 

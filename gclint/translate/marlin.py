@@ -363,7 +363,18 @@ class MarlinToHyrel(HyrelTranslator):
                 cmd=cmd,
             )
         else:
-            self.temperature(cmd, "M109", address, None, window=True, tool=index)
+            # no S or R: research/dialects.md 1.3 gives M109 only with them (S waits while heating, R both
+            # ways).  Hyrel's M109 with no window waits while heating only ("no H/C/L/U/R -> waits until
+            # T >= S-1 °C"): a window would wait for cooling too, forever after an M104 S0
+            self.temperature(cmd, "M109", address, None, tool=index)
+            self.report(
+                TR_APPROX,
+                "M109 without S or R: written as Hyrel's wait for the set-point while heating (the sources "
+                "give M109 only with S, a wait while heating, or R, a wait heating or cooling)",
+                key="M109-bare",
+                cmd=cmd,
+                aspects="temp",
+            )
         if self.RRF and index is not None and address is not None and address != self.hy.focus:
             # RepRapFirmware's M109 T also selects the tool
             self.after(f"T{address}", note="RepRapFirmware's M109 T selects the tool")
