@@ -133,3 +133,59 @@ def test_9_bare_m109_is_no_cooling_wait() -> None:
     out, result = translate("marlin", "M83\nT0\nM109 S180\nG1 X1 E1 F100\nM104 S0\nM109\nG1 X2 E1\n")
     assert "M109 T0" in out.splitlines() and "M109 T0 R2" not in out
     assert any("without S or R" in m for m in _codes(result, "TR003"))
+
+
+def test_10_rrf_tool_fans_stay_on_their_heads() -> None:
+    """M563 F: a tool's own fan is its head's; "S alone -> fans of current tool" (dialects.md 1.3 M106)."""
+    src = "M563 P0 D0 H1 F0\nM563 P1 D1 H2 F2\nT0\nM83\nM106 S0.5\nG1 X1 E1 F100\nT1\nM106 S1\nG1 X2 E1\n"
+    out, _ = translate("reprap", src)
+    lines = out.splitlines()
+    assert "M106 T0 S128" in lines and "M106 T1 S255" in lines
+    assert "M107 T0" not in lines  # tool 0's own fan keeps blowing on its head (it does not follow the tool)
+
+
+def test_10_rrf_m563_s_offset_is_reported() -> None:
+    _, result = translate("reprap", "M563 S1\nT0\nM83\nG1 X1 E1 F100\n")
+    assert any("S1" in m and "tool number" in m for m in _codes(result, "TR002"))
+
+
+def test_10_m3_s0_after_m4_is_no_reversal_pause() -> None:
+    """ "S0 is the same as turning it off" (Hyrel M3): no M5 and pause before it."""
+    out, _ = translate("marlin", "G21\nG90\nM3 S255\nG1 X1 F100\nM4 S0\nG1 X2\nM5\n")
+    assert "M0" not in out and "M4 T0 S0" in out.splitlines()
+
+
+def test_10_a_huge_comment_line_keeps_its_move() -> None:
+    out, result = translate("marlin", "M83\nG1 X1 Y1 E1 F100 ;" + "c" * 150_000 + "\nG1 X2 E1\n")
+    assert "G1 X1 Y1 E1 F100" in out.splitlines()
+    assert any("comment" in m for m in _codes(result, "TR004"))
+
+
+def test_10_several_commands_are_written_one_a_line() -> None:
+    out, _ = translate("machinekit", "G90 G21 G54\nG0 X1 Y1\n")
+    lines = out.splitlines()
+    assert lines[:3] == ["G90", "G21", "G54"], lines
+
+
+def test_10_translate_refuses_random_bytes(tmp_path) -> None:
+    import random
+
+    from .conftest import run_cli
+
+    rng = random.Random(13)
+    data = bytes(rng.randrange(1, 256) for _ in range(4000))  # no NUL: control characters
+    path = tmp_path / "bin.gcode"
+    path.write_bytes(data)
+    proc = run_cli("translate", "--from", "marlin", "--to", "hyrel", str(path))
+    assert proc.returncode == 2 and b"not a G-code" in proc.stderr and proc.stdout == b""
+    proc = run_cli("diff", "--from", "marlin", "--to", "hyrel", str(path), str(path))
+    assert proc.returncode == 2 and b"not a G-code" in proc.stderr
+
+
+def test_10_diff_names_an_unsupported_pair_in_words(tmp_path) -> None:
+    from .conftest import run_cli
+
+    path = tmp_path / "ok.gcode"
+    path.write_text("G1 X1 E1 F100\n")
+    proc = run_cli("diff", "--from", "hyrel", "--to", "marlin", str(path), str(path))
+    assert proc.returncode == 2 and b"UnsupportedPair" not in proc.stderr and b"not supported" in proc.stderr

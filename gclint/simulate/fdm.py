@@ -317,7 +317,7 @@ class RepRapSimulator(MarlinSimulator):
             self.dirty()
 
     def m563(self, cmd: Command, n: int) -> None:
-        """Define a tool: its own fans (F, research/dialects.md 1.8); M106 without P drives "fans of current
+        """Define a tool: its own fans (F, research/dialects.md 1.5 M563); M106 without P drives "fans of current
         tool" (1.3)."""
         tool = _index(cmd.params.get("P"))
         text = cmd.params.get("F")

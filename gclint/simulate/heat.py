@@ -12,7 +12,7 @@ references; the Machinekit FDM README in the seeds):
   tool prints.  Other fan indices are other devices.
 * ``M221`` is a percentage per extruder (a multiplier of 1.0 = 100 %).
 * RepRapFirmware: ``M563 P<tool> F<fans>`` gives a tool fans of its own, and ``M106`` without ``P`` drives
-  "fans of current tool" (research/dialects.md 1.3 M106, 1.8 M563).  A fan that one tool owns is that
+  "fans of current tool" (research/dialects.md 1.3 M106, 1.5 M563).  A fan that one tool owns is that
   tool's head's fan (Hyrel's fans are per head); fan 0 of tools that declare none is the part fan above.
 """
 

@@ -154,7 +154,7 @@ class RepRapToHyrel(MarlinToHyrel):
         """Define a tool (configuration: Repetrel configures the Hyrel heads).  Its fans F are kept: "S alone"
         on M106 drives the current tool's fans.  ``M563 S<n>`` (older Duet firmware) adds n to "all tool
         numbers found in the remainder of the current input stream" (RepRap page, M563); RepRapFirmware 3.1
-        removed it (research/dialects.md 1.8), so the tool numbers are left as written and reported."""
+        removed it (research/dialects.md 1.5 M563), so the tool numbers are left as written and reported."""
         params = cmd.params
         tool = self._tool_index(cmd, "P")
         if tool is None and "S" in params:
