@@ -6,6 +6,12 @@ from __future__ import annotations
 
 import pytest
 
+from gclint import dialects
+from gclint.simulate import Mapping, diff_sources
+from gclint.simulate.translation import explanations_from
+from gclint.syntax.source import Source
+from gclint.translate.options import TranslateOptions
+
 from .test_diff import Wrong, diff_texts, translate_and_diff
 
 MMU = "M104 S215\nM109 S215\nM83\nT0\nG1 X10 Y10 Z0.2 E1 F1200\nM104 S240\nT1\nG1 X20 Y20 E1\n"
@@ -89,10 +95,6 @@ def test_the_translation_has_no_difference(row: Wrong) -> None:
 
 def test_4_a_g28_finding_does_not_explain_another_axis() -> None:
     """G28 homes Z in the source, not on Hyrel (TR003 G28, about Z): an X difference later is not that."""
-    from gclint import dialects
-    from gclint.simulate import Mapping, diff_sources
-    from gclint.simulate.translation import explanations_from
-    from gclint.syntax.source import Source
 
     source = "G28\nG90\nM83\nM104 S200\nM109 S200\nG1 X10 Y10 Z0.2 E1 F1200\nG1 X20 Y10 E1\nG1 X30 Y10 E1\n"
     _, result, _ = translate_and_diff("marlin", source)
@@ -121,3 +123,26 @@ def test_8_inch_helix_with_turns_has_no_false_difference(turns: str) -> None:
     source = f"G20 G90 G17\nG0 X0 Y0 Z0\nG1 X0 F10\nG2 X1 Y0 Z-0.1 I0.5 J0{turns}\nG1 X2\nM2\n"
     _, _, diff = translate_and_diff("machinekit", source)
     assert diff.differences == [] and diff.pairs == 2, [d.to_dict() for d in diff.differences]
+
+
+def test_4_an_assumed_rpm_does_not_explain_a_spindle_left_off() -> None:
+    """TR003 "rpm converted to percent of an assumed maximum" is about the speed (spindle:speed): it explains
+    a speed that differs, not a spindle that does not run on the head that cuts."""
+
+    settings = {"tool_map": "7=T3,3=T1"}
+    _, result, diff = translate_and_diff("machinekit", TC, **settings)
+    assert [d.explained_by[0] for d in diff.differences] == ["TR003"]  # type: ignore[index]  (the speed)
+    wrong = WRONG[1].output  # the spindle on T0 while T3 cuts
+
+    options = TranslateOptions()
+    options.set("tool-map", "7=T3,3=T1")
+    diff = diff_sources(
+        Source.from_text(TC, "source"),
+        Source.from_text(wrong, "output"),
+        dialects.get("machinekit"),
+        dialects.get("hyrel"),
+        Mapping.from_options(options),
+        explanations_from(result),
+    )
+    spindle = [d for d in diff.differences if d.aspect == "spindle"]
+    assert spindle and spindle[0].explained_by is None, [d.to_dict() for d in diff.differences]

@@ -67,6 +67,8 @@ class Explanations:
 
     * about it: its aspects name the difference's aspect ("*": any).  A position finding may name its axes
       (``position:Z``: a G28 that does not home Z, a G53 move in Z); it explains only differences in them.
+      A spindle finding about its speed only (``spindle:speed``: an assumed maximum rpm) explains a
+      difference in speed, not one in whether the spindle runs.
     * at that place: it is on a source line after the last working move where the aspect agreed.  For a
       position, also not before the line that last set the differing axes outright (an absolute move,
       homing, G92: ``anchor``), since what came before that line cannot have moved them; only a finding
@@ -78,7 +80,7 @@ class Explanations:
 
     def find(self, aspect: str, lo: int, hi: int, axes: str = "", anchor: int = 0) -> tuple[str, int] | None:
         """The first finding for ``aspect`` on a line in (lo, hi]; a position (``axes`` differ, set outright
-        on line ``anchor``) as the class says."""
+        on line ``anchor``) and a spindle speed (``axes`` "speed") as the class says."""
         best: tuple[str, int] | None = None
         for code, aspects, lines in self.entries:
             start = lo
@@ -87,7 +89,7 @@ class Explanations:
                     if not ("*" in aspects or "position" in aspects or _names_axes(aspects, axes)):
                         continue
                     start = max(lo, anchor - 1)  # a finding on the anchoring line itself counts
-            elif aspect not in aspects and "*" not in aspects:
+            elif aspect not in aspects and "*" not in aspects and not (axes and f"{aspect}:{axes}" in aspects):
                 continue
             i = bisect_right(lines, start)
             if i < len(lines) and lines[i] <= hi and (best is None or lines[i] < best[1]):
@@ -434,7 +436,8 @@ class Diff:
                 if not _same(aspect, va, vb):
                     bad.append(aspect)
                     describe = _DESCRIBE[aspect]
-                    self.differ(aspect, s.line, first.line, describe(va), describe(vb))
+                    detail = "speed" if aspect == "spindle" and va and vb and va[0] == vb[0] else ""
+                    self.differ(aspect, s.line, first.line, describe(va), describe(vb), axes=detail)
         if not bad:
             if self.open:
                 for aspect in list(self.open):

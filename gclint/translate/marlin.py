@@ -300,7 +300,7 @@ class MarlinToHyrel(HyrelTranslator):
             "spindle/laser power taken as PWM 0-255 (Marlin's default cutter unit) and written as percent",
             key="M3-pwm",
             cmd=cmd,
-            aspects="spindle",
+            aspects="spindle:speed",
         )
 
     def spindle_stop(self, cmd: Command) -> None:

@@ -113,7 +113,7 @@ class Spindles:
                 f"spindle rpm converted to percent of an assumed {fmt(top)} rpm maximum; set "
                 "spindle-max-rpm to the Hyrel spindle's",
                 key="rpm-assumed",
-                aspects="spindle",
+                aspects="spindle:speed",  # the speed, not whether it runs (compare.Explanations)
             )
         pct = rpm / top * 100
         if pct > 100:
@@ -121,7 +121,7 @@ class Spindles:
                 TR_APPROX,
                 f"{fmt(rpm)} rpm is above the spindle's {fmt(top)} rpm: clamped to 100 %",
                 key="rpm-clamp",
-                aspects="spindle",
+                aspects="spindle:speed",
             )
             pct = 100
         return fmt(max(pct, 0.0), 1)
