@@ -14,8 +14,8 @@ import sys
 
 from gclint.dialects.base import Dialect
 from gclint.simulate import DiffResult, Explanations, Mapping, diff_sources
+from gclint.syntax.sniff import refuse_non_gcode
 from gclint.syntax.source import Source, SourceError
-from gclint.translate.engine import refuse_non_gcode
 
 
 def run_diff(

@@ -16,27 +16,13 @@ from gclint.dialects.base import Dialect
 from gclint.simulate.trace import NATIVE, EndState, Look, Mapping, Move, Trace
 from gclint.syntax.fastpath import PLAIN_MOVE
 from gclint.syntax.nodes import ASSIGNMENT, GCODE, IMPLICIT, META, OWORD, Command
-from gclint.syntax.parse import parse_line
+from gclint.syntax.parse import PARSE_LIMIT, code_before_long_comment, parse_line
 from gclint.syntax.source import Source
 
 INCH = 25.4
 _AXIS_INDEX = {"X": 0, "Y": 1, "Z": 2, "A": 3, "B": 4}
 _MOTION = frozenset({"G0", "G1", "G2", "G3", None})
 _PLANES = {17: ("X", "Y", "I", "J"), 18: ("Z", "X", "K", "I"), 19: ("Y", "Z", "J", "K")}
-
-
-PARSE_LIMIT = 100_000  # longer lines are not parsed (syntax.parse)
-
-
-def _code_of_long_line(raw: str) -> str:
-    """A line too long to parse whose length is one trailing comment: its commands run (what a firmware
-    does with it); anything else stays unparsed."""
-    cut = min((i for i in (raw.find(";"), raw.find("(")) if i >= 0), default=-1)
-    if 0 <= cut <= 1000:
-        rest = raw[cut:]
-        if rest[0] == ";" or (rest.rstrip().endswith(")") and rest.count(")") == 1):
-            return raw[:cut]
-    return raw
 
 
 def number(text: str | None) -> float | None:
@@ -126,8 +112,8 @@ class Simulator:
                         if move is not None:
                             yield move
                         continue
-                if len(raw) > PARSE_LIMIT:
-                    raw = _code_of_long_line(raw)
+                if len(raw) > PARSE_LIMIT:  # one trailing comment made it too long: its commands run
+                    raw = code_before_long_comment(raw) or raw
                 for cmd in parse_line(raw).commands:
                     if self.ended:
                         break

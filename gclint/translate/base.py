@@ -27,7 +27,7 @@ from typing import ClassVar
 from gclint.dialects.base import Dialect
 from gclint.machine.interpreter import Interpreter
 from gclint.syntax.nodes import ASSIGNMENT, EXTENDED, GCODE, IMPLICIT, META, OWORD, Command, Line
-from gclint.syntax.parse import parse_line
+from gclint.syntax.parse import PARSE_LIMIT, code_before_long_comment, parse_line
 from gclint.translate.arc_moves import ArcMoves
 from gclint.translate.engine import PlainMove, TranslationResult, Translator
 from gclint.translate.findings import (
@@ -43,7 +43,7 @@ from gclint.translate.heads import Heads
 from gclint.translate.modal import Modal
 from gclint.translate.motion import Motion
 from gclint.translate.options import TranslateOptions
-from gclint.translate.output import LINE_LIMIT, LineEdit, code_before_long_comment, fit_line, rewrite
+from gclint.translate.output import LINE_LIMIT, LineEdit, fit_line, rewrite
 from gclint.translate.program import Program
 from gclint.translate.spindle import Spindles
 from gclint.translate.state import HyrelSide
@@ -53,7 +53,6 @@ from gclint.translate.writer import LineWriter
 
 WORKSPACES = {f"G{n}": "workspace" for n in range(54, 60)}  # G54-G59: the same codes on Hyrel
 _MOVES = frozenset({"G0", "G1", "G2", "G3"})
-PARSE_LIMIT = 100_000  # longer lines are not parsed (syntax.parse)
 
 
 class HyrelTranslator(LineWriter, Heads, Program, Motion, ArcMoves, Modal, Spindles, Translator):

@@ -9,8 +9,9 @@ import tempfile
 from gclint.dialects.base import Dialect
 from gclint.io import AtomicWriter, OutputError
 from gclint.rules.base import Severity
+from gclint.syntax.sniff import refuse_non_gcode
 from gclint.syntax.source import CHUNK, Source, SourceError
-from gclint.translate.engine import TranslationResult, UnsupportedPair, refuse_non_gcode, translate_source
+from gclint.translate.engine import TranslationResult, UnsupportedPair, translate_source
 from gclint.translate.pairs import translator_for
 
 

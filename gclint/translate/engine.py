@@ -15,22 +15,7 @@ from gclint.rules.base import Finding
 from gclint.syntax.fastpath import PLAIN_MOVE
 from gclint.syntax.nodes import Line
 from gclint.syntax.parse import parse_line
-from gclint.syntax.sniff import not_gcode_reason
-from gclint.syntax.source import NotGcode, Source
-
-
-def refuse_non_gcode(source: Source) -> None:
-    """Raise ``NotGcode`` (one line for the user) when the file is not G-code by content: what ``gclint
-    check`` refuses (syntax.sniff: scripts, configuration files...), and text with control characters, which
-    G-code never has but random or binary data without NUL bytes does (about one byte in ten)."""
-    head = source.head_text(8192)
-    reason = not_gcode_reason(head)
-    if reason is None:
-        controls = sum(1 for ch in head if ch < " " and ch not in "\t\n\r\f\v" or ch == "\x7f")
-        if controls >= 16 and controls * 100 > len(head):
-            reason = "binary data (control characters), not a G-code text file"
-    if reason is not None:
-        raise NotGcode(f"{source.display}: {reason}")
+from gclint.syntax.source import Source
 
 
 class UnsupportedPair(Exception):

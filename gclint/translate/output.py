@@ -63,20 +63,6 @@ def fit_line(text: str) -> tuple[list[str], str]:
     return [*lines, command], "wrapped"
 
 
-def code_before_long_comment(raw: str) -> str | None:
-    """The commands of a line too long to parse (syntax.parse: over 100,000 characters) whose length is one
-    trailing comment (``G1 X1 E1 ;cccc...`` or ``G1 X1 (cccc...)``), or None: such a line's command is kept
-    and only its comment is dropped."""
-    cut = min((i for i in (raw.find(";"), raw.find("(")) if i >= 0), default=-1)
-    if cut < 0 or cut > 1000:
-        return None
-    rest = raw[cut:]
-    if rest[0] == "(" and not (rest.rstrip().endswith(")") and rest.count(")") == 1):
-        return None  # text after the comment: not one trailing comment
-    code = raw[:cut].rstrip()
-    return code or None
-
-
 def fmt(value: float, places: int = 4) -> str:
     """A number as G-code text: at most ``places`` decimals, no trailing zeros, no ``-0``."""
     text = f"{value:.{places}f}"
