@@ -189,3 +189,9 @@ def test_10_diff_names_an_unsupported_pair_in_words(tmp_path) -> None:
     path.write_text("G1 X1 E1 F100\n")
     proc = run_cli("diff", "--from", "hyrel", "--to", "marlin", str(path), str(path))
     assert proc.returncode == 2 and b"UnsupportedPair" not in proc.stderr and b"not supported" in proc.stderr
+
+
+def test_3_a_spindle_started_before_any_head_follows_the_first_tool_change() -> None:
+    out, _ = translate("machinekit", "G21 G90\nM3 S10000\nT3 M6\nG1 X10 F100\nM2\n", tool_map="3=T1")
+    lines = out.splitlines()
+    assert lines[lines.index("T1") + 1 : lines.index("T1") + 3] == ["M5 T0", "M3 T1 S66.7"], lines

@@ -31,7 +31,11 @@ class Spindles:
     def spindle_to_head(self, old: int | None, new: int) -> None:
         """A tool change from head ``old`` to ``new``: a spindle running on ``old`` stops there and, unless
         the source stops it for the change, runs on ``new`` at the same speed (after the T line)."""
-        if not self.SPINDLE_FOLLOWS_TOOL or self.opts.spindle is not None or old is None or old == new:
+        if not self.SPINDLE_FOLLOWS_TOOL or self.opts.spindle is not None:
+            return
+        if old is None:
+            old = self.opts.spindle_address()  # no head focused yet: the spindle ran on the default one
+        if old == new:
             return
         code = self.hy.spindles_on.pop(old, None)
         if code is None:
