@@ -87,6 +87,8 @@ def parse_tool_map(value: object, where: str = "--tool-map") -> dict[int, int]:
         ks, vs = str(k).strip().upper().lstrip("T"), str(v).strip().upper().lstrip("T")
         if not _DIGITS.fullmatch(ks) or not _DIGITS.fullmatch(vs) or int(vs) > 48:
             raise ConfigError(f"{where}: {k}={v} is not a tool index and a Hyrel address (0=T2)")
+        if int(ks) in out:
+            raise ConfigError(f"{where}: tool {int(ks)} is mapped twice (T{out[int(ks)]} and T{int(vs)})")
         out[int(ks)] = int(vs)
     return out
 

@@ -165,7 +165,13 @@ CASES = [
         "control characters", _file("controls.gcode", b"G1 X1\x07\x1b[31m Y2\n\x0cG28\n"), (1,), (0,), codes=("SX001",)
     ),
     Case(
-        "script, not G-code", _file("script.gcode", b"#!/bin/sh\nrm -rf /\n"), (2,), (0,), "not G-code", identity=True
+        # translate refuses what check refuses (a translation of a script or random bytes would be garbage)
+        "script, not G-code",
+        _file("script.gcode", b"#!/bin/sh\nrm -rf /\n"),
+        (2,),
+        (2,),
+        "not G-code",
+        translate_message="not G-code",
     ),
 ]
 

@@ -38,7 +38,11 @@ MACHINEKIT = [
     Row("2.2 G43 H / G49", "G43 H1\nG49", "", "TR002", out="M660 registers need the tool lengths; set them by hand"),
     Row("2.2 G40", "G40", "", "TR001"),
     Row("2.2 G41/G42 (cutter compensation)", "G41 D1", "", "TR005"),
-    Row("2.2 G53 (machine coordinates)", "G53 G0 X0", "G0 X0", "TR005"),
+    # as the Marlin pair (2.1): G53, the move, the workspace again (LinuxCNC starts in G54)
+    Row("2.2 G53 (machine coordinates)", "G53 G0 X0", "G53\nG0 X0\nG54", "TR003"),
+    Row("2.2 G53 with the words on it (G0 G53 Z-2)", "G55\nG0 G53 Z-2", "G55\nG53\nG0 Z-2\nG55", "TR003 TR004"),
+    Row("2.2 G53 Z (the modal G1)", "G1 X1 F100\nG53 Z-2", "G1 X1 F100\nG53\nG1 Z-2\nG54", "TR003"),
+    Row("2.2 G53 with no move does nothing", "G53", "", "TR001"),
     Row("2.2 G54", "G54", "G54", "TR004"),
     Row("2.2 G59.1", "G59.1", "", "TR005"),
     Row("2.2 G92.1", "G92.1", "G93", "TR004"),

@@ -419,6 +419,7 @@ ISSUE_13 = [
         "M104 T0 S200\nM104 T1 S200\nM106 S255\nT1\nG1 X5 Y5 E1\nT0\nG1 X6 Y6 E1\nM107",
         "M104 T0 S200\nM104 T1 S200\nM106 T0 S255\nT1\nM107 T0\nM106 T1 S255\nG1 X5 Y5 E1\nT0\nM107 T1\n"
         "M106 T0 S255\nG1 X6 Y6 E1\nM107 T0",
+        "TR004",  # the fan count note (a Marlin printer may have a fan per extruder)
     ),
     Row(
         "4: an M107 while two heads blow switches off both",

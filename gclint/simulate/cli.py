@@ -14,6 +14,7 @@ import sys
 
 from gclint.dialects.base import Dialect
 from gclint.simulate import DiffResult, Explanations, Mapping, diff_sources
+from gclint.syntax.sniff import refuse_non_gcode
 from gclint.syntax.source import Source, SourceError
 
 
@@ -46,8 +47,12 @@ def run_diff(
     except ValueError as exc:
         _say(f"gclint: {exc}")
         return 2
-    if source.family != "hyrel" and target.family != "hyrel":
-        _say(f"gclint: diff compares a job with its Hyrel translation; {target.name} is not a Hyrel dialect")
+    if target.family != "hyrel" or (source.family == "hyrel" and source.name == target.name):
+        # the same dialect on both sides would compare a job with itself; from Hyrel, only to the other version
+        _say(
+            f"gclint: diff compares a job with its Hyrel translation; translating {source.name} to {target.name} "
+            "is not supported (targets: hyrel, hyrel-v4)"
+        )
         return 2
     explanations: Explanations | None = None
     try:
@@ -56,8 +61,10 @@ def run_diff(
             explanations = _explanations(opener(), source, target, options)
         first = opener()
         try:
+            refuse_non_gcode(first)
             second = Source.open(output_path)
             try:
+                refuse_non_gcode(second)
                 result = diff_sources(first, second, source, target, Mapping.from_options(options), explanations)
             finally:
                 second.close()
@@ -97,6 +104,7 @@ def _explanations(src: Source, source: Dialect, target: Dialect, options) -> Exp
     from gclint.simulate.translation import explanations_from, translate_text
 
     try:
+        refuse_non_gcode(src)
         _, result = translate_text(src, source, target, options)
     except SourceError:
         raise

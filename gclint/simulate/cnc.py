@@ -34,6 +34,7 @@ class CncSimulator(Simulator):
         self.spindle: str | None = None  # "M3" / "M4"
         self.aux: dict[str, float] = {}
         self._g53_line = -1
+        self._g53_next = False
 
     def table(self):
         h = {
@@ -71,14 +72,24 @@ class CncSimulator(Simulator):
             self.rpm = rpm
             self.dirty()
 
-    def g53(self, cmd: Command, n: int) -> None:
-        self._g53_line = n  # the move on this line is in machine coordinates
+    G53_NEXT_LINE = False  # Carvera: a G53 alone on its line puts the next G0/G1 in machine coordinates
+
+    def g53(self, cmd: Command, n: int) -> Move | None:
+        """G53: the move on this line is in machine coordinates (LinuxCNC: "Non-modal; requires G0/G1 active";
+        Carvera: "the directly following G0/G1 will be executed in MCS"; research/dialects.md 1.1 G53).  Its
+        words may be on G53 itself ("G53 Z-2", "G0 G53 Z-2": the motion mode applies)."""
+        self._g53_line = n
+        self._g53_next = self.G53_NEXT_LINE
+        if any(a in cmd.params for a in "XYZAB") and self.motion_mode in ("G0", "G1"):
+            return self.motion(self.motion_mode, cmd.params, n)
+        return None
 
     def motion(self, mode: str, params: dict, n: int) -> Move | None:
         if "S" in params:
             self.speed(number(params.get("S")))
-        if self._g53_line != n:
+        if self._g53_line != n and not (self._g53_next and mode in ("G0", "G1")):
             return super().motion(mode, params, n)
+        self._g53_next = False
         saved, shift = self.wcs, list(self.shift)
         self.wcs, self.shift = "G53", [0.0] * 5
         self.dirty()
@@ -133,8 +144,16 @@ class CncSimulator(Simulator):
     def working_head(self) -> int | str | None:
         return self.mapping.spindle_address()
 
+    def spindle_head(self) -> int | str | None:
+        """The head the source's spindle is on in Hyrel terms: the ``spindle`` setting, else the working head
+        (a mapped tool is a spindle head; translate/spindle.py)."""
+        if self.mapping.spindle is not None:
+            return self.mapping.spindle
+        head = self.working_head()
+        return head if isinstance(head, int) else self.mapping.spindle_address()
+
     def end_state(self) -> EndState:
-        spindles = {self.mapping.spindle_address(): self.spindle} if self.spindle else {}
+        spindles = {self.spindle_head(): self.spindle} if self.spindle else {}
         return EndState(spindles=spindles, aux=dict(self.aux))
 
 
@@ -201,6 +220,8 @@ class MachinekitSimulator(CncSimulator):
             if self.absolute:
                 i = "XYZ".index(axis)
                 self.pos[i] = self.shift[i]  # program 0
+                self.anchor[i] = n
+                self.set_frame(i, self.frame_label())
         if bare or "A" in params:
             self.e_pos = 0.0
 
@@ -226,7 +247,7 @@ class MachinekitSimulator(CncSimulator):
     def m109(self, cmd: Command, n: int) -> None:
         value, index = self._flavour(cmd)
         if value is not None:
-            self.heat.set_temp(index, value, wait=True)
+            self.heat.set_temp(index, value, wait=True, both_ways=True)  # waits on "temp in range" (1.3)
             self.dirty()
 
     def bed(self, cmd: Command, n: int) -> None:
@@ -298,6 +319,7 @@ class MachinekitSimulator(CncSimulator):
 class CarveraSimulator(CncSimulator):
     EXTRUDER = None
     G0_FEED = "one-shot"
+    G53_NEXT_LINE = True
 
     def __init__(self, dialect, mapping=None, *, cnc: bool = True) -> None:
         super().__init__(dialect, mapping, cnc=cnc)

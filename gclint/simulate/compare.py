@@ -61,20 +61,45 @@ class Difference:
 
 @dataclass
 class Explanations:
-    """Warning-level TR findings, by aspect: ``entries`` is a list of (code, aspects, sorted lines)."""
+    """Warning-level TR findings, by aspect: ``entries`` is a list of (code, aspects, sorted lines).
+
+    A finding explains a difference only when it is about that quantity and that place:
+
+    * about it: its aspects name the difference's aspect ("*": any).  A position finding may name its axes
+      (``position:Z``: a G28 that does not home Z, a G53 move in Z); it explains only differences in them.
+      A spindle finding about its speed only (``spindle:speed``: an assumed maximum rpm) explains a
+      difference in speed, not one in whether the spindle runs.
+    * at that place: it is on a source line after the last working move where the aspect agreed.  For a
+      position, also not before the line that last set the differing axes outright (an absolute move,
+      homing, G92: ``anchor``), since what came before that line cannot have moved them; only a finding
+      about coordinate offsets that last (``offsets``: a G92 or workspace origin that is lost) reaches
+      across it.
+    """
 
     entries: list[tuple[str, frozenset[str], list[int]]] = field(default_factory=list)
 
-    def find(self, aspect: str, lo: int, hi: int) -> tuple[str, int] | None:
-        """The first finding for ``aspect`` on a line in (lo, hi]."""
+    def find(self, aspect: str, lo: int, hi: int, axes: str = "", anchor: int = 0) -> tuple[str, int] | None:
+        """The first finding for ``aspect`` on a line in (lo, hi]; a position (``axes`` differ, set outright
+        on line ``anchor``) and a spindle speed (``axes`` "speed") as the class says."""
         best: tuple[str, int] | None = None
         for code, aspects, lines in self.entries:
-            if aspect not in aspects and "*" not in aspects:
+            start = lo
+            if aspect == "position":
+                if "offsets" not in aspects:
+                    if not ("*" in aspects or "position" in aspects or _names_axes(aspects, axes)):
+                        continue
+                    start = max(lo, anchor - 1)  # a finding on the anchoring line itself counts
+            elif aspect not in aspects and "*" not in aspects and not (axes and f"{aspect}:{axes}" in aspects):
                 continue
-            i = bisect_right(lines, lo)
+            i = bisect_right(lines, start)
             if i < len(lines) and lines[i] <= hi and (best is None or lines[i] < best[1]):
                 best = (code, lines[i])
         return best
+
+
+def _names_axes(aspects: frozenset[str], axes: str) -> bool:
+    """Whether a ``position:<axes>`` aspect covers every differing axis."""
+    return bool(axes) and any(a.startswith("position:") and set(axes) <= set(a[9:]) for a in aspects)
 
 
 class _Peek:
@@ -205,8 +230,10 @@ def _run(s: Move, out: _Peek) -> list[Move] | None:
             return None
         if _xy_match(o.end, s.end) and (s.arc is None or k == 0 or _arc_done(o.end, s, progress)):
             return [out.pop() for _ in range(k + 1)]
-        if _xy_match(o.end, s.start):
-            return None  # a move that stays at the start is not a piece of this one
+        if _xy_match(o.end, s.start) and (s.arc is None or k == 0):
+            # a move that stays at the start is not a piece of this one (an arc with turns passes its start
+            # again on each lap: there ``_arc_progress`` decides)
+            return None
         if s.arc is not None:
             ahead = _arc_progress(o.end, s, progress)
             if ahead is None:
@@ -234,8 +261,15 @@ def _num(v: float | None, places: int = 4) -> str:
     return "0" if text in ("-0", "") else text
 
 
-def _position(end: tuple, axes: Iterable[int]) -> str:
-    return " ".join(f"{'XYZAB'[i]}{_num(end[i])}" for i in axes)
+def _position(end: tuple, axes: Iterable[int], frames: tuple | None = None) -> str:
+    """``X1 Z2``; with ``frames``, each coordinate's workspace: ``Z-2 (machine coordinates)``, ``Z-2 (G55)``."""
+    parts = []
+    for i in axes:
+        text = f"{'XYZAB'[i]}{_num(end[i])}"
+        if frames is not None:
+            text += f" ({frames[i] or 'machine coordinates'})"
+        parts.append(text)
+    return " ".join(parts)
 
 
 def _e(value) -> str:
@@ -253,10 +287,13 @@ def _head(value) -> str:
 
 
 def _temp(value: tuple) -> str:
-    target, ready = value
+    target, ready, heated = value
     if target is None:
         return "no set-point"
-    return f"{_num(target, 1)} °C ({'waited for' if ready else 'not waited for'})"
+    if ready:
+        return f"{_num(target, 1)} °C (waited for)"
+    before = f"heated to {_num(heated, 1)} °C before" if heated is not None else "never heated before"
+    return f"{_num(target, 1)} °C (not waited for; {before})"
 
 
 def _beds(value: tuple) -> str:
@@ -301,7 +338,9 @@ def _same(aspect: str, a, b) -> bool:
     if aspect == "flow":
         return abs(a - b) <= 1e-4
     if aspect == "temp":
-        return a[1] == b[1] and _close(a[0], b[0], 1e-6)
+        # not waited for at the set-point: how hot the nozzle was waited to before matters (a head never
+        # heated prints cold where the source's nozzle was hot)
+        return a[1] == b[1] and _close(a[0], b[0], 1e-6) and (a[1] or _close(a[2], b[2], 1e-6))
     if aspect == "spindle":
         if a is None or b is None:
             return a is b
@@ -348,10 +387,23 @@ class Diff:
         first = run[0]
         bad: list[str] = []
         # where it ends
-        axes = [i for i in range(5) if not _close(s.end[i], o.end[i])]
+        axes = [
+            i
+            for i in range(5)
+            if not _close(s.end[i], o.end[i]) or (s.frames[i] != o.frames[i] and s.end[i] is not None)
+        ]
         if axes:
             bad.append("position")
-            self.differ("position", s.line, o.line, _position(s.end, axes), _position(o.end, axes))
+            frames = any(s.frames[i] != o.frames[i] for i in axes)
+            self.differ(
+                "position",
+                s.line,
+                o.line,
+                _position(s.end, axes, s.frames if frames else None),
+                _position(o.end, axes, o.frames if frames else None),
+                axes="".join("XYZAB"[i] for i in axes),
+                anchor=max(s.anchors[i] for i in axes),
+            )
         # the path
         deviation = _deviation(s, run)
         if deviation is not None:
@@ -384,7 +436,8 @@ class Diff:
                 if not _same(aspect, va, vb):
                     bad.append(aspect)
                     describe = _DESCRIBE[aspect]
-                    self.differ(aspect, s.line, first.line, describe(va), describe(vb))
+                    detail = "speed" if aspect == "spindle" and va and vb and va[0] == vb[0] else ""
+                    self.differ(aspect, s.line, first.line, describe(va), describe(vb), axes=detail)
         if not bad:
             if self.open:
                 for aspect in list(self.open):
@@ -399,7 +452,17 @@ class Diff:
             if aspect not in bad and aspect != "moves":
                 self.last_ok[aspect] = s.line
 
-    def differ(self, aspect: str, source_line, output_line, source: str, output: str, hi: int | None = None) -> None:
+    def differ(
+        self,
+        aspect: str,
+        source_line,
+        output_line,
+        source: str,
+        output: str,
+        hi: int | None = None,
+        axes: str = "",
+        anchor: int = 0,
+    ) -> None:
         """A difference on this pair; one going on since an earlier pair only counts."""
         current = self.open.get(aspect)
         if current is not None:
@@ -409,7 +472,7 @@ class Diff:
         if self.explanations is not None:
             lo = max(self.last_all_ok, self.last_ok.get(aspect, 0))
             top = hi if hi is not None else (source_line if source_line is not None else 1 << 62)
-            diff.explained_by = self.explanations.find(aspect, lo, top)
+            diff.explained_by = self.explanations.find(aspect, lo, top, axes, anchor)
         self.open[aspect] = diff
         self.differences.append(diff)
 

@@ -34,8 +34,10 @@ class MarlinSimulator(Simulator):
         self.heat = ToolHeat(self.mapping)
         self.feed_factor = 1.0  # M220
         self.spindle: tuple | None = None
+        self.cutter: str | None = None  # M3/M4 until M5: an S on a move is the laser power (dialects.md 1.1 G1)
         self.coolant: dict[str, bool] = {}
         self._g53_line = -1
+        self._g53_alone = False
 
     def table(self):
         h = {
@@ -84,15 +86,27 @@ class MarlinSimulator(Simulator):
 
     def motion(self, mode: str, params: dict, n: int) -> Move | None:
         if self._g53_line == n:
+            self._g53_alone = False
             return self.machine_move(mode, params, n)
+        if self._g53_alone:  # the G53 before was alone on its line: the native workspace is active
+            self._g53_alone = False
+            self.wcs = None
+            self.dirty()
+        if self.cutter is not None and "S" in params and not self.RRF:
+            # Marlin: "S = laser power" on G0/G1/G2/G3 (research/dialects.md 1.1), in the M3/M4 unit
+            self.set_power(self.cutter, self.spindle_percent({"S": params["S"]}))
         move = super().motion(mode, params, n)
         if move is not None and self.feed_factor != 1.0 and move.feed is not None:
             move.feed *= self.feed_factor
         return move
 
     def g53(self, cmd: Command, n: int) -> None:
-        # Marlin: G53 makes the move on its line use machine coordinates (no workspace offsets)
+        # G53: "Machine coordinates for the move it prefixes; alone on a line activates native workspace"
+        # (Marlin); "Non-modal, rest of line only" (RepRapFirmware) (research/dialects.md 1.1 G53).  Whether a
+        # move follows on the line is not known here: a move on this line uses machine coordinates, and the
+        # native workspace is active from here in Marlin.
         self._g53_line = n
+        self._g53_alone = not self.RRF  # until a move on this line shows it was a prefix
 
     def machine_move(self, mode: str, params: dict, n: int) -> Move | None:
         saved, self.wcs = self.wcs, "G53"
@@ -109,6 +123,10 @@ class MarlinSimulator(Simulator):
 
     def clear_offsets(self, cmd: Command, n: int) -> None:
         self.clear_shift()
+
+    def workspace(self, cmd: Command, n: int) -> None:
+        self._g53_alone = False
+        super().workspace(cmd, n)
 
     def home(self, cmd: Command, n: int) -> None:
         listed = "".join(a for a in "XYZ" if a in cmd.params)
@@ -144,7 +162,7 @@ class MarlinSimulator(Simulator):
         tool = _index(params.get("T"))
         if self.RRF and tool is not None:
             self.heat.tool = tool  # RepRapFirmware: M109 T also selects the tool
-        self.heat.set_temp(tool, value, wait=True)
+        self.heat.set_temp(tool, value, wait=True, both_ways="S" not in params and "R" in params)
         self.dirty()
 
     def _slot(self, cmd: Command) -> int:
@@ -170,15 +188,21 @@ class MarlinSimulator(Simulator):
         s = number(cmd.params.get("S"))
         return None if s is None else s / 255
 
+    def fans_of(self, cmd: Command) -> tuple[int, ...]:
+        """The fans an M106/M107 drives: P, else fan 0 (the part fan)."""
+        return (_index(cmd.params.get("P")) or 0,)
+
     def m106(self, cmd: Command, n: int) -> None:
         value = self.fan_value(cmd)
         if value is None:
             return
-        self.heat.set_fan(_index(cmd.params.get("P")) or 0, value)
+        for fan in self.fans_of(cmd):
+            self.heat.set_fan(fan, value)
         self.dirty()
 
     def m107(self, cmd: Command, n: int) -> None:
-        self.heat.set_fan(_index(cmd.params.get("P")) or 0, 0.0)
+        for fan in self.fans_of(cmd):
+            self.heat.set_fan(fan, 0.0)
         self.dirty()
 
     def m221(self, cmd: Command, n: int) -> None:
@@ -190,8 +214,7 @@ class MarlinSimulator(Simulator):
 
     # -- spindle and coolant --------------------------------------------------------------------------
 
-    def spindle_percent(self, cmd: Command) -> float | None:
-        params = cmd.params
+    def spindle_percent(self, params: dict) -> float | None:
         s = number(params.get("S"))
         if s is None and "O" in params:  # Marlin: O is the power as PWM 0-255
             o = number(params.get("O"))
@@ -201,16 +224,23 @@ class MarlinSimulator(Simulator):
         return max(0.0, min(100.0, s / 255 * 100))  # Marlin's default cutter unit: PWM 0-255
 
     def spindle_on(self, cmd: Command, n: int) -> None:
-        pct = self.spindle_percent(cmd)
+        self.cutter = cmd.code
+        self.set_power(cmd.code, self.spindle_percent(cmd.params))
+
+    def set_power(self, code: str | None, pct: float | None) -> None:
         if pct is not None and pct == 0:
             self.spindle = None
         else:
-            self.spindle = (cmd.code, None if pct is None else round(pct, 1))
+            self.spindle = (code, None if pct is None else round(pct, 1))
         self.dirty()
 
     def spindle_off(self, cmd: Command, n: int) -> None:
         self.spindle = None
+        self.cutter = None
         self.dirty()
+
+    def cutting(self) -> bool:
+        return self.spindle is not None
 
     def coolant_on(self, cmd: Command, n: int) -> None:
         self.coolant[cmd.code] = True  # type: ignore[index]
@@ -226,10 +256,11 @@ class MarlinSimulator(Simulator):
         heat = self.heat
         temp, flow = heat.working()
         aux = heat.aux_fans() + tuple((AUX_PORTS[code], 100.0) for code in sorted(self.coolant))
+        own = heat.own_fan(heat.tool)
         return Look(
             head=heat.head(),
             temp=temp,
-            fan=round(heat.fans.get(0, 0.0), 3),
+            fan=round(own if own is not None else heat.fans.get(0, 0.0) if heat.owner(0) is None else 0.0, 3),
             flow=round(flow, 4),
             beds=heat.bed_look(),
             spindle=self.spindle,
@@ -259,6 +290,7 @@ class RepRapSimulator(MarlinSimulator):
                 "G10": self.g10,
                 "M568": self.m568,
                 "M116": self.m116,
+                "M563": self.m563,
                 "M0": self.end_program,
                 "M1": self.end_program,
                 "M2": self.end_program,
@@ -284,6 +316,24 @@ class RepRapSimulator(MarlinSimulator):
             self.heat.set_temp(_index(cmd.params.get("P")), s, wait=False)
             self.dirty()
 
+    def m563(self, cmd: Command, n: int) -> None:
+        """Define a tool: its own fans (F, research/dialects.md 1.5 M563); M106 without P drives "fans of current
+        tool" (1.3)."""
+        tool = _index(cmd.params.get("P"))
+        text = cmd.params.get("F")
+        if tool is None or text is None:
+            return
+        fans = tuple(f for f in (_index(part) for part in text.split(":")) if f is not None)
+        self.heat.tool_fans[tool] = fans
+        self.dirty()
+
+    def fans_of(self, cmd: Command) -> tuple[int, ...]:
+        fan = _index(cmd.params.get("P"))
+        if fan is not None:
+            return (fan,)
+        declared = self.heat.tool_fans.get(self.heat.tool) if self.heat.tool is not None else None
+        return declared or (0,)  # "S alone -> fans of current tool"
+
     def m116(self, cmd: Command, n: int) -> None:
         self.heat.wait_all()
         self.dirty()
@@ -299,8 +349,8 @@ class RepRapSimulator(MarlinSimulator):
             return None
         return s if s <= 1.0 else s / 255  # RepRapFirmware: 0-1, or 0-255 above 1
 
-    def spindle_percent(self, cmd: Command) -> float | None:
-        s = number(cmd.params.get("S"))
+    def spindle_percent(self, params: dict) -> float | None:
+        s = number(params.get("S"))
         if s is None or s <= 0:
             return s
         top = self.mapping.spindle_max_rpm

@@ -11,11 +11,25 @@ references; the Machinekit FDM README in the seeds):
 * The part-cooling fan (fan 0, ``M106``/``M107`` without ``P``) is one fan: it cools whatever the active
   tool prints.  Other fan indices are other devices.
 * ``M221`` is a percentage per extruder (a multiplier of 1.0 = 100 %).
+* RepRapFirmware: ``M563 P<tool> F<fans>`` gives a tool fans of its own, and ``M106`` without ``P`` drives
+  "fans of current tool" (research/dialects.md 1.3 M106, 1.5 M563).  A fan that one tool owns is that
+  tool's head's fan (Hyrel's fans are per head); fan 0 of tools that declare none is the part fan above.
 """
 
 from __future__ import annotations
 
 from gclint.simulate.trace import Mapping
+
+
+def heat_wait(old: tuple[float, float | None] | None, value: float, both_ways: bool) -> float:
+    """The set-point a wait for ``value`` leaves waited for, from the heater's ``old`` (set-point, waited).
+    A wait that only heats (Marlin and RRF ``M109 S``, "set & wait only when heating"; Hyrel ``M109`` with
+    no C/U/R, "waits until T >= S-1 °C (heating only)": research/dialects.md 1.3 M109) does not wait when
+    the heater was waited to ``value`` or more and not set below it since: the nozzle is hotter, and
+    what it was waited to stays."""
+    if not both_ways and old is not None and old[1] is not None and old[1] > value and old[0] >= value:
+        return old[1]
+    return value
 
 
 class ToolHeat:
@@ -32,11 +46,14 @@ class ToolHeat:
         self.fans: dict[int, float] = {}  # fan index -> fraction
         self.beds: dict[int, tuple[float, float | None]] = {}  # Hyrel address -> (set-point, waited)
         self.used: set[int] = set()  # tools that printed
+        self.tool_fans: dict[int, tuple[int, ...]] = {}  # RepRapFirmware M563 F: a tool's own fans
 
     # -- commands --------------------------------------------------------------------------------------
 
-    def set_temp(self, tool: int | None, value: float | None, wait: bool) -> None:
-        """``M104``/``M109`` on ``tool`` (None: the active tool); ``value`` None: wait for the set-point."""
+    def set_temp(self, tool: int | None, value: float | None, wait: bool, both_ways: bool = False) -> None:
+        """``M104``/``M109`` on ``tool`` (None: the active tool); ``value`` None: wait for the set-point.
+        ``both_ways``: the wait cools too (Marlin/RRF ``M109 R``, Machinekit's in-range wait); else it waits
+        only while heating (``M109 S``: research/dialects.md 1.3), see ``heat_wait``."""
         if tool is None:
             tool = self.tool if self.tool is not None else 0
         old = self.nozzle if self.shared else self.temps.get(tool)
@@ -46,7 +63,7 @@ class ToolHeat:
             value = old[0]
         if value < 0:
             value = 0.0  # RepRapFirmware's -273.15: heater off
-        waited = value if wait else (old[1] if old is not None else None)
+        waited = heat_wait(old, value, both_ways) if wait else (old[1] if old is not None else None)
         entry = (value, waited)
         self.temps[tool] = entry
         self.nozzle = entry
@@ -77,10 +94,24 @@ class ToolHeat:
     def set_fan(self, index: int, fraction: float) -> None:
         self.fans[index] = max(0.0, min(1.0, fraction))
 
+    def owner(self, fan: int) -> int | None:
+        """The tool that alone lists ``fan`` among its own (M563 F), or None."""
+        owners = [tool for tool, fans in self.tool_fans.items() if fan in fans]
+        return owners[0] if len(owners) == 1 else None
+
+    def own_fan(self, tool: int | None) -> float | None:
+        """The value of the fans ``tool`` owns alone (the most of them), or None when it has none."""
+        if tool is None:
+            return None
+        fans = [f for f in self.tool_fans.get(tool, ()) if self.owner(f) == tool]
+        if not fans:
+            return None
+        return max(self.fans.get(f, 0.0) for f in fans)
+
     # -- what the working head sees --------------------------------------------------------------------
 
-    def working(self) -> tuple[tuple[float | None, bool], float]:
-        """(set-point and readiness, flow) of the active tool, inferring a shared nozzle when the tool
+    def working(self) -> tuple[tuple[float | None, bool, float | None], float]:
+        """(set-point, readiness and the set-point last waited for, flow) of the active tool, inferring a shared nozzle when the tool
         never got a set-point of its own."""
         tool = self.tool
         if tool is not None:
@@ -93,8 +124,8 @@ class ToolHeat:
         else:
             flow = self.flows.get(tool, 1.0) if tool is not None else 1.0
         if heat is None:
-            return (None, False), flow
-        return (heat[0], heat[1] == heat[0]), flow
+            return (None, False, None), flow
+        return (heat[0], heat[1] == heat[0], heat[1]), flow
 
     def head(self) -> int | str | None:
         return self.mapping.head(self.tool) if self.tool is not None else None
@@ -105,7 +136,7 @@ class ToolHeat:
     def aux_fans(self) -> tuple:
         out = []
         for index, value in sorted(self.fans.items()):
-            if index == 0 or value <= 0:
+            if index == 0 or value <= 0 or self.owner(index) is not None:
                 continue
             address = self.mapping.fan_map.get(index)
             out.append((f"T{address} fan" if address is not None else f"fan {index}", round(value, 3)))
@@ -131,8 +162,12 @@ class ToolHeat:
     def end_fans(self) -> dict:
         out: dict = {}
         part = self.fans.get(0, 0.0)
-        if part > 0 and self.tool is not None:
+        if part > 0 and self.tool is not None and self.owner(0) is None:
             out[self.mapping.head(self.tool)] = round(part, 3)
+        for tool in sorted(self.tool_fans):
+            value = self.own_fan(tool)
+            if value:
+                out[self.mapping.head(tool)] = round(value, 3)
         for label, value in self.aux_fans():
             out[label] = value
         return out

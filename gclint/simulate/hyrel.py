@@ -22,6 +22,7 @@ Hyrel Gcode page in the seeds (section named) or T_v5:
 from __future__ import annotations
 
 from gclint.dialects.addressing import resolve_v5
+from gclint.simulate.heat import heat_wait
 from gclint.simulate.machine import Simulator, number
 from gclint.simulate.trace import AUX_PORTS, EndState, Look, Move
 from gclint.syntax.nodes import Command
@@ -218,14 +219,18 @@ class HyrelSimulator(Simulator):
     def m109(self, cmd: Command, n: int) -> None:
         s = number(cmd.params.get("S"))
         w0 = number(cmd.params.get("W")) == 0 and "W" in cmd.params
+        # C, U and R bound the wait from above too; without them it waits while heating only (heat.heat_wait)
+        both_ways = any(letter in cmd.params for letter in "CUR")
         for address in self.addresses(cmd):
             head = self.head(address)
+            old = (head.target, head.waited) if head.target is not None else None
             if s is not None:
                 head.target = s
             if w0:
                 self.pending_w0.add(address)
             else:
-                head.waited = head.target
+                if head.target is not None:
+                    head.waited = heat_wait(old, head.target, both_ways)
                 self.pending_w0.discard(address)
         self.dirty()
 
@@ -296,6 +301,9 @@ class HyrelSimulator(Simulator):
                 self.spindles[address] = (cmd.code, None if s is None else round(s, 1))  # type: ignore[assignment]
         self.dirty()
 
+    def cutting(self) -> bool:
+        return bool(self.spindles)
+
     def spindle_off(self, cmd: Command, n: int) -> None:
         for address in self.addresses(cmd):
             self.spindles.pop(address, None)
@@ -341,10 +349,10 @@ class HyrelSimulator(Simulator):
         focus = self.focus
         head = self.heads.get(focus) if focus is not None else None
         if head is None:
-            temp: tuple = (None, False)
+            temp: tuple = (None, False, None)
             fan, flow = 0.0, 1.0
         else:
-            temp = (head.target, head.target is not None and head.waited == head.target)
+            temp = (head.target, head.target is not None and head.waited == head.target, head.waited)
             fan, flow = self.fan_of(head), round(head.flow, 4)
         beds = tuple(
             sorted(
@@ -355,7 +363,9 @@ class HyrelSimulator(Simulator):
         )
         spindle = None
         if self.spindles:
-            spindle = self.spindles[focus] if focus in self.spindles else self.spindles[min(self.spindles)]
+            # the spindle that turns where the job works: the focused head's (a spindle left on another head
+            # is not the one cutting); with no head focused, the lowest address that runs
+            spindle = self.spindles.get(focus) if focus is not None else self.spindles[min(self.spindles)]
         fans = tuple(
             (f"T{a} fan", self.fan_of(h)) for a, h in sorted(self.heads.items()) if a >= 20 and self.fan_of(h) > 0
         )

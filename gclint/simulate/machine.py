@@ -16,7 +16,7 @@ from gclint.dialects.base import Dialect
 from gclint.simulate.trace import NATIVE, EndState, Look, Mapping, Move, Trace
 from gclint.syntax.fastpath import PLAIN_MOVE
 from gclint.syntax.nodes import ASSIGNMENT, GCODE, IMPLICIT, META, OWORD, Command
-from gclint.syntax.parse import parse_line
+from gclint.syntax.parse import PARSE_LIMIT, code_before_long_comment, parse_line
 from gclint.syntax.source import Source
 
 INCH = 25.4
@@ -57,6 +57,11 @@ class Simulator:
         # coordinate minus the shift that G92 (and homing) set
         self.pos: list[float | None] = [None] * 5
         self.shift: list[float] = [0.0] * 5
+        # per axis: the workspace its coordinate was set in (None: machine coordinates, no fixture offsets), and
+        # the line that last set it outright (an absolute move, homing, G92): what came before that line
+        # cannot have moved it (compare.py: which findings explain a position)
+        self.frame: tuple[str | None, ...] = (None,) * 5
+        self.anchor: list[int] = [0] * 5
         self.scale = 1.0  # 25.4 in inches
         self.absolute = True
         self.e_absolute = True
@@ -107,6 +112,8 @@ class Simulator:
                         if move is not None:
                             yield move
                         continue
+                if len(raw) > PARSE_LIMIT:  # one trailing comment made it too long: its commands run
+                    raw = code_before_long_comment(raw) or raw
                 for cmd in parse_line(raw).commands:
                     if self.ended:
                         break
@@ -186,6 +193,17 @@ class Simulator:
     def machine(self) -> tuple:
         return tuple(self.pos)
 
+    def frame_label(self) -> str | None:
+        """The coordinate frame a move sets its axes in: the workspace, None for machine coordinates."""
+        wcs = self.wcs
+        return None if wcs == "G53" else wcs
+
+    def set_frame(self, i: int, label: str | None) -> None:
+        if self.frame[i] != label:
+            frame = list(self.frame)
+            frame[i] = label
+            self.frame = tuple(frame)
+
     def target(self, params: dict, xy: bool = True) -> list[float | None]:
         """The machine position after a move with these words."""
         new = list(self.pos)
@@ -195,14 +213,18 @@ class Simulator:
             if letter in params:
                 if not xy and letter in "XY":
                     continue
+                i = _AXIS_INDEX[letter]
                 try:
                     v = float(params[letter])  # type: ignore[arg-type]
                 except (TypeError, ValueError):
-                    new[_AXIS_INDEX[letter]] = None
+                    new[i] = None
                     continue
-                i = _AXIS_INDEX[letter]
                 if absolute:
                     new[i] = v * scale + self.shift[i]
+                    self.anchor[i] = self.line
+                    label = self.wcs
+                    if self.frame[i] != (None if label == "G53" else label):
+                        self.set_frame(i, self.frame_label())
                 elif new[i] is not None:
                     new[i] = new[i] + v * scale  # type: ignore[operator]
         return new
@@ -228,6 +250,8 @@ class Simulator:
                 if machine is None:  # an unknown place gets a known name: count from here
                     self.pos[i] = machine = v * self.scale
                 self.shift[i] = machine - v * self.scale
+                self.anchor[i] = self.line
+                self.set_frame(i, self.frame_label())
         ext = self.EXTRUDER
         if ext is not None and ext in params:
             v = number(params[ext])
@@ -262,6 +286,8 @@ class Simulator:
             i = _AXIS_INDEX[letter]
             self.pos[i] = 0.0
             self.shift[i] = 0.0
+            self.anchor[i] = self.line
+            self.set_frame(i, None)  # home is a machine position
 
     def forget(self, axes: str) -> None:
         for letter in axes:
@@ -274,9 +300,16 @@ class Simulator:
         ext = self.EXTRUDER
         if ext is None or ext not in params:
             return None
-        v = number(params[ext])
+        text = params[ext]
+        v = number(text)
         if v is None:
             self.e_pos = None
+            if text and ":" in text:
+                # "Tools are driven using multiple values in the E field of G1 commands, each controlling the
+                # corresponding drive" (RepRap page, M563; M160): the move deposits every drive's amount
+                amounts = [number(part) for part in text.split(":")]
+                if all(a is not None for a in amounts):
+                    return sum(amounts) * self.e_scale()  # type: ignore[misc]
             return None
         v *= self.e_scale()
         if self.e_absolute:
@@ -289,6 +322,11 @@ class Simulator:
         return delta
 
     # -- motion ------------------------------------------------------------------------------------------
+
+    def cutting(self) -> bool:
+        """A spindle or laser runs: every feed move is a working move, as in a CNC job (a Marlin spindle or
+        laser job, research/dialects.md 1.2 M3/M4)."""
+        return False
 
     def g0(self, cmd: Command, n: int) -> Move | None:
         return self.motion("G0", cmd.params, n)
@@ -323,10 +361,10 @@ class Simulator:
         if end == start and arc is None:
             return None  # no motion (an extruder-only move, or a feed word)
         printing = native or (delta is not None and delta > 1e-9)
-        if not printing and (rapid or not self.cnc):
+        if not printing and (rapid or not (self.cnc or self.cutting())):
             return None
         e = NATIVE if native else (delta if printing else None)
-        return Move(self.line, start, end, arc, e, feed, self.look(), rapid)
+        return Move(self.line, start, end, arc, e, feed, self.look(), rapid, self.frame, tuple(self.anchor))
 
     def arc(self, cmd: Command, n: int) -> Move | None:
         """G2/G3: the end point and the circle (for the path check); the plane's centre words."""

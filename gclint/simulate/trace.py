@@ -22,7 +22,7 @@ ASPECTS = (
     "e",  # material deposited on the move
     "feed",
     "head",  # the head doing the work (the focused head)
-    "temp",  # the working head's set-point and whether it was waited for
+    "temp",  # the working head's set-point, whether it was waited for, and the heat it was last waited at
     "fan",  # the working head's part-cooling fan
     "flow",  # the working head's flow multiplier (M221)
     "beds",  # beds and chambers: set-points and waits
@@ -87,7 +87,8 @@ class Look:
     """The state a working move runs in, in Hyrel terms (compared aspect by aspect)."""
 
     head: int | str | None = None
-    temp: tuple[float | None, bool] = (None, False)  # (set-point, waited for at that set-point)
+    # (set-point, waited for at that set-point, the set-point last waited for: the nozzle is at least that hot)
+    temp: tuple[float | None, bool, float | None] = (None, False, None)
     fan: float = 0.0  # fraction of full speed
     flow: float = 1.0  # multiplier
     beds: tuple = ()  # ((address, set-point, waited), ...) for beds/chambers with a set-point
@@ -101,9 +102,9 @@ class Look:
 class Move:
     """One synchronisation point."""
 
-    __slots__ = ("line", "start", "end", "arc", "e", "feed", "look", "rapid")
+    __slots__ = ("line", "start", "end", "arc", "e", "feed", "look", "rapid", "frames", "anchors")
 
-    def __init__(self, line, start, end, arc, e, feed, look, rapid=False) -> None:
+    def __init__(self, line, start, end, arc, e, feed, look, rapid=False, frames=(None,) * 5, anchors=(0,) * 5) -> None:
         self.line = line  # 1-based line number in its file
         self.start = start  # (x, y, z, a, b) machine mm, None where unknown
         self.end = end
@@ -112,6 +113,8 @@ class Move:
         self.feed = feed  # mm/min, None unknown
         self.look = look
         self.rapid = rapid
+        self.frames = frames  # per axis: the workspace its coordinate is in (None: machine coordinates)
+        self.anchors = anchors  # per axis: the line that last set it outright (absolute move, homing, G92)
 
     def __repr__(self) -> str:  # pragma: no cover - debugging aid
         return f"Move(line={self.line}, end={self.end}, e={self.e}, feed={self.feed})"

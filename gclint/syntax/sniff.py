@@ -10,6 +10,8 @@ from __future__ import annotations
 
 import re
 
+from gclint.syntax.source import NotGcode, Source
+
 _INI_SECTION = re.compile(r"\[[A-Za-z_][^\]\r\n]*\]\s*")
 # Other files that share G-code's extensions: ANTLR grammars (.g), Test Anything Protocol output (.tap)
 _ANTLR = re.compile(r"(?:(?:lexer|parser|tree)\s+)?grammar\s+[A-Za-z_]\w*\s*;")
@@ -42,3 +44,17 @@ def not_gcode_reason(head: str) -> str | None:
     if len(code) >= 3 and pairs >= 0.9 * len(code):
         return "a 'key = value' configuration file (slicer or printer profile), not G-code"
     return None
+
+
+def refuse_non_gcode(source: Source) -> None:
+    """Raise ``NotGcode`` (one line for the user) when the file is not G-code by content: what ``gclint
+    check`` refuses (``not_gcode_reason``: scripts, configuration files...), and text with control characters, which
+    G-code never has but random or binary data without NUL bytes does (about one byte in ten)."""
+    head = source.head_text(8192)
+    reason = not_gcode_reason(head)
+    if reason is None:
+        controls = sum(1 for ch in head if ch < " " and ch not in "\t\n\r\f\v" or ch == "\x7f")
+        if controls >= 16 and controls * 100 > len(head):
+            reason = "binary data (control characters), not a G-code text file"
+    if reason is not None:
+        raise NotGcode(f"{source.display}: {reason}")

@@ -27,7 +27,8 @@ class ArcMoves:
         st = self.state
         plane = st.plane if st.plane in arcs.PLANES else 17
         ext = self.EXTRUDER
-        delta = self.e_delta(cmd) if ext in params else None
+        mixing = ext in params and self.mixing_e(cmd)
+        delta = self.e_delta(cmd) if ext in params and not mixing else None
         extruding = delta is not None and delta > 0
         if extruding and self.sync_due:
             self.sync_working_head()

@@ -27,10 +27,18 @@ from typing import ClassVar
 from gclint.dialects.base import Dialect
 from gclint.machine.interpreter import Interpreter
 from gclint.syntax.nodes import ASSIGNMENT, EXTENDED, GCODE, IMPLICIT, META, OWORD, Command, Line
-from gclint.syntax.parse import parse_line
+from gclint.syntax.parse import PARSE_LIMIT, code_before_long_comment, parse_line
 from gclint.translate.arc_moves import ArcMoves
 from gclint.translate.engine import PlainMove, TranslationResult, Translator
-from gclint.translate.findings import TR_AFTER_END, TR_APPROX, TR_LOST, TR_NOTE, TR_UNTRANSLATABLE, dropped_aspects
+from gclint.translate.findings import (
+    LASTING_OFFSETS,
+    TR_AFTER_END,
+    TR_APPROX,
+    TR_LOST,
+    TR_NOTE,
+    TR_UNTRANSLATABLE,
+    dropped_aspects,
+)
 from gclint.translate.heads import Heads
 from gclint.translate.modal import Modal
 from gclint.translate.motion import Motion
@@ -84,6 +92,8 @@ class HyrelTranslator(LineWriter, Heads, Program, Motion, ArcMoves, Modal, Spind
     DEFAULT_WORKSPACE: str | None = None  # the workspace the source starts in (CNC sources: G54)
     FEED_ON_ANY_COMMAND = False  # an F on a non-motion command sets the feed (LinuxCNC, Carvera)
     TURNS_COUNT_THE_ARC = False  # G2/G3 P: extra full circles (Marlin); LinuxCNC: the turns, P1 the arc itself
+    MACHINE = "the source machine's"  # whose machine coordinates G53 names (messages)
+    G53_ALONE = "keep"  # G53 with no move on its line: "keep", "drop" (does nothing), "next" (the next G0/G1)
 
     def __init__(self, source: Dialect, target: Dialect, options: TranslateOptions | None = None) -> None:
         super().__init__(source, target, options)
@@ -101,6 +111,11 @@ class HyrelTranslator(LineWriter, Heads, Program, Motion, ArcMoves, Modal, Spind
                 self.handlers[code] = getattr(self, name)
         self.hy = HyrelSide()  # what the Hyrel printer will believe
         self.rpm: float | None = None  # the source's modal spindle speed (S words)
+        self.spindle_percent: str | None = None  # the last spindle speed written (S percent; spindle.py)
+        # the workspace the job selected (G54-G59), invoked again after a G53 move (modal.py)
+        self.wcs = self.DEFAULT_WORKSPACE or "G54"
+        self.wcs_selected = self.DEFAULT_WORKSPACE is not None
+        self.g53_next = False  # Carvera: a G53 alone on its line applies to the next G0/G1
         self.tools = SourceTools()  # what the source firmware believes about its tools (tools.py)
         self.sync_due = True  # (a tool change; the first working move) carry set-point, fan, flow before it
         # native flow: the layer height Hyrel computes the flow with (M756), per layer (motion.py)
@@ -184,6 +199,19 @@ class HyrelTranslator(LineWriter, Heads, Program, Motion, ArcMoves, Modal, Spind
         parsed = line.parsed
         commands = parsed.commands
         if not commands:
+            if parsed.kind == "error" and len(line.raw) > PARSE_LIMIT:
+                code = code_before_long_comment(line.raw)
+                if code is not None and parse_line(code).kind != "error":
+                    # keep the command, drop only the comment that made the line too long to parse
+                    short = Line(line.number, code, ending, parse_line(code))
+                    self.line, self.edit, self.result = short, None, result
+                    self.report(
+                        TR_NOTE,
+                        f"a comment of {len(line.raw) - len(code):,} characters dropped (lines over "
+                        f"{PARSE_LIMIT:,} characters are not parsed); the command is kept",
+                        key="huge-comment",
+                    )
+                    return self.translate_line(short, result)
             if parsed.kind == "error":
                 self.line, self.result = line, result
                 dropped = self.edit = LineEdit(line)
@@ -234,7 +262,10 @@ class HyrelTranslator(LineWriter, Heads, Program, Motion, ArcMoves, Modal, Spind
                         self.modal_feed(cmd)  # type: ignore[attr-defined]  (then the command's own handler)
                 if check and (cmd.kind == GCODE or cmd.kind == IMPLICIT) and has_expression(cmd):
                     self.untranslatable(
-                        cmd, "a parameter is an expression or variable the translator cannot evaluate", key="expression"
+                        cmd,
+                        "a parameter is an expression or variable the translator cannot evaluate",
+                        key="expression",
+                        aspects=("*", "offsets") if cmd.code in LASTING_OFFSETS else None,
                     )
                 else:
                     handler = handlers.get(cmd.code)  # type: ignore[arg-type]
@@ -244,6 +275,9 @@ class HyrelTranslator(LineWriter, Heads, Program, Motion, ArcMoves, Modal, Spind
                         handler(cmd)
                 apply(cmd, line)
         edit = self.edit
+        if edit is None and len(commands) > 1 and not self.hy.ended:
+            edit = self._edit()  # several commands: one a line, as the Hyrel pages show (output.LineEdit)
+            edit.changed = True
         if edit is None:
             self.hy.wrote_command = True
             if len(line.raw) > LINE_LIMIT:

@@ -23,7 +23,10 @@ class CarveraToHyrel(CncTranslator):
     MAX_RPM = 15000.0  # Carvera C1 (research/dialects.md 2.3; gclint/dialects/carvera.py extras)
     EXTRA_LETTERS: ClassVar[frozenset[str]] = frozenset("SABE")
 
-    MACHINE = "the Carvera's machine"
+    MACHINE = "the Carvera's"
+    G53_ALONE = "next"  # "Must be on a line by itself OR the first G code on a line, the directly following G0/G1
+    # will be executed in MCS" (research/dialects.md 1.1 G53)
+    SPINDLE_STOPS_AT_TOOL_CHANGE = True  # "M6 Auto tool change" (carvera-mcodes seed): the spindle stops
     END_CODES: ClassVar[frozenset[str]] = frozenset({"M2"})  # "M30 End of the program, no action on the Carvera"
     HANDLERS: ClassVar[dict[str, str]] = {  # besides cnc.CNC_HANDLERS
         "M30": "m30",
@@ -214,7 +217,7 @@ class CarveraToHyrel(CncTranslator):
             self.select_tool(cmd, tool)
             return
         # one Hyrel spindle: a manual tool change
-        address = self.opts.spindle_address()
+        address = self.spindle_head()
         lines = []
         if address in self.hy.spindles_on:
             lines.append(f"M5 T{address}")

@@ -9,6 +9,7 @@ import tempfile
 from gclint.dialects.base import Dialect
 from gclint.io import AtomicWriter, OutputError
 from gclint.rules.base import Severity
+from gclint.syntax.sniff import refuse_non_gcode
 from gclint.syntax.source import CHUNK, Source, SourceError
 from gclint.translate.engine import TranslationResult, UnsupportedPair, translate_source
 from gclint.translate.pairs import translator_for
@@ -51,6 +52,11 @@ def run_translate(
         return 2
     try:
         src = Source.open(input_path)
+        try:
+            refuse_non_gcode(src)  # as ``gclint check`` refuses it (one line, exit 2)
+        except SourceError:
+            src.close()
+            raise
     except SourceError as exc:
         _error(exc)
         return 2

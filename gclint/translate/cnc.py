@@ -15,7 +15,7 @@ from gclint.translate.words import fast_float
 # The rows Machinekit and Carvera share (the rows every source shares are HyrelTranslator.HANDLERS).
 CNC_HANDLERS: dict[str, str] = {
     "G4": "dwell_seconds",  # G4 P is seconds (LinuxCNC, Carvera grbl mode); Hyrel P is milliseconds
-    "G53": "g53",
+    "G53": "machine_coordinates",
     "M0": "stop",
     "M2": "end_program",
     "M30": "end_program",
@@ -32,7 +32,8 @@ class CncTranslator(HyrelTranslator):
     HANDLERS: ClassVar[dict[str, str]] = CNC_HANDLERS
     CHECK_EXPRESSIONS = True
     END_CODES: ClassVar[frozenset[str]] = frozenset({"M2", "M30"})
-    MACHINE = "the source machine's"  # whose machine coordinates G53 names (messages)
+    G53_ALONE = "drop"  # LinuxCNC: "Non-modal; requires G0/G1 active"
+    SPINDLE_FOLLOWS_TOOL = True  # a mapped tool is a spindle head (spindle.py)
     DEFAULT_WORKSPACE = "G54"
     FEED_ON_ANY_COMMAND = True  # LinuxCNC and the Carvera start in G54 (research/dialects.md 1.1, G54-G59)
 
@@ -59,12 +60,11 @@ class CncTranslator(HyrelTranslator):
         self.prepared = int(number)
         self.consume(cmd)
 
-    def g53(self, cmd: Command) -> None:
-        self.untranslatable(
-            cmd,
-            f"machine-coordinate move (G53): {self.MACHINE} coordinates mean nothing on the Hyrel",
-            key="G53",
-        )
+    def focus_address(self) -> int | None:
+        """The head to focus before the first move: the active tool's; for a tool the printer has no head
+        for (reported, TR007), the spindle head, so that the job's moves have a head (mapped tool 0)."""
+        address = self.head(None)
+        return address if address is not None else self.opts.spindle_address()
 
     def stop(self, cmd: Command) -> None:
         """M0: a pause on both sides."""

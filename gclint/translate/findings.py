@@ -27,8 +27,10 @@ def _each(text: str, aspects: tuple[str, ...]) -> dict[str, tuple[str, ...]]:
 
 
 DROPPED_ASPECTS: dict[str, tuple[str, ...]] = {
-    **_each("G30 G31 G32 G33 G34 G35 G80 G425 M290 M206 M428 M218 M306 G92.2 G92.3", ("position",)),
-    **_each("G29 G29.1 G29.2 G30.1 G43 G43.1 G43.2 G49 M600 M601", ("position",)),
+    **_each("G30 G31 G32 G33 G34 G35 G80 G425 M290 M306", ("position",)),
+    **_each("G29 G29.1 G29.2 G30.1 M600 M601", ("position",)),
+    # offsets that last: they explain a position after the moves that set it again (compare.Explanations)
+    **_each("M206 M428 M218 G92.2 G92.3 G43 G43.1 G43.2 G49", ("position", "offsets")),
     **_each("G12 G27 G60 M125", ("position", "moves")),
     **_each("M163 M164 M165 M166 M567 M710", ("e",)),
     **_each("M701 M702", ("e", "position")),
@@ -38,7 +40,7 @@ DROPPED_ASPECTS: dict[str, tuple[str, ...]] = {
     "G22": ("head",),
     "G23": ("head",),
     "G93": ("feed",),
-    "G10": ("position", "wcs"),
+    "G10": ("position", "wcs", "offsets"),
     "M220": ("feed",),
     "M223": ("spindle",),
     "M325": ("laser",),
@@ -47,6 +49,13 @@ DROPPED_ASPECTS: dict[str, tuple[str, ...]] = {
     "M605": ("*",),
     "M410": ("*",),
 }
+
+
+# Codes that set coordinate offsets that last (G92, workspace and tool offsets): a loss in one explains a
+# position after later moves set the axis again (compare.Explanations, "offsets").
+LASTING_OFFSETS = frozenset(
+    {"G92", "G52", *(code for code, aspects in DROPPED_ASPECTS.items() if "offsets" in aspects)}
+)
 
 
 def dropped_aspects(code: str, tr: str) -> tuple[str, ...] | None:

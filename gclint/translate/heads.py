@@ -73,6 +73,8 @@ class Heads:
         )
         if what == "tool" and self.hy.focus is not None:
             message += f"; the head that was printing (T{self.hy.focus}) goes on printing for it"
+        elif what == "tool" and self.SPINDLE_FOLLOWS_TOOL:  # type: ignore[attr-defined]  (CNC: cnc.focus_address)
+            message += f"; the spindle head (T{self.opts.spindle_address()}) works for it"
         self.report(TR_NO_TOOL, message, key=(what, index))
 
     def current_tool(self) -> int:
@@ -93,7 +95,8 @@ class Heads:
         if address is None:
             self.consume(cmd)
             return
-        self.hy.focus = address
+        old, self.hy.focus = self.hy.focus, address
+        self.spindle_to_head(old, address)  # type: ignore[attr-defined]  (spindle.Spindles)
         text = f"T{address}"
         if cmd.code == text and not cmd.params:
             return
@@ -140,6 +143,21 @@ class Heads:
         lines = []
         if heat is not None:
             target, ready = heat
+            heated = tools.heated()
+            if tools.shared and not ready and heated and state.waited != heated:
+                # the source's one nozzle was waited hot (to ``heated``) and heads towards ``target``; this
+                # head was not: it waits for that heat first, else it would print cold (Hyrel M109 without
+                # a window waits while heating only, research/dialects.md 1.3 M109 [fw])
+                lines.append(f"M109 T{address} S{fmt(heated, 1)}")
+                state.target = state.waited = heated
+                self.hy.temps.pop(address, None)
+                self.hy.nozzle_heads.add(address)
+                self.report(
+                    TR_NOTE,
+                    f"T{address} prints for the single nozzle after a set-point it was not waited for: it waits "
+                    f"for {fmt(heated, 1)} °C, the heat the source's nozzle was waited to, before it prints",
+                    key=("nozzle-wait", address),
+                )
             if state.target != target or (ready and state.waited != target):
                 lines.append(f"{'M109' if ready else 'M104'} T{address} S{fmt(target, 1)}")
                 state.target = target
@@ -155,7 +173,7 @@ class Heads:
                 "each head that prints gets the nozzle's set-point, wait and flow",
                 key="single-nozzle",
             )
-        if tools.fan or self.hy.part_fan_heads:
+        if (tools.fan or self.hy.part_fan_heads) and self.part_fan_follows(self.current_tool()):
             for other in sorted(self.hy.part_fan_heads - {address}):
                 if self.hy.head(other).fan:
                     lines.append(f"M107 T{other}")
@@ -168,6 +186,8 @@ class Heads:
                     lines.append(f"M107 T{address}")
                 state.fan = tools.fan
             self.hy.part_fan_heads = {address} if tools.fan else set()
+            if tools.fan and self.current_tool() != 0:
+                self.part_fan_note()
         if flow is not None and state.flow != flow:  # explicit, not the head's stored value (X2)
             lines.append(f"M221 T{address} S{fmt(flow, 4)}")
             state.flow = flow
@@ -226,13 +246,23 @@ class Heads:
             if others:
                 self.after(*(f"M104 T{a} S0" for a in others), note="the single nozzle is off on every head")
 
-    def fan(self, cmd: Command, address: int | None, value: float | None, index: int | None = 0) -> None:
+    def part_fan_note(self) -> None:
+        """The part fan (M106 without P) drives a tool other than tool 0: dialect note (Marlin)."""
+
+    def part_fan_follows(self, tool: int) -> bool:
+        """Whether the part fan follows ``tool`` to its head (RepRapFirmware: not for a tool with fans of its
+        own)."""
+        return True
+
+    def fan(
+        self, cmd: Command, address: int | None, value: float | None, index: int | None = 0, own: bool = False
+    ) -> None:
         """``M106 T# S<0-255>`` (with ``M106 C255`` once before) or M107.  ``index`` 0 (or None): the part
-        fan, which follows the active tool."""
+        fan, which follows the active tool; ``own``: a tool's own fan (its head's, RepRapFirmware M563 F)."""
         if value is None:
             value = self.FAN_MAX
         s = max(0, min(255, round(value / self.FAN_MAX * 255)))
-        part = not index
+        part = not index and not own
         if part:
             self.tools.fan = s
         if address is None:
@@ -244,8 +274,8 @@ class Heads:
         if part:
             self.hy.part_fan_heads.add(address)
 
-    def fan_off(self, cmd: Command, address: int | None, index: int | None = 0) -> None:
-        part = not index
+    def fan_off(self, cmd: Command, address: int | None, index: int | None = 0, own: bool = False) -> None:
+        part = not index and not own
         if part:
             self.tools.fan = 0
         if address is None:

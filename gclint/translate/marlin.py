@@ -79,11 +79,7 @@ class MarlinToHyrel(HyrelTranslator):
     RRF = False
     E_MODE_FOLLOWS_POSITIONING: str | None = "Marlin's G90/G91 also set the E mode"
     EXTRA_LETTERS: ClassVar[frozenset[str]] = frozenset("SABUVWCHK")
-
-    def __init__(self, source, target, options=None) -> None:
-        super().__init__(source, target, options)
-        self.wcs = "G54"
-        self.wcs_selected = False  # the job selected a workspace (G54-G59) itself
+    G53_ALONE = "keep"  # Marlin: G53 "alone on a line activates native workspace" (modal, as Hyrel's)
 
     # -- motion ---------------------------------------------------------------------------------------
 
@@ -97,7 +93,7 @@ class MarlinToHyrel(HyrelTranslator):
                 "S (laser power) on a move dropped: Hyrel's G1 S is a flow multiplier and G2 S a segment size",
                 key="move-S",
                 cmd=cmd,
-                aspects=("laser", "spindle"),
+                aspects=("laser", "spindle", "moves"),  # the moves it cut do not cut
             )
         if ("A" in params or "B" in params) and "A" not in self.opts.printer.axes:
             drop += "AB"
@@ -150,7 +146,7 @@ class MarlinToHyrel(HyrelTranslator):
                 "motors were disengaged",
                 key="G28-rehome",
                 cmd=cmd,
-                aspects="position",
+                aspects="position:" + "".join(missing),
             )
         if "A" in params and "A" in self.opts.printer.axes:
             axes.append("A")
@@ -166,7 +162,7 @@ class MarlinToHyrel(HyrelTranslator):
                     "is not homed here (G28 X0 Y0; set home-z=true for Z0)",
                     key="G28",
                     cmd=cmd,
-                    aspects="position",
+                    aspects="position:Z",  # X and Y are homed as in the source
                 )
         others = [letter for letter in params if letter not in "XYZAB"]
         if others:
@@ -176,35 +172,8 @@ class MarlinToHyrel(HyrelTranslator):
             self.replace(cmd, text)
         self.refocus()
 
-    def machine_coordinates(self, cmd: Command) -> None:
-        line = self.line
-        assert line is not None
-        rest = line.commands[self.index + 1 :]
-        if any(c.code in ("G0", "G1", "G2", "G3") for c in rest):
-            # G53 applies to the rest of the line in the source; Hyrel's G53 is modal "clear offsets"
-            self.remove(
-                cmd,
-                TR_APPROX,
-                "G53 prefix: written as G53 before the move (Hyrel's G53 is modal, and G92 and head "
-                "offsets still apply)" + (f"; {self.wcs} invoked again after it" if self.wcs_selected else ""),
-                key="G53",
-                aspects=("position", "wcs"),
-            )
-            self.before("G53", note="G53 prefix: machine coordinates")
-            if self.wcs_selected:
-                # Hyrel's G53 stays in force; the workspace the source had selected is invoked again.  A job
-                # that never selected one had no fixture offsets, and Hyrel has none after G53 either.
-                self.after(self.wcs, note="the workspace again after the G53 move")
-        elif self.RRF:
-            self.remove(cmd, TR_DROPPED, "G53 alone does nothing in RepRapFirmware", key="G53-alone")
-
-    def workspace(self, cmd: Command) -> None:
-        self.wcs = cmd.code or "G54"
-        self.wcs_selected = True
-        super().workspace(cmd)
-
     def workspace_extra(self, cmd: Command) -> None:
-        self.untranslatable(cmd, "Hyrel has no G59.1-G59.3 workspaces", aspects=("wcs", "position"))
+        self.untranslatable(cmd, "Hyrel has no G59.1-G59.3 workspaces", aspects=("wcs", "position", "offsets"))
 
     def clear_g92(self, cmd: Command) -> None:
         self.replace(cmd, "G93")
@@ -331,7 +300,7 @@ class MarlinToHyrel(HyrelTranslator):
             "spindle/laser power taken as PWM 0-255 (Marlin's default cutter unit) and written as percent",
             key="M3-pwm",
             cmd=cmd,
-            aspects="spindle",
+            aspects="spindle:speed",
         )
 
     def spindle_stop(self, cmd: Command) -> None:
@@ -394,7 +363,18 @@ class MarlinToHyrel(HyrelTranslator):
                 cmd=cmd,
             )
         else:
-            self.temperature(cmd, "M109", address, None, window=True, tool=index)
+            # no S or R: research/dialects.md 1.3 gives M109 only with them (S waits while heating, R both
+            # ways).  Hyrel's M109 with no window waits while heating only ("no H/C/L/U/R -> waits until
+            # T >= S-1 °C"): a window would wait for cooling too, forever after an M104 S0
+            self.temperature(cmd, "M109", address, None, tool=index)
+            self.report(
+                TR_APPROX,
+                "M109 without S or R: written as Hyrel's wait for the set-point while heating (the sources "
+                "give M109 only with S, a wait while heating, or R, a wait heating or cooling)",
+                key="M109-bare",
+                cmd=cmd,
+                aspects="temp",
+            )
         if self.RRF and index is not None and address is not None and address != self.hy.focus:
             # RepRapFirmware's M109 T also selects the tool
             self.after(f"T{address}", note="RepRapFirmware's M109 T selects the tool")
@@ -449,16 +429,32 @@ class MarlinToHyrel(HyrelTranslator):
     def _fan_value(self, cmd: Command) -> float | None:
         return num(cmd.params.get("S"))
 
+    def part_fan_note(self) -> None:
+        """Marlin's M106/M107 without P drive "the one part fan whichever extruder is active"; on a printer
+        built with a fan per extruder they drive the active extruder's own fan instead.  How many fans the
+        printer has is firmware configuration, not in the file: the one-fan reading is kept, with a note."""
+        self.report(
+            TR_NOTE,
+            "M106/M107 without P while a tool other than T0 is active: taken as the one part fan, moved to the head "
+            "that prints; on a Marlin printer with a fan per extruder it is that extruder's own fan (the fan "
+            "count is firmware configuration, not in the file)",
+            key="fan-count",
+        )
+
     def m106(self, cmd: Command) -> None:
         params = cmd.params
         if "T" in params and not self.RRF:
             self.report(TR_NOTE, "M106 T (secondary fan speed) dropped", key="M106-T", cmd=cmd)
         index = self._tool_index(cmd, "P")
+        if index is None and self.current_tool() != 0:
+            self.part_fan_note()
         address = self.head(index if index is not None else 0, "fan")
         self.fan(cmd, address, self._fan_value(cmd), index=index)
 
     def m107(self, cmd: Command) -> None:
         index = self._tool_index(cmd, "P")
+        if index is None and self.current_tool() != 0:
+            self.part_fan_note()
         self.fan_off(cmd, self.head(index if index is not None else 0, "fan"), index=index)
 
     def m200(self, cmd: Command) -> None:

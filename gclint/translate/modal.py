@@ -6,8 +6,8 @@ A mixin of ``HyrelTranslator``.
 
 from __future__ import annotations
 
-from gclint.syntax.nodes import Command
-from gclint.translate.findings import TR_NOTE, TR_UNTRANSLATABLE
+from gclint.syntax.nodes import GCODE, Command
+from gclint.translate.findings import TR_APPROX, TR_DROPPED, TR_NOTE, TR_UNTRANSLATABLE
 from gclint.translate.output import fmt, rewrite
 from gclint.translate.words import INCH, num
 
@@ -38,6 +38,8 @@ class Modal:
         """G54-G59 select a workspace elsewhere; on Hyrel they (re)apply the stored fixture offsets, and
         with values they would store new ones (Gcode page, G54 - G59), so values are dropped."""
         self.hy.workspace_seen = True
+        self.wcs = cmd.code or "G54"
+        self.wcs_selected = True
         if cmd.params:
             self.replace(cmd, cmd.code or "G54")
         self.report(
@@ -47,6 +49,69 @@ class Modal:
             key="wcs",
             cmd=cmd,
         )
+
+    # -- G53: machine coordinates ------------------------------------------------------------------------
+
+    def machine_coordinates(self, cmd: Command) -> None:
+        """G53: machine coordinates for one move in every source ("Machine coordinates for the move it
+        prefixes", Marlin; "Non-modal, rest of line only", RepRapFirmware; "Non-modal; requires G0/G1 active",
+        LinuxCNC; "the directly following G0/G1 will be executed in MCS", Carvera: research/dialects.md 1.1
+        G53).  Hyrel's G53 is modal "Clear Offsets" ("sets the fixture offsets to (0,0,0,0,0)", Gcode page,
+        G53), so the move is written as ``G53`` / the move / the workspace the job had selected (dialects.md
+        2.1 G53 row; 2.2 and 2.3 "as 2.1").  One implementation for every source."""
+        line = self.line
+        assert line is not None
+        commands = line.parsed.commands
+        rest = commands[self.index + 1 :]
+        if any(a in cmd.params for a in "XYZAB"):
+            # the words are on G53 itself (LinuxCNC "G53 Z-2", "G0 G53 Z-2"): the move is in the motion mode of
+            # the line, else the modal one
+            before = [c for c in commands[: self.index] if c.code in ("G0", "G1")]
+            mode = before[-1].code if before else self.state.motion_mode
+            if mode not in ("G0", "G1"):
+                self.untranslatable(cmd, "G53 needs G0 or G1 for its move", key="G53-mode", aspects=("position",))
+                return
+            for c in before:  # the bare motion word is carried by the move written below
+                if not c.params:
+                    self._edit().replaced[commands.index(c)] = ""
+            self.g53_move(cmd, _as_move(cmd, mode), _axes(cmd))
+            # the source's coordinates of this point are its machine's: not the program ones the arcs and
+            # relative moves after it count from
+            for axis in "XYZAB":
+                if axis in cmd.params:
+                    self.state.position.forget(axis)
+        elif any(c.code in ("G0", "G1", "G2", "G3") for c in rest):
+            self.consume(cmd)
+            self.g53_move(cmd, None, _axes(next(c for c in rest if c.code in ("G0", "G1", "G2", "G3"))))
+        elif self.G53_ALONE == "next":
+            self.g53_next = True  # "the directly following G0/G1 will be executed in MCS" (Carvera)
+            self.consume(cmd)
+        elif self.G53_ALONE == "drop":
+            self.remove(cmd, TR_DROPPED, "G53 with no move on its line does nothing here", key="G53-alone")
+
+    def g53_move(self, cmd: Command, move: Command | None, axes: str) -> None:
+        """``G53`` before the move (``move``: its command, when the G53 carries its words; None when the move
+        is a command of its own), the selected workspace again after it; ``axes``: the axes it moves."""
+        self.g53_next = False
+        self.report(
+            TR_APPROX,
+            f"G53 move: written as G53 before the move (Hyrel's G53 is modal; G92 and head offsets still apply, "
+            f"and {self.MACHINE} coordinates are not the Hyrel's)"
+            + (f"; {self.wcs} invoked again after it" if self.wcs_selected else ""),
+            key="G53",
+            cmd=cmd,
+            aspects=("position:" + (axes or "XYZAB"), "wcs"),
+        )
+        self.before("G53", note="G53: machine coordinates for this move")
+        if move is not None:
+            self.move(move)
+            edit = self._edit()
+            if edit.replaced.get(self.index) is None:
+                self.replace(cmd, rewrite(move))
+        if self.wcs_selected:
+            # Hyrel's G53 stays in force; the workspace the source had selected is invoked again.  A job that
+            # never selected one had no fixture offsets, and Hyrel has none after G53 either.
+            self.after(self.wcs, note="the workspace again after the G53 move")
 
     def clear_g92(self, cmd: Command) -> None:
         """G92.1 (clear the G92 offsets) is Hyrel's G93 ("G93 clears ALL offsets implemented via G92")."""
@@ -115,7 +180,7 @@ class Modal:
                 f"G92 {' '.join(lost)} dropped: the {self.opts.printer.name} has no such axis",
                 key=("G92-axes", *lost),
                 cmd=cmd,
-                aspects="position",
+                aspects=("position:" + "".join(lost), "offsets"),  # the offset lasts
             )
         if drop or values or add:
             self.replace(cmd, rewrite(cmd, drop=drop, values=values, add=add))
@@ -128,3 +193,12 @@ class Modal:
             self.report(
                 TR_NOTE, "G4 P is seconds in the source, milliseconds on Hyrel: written as G4 S", key="G4", cmd=cmd
             )
+
+
+def _as_move(cmd: Command, mode: str) -> Command:
+    """The words of a G53 that carries its move, as that move."""
+    return Command(mode, GCODE, cmd.column, cmd.params, words=cmd.words)
+
+
+def _axes(cmd: Command) -> str:
+    return "".join(a for a in "XYZAB" if a in cmd.params)

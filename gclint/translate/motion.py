@@ -7,7 +7,7 @@ A mixin of ``HyrelTranslator``.
 from __future__ import annotations
 
 from gclint.syntax.nodes import GCODE, Command
-from gclint.translate.findings import TR_APPROX, TR_LOST, TR_NOTE
+from gclint.translate.findings import TR_APPROX, TR_LOST, TR_NOTE, TR_UNTRANSLATABLE
 from gclint.translate.output import fmt, rewrite
 from gclint.translate.words import INCH, SCALED, fast_float, num
 
@@ -46,6 +46,25 @@ class Motion:
             self.replace(cmd, rewrite(cmd, code=mode))
             self._edit().changed = True
 
+    def mixing_e(self, cmd: Command) -> bool:
+        """An E word with one amount per drive (``E1:2``): "Tools are driven using multiple values in the E
+        field of G1 commands, each controlling the corresponding drive" (RepRap page, M563; M160 mixing).  A
+        Hyrel head has one drive, and a clone squad makes several heads "perform the same exact (extrusion)
+        commands" side by side (T_v5, M702), not one line of mixed material: reported, the E word dropped."""
+        value = cmd.params.get(self.EXTRUDER)
+        if value is None or ":" not in value:
+            return False
+        self.report(
+            TR_UNTRANSLATABLE,
+            f"E{value}: one amount per drive of a multi-drive (mixing) tool has no Hyrel counterpart (a Hyrel "
+            "head has one drive; clone squads repeat the same moves on several heads); the E word is dropped "
+            "and the move does not extrude",
+            key="E-mixing",
+            cmd=cmd,
+            aspects=("e", "moves"),
+        )
+        return True
+
     def e_delta(self, cmd: Command) -> float | None:
         """How far the extruder advances on this move, in source units (None: unknown)."""
         value = fast_float(cmd.params.get(self.EXTRUDER))
@@ -62,6 +81,8 @@ class Motion:
         """G0/G1 (and implicit motion): E handling (X7), feed (G0 F is one-shot on Hyrel), inches (X10).
 
         The hot path: a plain G1 that needs no change returns after a few dictionary lookups."""
+        if self.g53_next and cmd.code in ("G0", "G1"):
+            self.g53_move(cmd, None, "".join(a for a in "XYZAB" if a in cmd.params))  # a G53 alone before it
         if not self.hy.started_motion:
             self.before_motion()
         if self.hy.motors_off:
@@ -74,7 +95,9 @@ class Motion:
         values: dict[str, str | None] | None = None
         add: tuple[str, ...] = ()
         rename = None
-        if ext in params:
+        if ext in params and self.mixing_e(cmd):
+            drop = ext
+        elif ext in params:
             if "X" not in params and "Y" not in params and "Z" not in params:
                 self.extruder_only(cmd, self.e_delta(cmd))
                 return
@@ -158,7 +181,7 @@ class Motion:
         conversion or extra words, an extruding G1 with E values on (M229 written), and a feed that
         Hyrel already has.  tests/test_translate_plain.py checks that the output is the same without."""
         hy = self.hy
-        if hy.ended or not hy.started_motion or hy.motors_off or self.inch or self.extra_always:
+        if hy.ended or not hy.started_motion or hy.motors_off or self.inch or self.extra_always or self.g53_next:
             return False
         st = self.state
         if e is not None:
@@ -246,11 +269,16 @@ class Motion:
         one_move_layer = previous is not None and self.layer_moves <= 1
         self.single_move_layers = self.single_move_layers + 1 if one_move_layer else 0
         self.layer_z, self.layer_moves, self.pending_height = z, 1, None
-        height = self.layer_height or self.default_layer_height
+        # the slicer's per-layer height, else the rise from the layer below: a height stated once for the
+        # job (Cura's header ";Layer height: 0.2") is the nominal one, not the first layer's or a variable
+        # layer's; it serves only when the rise says nothing
+        height = self.layer_height
         if height is None:
             height = z - previous if previous is not None else z
             if not height > 0:
-                return
+                if self.default_layer_height is None:
+                    return
+                height = self.default_layer_height
             if one_move_layer:
                 # the layer below had one move: a spiral (Z rising on every move) has no layer height; wait
                 # for a second move at this height before declaring it
@@ -271,6 +299,7 @@ class Motion:
         self.write_height(height)
 
     def write_height(self, height: float) -> None:
+        height = float(fmt(height, 4))  # rises are float differences (0.5 - 0.4): compare what is written
         if height != self.height_written:
             self.height_before = self.height_written
             self.before(f"M756 S{fmt(height, 4)}", note="native flow: the layer height")

@@ -137,9 +137,10 @@ class LineEdit:
         """The output lines, endings included."""
         line = self.line
         ending = line.ending
+        several = len(line.parsed.commands) > 1  # one command a line, as the Hyrel pages show
         if not annotate and not self.before and not self.after and not self.dropped and not self.strip_comments:
             # the common case (one command rewritten in place): no list juggling
-            main = _apply(line, self.replaced, ending or default_ending) if self.replaced else line.raw
+            main = _apply(line, self.replaced, ending or default_ending) if self.replaced or several else line.raw
             if main is None:
                 return []
             return [main, ending]
@@ -150,7 +151,7 @@ class LineEdit:
             main = None
         elif self.strip_comments:
             main = _commands_only(line, self.replaced)
-        elif self.replaced:
+        elif self.replaced or several:
             main = _apply(line, self.replaced, glue)
         else:
             main = line.raw

@@ -30,11 +30,13 @@ class RepRapToHyrel(MarlinToHyrel):
         "M0": "rrf_stop",
         "M1": "rrf_stop",
         "M2": "end_program",
+        "M563": "m563",
+        "M107": "m107",
     }
     DROPPED: ClassVar[dict[str, tuple[str, str]]] = {
         **MarlinToHyrel.DROPPED,
         **_codes(
-            "M550 M551 M552 M553 M554 M555 M556 M557 M558 M559 M560 M561 M562 M563 M564 M570 M571 M573 M574 "
+            "M550 M551 M552 M553 M554 M555 M556 M557 M558 M559 M560 M561 M562 M564 M570 M571 M573 M574 "
             "M575 M576 M577 M578 M579 M580 M581 M582 M584 M585 M586 M587 M588 M589 M594 M595 M596 M597 M598 "
             "M599 M650 M651 M667 M669 M671 M673 M674 M675 M905 M918 M929 M950 M951 M952 M953 M954 M955 M956 "
             "M957 M998 M409 M409.1 M408 M36 M36.1 M37 M38 M39 M101 M102 M103 M144 M470 M471 M472 M500.1 "
@@ -54,6 +56,11 @@ class RepRapToHyrel(MarlinToHyrel):
     CHECK_EXPRESSIONS = True
     END_CODES = frozenset({"M2"})
     MOVE_OVERRIDE_IGNORES_PLAIN = True  # move() below adds cases for H, S and R words only
+    G53_ALONE = "drop"  # "Non-modal, rest of line only": alone it does nothing
+
+    def __init__(self, source, target, options=None) -> None:
+        super().__init__(source, target, options)
+        self.tool_fans: dict[int, tuple[int, ...]] = {}  # M563 P<tool> F<fans>: a tool's own fans
 
     def move(self, cmd: Command) -> None:
         params = cmd.params
@@ -108,7 +115,69 @@ class RepRapToHyrel(MarlinToHyrel):
                 key="M106-config",
             )
             return
+        owner = self._fan_owner(cmd)
+        if owner is not None:
+            # a tool's own fan is its head's fan on Hyrel (fans are per head): it does not follow the tool
+            self.fan(cmd, self.head(owner), self._fan_value(cmd), index=None, own=True)
+            return
         super().m106(cmd)
+
+    def m107(self, cmd: Command) -> None:
+        owner = self._fan_owner(cmd)
+        if owner is not None:
+            self.fan_off(cmd, self.head(owner), index=None, own=True)
+            return
+        super().m107(cmd)
+
+    def _fan_owner(self, cmd: Command) -> int | None:
+        """The tool whose own fan (M563 F) this M106/M107 drives: P names the fan, else "S alone -> fans of
+        current tool" (research/dialects.md 1.3 M106); None for the part fan (fan 0 of tools that declare
+        no fans) and fans no single tool owns."""
+        fan = self._tool_index(cmd, "P")
+        if fan is None:
+            tool = self.current_tool()
+            fans = self.tool_fans.get(tool)
+            return tool if fans and all(self._owner(f) == tool for f in fans) else None
+        return self._owner(fan)
+
+    def _owner(self, fan: int) -> int | None:
+        owners = [tool for tool, fans in self.tool_fans.items() if fan in fans]
+        return owners[0] if len(owners) == 1 else None
+
+    def part_fan_note(self) -> None:
+        """RepRapFirmware's fans belong to tools (M563 F): no Marlin fan-count question."""
+
+    def part_fan_follows(self, tool: int) -> bool:
+        return not self.tool_fans.get(tool) or any(self._owner(f) != tool for f in self.tool_fans[tool])
+
+    def m563(self, cmd: Command) -> None:
+        """Define a tool (configuration: Repetrel configures the Hyrel heads).  Its fans F are kept: "S alone"
+        on M106 drives the current tool's fans.  ``M563 S<n>`` (older Duet firmware) adds n to "all tool
+        numbers found in the remainder of the current input stream" (RepRap page, M563); RepRapFirmware 3.1
+        removed it (research/dialects.md 1.5 M563), so the tool numbers are left as written and reported."""
+        params = cmd.params
+        tool = self._tool_index(cmd, "P")
+        if tool is None and "S" in params:
+            offset = num(params.get("S"))
+            if offset:
+                self.remove(
+                    cmd,
+                    TR_LOST,
+                    f"S{params['S']}: older Duet firmware adds {fmt(offset)} to every later tool number "
+                    "(RepRapFirmware 3.1 removed it); tool numbers are translated as written",
+                    key="M563-S",
+                    aspects=("head", "temp", "fan", "flow", "e"),
+                )
+                return
+        if tool is not None and "F" in params:
+            fans = tuple(f for f in (num(p) for p in (params["F"] or "").split(":")) if f is not None and f >= 0)
+            self.tool_fans[tool] = tuple(int(f) for f in fans)
+        self.remove(
+            cmd,
+            TR_DROPPED,
+            "RepRapFirmware configuration or report (Repetrel configures the Hyrel machine)",
+            key="M563",
+        )
 
     def g10(self, cmd: Command) -> None:
         params = cmd.params
@@ -118,7 +187,7 @@ class RepRapToHyrel(MarlinToHyrel):
                 self.untranslatable(
                     cmd,
                     "G10 L2/L20 sets workspace origins; not translated (use Repetrel fixture offsets and G54)",
-                    aspects=("wcs", "position"),
+                    aspects=("wcs", "position", "offsets"),
                 )
             else:
                 self.remove(
@@ -126,7 +195,7 @@ class RepRapToHyrel(MarlinToHyrel):
                     TR_LOST,
                     "tool offsets: Repetrel declares head offsets itself (M6)",
                     key="G10-offset",
-                    aspects="position",
+                    aspects=("position", "offsets"),
                 )
             return
         if "P" not in params:
@@ -145,7 +214,7 @@ class RepRapToHyrel(MarlinToHyrel):
                     "tool-offsets=m6 to write them)",
                     key="G10-offset",
                     cmd=cmd,
-                    aspects="position",
+                    aspects=("position", "offsets"),
                 )
         if "S" in params:
             if "R" in params:
@@ -186,7 +255,7 @@ class RepRapToHyrel(MarlinToHyrel):
             "machine; Repetrel also sends head offsets at job start",
             key="G10-m6",
             cmd=cmd,
-            aspects="position",
+            aspects=("position", "offsets"),
         )
 
     def m568(self, cmd: Command) -> None:

@@ -1,40 +1,84 @@
 """Spindles: rpm -> percent of the Hyrel spindle's maximum, on/off with the head's address, a stop before
 a change of direction (Hyrel Gcode page, M3).
 
+The head a spindle command addresses: the ``spindle`` setting; else, for CNC sources, the head the active
+tool maps to (a tool change with a tool map switches heads, "multi-head: T<tools[n]>", research/dialects.md
+2.3 M6 row), so that the spindle runs on the head that cuts; else mapped tool 0.  A spindle running at such
+a tool change goes to the new head (Machinekit: the source's one spindle keeps running with the new tool) or
+stops (the Carvera stops it for its automatic tool change).
+
 A mixin of ``HyrelTranslator``.
 """
 
 from __future__ import annotations
 
 from gclint.syntax.nodes import Command
-from gclint.translate.findings import TR_APPROX
+from gclint.translate.findings import TR_APPROX, TR_NOTE
 from gclint.translate.output import fmt
 from gclint.translate.words import fast_float
 
 
 class Spindles:
+    SPINDLE_FOLLOWS_TOOL = False  # CNC sources: the spindle is on the active tool's head (see above)
+    SPINDLE_STOPS_AT_TOOL_CHANGE = False  # the source stops the spindle for a tool change (Carvera)
+
+    def spindle_head(self) -> int:
+        """The Hyrel address spindle commands go to now."""
+        if self.SPINDLE_FOLLOWS_TOOL and self.opts.spindle is None and self.hy.focus is not None:
+            return self.hy.focus
+        return self.opts.spindle_address()
+
+    def spindle_to_head(self, old: int | None, new: int) -> None:
+        """A tool change from head ``old`` to ``new``: a spindle running on ``old`` stops there and, unless
+        the source stops it for the change, runs on ``new`` at the same speed (after the T line)."""
+        if not self.SPINDLE_FOLLOWS_TOOL or self.opts.spindle is not None:
+            return
+        if old is None:
+            old = self.opts.spindle_address()  # no head focused yet: the spindle ran on the default one
+        if old == new:
+            return
+        code = self.hy.spindles_on.pop(old, None)
+        if code is None:
+            return
+        lines = [f"M5 T{old}"]
+        if not self.SPINDLE_STOPS_AT_TOOL_CHANGE:
+            speed = f" S{self.spindle_percent}" if self.spindle_percent is not None else ""
+            lines.append(f"{code} T{new}{speed}")
+            self.hy.spindles_on[new] = code
+        self.after(*lines, note="the spindle follows the tool to its head")
+        self.report(
+            TR_NOTE,
+            f"tool change while the spindle runs: it stops on T{old}"
+            + ("" if self.SPINDLE_STOPS_AT_TOOL_CHANGE else f" and runs on T{new}, the new tool's head"),
+            key="spindle-head",
+        )
+
     def speed_word(self, cmd: Command) -> None:
         """An S word outside M3/M4: the spindle speed (rpm) for the next M3, or a speed change now."""
         s = fast_float(cmd.params.get("S"))
         if s is None:
             return
         self.rpm = s
-        address = self.opts.spindle_address()
+        address = self.spindle_head()
         running = self.hy.spindles_on.get(address)
         line = self.line
         if line is not None and any(c.code in ("M3", "M4") for c in line.parsed.commands[self.index + 1 :]):
             return  # the M3/M4 on this line carries the speed
         if running is not None:
-            self.before(f"{running} T{address} S{self.rpm_percent(s, self.MAX_RPM)}", note="spindle speed")
+            self.spindle_percent = self.rpm_percent(s, self.MAX_RPM)
+            self.before(f"{running} T{address} S{self.spindle_percent}", note="spindle speed")
 
     def spindle_on(self, cmd: Command, percent: str | None) -> None:
-        address = self.opts.spindle_address()
+        address = self.spindle_head()
+        if percent is not None:
+            self.spindle_percent = percent
         code = cmd.code or "M3"
         words = [code, f"T{address}"]
         if percent is not None:
             words.append("S" + percent)
         running = self.hy.spindles_on.get(address)
-        if running is not None and running != code:
+        stops = percent is not None and float(percent) == 0  # "S0 is the same as turning it off" (M3)
+        if running is not None and running != code and not stops:
             # "DO NOT CHANGE DIRECTION while the spindle is in motion" (Hyrel Gcode page, M3).  The page gives
             # no spin-down time: wait the configured one, else pause until the operator resumes.
             dwell = self.opts.spindle_stop_dwell
@@ -53,13 +97,13 @@ class Spindles:
                 aspects="spindle",
             )
         self.replace(cmd, " ".join(words))
-        if percent is not None and float(percent) == 0:  # "S0 is the same as turning it off" (M3)
+        if stops:
             self.hy.spindles_on.pop(address, None)
         else:
             self.hy.spindles_on[address] = code
 
     def spindle_off(self, cmd: Command) -> None:
-        address = self.opts.spindle_address()
+        address = self.spindle_head()
         self.replace(cmd, f"M5 T{address}")
         self.hy.spindles_on.pop(address, None)
 
@@ -73,7 +117,7 @@ class Spindles:
                 f"spindle rpm converted to percent of an assumed {fmt(top)} rpm maximum; set "
                 "spindle-max-rpm to the Hyrel spindle's",
                 key="rpm-assumed",
-                aspects="spindle",
+                aspects="spindle:speed",  # the speed, not whether it runs (compare.Explanations)
             )
         pct = rpm / top * 100
         if pct > 100:
@@ -81,7 +125,7 @@ class Spindles:
                 TR_APPROX,
                 f"{fmt(rpm)} rpm is above the spindle's {fmt(top)} rpm: clamped to 100 %",
                 key="rpm-clamp",
-                aspects="spindle",
+                aspects="spindle:speed",
             )
             pct = 100
         return fmt(max(pct, 0.0), 1)

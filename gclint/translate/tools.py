@@ -46,6 +46,10 @@ class SourceTools:
         self.flows[tool] = fraction
         self.last_flow = fraction
 
+    def heated(self) -> float | None:
+        """On a single-nozzle machine, the set-point the nozzle was last waited to (it is at least that hot)."""
+        return self.nozzle[1] if self.shared and self.nozzle is not None else None
+
     def working(self, tool: int) -> tuple[tuple[float, bool] | None, float | None, bool]:
         """(set-point and whether it was waited for, flow) the active tool prints with, and whether this
         call found the job to be a single-nozzle one."""
