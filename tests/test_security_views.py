@@ -194,3 +194,14 @@ def test_shell_lookalikes_are_not_read_into_words():
 def test_translator_guard_reads_firmware_views():
     for line in ("\u00a0M792 ; SHELL C:\\x.exe", "M117 x\x08\x08\x08\x08\x08\x08M0 ; SHELL x"):
         assert action_shell_column(Line(1, line, "\n", parse_line(line))) is not None, line
+
+
+def test_translator_guard_passes_lines_an_action_hides_in():
+    """The guard's quick filter lets through lines where M0/M792 shows only after a firmware edits the line
+    (backspaces), so the translation is refused."""
+    from gclint.translate.engine import HostActionGuard, TranslationResult
+
+    for text in ("G1 X1\nM17\x08\x080 ; SHELL x\n", "\u00a0M792 ; SHELL C:\\x.exe\n"):
+        result = TranslationResult("job.gcode", "marlin", "hyrel")
+        HostActionGuard(result).check(text)
+        assert result.refused, text

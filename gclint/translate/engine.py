@@ -121,6 +121,13 @@ def _translate(source: Source, translator: Translator, result: TranslationResult
 # An M0, M1 or M792 anywhere in a piece of output: only those lines are parsed again by the guard.
 _ACTION_CODE = re.compile(r"[Mm][ \t]*+(?:0*+(?:1|792)|0++)(?![\d.])")
 _LINE_BREAK = re.compile(r"\r\n?|\n")  # the line endings gclint reads (syntax/source.py)
+# ... or a character some firmware edits the line with before reading it (a backspace, a Unicode space or
+# lookalike letter: security.firmware_views), which can make an M0/M792 of a line that shows none
+_UNUSUAL = re.compile(r"[^\t\n\r\x20-\x7e]")
+
+
+def _may_act(text: str) -> bool:
+    return _ACTION_CODE.search(text) is not None or _UNUSUAL.search(text) is not None
 
 
 class HostActionGuard:
@@ -135,14 +142,14 @@ class HostActionGuard:
         self.lines = 0  # output lines before the current piece
 
     def check(self, text: str) -> None:
-        if _ACTION_CODE.search(text) is None:
+        if not _may_act(text):
             self.lines += text.count("\n") + text.count("\r") - text.count("\r\n")
             return
         from gclint.rules.security import action_shell_column
 
         pieces = _LINE_BREAK.split(text)
         for index, raw in enumerate(pieces):
-            if _ACTION_CODE.search(raw) is not None:
+            if _may_act(raw):
                 column = action_shell_column(Line(self.lines + index + 1, raw, "", parse_line(raw)))
                 if column is not None:
                     self.refuse(self.lines + index + 1, column)
