@@ -374,6 +374,10 @@ def test_network_setup_in_the_configuration_is_not_reported() -> None:
     assert _codes("M586 P0 S1\nM586 P1 S1\n", "reprap", "printer/sys/config.g") == set()
     assert _codes("M586 P2 S1\n", "reprap", "gcodes/job.g") == {"SC007"}
     assert _codes("M586 P2 S1\n", "marlin", "printer/sys/config.g") == {"SC007"}
+    # only a .g file right in sys/ is a system file: a job placed there (or deeper) is a job
+    assert _codes("M586 P2 S1\n", "reprap", "jobs/sys/print.gcode") == {"SC007"}
+    assert _codes("M586 P2 S1\n", "reprap", "sys/jobs/print.g") == {"SC007"}
+    assert _codes("M586 P2 S1\n", "reprap", "printer/SYS/network.g") == set()
 
 
 def test_the_machine_password_never_reaches_a_report() -> None:

@@ -791,8 +791,10 @@ def _reprap_configuration(path: str) -> bool:
 
 
 def _reprap_system_file(path: str) -> bool:
-    """Whether ``path`` is in a RepRapFirmware ``sys/`` folder (config.g and the files it runs)."""
-    return "sys" in path.replace("\\", "/").lower().split("/")[:-1]
+    """Whether ``path`` is a RepRapFirmware system file: a ``.g`` file right in a ``sys/`` folder (config.g
+    and the files it runs); a job (``.gcode``) placed there, or deeper, is not."""
+    parts = path.replace("\\", "/").lower().split("/")
+    return len(parts) >= 2 and parts[-2] == "sys" and parts[-1].endswith(".g")
 
 
 @register
@@ -1194,8 +1196,8 @@ class OpensNetworkService(_SecurityRule):
         P1 FTP, P2 Telnet.  FTP reads and writes every file on the SD card and Telnet is a G-code console,
         both protected only by the M551 password (if one is set).  A job that turns them on leaves the
         machine open to anyone on its network after the print.  The network belongs in the printer's
-        configuration: M586 in a file in a RepRapFirmware `sys/` folder (config.g and the files it runs,
-        checked as RepRapFirmware) is not reported.  Switching a service off (S0) is not reported.
+        configuration: M586 in a `.g` file right in a RepRapFirmware `sys/` folder (config.g and the files
+        it runs, checked as RepRapFirmware) is not reported; a job placed in such a folder is.  Switching a service off (S0) is not reported.
     """
     example_bad = "M586 P2 S1"
     example_good = "M586 P2 S0"
