@@ -44,6 +44,7 @@ class MachinekitToHyrel(CncTranslator):
         "M221": "m221",
         "M226": "m226",
         "M300": "beep",
+        "M700": "m700",
         "M701": "m701",
         "M702": "m702",
         "G5.2": "nurbs_start",
@@ -61,7 +62,6 @@ class MachinekitToHyrel(CncTranslator):
         **_codes("M200", TR_DROPPED, "filament diameter (velocity extrusion)"),
         **_codes("M207", TR_LOST, "retraction settings (Hyrel heads carry their own unprime/prime settings)"),
         **_codes("M280", TR_LOST, "servo position"),
-        **_codes("M700", TR_LOST, "velocity-extrusion cross-section (needs the layer height; set M221 W by hand)"),
         **_codes("M710", TR_LOST, "manual filament jog"),
         **_codes("M600 M601 M306", TR_LOST, "Z calibration or probing remap"),
         **_codes("G29 G29.1 G29.2 G30 G30.1 G28.1", TR_LOST, "probing and bed calibration"),
@@ -88,6 +88,12 @@ class MachinekitToHyrel(CncTranslator):
     def __init__(self, source, target, options=None) -> None:
         super().__init__(source, target, options)
         self.nurbs = False  # inside a G5.2 ... G5.3 block
+        # velocity extrusion (research/dialects.md 2.2: "VE mode if M700/M701/M702 or G22/G23 without
+        # A-moves"; "In VE mode G22/G23 delimit non-printing stretches: moves between G22 and G23 are travel
+        # (no E1)"): the feed moves outside G22 ... G23 print, with no A word
+        self.ve = False
+        self.ve_travel = False  # between a G22 and its G23
+        self.a_moves = False  # a move carried an A word (the extruder is an axis: no VE)
 
     def e_absolute(self) -> bool:
         return self.state.absolute  # A follows G90/G91
@@ -112,7 +118,58 @@ class MachinekitToHyrel(CncTranslator):
         if "@" in cmd.params or "^" in cmd.params:
             self.untranslatable(cmd, "polar coordinates (@ radius, ^ angle) cannot be translated", key="polar")
             return
+        if "A" in cmd.params:
+            self.extruder_axis(cmd)
         super().move(cmd)
+
+    def arc(self, cmd: Command) -> None:
+        if "A" in cmd.params:
+            self.extruder_axis(cmd)
+        super().arc(cmd)
+
+    def extruder_axis(self, cmd: Command) -> None:
+        """A move with an A word: the extruder is an axis, no velocity extrusion from here."""
+        if self.ve and not self.a_moves:
+            self.report(
+                TR_APPROX,
+                "an A (extruder axis) move in a velocity-extrusion job: from here only moves with A extrude "
+                "(the sources do not say how Machinekit mixes the two)",
+                key="VE-A",
+                cmd=cmd,
+                aspects="e",
+            )
+        self.a_moves = True
+
+    def velocity_extrusion(self, cmd: Command) -> None:
+        """VE mode starts (dialects.md 2.2): from now on the feed moves outside G22 ... G23 print."""
+        if self.ve or self.a_moves:
+            return  # the extruder is the A axis (dialects.md 2.2: VE "without A-moves")
+        self.ve = True
+        self.extra_always = True  # move_extra adds the E1 of printing moves
+        self.report(
+            TR_APPROX,
+            "velocity extrusion (M700-M702, G22/G23): Machinekit extrudes on every feed move outside G22 ... G23; "
+            "written as Hyrel native flow (E1 on those moves, the flow computed by Hyrel from the width M221 W "
+            "and the layer height M756), not Machinekit's velocity-proportional rate",
+            key="VE",
+            cmd=cmd,
+            aspects="e",
+        )
+
+    def ve_print(self, cmd: Command, rapid: bool) -> bool:
+        """A move that prints in VE mode: a feed move (G1/G2/G3) that moves X, Y or Z, outside G22 ... G23,
+        with no A word of its own."""
+        if not self.ve or self.ve_travel or rapid or self.a_moves:
+            return False
+        if not any(a in cmd.params for a in "XYZ"):
+            return False
+        if self.sync_due:
+            self.sync_working_head()
+        if self.evalues and self.hy.m229_written:
+            # E1 is a marker only in native flow (Gcode page, M229: "E0 (native flow calculation)")
+            self.before("M229 E0 D0", note="velocity extrusion: Hyrel's native flow")
+            self.hy.m229_written = False
+        return True
 
     def nurbs_start(self, cmd: Command) -> None:
         self.nurbs = True
@@ -162,7 +219,8 @@ class MachinekitToHyrel(CncTranslator):
         for letter in "BCUVW":
             if letter in params and letter not in axes:
                 drop += letter
-        return (drop, ()) if drop else None
+        add: tuple[str, ...] = ("E1",) if self.ve_print(cmd, rapid) else ()
+        return (drop, add) if drop or add else None
 
     def extruding_rapid(self, cmd: Command) -> None:
         self.report(
@@ -175,9 +233,15 @@ class MachinekitToHyrel(CncTranslator):
         )
 
     def retract(self, cmd: Command) -> None:
+        self.velocity_extrusion(cmd)
+        if self.ve:
+            self.ve_travel = True
         self.firmware_retract(cmd, "M721", f"{cmd.code} retraction", "G22")
 
     def unretract(self, cmd: Command) -> None:
+        self.velocity_extrusion(cmd)
+        if self.ve:
+            self.ve_travel = False
         self.firmware_retract(cmd, "M722", f"{cmd.code} retraction", "G22")
 
     def mk_home(self, cmd: Command) -> None:
@@ -295,7 +359,18 @@ class MachinekitToHyrel(CncTranslator):
             TR_NOTE, "tone written as Hyrel's BEEP action: frequency and duration are lost", key="M300", cmd=cmd
         )
 
+    def m700(self, cmd: Command) -> None:
+        self.velocity_extrusion(cmd)
+        self.remove(
+            cmd,
+            TR_LOST,
+            "velocity-extrusion cross-section (needs the layer height; set M221 W by hand)",
+            key="M700",
+            aspects="e",
+        )
+
     def m701(self, cmd: Command) -> None:
+        self.velocity_extrusion(cmd)
         width = cmd.params.get("P")
         address = self.head(None)
         if width is None or address is None:
@@ -307,6 +382,7 @@ class MachinekitToHyrel(CncTranslator):
         )
 
     def m702(self, cmd: Command) -> None:
+        self.velocity_extrusion(cmd)
         height = cmd.params.get("P")
         if height is None:
             self.remove(cmd, TR_DROPPED, "M702 without a height sets nothing", key="M702")

@@ -1,0 +1,39 @@
+"""The stranger review of issue 14 (translation): one test (or more) per defect it found, each failing
+without its fix."""
+
+from __future__ import annotations
+
+from .test_translate_tables import translate
+
+
+def _codes(result, code: str) -> list[str]:
+    return [f.message for f in result.findings if f.code == code]
+
+
+# -- (1) Machinekit velocity extrusion: feed moves outside G22 ... G23 print (dialects.md 2.2) -------------
+
+VE = (
+    "G21 G90\nM104 P0 S200\nM109 P0 S200\nG0 Z0.2\nM701 P0.5\nM702 P0.2\nG1 X10 Y10 F1200\nG1 X20 Y10\n"
+    "G22\nG0 X30\nG1 X35\nG23\nG1 X40 Y10\nM2\n"
+)
+
+
+def test_1_velocity_extrusion_moves_print() -> None:
+    out, result = translate("machinekit", VE)
+    lines = out.splitlines()
+    assert "G1 X10 Y10 F1200 E1" in lines and "G1 X20 Y10 E1" in lines and "G1 X40 Y10 E1" in lines
+    assert "G1 X35" in lines and "G0 X30" in lines  # between G22 and G23: travel
+    assert any("velocity extrusion" in m for m in _codes(result, "TR003"))
+    assert lines.index("M109 T0 S200 R2") < lines.index("G1 X10 Y10 F1200 E1")
+
+
+def test_1_velocity_extrusion_needs_a_job_without_a_moves() -> None:
+    out, _ = translate("machinekit", "G21 G90\nG1 X1 Y1 Z0.2 A1 F600\nM701 P0.5\n")
+    assert "M229 E1 D1" in out  # an A job: M701 does not start velocity extrusion
+    out, _ = translate("machinekit", "G21 G90\nG22\nG23\nG1 X1 Y1 Z0.2 F600\n")
+    assert "G1 X1 Y1 Z0.2 F600 E1" in out.splitlines() and "M229" not in out
+
+
+def test_1_g22_in_a_job_with_a_moves_is_a_retract() -> None:
+    out, result = translate("machinekit", "G21 G90\nG1 X1 Y1 Z0.2 A1 F600\nG22\nG1 X5 Y5\nG23\n")
+    assert "G1 X5 Y5" in out.splitlines() and not any("velocity" in m for m in _codes(result, "TR003"))
