@@ -10,6 +10,7 @@ from __future__ import annotations
 import os
 from collections.abc import Callable, Iterable
 from dataclasses import dataclass, field, replace
+from itertools import chain
 
 from gclint import dialects, firmware, globs
 from gclint.context import Context, infer_source
@@ -156,8 +157,8 @@ class Linter:
         SX008 selected, a ``noqa`` code that suppressed nothing is a finding."""
         from gclint.rules.base import UnknownSelector, resolve_selectors
 
-        named = [(line, codes) for line, codes in ctx.noqa.items()]
-        named += [(line, codes) for line, _, codes in ctx.directives]
+        # (lazily: a job may have a million noqa comments)
+        named = chain(ctx.noqa.items(), ((line, codes) for line, _, codes in ctx.directives))
         problems: list[str] = []
         verdicts: dict[tuple[str, ...], str | None] = {}  # a list repeated on many lines is resolved once
         for line, codes in named:
@@ -182,9 +183,13 @@ class Linter:
             return
         from gclint.rules.syntax import UnusedNoqa
 
-        for line, codes in sorted(ctx.noqa.items()):
+        more = 0  # past MAX_FINDINGS, counted on the last one listed (as FileContext.add does)
+        for line, codes in ctx.noqa.items():  # (in line order)
             unused = [c for c in codes if (line, c) not in ctx.noqa_used]
             if unused:
+                if len(result.findings) >= MAX_FINDINGS and result.findings[-1].code == UnusedNoqa.code:
+                    more += 1
+                    continue
                 what = "noqa suppresses nothing here" if unused == ["ALL"] else f"unused noqa: {', '.join(unused)}"
                 if any(c.startswith(INLINE_UNSUPPRESSIBLE) for c in unused):
                     what += " (a job cannot silence security findings)"
@@ -199,6 +204,9 @@ class Linter:
                         name=UnusedNoqa.name,
                     )
                 )
+        if more:
+            last = result.findings[-1]
+            last.message += f" (and {more:,} more {last.code} findings later in the file, not listed)"
 
     def context_of(self, source: Source) -> Context:
         """What ``source`` is checked as (its head decides; the stream is not consumed)."""

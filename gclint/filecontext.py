@@ -4,8 +4,9 @@ one per file; ``gclint.rules.base`` names it only as a type."""
 
 from __future__ import annotations
 
-from bisect import bisect_right
-from collections.abc import Callable
+from array import array
+from bisect import bisect_left, bisect_right
+from collections.abc import Callable, Iterator
 
 from gclint.context import Context
 from gclint.dialects.base import Dialect
@@ -48,10 +49,10 @@ class FileContext:
         self._current: Line | None = None
         self.enabled_codes: frozenset[str] = frozenset()
         self.shared: dict[str, object] = {}  # objects several rules of this file share (by name)
-        self.noqa: dict[int, tuple[str, ...]] = {}
+        self.noqa = NoqaLines()  # line -> the codes its noqa names
         self.noqa_used: set[tuple[int, str]] = set()  # (line, selector) that suppressed a finding
-        self.directives: list[tuple[int, str, tuple[str, ...]]] = []
-        self._directives_by_code: dict[str, tuple[list[int], list[bool], int]] = {}
+        self.directives = Directives()  # (line, "disable" or "enable", codes), in line order
+        self._directives_by_code: dict[str, list] = {}  # code (or ALL) -> [positions, disables, read, verdicts]
         self._plain_comments: set[str] = set()  # lines whose comments hold no noqa or gclint directive
         # code -> [its latest finding, that finding's own message, more on its line, more later in the file,
         #          findings of the code listed on that line]
@@ -100,6 +101,8 @@ class FileContext:
         else:
             number, text = line, None
         code = rule.code
+        if (self.noqa or self.directives) and self.suppresses(code, number):
+            return  # (not kept, so not counted against the bounds below)
         severity = self.severity_of(code, severity if severity is not None else rule.severity)
         latest = self._latest.get(code)
         same_line = latest is not None and latest[0].line == number
@@ -155,9 +158,9 @@ class FileContext:
                 found = True
                 m = NOQA.search(body)
                 if m:
-                    self.noqa[line.number] = self.noqa.get(line.number, ()) + selectors(m.group(1))
+                    self.noqa.add(line.number, selectors(m.group(1)))
                 for d in DIRECTIVE.finditer(body):
-                    self.directives.append((line.number, d.group(1).lower(), selectors(d.group(2))))
+                    self.directives.add(line.number, d.group(1).lower() == "disable", selectors(d.group(2)))
         if not found and len(raw) <= _REMEMBERED_LINE:
             # comment lines repeat (";TYPE:Perimeter"): remember the ones with no directive
             if len(self._plain_comments) >= 8192:
@@ -165,30 +168,150 @@ class FileContext:
             self._plain_comments.add(raw)
 
     def suppressed(self, finding: Finding) -> bool:
-        if finding.code.startswith(INLINE_UNSUPPRESSIBLE):
-            return False
-        codes = self.noqa.get(finding.line)
-        if codes:
-            used = [c for c in codes if c == "ALL" or finding.code.startswith(c)]
-            if used:
-                self.noqa_used.update((finding.line, c) for c in used)
-                return True
-        if not self.directives:
-            return False
-        # the last disable/enable naming the code at or above the finding's line decides (an index per
-        # code, so that time does not grow with directives x findings)
-        lines, disabling = self._directive_index(finding.code)
-        at = bisect_right(lines, finding.line)
-        return at > 0 and disabling[at - 1]
+        return self.suppresses(finding.code, finding.line)
 
-    def _directive_index(self, code: str) -> tuple[list[int], list[bool]]:
-        index = self._directives_by_code.get(code)
-        if index is None or index[2] != len(self.directives):
-            lines: list[int] = []
-            disabling: list[bool] = []
-            for number, action, codes in self.directives:  # (in line order)
-                if matches(code, codes):
-                    lines.append(number)
-                    disabling.append(action == "disable")
-            index = self._directives_by_code[code] = (lines, disabling, len(self.directives))
-        return index[0], index[1]
+    def suppresses(self, code: str, number: int) -> bool:
+        """Whether a finding of ``code`` on line ``number`` is suppressed by the job's comments (a noqa on
+        the line, or the last ``gclint: disable``/``enable`` naming the code at or above it).  ``add`` asks
+        as findings come, so that suppressed findings take no place under MAX_FINDINGS: 20,000 findings
+        silenced by noqa must not make the next, unsilenced one a mere count on a suppressed one."""
+        if code.startswith(INLINE_UNSUPPRESSIBLE):
+            return False
+        codes = self.noqa.get(number)
+        if codes:
+            used = [c for c in codes if c == "ALL" or code.startswith(c)]
+            if used:
+                self.noqa_used.update((number, c) for c in used)
+                return True
+        directives = self.directives
+        if not directives:
+            return False
+        # the last disable/enable naming the code at or above the line decides: positions in the list of
+        # directives, from an index of those naming ALL (shared by every code) and one per code of the
+        # others, each extended as directives are read (time does not grow with directives x findings)
+        before = bisect_right(directives.lines, number)
+        if before == 0:
+            return False
+        best, disabling = -1, False
+        for positions, flags in (self._all_index(), self._directive_index(code)):
+            at = bisect_left(positions, before)
+            if at > 0 and positions[at - 1] > best:
+                best, disabling = positions[at - 1], bool(flags[at - 1])
+        return disabling
+
+    def _all_index(self) -> tuple[array, bytearray]:
+        return self._extend("ALL", lambda codes: "ALL" in codes)
+
+    def _directive_index(self, code: str) -> tuple[array, bytearray]:
+        return self._extend(code, lambda codes: "ALL" not in codes and matches(code, codes))
+
+    def _extend(self, key: str, applies: Callable[[tuple[str, ...]], bool]) -> tuple[array, bytearray]:
+        """The positions of the directives ``applies`` to (and whether each disables), as far as read."""
+        index = self._directives_by_code.get(key)
+        if index is None:
+            index = self._directives_by_code[key] = [array("q"), bytearray(), 0, {}]
+        positions, flags, scanned, verdicts = index
+        directives = self.directives
+        if scanned < len(directives):
+            sets, ids, disable = directives.sets, directives.ids, directives.disable
+            for at in range(scanned, len(directives)):
+                which = ids[at]
+                verdict = verdicts.get(which)
+                if verdict is None:
+                    verdict = verdicts[which] = applies(sets[which])
+                if verdict:
+                    positions.append(at)
+                    flags.append(disable[at])
+            index[2] = len(directives)
+        return positions, flags
+
+
+class _Interned:
+    """Distinct lists of codes, each kept once and named by its number (a job repeats the same few)."""
+
+    def __init__(self) -> None:
+        self.sets: list[tuple[str, ...]] = []
+        self._ids: dict[tuple[str, ...], int] = {}
+
+    def intern(self, codes: tuple[str, ...]) -> int:
+        found = self._ids.get(codes)
+        if found is None:
+            found = self._ids[codes] = len(self.sets)
+            self.sets.append(codes)
+        return found
+
+
+class NoqaLines(_Interned):
+    """The ``noqa`` comments of a file: line number -> the codes named, as two arrays (the line numbers in
+    order, and the number of the line's list of codes): 12 bytes a line, whatever the number of lines
+    (a dict of tuples was ~100).  Reads like a read-only dict."""
+
+    def __init__(self) -> None:
+        super().__init__()
+        self.lines = array("q")
+        self.ids = array("l")
+
+    def add(self, line: int, codes: tuple[str, ...]) -> None:
+        lines = self.lines
+        if lines and line <= lines[-1]:  # another comment on the same line (or, never in practice, out of order)
+            at = bisect_left(lines, line)
+            if at < len(lines) and lines[at] == line:
+                self.ids[at] = self.intern(self.sets[self.ids[at]] + codes)
+                return
+            lines.insert(at, line)
+            self.ids.insert(at, self.intern(codes))
+            return
+        lines.append(line)
+        self.ids.append(self.intern(codes))
+
+    def get(self, line: int, default: tuple[str, ...] | None = None) -> tuple[str, ...] | None:
+        lines = self.lines
+        at = bisect_left(lines, line)
+        if at < len(lines) and lines[at] == line:
+            return self.sets[self.ids[at]]
+        return default
+
+    def __getitem__(self, line: int) -> tuple[str, ...]:
+        found = self.get(line)
+        if found is None:
+            raise KeyError(line)
+        return found
+
+    def __contains__(self, line: object) -> bool:
+        return isinstance(line, int) and self.get(line) is not None
+
+    def __len__(self) -> int:
+        return len(self.lines)
+
+    def __iter__(self) -> Iterator[int]:
+        return iter(self.lines)
+
+    def items(self) -> Iterator[tuple[int, tuple[str, ...]]]:
+        """(line, codes) in line order."""
+        sets = self.sets
+        for line, which in zip(self.lines, self.ids, strict=True):
+            yield line, sets[which]
+
+
+class Directives(_Interned):
+    """The ``gclint: disable`` / ``enable`` comments of a file, in line order, as arrays (line number,
+    disable or not, the number of the list of codes).  Iterates as (line, "disable" or "enable", codes)."""
+
+    def __init__(self) -> None:
+        super().__init__()
+        self.lines = array("q")
+        self.disable = bytearray()
+        self.ids = array("l")
+
+    def add(self, line: int, disable: bool, codes: tuple[str, ...]) -> None:
+        self.lines.append(line)
+        self.disable.append(disable)
+        self.ids.append(self.intern(codes))
+
+    def __len__(self) -> int:
+        return len(self.lines)
+
+    def __iter__(self) -> Iterator[tuple[int, str, tuple[str, ...]]]:
+        sets = self.sets
+        for line, disable, which in zip(self.lines, self.disable, self.ids, strict=True):
+            yield line, "disable" if disable else "enable", sets[which]
