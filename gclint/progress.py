@@ -13,6 +13,8 @@ import os
 import sys
 import threading
 import time
+from collections.abc import Iterator
+from contextlib import contextmanager
 from typing import TextIO
 
 from gclint.engine import FileResult
@@ -136,6 +138,20 @@ class ProgressBar:
     def _tick(self) -> None:
         while not self._stop.wait(TICK):
             self._draw()
+
+    @contextmanager
+    def above(self) -> Iterator[None]:
+        """``with bar.above(): print(...)``: the bar is erased while something else is written to the
+        terminal (a report written as files are checked, an error), and drawn again below it at the next tick."""
+        with self._lock:
+            try:
+                if self._shown:
+                    self.stream.write("\r" + " " * self._shown + "\r")
+                    self.stream.flush()
+            except (OSError, ValueError):
+                pass
+            self._shown = 0
+            yield
 
     def close(self) -> None:
         """Stop ticking and erase the bar, so the report starts on a clean line."""

@@ -5,9 +5,10 @@ from __future__ import annotations
 
 import os
 import stat
+from collections import deque
 from collections.abc import Callable, Iterable, Iterator
 from concurrent.futures import ProcessPoolExecutor
-from dataclasses import replace
+from dataclasses import dataclass, replace
 from pathlib import Path
 from typing import TYPE_CHECKING
 
@@ -318,10 +319,6 @@ def check_file(path: str, options: Options) -> tuple[FileResult, str | None]:
         source.close()
 
 
-def _check_task(args: tuple[str, Options]) -> tuple[FileResult, str | None]:
-    return check_file(*args)
-
-
 def run(
     files: list[str],
     base: Options,
@@ -335,61 +332,164 @@ def run(
     """Check ``files``; results come back in the order of ``files``.
 
     With a ``cache``, files whose content, configuration and rule set are unchanged since the last run
-    are not checked again.
+    are not checked again.  (All results at once: ``results`` gives them one by one, in bounded memory.)
     """
+    return list(results(files, base, overrides, explicit_config, jobs, stdin_name, progress, cache))
+
+
+@dataclass
+class _Item:
+    """One file of a run: its result when known before checking (a configuration error, the cache), else
+    the task that checks it."""
+
+    index: int
+    path: str
+    result: FileResult | None = None
+    task: tuple[str, Options] | None = None
+    key: str | None = None  # the cache key the result is stored under
+    stdin: Linter | None = None  # standard input, checked in this process when its turn comes
+    cached: bool = False
+
+
+def results(
+    files: list[str],
+    base: Options,
+    overrides: dict,
+    explicit_config: str | None = None,
+    jobs: int = 1,
+    stdin_name: str = "-",
+    progress: Callable[[FileResult], None] | None = None,
+    cache: ResultCache | None = None,
+) -> Iterator[FileResult]:
+    """Check ``files``, giving each result as soon as it and those before it are known, in the order of
+    ``files``.  Memory does not grow with the number of files: a few batches of files are checked ahead
+    (read from the cache, or sent to the worker processes), not the whole run."""
     find_config.cache_clear()
-    tasks: list[tuple[str, Options]] = []
-    keys: dict[int, str] = {}
-    results: dict[int, FileResult] = {}
+    items = _items(files, base, overrides, explicit_config, stdin_name, cache)
+    workers = min(jobs, len(files))
+    if workers <= 1:
+        for item in items:
+            yield _finish(item, check_file(*item.task) if item.task is not None else None, stdin_name, cache, progress)
+        return
+    # batches of tasks per process call keep the inter-process traffic low for many small files; a batch
+    # holds a few small files or one big one, and only one batch more than there are workers is in flight
+    # (finished results wait in memory for their turn: each may hold up to MAX_FINDINGS findings)
+    size = max(1, min(16, len(files) // (workers * 4)))
+    batches = _batches(items, size)
+    with ProcessPoolExecutor(max_workers=workers) as pool:
+        window: deque = deque()
+
+        def submit() -> None:
+            batch = next(batches, None)
+            if batch is not None:
+                tasks = [item.task for item in batch if item.task is not None]
+                window.append((batch, pool.submit(_check_tasks, tasks) if tasks else None))
+
+        for _ in range(workers + 1):
+            submit()
+        while window:
+            batch, future = window.popleft()
+            submit()
+            done = iter(future.result() if future is not None else ())
+            for item in batch:
+                yield _finish(item, next(done) if item.task is not None else None, stdin_name, cache, progress)
+
+
+def _items(
+    files: list[str],
+    base: Options,
+    overrides: dict,
+    explicit_config: str | None,
+    stdin_name: str,
+    cache: ResultCache | None,
+) -> Iterator[_Item]:
     for index, path in enumerate(files):
+        item = _Item(index, path)
         try:
             # standard input is configured as the file it names (--stdin-filename), as ruff does
             named = stdin_name if path == "-" and stdin_name != "-" else path
             options = options_for(named, base, overrides, explicit_config)
         except ConfigError as exc:
-            results[index] = FileResult(path, error=str(exc))
+            item.result = FileResult(path, error=str(exc))
+            yield item
             continue
         if path == "-":
-            linter = _linter(options)
-            try:
-                results[index] = linter.check_source(Source(_stdin(), stdin_name, cut_long_lines=True))
-            except SourceError as exc:
-                results[index] = FileResult(stdin_name, error=str(exc))
-            except Exception as exc:  # a bug in gclint itself: one line, no traceback
-                detail = f"{type(exc).__name__}: {exc}".splitlines()[0][:200]
-                error = f"{stdin_name}: internal error while checking ({detail}); please report this"
-                results[index] = FileResult(stdin_name, error=error)
-            continue
-        if cache is not None:
+            item.stdin = _linter(options)
+        elif cache is not None:
             key = cache.settings_key(options.cache_key(), [r.code for r in _linter(options).rule_classes])
-            cached = cache.get(path, key)
-            if cached is not None:
-                results[index] = cached
-                if progress is not None:
-                    progress(cached)
-                continue
-            keys[index] = key
-        tasks.append((path, options))
-    order = [i for i in range(len(files)) if i not in results]
-    for index, (result, digest) in zip(order, _map(tasks, jobs), strict=True):
-        results[index] = result
-        if cache is not None and index in keys and digest is not None:
-            cache.put(files[index], keys[index], result, digest)
-        if progress is not None:
-            progress(result)
-    return [results[i] for i in range(len(files))]
+            item.result = cache.get(path, key)
+            item.cached = item.result is not None
+            if item.result is None:
+                item.key = key
+                item.task = (path, options)
+        else:
+            item.task = (path, options)
+        yield item
 
 
-def _map(tasks: list[tuple[str, Options]], jobs: int) -> Iterator[tuple[FileResult, str | None]]:
-    if jobs <= 1 or len(tasks) <= 1:
-        for task in tasks:
-            yield _check_task(task)
-        return
-    workers = min(jobs, len(tasks))
-    with ProcessPoolExecutor(max_workers=workers) as pool:
-        # chunksize > 1 keeps the inter-process traffic low for many small files
-        chunk = max(1, min(16, len(tasks) // (workers * 4)))
-        yield from pool.map(_check_task, tasks, chunksize=chunk)
+BATCH_BYTES = 64 << 10  # input bytes per batch of files sent to a worker (a bigger file is a batch alone)
+
+
+def _batches(items: Iterator[_Item], size: int) -> Iterator[list[_Item]]:
+    """Consecutive items, up to ``size`` tasks and BATCH_BYTES of input a batch (with the items known
+    without checking between them)."""
+    batch: list[_Item] = []
+    tasks = 0
+    volume = 0
+    for item in items:
+        if item.task is not None:
+            try:
+                length = os.path.getsize(item.path)
+            except OSError:
+                length = 0
+            if tasks and volume + length > BATCH_BYTES:
+                yield batch
+                batch, tasks, volume = [], 0, 0
+            tasks += 1
+            volume += length
+        batch.append(item)
+        if tasks >= size:
+            yield batch
+            batch, tasks, volume = [], 0, 0
+    if batch:
+        yield batch
+
+
+def _finish(
+    item: _Item,
+    checked: tuple[FileResult, str | None] | None,
+    stdin_name: str,
+    cache: ResultCache | None,
+    progress: Callable[[FileResult], None] | None,
+) -> FileResult:
+    if item.stdin is not None:
+        return _check_stdin(item.stdin, stdin_name)
+    if checked is None:  # known before checking: a configuration error or the cache's
+        assert item.result is not None
+        if item.cached and progress is not None:
+            progress(item.result)
+        return item.result
+    result, digest = checked
+    if cache is not None and item.key is not None and digest is not None:
+        cache.put(item.path, item.key, result, digest)
+    if progress is not None:
+        progress(result)
+    return result
+
+
+def _check_stdin(linter: Linter, stdin_name: str) -> FileResult:
+    try:
+        return linter.check_source(Source(_stdin(), stdin_name, cut_long_lines=True))
+    except SourceError as exc:
+        return FileResult(stdin_name, error=str(exc))
+    except Exception as exc:  # a bug in gclint itself: one line, no traceback
+        detail = f"{type(exc).__name__}: {exc}".splitlines()[0][:200]
+        error = f"{stdin_name}: internal error while checking ({detail}); please report this"
+        return FileResult(stdin_name, error=error)
+
+
+def _check_tasks(tasks: list[tuple[str, Options]]) -> list[tuple[FileResult, str | None]]:
+    return [check_file(*task) for task in tasks]
 
 
 def _stdin():
@@ -405,6 +505,7 @@ def default_jobs() -> int:
 __all__ = [
     "collect",
     "run",
+    "results",
     "check_one",
     "options_for",
     "outside_walk",

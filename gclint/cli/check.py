@@ -161,7 +161,7 @@ def check(
     if quiet:
         _QUIET.append(True)
     from gclint import runner
-    from gclint.reports import MACHINE_FORMATS, ReportContext, formats
+    from gclint.reports import MACHINE_FORMATS, ReportContext, formats, reports
 
     if os.environ.get("PRE_COMMIT") == "1" and paths and "--" not in sys.argv[1:]:
         # pre-commit appends file names after the hook's args: without "--", a committed file named
@@ -274,6 +274,44 @@ def check(
 
     bar = progress_bar.ProgressBar(files) if progress_bar.wanted(progress, fmt, files) else None
     cache = None if (no_cache or fix or show_diff or add_noqa) else ResultCache(cache_dir)
+    if not (fix or show_diff or add_noqa):  # file by file: memory does not grow with the run
+        ctx = ReportContext(
+            tool_version=__version__, group=not no_group, suppressions=[n.describe() for n in suppressions]
+        )
+        report = reports(statistics)[fmt]
+        try:
+            from gclint.rules.base import all_rules
+
+            all_rules()
+            checked = runner.results(
+                files,
+                Options(),
+                overrides,
+                explicit_config=config_file,
+                jobs=jobs or (runner.default_jobs() if len(files) > 1 else 1),
+                stdin_name=stdin_filename or "-",
+                progress=bar.advance if bar is not None else None,
+                cache=cache,
+            )
+            tally, slim = _report(report, ctx, output, problems, checked, walked, bar)
+        except RuleError as exc:
+            _fail(str(exc))
+            return
+        finally:
+            if bar is not None:
+                bar.close()
+        for note in cache.notes if cache is not None else ():
+            _note(note)
+        if verbose or fmt not in MACHINE_FORMATS:  # after the report: a report that cannot be written is one line
+            from gclint.reports.notes import context_notes
+
+            for note in context_notes(slim, verbose=verbose):
+                _note(note)
+        if tally.unread:
+            sys.exit(2)
+        if not exit_zero and tally.worst is not None and tally.worst >= Severity.parse(fail_on):
+            sys.exit(1)
+        return
     try:
         from gclint.rules.base import all_rules
 
@@ -467,6 +505,81 @@ def _cap_jobs(jobs: int | None) -> int | None:
         _note(f"--jobs {jobs} is more than this computer can use; using {cap}")
         return cap
     return jobs
+
+
+class _Stdout:
+    """Standard output for a report written as the files are checked: when the reader has gone ("| head"),
+    the rest is dropped in silence (the run goes on: the exit code still tells)."""
+
+    def __init__(self) -> None:
+        self.gone = False
+
+    def write(self, text: str) -> None:
+        if not self.gone:
+            try:
+                sys.stdout.write(text)
+            except BrokenPipeError:
+                self._leave()
+
+    def flush(self) -> None:
+        if not self.gone:
+            try:
+                sys.stdout.flush()
+            except BrokenPipeError:
+                self._leave()
+
+    def _leave(self) -> None:
+        self.gone = True
+        _abandon_stdout()
+
+
+def _report(report_class, ctx, output: str | None, problems: list[FileResult], checked, walked: set[str], bar):
+    """Write the report as results come (``checked``, after ``problems``), keeping only the counts and, of
+    each file, what the notes need (not its findings).  Returns the ``Tally`` and those slim results.  A
+    report file is written to a temporary file renamed at the end: never half-written."""
+    from contextlib import nullcontext
+    from dataclasses import replace
+
+    from gclint import runner
+    from gclint.io import AtomicWriter, OutputError, TextOutput
+
+    slim: list[FileResult] = []
+
+    def above():  # the progress bar (on a terminal) steps aside while the report or an error is written
+        return bar.above() if bar is not None else nullcontext()
+
+    def feed(report) -> None:
+        for r in problems:
+            _error(r.error or "")
+            report.add(r)
+            slim.append(r)
+        for r in checked:
+            # a file found in a folder that is something else (a NetCDF .nc, an ANTLR .g): skipped, with a note
+            if runner.skippable(r, walked):
+                with above():
+                    _note(f"{r.error}: skipped")
+                continue
+            if r.error:
+                with above():
+                    _error(r.error)
+            with above():
+                report.add(r)
+            slim.append(replace(r, findings=[]) if r.findings else r)
+        report.close()
+
+    if output in (None, "-"):
+        out = _Stdout()
+        report = report_class(out, ctx)
+        feed(report)
+        out.flush()
+        return report.tally, slim
+    try:
+        with AtomicWriter(output) as writer:  # never through a link
+            report = report_class(TextOutput(writer), ctx)
+            feed(report)
+    except OutputError as exc:
+        _fail(f"{exc} (the report was not written)")
+    return report.tally, slim
 
 
 def _write_report(writer, results: list[FileResult], ctx, output: str | None) -> None:

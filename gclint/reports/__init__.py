@@ -43,5 +43,27 @@ def formats() -> dict[str, Writer]:
     }
 
 
+def reports(statistics: bool = False) -> dict[str, type]:
+    """The ``Report`` class of each format (``gclint.reports.stream``): written file by file.  With
+    ``statistics``, the ``--statistics`` report of the formats that have one (text formats and json)."""
+    from gclint.reports import github, html, json_report, junit, sarif, text
+
+    if statistics:  # the table (text) in every format that allows --statistics, JSON with json
+        return {name: text.StatisticsReport for name in ("text", "concise", "full", "grouped", "github")} | {
+            "json": json_report.JsonStatisticsReport
+        }
+    return {
+        "text": text.TextReport,
+        "concise": text.TextReport,
+        "full": text.FullReport,
+        "grouped": text.GroupedReport,
+        "json": json_report.JsonReport,
+        "sarif": sarif.SarifReport,
+        "github": github.GithubReport,
+        "junit": junit.JunitReport,
+        "html": html.HtmlReport,
+    }
+
+
 # Formats read by programs: no progress bar, nothing but the report on stdout.
 MACHINE_FORMATS = frozenset({"json", "sarif", "github", "junit", "html"})

@@ -13,6 +13,7 @@ from typing import TextIO
 
 from gclint.engine import FileResult
 from gclint.reports.common import human
+from gclint.reports.stream import Report
 from gclint.rules.base import Severity
 
 COMMANDS = {Severity.ERROR: "error", Severity.WARNING: "warning", Severity.INFO: "notice"}
@@ -31,12 +32,13 @@ def _command(kind: str, properties: dict[str, object], text: str) -> str:
     return f"::{kind} {props}::{escape_data(text)}" if props else f"::{kind}::{escape_data(text)}"
 
 
-def write(results: list[FileResult], out: TextIO, ctx) -> None:
-    for r in results:
+class GithubReport(Report):
+    def write_file(self, r: FileResult) -> None:
+        out = self.out
         path = human(r.path)
         if r.error:
             out.write(_command("error", {"file": path, "title": "gclint"}, human(r.error)) + "\n")
-            continue
+            return
         for f in r.findings:
             props: dict[str, object] = {"file": path, "line": f.line, "col": f.column}
             if f.end_column is not None and f.end_column > f.column:
@@ -45,3 +47,7 @@ def write(results: list[FileResult], out: TextIO, ctx) -> None:
             shown = human(f.message, keep_line_breaks=True)  # escape_data encodes line breaks as %0A
             text = f"{shown} ({f.name})" if f.name else shown
             out.write(_command(COMMANDS[f.severity], props, text) + "\n")
+
+
+def write(results: list[FileResult], out: TextIO, ctx) -> None:
+    GithubReport.write(results, out, ctx)

@@ -10,14 +10,18 @@ script carries a per-report nonce that its Content-Security-Policy requires.
 
 from __future__ import annotations
 
+import io
 import math
 import secrets as _random
 from dataclasses import dataclass, field
 from datetime import UTC, datetime
 from typing import TextIO
 
+from markupsafe import Markup
+
 from gclint.engine import FileResult
-from gclint.reports.common import codes_in, human, message, rule_docs, source_line, totals
+from gclint.reports.common import human, message, rule_docs, source_line
+from gclint.reports.stream import Report, Spool
 from gclint.reports.toolpath import Toolpath, read_toolpath
 
 PLOT_WIDTH = 640
@@ -152,14 +156,15 @@ class FileView:
     summary: list[str] = field(default_factory=list)  # the job summary (gclint summary), one fact a line
 
 
-# Findings listed per file: a page that a browser can open, and memory that stays bounded (the machine
-# formats list them all).
+# Findings listed per file, and in all: a page that a browser can open, and memory that stays bounded (the
+# machine formats list them all).
 HTML_FINDINGS = 2000
+HTML_TOTAL_FINDINGS = 20_000
 
 
-def _file_view(index: int, result: FileResult, plot_budget: int) -> FileView:
+def _file_view(index: int, result: FileResult, plot_budget: int, limit: int = HTML_FINDINGS) -> FileView:
     findings = []
-    for f in result.findings[:HTML_FINDINGS]:
+    for f in result.findings[: max(0, limit)]:
         line = source_line(f)
         start = max(0, f.column - 1)
         end = f.end_column - 1 if f.end_column is not None and f.end_column > f.column else start + 1
@@ -199,7 +204,7 @@ def _file_view(index: int, result: FileResult, plot_budget: int) -> FileView:
         read_as=human(result.read_as),
         error=human(result.error) if result.error is not None else None,
         weak=result.context is not None and result.context.weak,
-        omitted=max(0, len(result.findings) - HTML_FINDINGS),
+        omitted=len(result.findings) - len(findings),
         summary=_summary(result),
     )
 
@@ -220,40 +225,86 @@ def _summary(result: FileResult) -> list[str]:
     return [human(line.strip()) for line in facts]
 
 
-def render(results: list[FileResult], ctx, plot_budget: int = 6000) -> str:
+@dataclass
+class NavItem:
+    """What the page's head keeps of a file: its link and how many of its findings are listed."""
+
+    anchor: str
+    path: str
+    listed: int
+
+
+def _environment():
     from jinja2 import Environment, PackageLoader, StrictUndefined
 
-    env = Environment(
+    return Environment(
         loader=PackageLoader("gclint.reports", "templates"),
         autoescape=True,  # every file text is data, never markup (html, attributes, svg titles)
         undefined=StrictUndefined,
         trim_blocks=True,
         lstrip_blocks=True,
     )
-    template = env.get_template("report.html.j2")
-    files = [_file_view(i, r, plot_budget) for i, r in enumerate(results)]
-    docs = rule_docs(codes_in(results))
-    counts: dict[str, list[int]] = {}  # code -> [findings, files]
+
+
+class HtmlReport(Report):
+    """Each file's section is rendered as soon as the file is checked, into a temporary file; the page
+    (whose head holds the totals and a link to every file) is written at the end around the sections."""
+
+    plot_budget = 6000
+
+    def __init__(self, out: TextIO, ctx) -> None:
+        super().__init__(out, ctx)
+        self._env = _environment()
+        self._section = self._env.get_template("file.html.j2")
+        self._spool = Spool()
+        self._nav: list[NavItem] = []
+        self._listed = 0
+
+    def write_file(self, r: FileResult) -> None:
+        limit = min(HTML_FINDINGS, HTML_TOTAL_FINDINGS - self._listed)
+        view = _file_view(len(self._nav), r, self.plot_budget, limit)
+        self._listed += len(view.findings)
+        self._nav.append(NavItem(view.anchor, view.path, len(view.findings)))
+        self._spool.write(self._section.render(f=view, severity_colors=SEVERITY_COLORS) + "\n")
+
+    def close(self) -> None:
+        tally = self.tally
+        docs = rule_docs(set(tally.rows))
+        for code, doc in docs.items():
+            doc = dict(doc)
+            doc["count"] = tally.rows[code]["count"] if code in tally.rows else 0
+            doc["files"] = tally.code_files[code]
+            docs[code] = doc
+        nonce = _random.token_urlsafe(16)
+        marker = f"<!-- gclint sections {nonce} -->"
+        page = self._env.get_template("report.html.j2").render(
+            version=self.ctx.tool_version,
+            generated=datetime.now(UTC).strftime("%Y-%m-%d %H:%M UTC"),
+            files=self._nav,
+            sections=Markup(marker),
+            totals=tally.totals(),
+            unreadable=tally.unread,
+            rules=[docs[c] for c in sorted(docs)],
+            nonce=nonce,
+            severity_colors=SEVERITY_COLORS,
+        )
+        head, tail = page.split(marker, 1)
+        tail = tail[1:] if tail.startswith("\n") else tail  # each section ends its own line
+        self.out.write(head)
+        self._spool.copy_to(self.out)
+        self.out.write(tail)
+        self._spool.close()
+
+
+def render(results: list[FileResult], ctx, plot_budget: int = 6000) -> str:
+    out = io.StringIO()
+    report = HtmlReport(out, ctx)
+    report.plot_budget = plot_budget
     for r in results:
-        for code in {f.code for f in r.findings}:
-            counts.setdefault(code, [0, 0])[1] += 1
-        for f in r.findings:
-            counts.setdefault(f.code, [0, 0])[0] += 1
-    for code, doc in docs.items():
-        doc = dict(doc)
-        doc["count"], doc["files"] = counts.get(code, [0, 0])
-        docs[code] = doc
-    return template.render(
-        version=ctx.tool_version,
-        generated=datetime.now(UTC).strftime("%Y-%m-%d %H:%M UTC"),
-        files=files,
-        totals=totals(results),
-        unreadable=sum(1 for r in results if r.error),
-        rules=[docs[c] for c in sorted(docs)],
-        nonce=_random.token_urlsafe(16),
-        severity_colors=SEVERITY_COLORS,
-    )
+        report.add(r)
+    report.close()
+    return out.getvalue()
 
 
 def write(results: list[FileResult], out: TextIO, ctx) -> None:
-    out.write(render(results, ctx))
+    HtmlReport.write(results, out, ctx)

@@ -11,25 +11,42 @@ from typing import TextIO
 
 from gclint.engine import FileResult
 from gclint.reports.common import json_safe, mask
+from gclint.reports.stream import Report
+
+
+class JsonReport(Report):
+    """The array is written element by element, as each file is checked."""
+
+    def __init__(self, out: TextIO, ctx) -> None:
+        super().__init__(out, ctx)
+        self._encode = json.JSONEncoder(ensure_ascii=False).encode
+        self._started = False
+
+    def write_file(self, r: FileResult) -> None:
+        encode, out = self._encode, self.out
+        for f in r.findings:
+            out.write(",\n  " if self._started else "[\n  ")
+            self._started = True
+            out.write(json_safe(encode(_masked(f.to_dict()))))
+
+    def close(self) -> None:
+        self.out.write("\n]\n" if self._started else "[]\n")
 
 
 def write(results: list[FileResult], out: TextIO, ctx) -> None:
-    encode = json.JSONEncoder(ensure_ascii=False).encode
-    findings = [json_safe(encode(_masked(f.to_dict()))) for r in results for f in r.findings]
-    if not findings:
-        out.write("[]\n")
-        return
-    out.write("[\n  ")
-    out.write(",\n  ".join(findings))
-    out.write("\n]\n")
+    JsonReport.write(results, out, ctx)
+
+
+class JsonStatisticsReport(Report):
+    """``--statistics --format json``: one JSON array of per-code counts (as ruff)."""
+
+    def close(self) -> None:
+        json.dump(self.tally.statistics(), self.out, ensure_ascii=False, indent=2)
+        self.out.write("\n")
 
 
 def write_statistics(results: list[FileResult], out: TextIO, ctx) -> None:
-    """``--statistics --format json``: one JSON array of per-code counts (as ruff)."""
-    from gclint.reports.text import statistics
-
-    json.dump(statistics(results), out, ensure_ascii=False, indent=2)
-    out.write("\n")
+    JsonStatisticsReport.write(results, out, ctx)
 
 
 def _masked(data: dict) -> dict:

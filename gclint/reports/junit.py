@@ -16,77 +16,120 @@ from typing import TextIO
 
 from gclint.engine import FileResult
 from gclint.reports.common import message, printable, source_line
+from gclint.reports.stream import Report, Spool
+
+
+def _suite(index: int, r: FileResult, timestamp: str, hostname: str) -> tuple[ET.Element, int, int, int]:
+    """One file's ``<testsuite>`` and its numbers of tests, failures and errors."""
+    path = printable(r.path)
+    suite = ET.Element(
+        "testsuite", name=path, id=str(index), hostname=hostname, timestamp=timestamp, time="0", skipped="0"
+    )
+    tests = failures = errors = 0
+    if r.dialect:
+        props = ET.SubElement(suite, "properties")
+        ET.SubElement(props, "property", name="dialect", value=r.dialect)
+        ET.SubElement(props, "property", name="read_as", value=printable(r.read_as))
+        ET.SubElement(props, "property", name="dialect_reason", value=printable(r.dialect_reason))
+        if r.context is not None:
+            ET.SubElement(props, "property", name="evidence", value=r.context.strength)
+            if r.context.printer is not None:
+                ET.SubElement(props, "property", name="printer_assumed", value=str(r.context.printer_assumed).lower())
+                ET.SubElement(props, "property", name="printer_from", value=r.context.printer_from)
+        ET.SubElement(props, "property", name="lines", value=str(r.lines))
+    if r.error:
+        case = ET.SubElement(suite, "testcase", name="read", classname=path, file=path, time="0")
+        error = ET.SubElement(case, "error", type="read-error", message=printable(r.error))
+        error.text = printable(r.error)
+        tests, errors = 1, 1
+    elif not r.findings:
+        ET.SubElement(suite, "testcase", name="gclint", classname=path, file=path, time="0")
+        tests = 1
+    for f in r.findings:
+        text = message(f)
+        case = ET.SubElement(
+            suite,
+            "testcase",
+            name=f"{f.code} at line {f.line}, column {f.column}",
+            classname=path,
+            file=path,
+            line=str(f.line),
+            time="0",
+        )
+        failure = ET.SubElement(case, "failure", type=f.code, message=text)
+        body = [f"{path}:{f.line}:{f.column}: {f.code} [{f.severity.label}] {text}"]
+        line = source_line(f)
+        if line is not None:
+            body.append(f"{f.line:>6} | {line}")
+        if f.fix is not None:
+            body.append(f"fix ({'safe' if f.fix.safe else 'unsafe'}): {printable(f.fix.message)}")
+        failure.text = "\n".join(body)
+        tests += 1
+        failures += 1
+    suite.set("tests", str(tests))
+    suite.set("failures", str(failures))
+    suite.set("errors", str(errors))
+    return suite, tests, failures, errors
+
+
+def _stamp() -> tuple[str, str]:
+    timestamp = datetime.now(UTC).replace(microsecond=0).strftime("%Y-%m-%dT%H:%M:%S")
+    return timestamp, printable(socket.gethostname() or "localhost")
 
 
 def build(results: list[FileResult], ctx) -> ET.Element:
-    timestamp = datetime.now(UTC).replace(microsecond=0).strftime("%Y-%m-%dT%H:%M:%S")
-    hostname = printable(socket.gethostname() or "localhost")
+    """The whole document as one tree (for tests and programs; ``write`` streams it)."""
+    timestamp, hostname = _stamp()
     suites = ET.Element("testsuites", name="gclint")
-    total_tests = total_failures = total_errors = 0
+    totals = [0, 0, 0]
     for index, r in enumerate(results):
-        path = printable(r.path)
-        suite = ET.SubElement(
-            suites, "testsuite", name=path, id=str(index), hostname=hostname, timestamp=timestamp, time="0", skipped="0"
-        )
-        tests = failures = errors = 0
-        if r.dialect:
-            props = ET.SubElement(suite, "properties")
-            ET.SubElement(props, "property", name="dialect", value=r.dialect)
-            ET.SubElement(props, "property", name="read_as", value=printable(r.read_as))
-            ET.SubElement(props, "property", name="dialect_reason", value=printable(r.dialect_reason))
-            if r.context is not None:
-                ET.SubElement(props, "property", name="evidence", value=r.context.strength)
-                if r.context.printer is not None:
-                    ET.SubElement(
-                        props, "property", name="printer_assumed", value=str(r.context.printer_assumed).lower()
-                    )
-                    ET.SubElement(props, "property", name="printer_from", value=r.context.printer_from)
-            ET.SubElement(props, "property", name="lines", value=str(r.lines))
-        if r.error:
-            case = ET.SubElement(suite, "testcase", name="read", classname=path, file=path, time="0")
-            error = ET.SubElement(case, "error", type="read-error", message=printable(r.error))
-            error.text = printable(r.error)
-            tests, errors = 1, 1
-        elif not r.findings:
-            ET.SubElement(suite, "testcase", name="gclint", classname=path, file=path, time="0")
-            tests = 1
-        for f in r.findings:
-            text = message(f)
-            case = ET.SubElement(
-                suite,
-                "testcase",
-                name=f"{f.code} at line {f.line}, column {f.column}",
-                classname=path,
-                file=path,
-                line=str(f.line),
-                time="0",
-            )
-            failure = ET.SubElement(case, "failure", type=f.code, message=text)
-            body = [f"{path}:{f.line}:{f.column}: {f.code} [{f.severity.label}] {text}"]
-            line = source_line(f)
-            if line is not None:
-                body.append(f"{f.line:>6} | {line}")
-            if f.fix is not None:
-                body.append(f"fix ({'safe' if f.fix.safe else 'unsafe'}): {printable(f.fix.message)}")
-            failure.text = "\n".join(body)
-            tests += 1
-            failures += 1
-        suite.set("tests", str(tests))
-        suite.set("failures", str(failures))
-        suite.set("errors", str(errors))
-        total_tests += tests
-        total_failures += failures
-        total_errors += errors
-    suites.set("tests", str(total_tests))
-    suites.set("failures", str(total_failures))
-    suites.set("errors", str(total_errors))
-    suites.set("time", "0")
+        suite, *numbers = _suite(index, r, timestamp, hostname)
+        suites.append(suite)
+        totals = [a + b for a, b in zip(totals, numbers, strict=True)]
+    _set_totals(suites, *totals)
     return suites
 
 
+def _set_totals(suites: ET.Element, tests: int, failures: int, errors: int) -> None:
+    suites.set("tests", str(tests))
+    suites.set("failures", str(failures))
+    suites.set("errors", str(errors))
+    suites.set("time", "0")
+
+
+class JunitReport(Report):
+    """Each file's ``<testsuite>`` is serialized as soon as it is checked, into a temporary file; the root
+    element (whose attributes are the totals) is written at the end, around them."""
+
+    def __init__(self, out: TextIO, ctx) -> None:
+        super().__init__(out, ctx)
+        self._stamp = _stamp()
+        self._spool = Spool()
+        self._index = 0
+        self._totals = [0, 0, 0]
+
+    def write_file(self, r: FileResult) -> None:
+        suite, *numbers = _suite(self._index, r, *self._stamp)
+        self._index += 1
+        self._totals = [a + b for a, b in zip(self._totals, numbers, strict=True)]
+        ET.indent(suite, level=1)
+        self._spool.write("\n  " + ET.tostring(suite, encoding="unicode"))
+
+    def close(self) -> None:
+        out = self.out
+        root = ET.Element("testsuites", name="gclint")
+        _set_totals(root, *self._totals)
+        out.write('<?xml version="1.0" encoding="UTF-8"?>\n')
+        if self._spool.empty:
+            out.write(ET.tostring(root, encoding="unicode"))
+        else:
+            head = ET.tostring(root, encoding="unicode")
+            out.write(head[: -len(" />")] + ">")
+            self._spool.copy_to(out)
+            out.write("\n</testsuites>")
+        out.write("\n")
+        self._spool.close()
+
+
 def write(results: list[FileResult], out: TextIO, ctx) -> None:
-    root = build(results, ctx)
-    ET.indent(root)
-    out.write('<?xml version="1.0" encoding="UTF-8"?>\n')
-    out.write(ET.tostring(root, encoding="unicode"))
-    out.write("\n")
+    JunitReport.write(results, out, ctx)

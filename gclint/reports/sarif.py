@@ -9,6 +9,7 @@ notifications, and the invocation is then marked unsuccessful.
 from __future__ import annotations
 
 import hashlib
+import io
 import json
 import os
 from pathlib import PurePosixPath, PureWindowsPath
@@ -16,7 +17,8 @@ from typing import TextIO
 from urllib.parse import quote
 
 from gclint.engine import FileResult
-from gclint.reports.common import clean, codes_in, mask, message, rule_docs, source_line
+from gclint.reports.common import clean, mask, message, rule_docs, source_line
+from gclint.reports.stream import Report, Spool
 from gclint.rules.base import Finding, Severity, project_url
 
 SCHEMA = "https://docs.oasis-open.org/sarif/sarif/v2.1.0/errata01/os/schemas/sarif-schema-2.1.0.json"
@@ -47,9 +49,9 @@ def _raw(path: str) -> bytes:
     return path.encode("utf-8", "surrogateescape")
 
 
-def _rule_descriptor(code: str, doc: dict | None, finding: Finding | None) -> dict:
+def _rule_descriptor(code: str, doc: dict | None, name: str | None) -> dict:
     if doc is None:  # a code with no registered rule (e.g. a plugin that is gone): describe it briefly
-        name = finding.name if finding is not None and finding.name else code
+        name = name or code
         return {"id": code, "name": name, "shortDescription": {"text": name}}
     help_parts = [doc["summary"]]
     if doc["explanation"]:
@@ -90,34 +92,35 @@ def _fingerprint(f: Finding) -> str:
     return hashlib.sha256(data).hexdigest()[:32]
 
 
-def build(results: list[FileResult], ctx) -> dict:
-    """The SARIF log as a dict."""
-    codes = sorted(codes_in(results))
-    docs = rule_docs(set(codes))
-    first: dict[str, Finding] = {}
-    for r in results:
-        for f in r.findings:
-            first.setdefault(f.code, f)
-    rules = [_rule_descriptor(code, docs.get(code), first.get(code)) for code in codes]
-    index = {code: i for i, code in enumerate(codes)}
+_RESULTS = "\x00results\x00"  # where the spooled results go in the document
 
-    artifacts: list[dict] = []
-    artifact_index: dict[str, int] = {}
-    results_out: list[dict] = []
-    notifications: list[dict] = []
-    for r in results:
+
+class SarifReport(Report):
+    """Each result is serialized as soon as its file is checked, into a temporary file (one line each);
+    the rule table (which codes occur, each result's ``ruleIndex``) needs them all, so the document is
+    written at the end: its head, then the spooled results, indented as ``json.dump(indent=2)`` does."""
+
+    def __init__(self, out: TextIO, ctx) -> None:
+        super().__init__(out, ctx)
+        self._spool = Spool()
+        self._encode = json.JSONEncoder(ensure_ascii=False).encode
+        self.artifacts: list[dict] = []
+        self._artifact_index: dict[str, int] = {}
+        self.notifications: list[dict] = []
+
+    def write_file(self, r: FileResult) -> None:
         uri, base = artifact_uri(r.path)
         if r.error:
-            notifications.append(
+            self.notifications.append(
                 {
                     "level": "error",
                     "message": {"text": clean(r.error)},
                     "locations": [{"physicalLocation": {"artifactLocation": _location(uri, base)}}],
                 }
             )
-            continue
-        if r.path not in artifact_index:
-            artifact_index[r.path] = len(artifacts)
+            return
+        if r.path not in self._artifact_index:
+            self._artifact_index[r.path] = len(self.artifacts)
             artifact: dict = {"location": _location(uri, base), "sourceLanguage": "gcode"}
             if r.dialect:
                 artifact["properties"] = {
@@ -127,7 +130,7 @@ def build(results: list[FileResult], ctx) -> dict:
                     "lines": r.lines,
                     **_context_properties(r),
                 }
-            artifacts.append(artifact)
+            self.artifacts.append(artifact)
         for f in r.findings:
             region: dict = {"startLine": max(1, f.line), "startColumn": max(1, f.column)}
             if f.end_column is not None and f.end_column > f.column:
@@ -136,10 +139,9 @@ def build(results: list[FileResult], ctx) -> dict:
             if snippet is not None:
                 region["snippet"] = {"text": snippet}
             location = _location(uri, base)
-            location["index"] = artifact_index[r.path]
+            location["index"] = self._artifact_index[r.path]
             result: dict = {
                 "ruleId": f.code,
-                "ruleIndex": index[f.code],
                 "level": LEVELS[f.severity],
                 "message": {"text": message(f)},
                 "locations": [{"physicalLocation": {"artifactLocation": location, "region": region}}],
@@ -147,29 +149,60 @@ def build(results: list[FileResult], ctx) -> dict:
             }
             if f.fix is not None:
                 result["properties"] = {"fix": f.fix.message, "fixApplicability": "safe" if f.fix.safe else "unsafe"}
-            results_out.append(result)
+            self._spool.write(self._encode(result) + "\n")
 
-    invocation: dict = {"executionSuccessful": not notifications}
-    if notifications:
-        invocation["toolExecutionNotifications"] = notifications
-    run: dict = {
-        "tool": {
-            "driver": {
-                "name": "gclint",
-                "version": ctx.tool_version or "0",
-                "semanticVersion": ctx.tool_version or "0.0.0",
-                **({"informationUri": home} if (home := project_url("homepage", "repository", "source")) else {}),
-                "rules": rules,
-            }
-        },
-        "invocations": [invocation],
-        "artifacts": artifacts,
-        "results": results_out,
-        "columnKind": "unicodeCodePoints",
-    }
-    if any(a["location"].get("uriBaseId") for a in artifacts):
-        run["originalUriBaseIds"] = {"%SRCROOT%": {"description": {"text": "The folder gclint ran in."}}}
-    return {"$schema": SCHEMA, "version": "2.1.0", "runs": [run]}
+    def close(self) -> None:
+        codes = sorted(self.tally.rows)
+        docs = rule_docs(set(codes))
+        rules = [_rule_descriptor(code, docs.get(code), self.tally.rows[code]["name"]) for code in codes]
+        index = {code: i for i, code in enumerate(codes)}
+        artifacts, notifications = self.artifacts, self.notifications
+        invocation: dict = {"executionSuccessful": not notifications}
+        if notifications:
+            invocation["toolExecutionNotifications"] = notifications
+        run: dict = {
+            "tool": {
+                "driver": {
+                    "name": "gclint",
+                    "version": self.ctx.tool_version or "0",
+                    "semanticVersion": self.ctx.tool_version or "0.0.0",
+                    **({"informationUri": home} if (home := project_url("homepage", "repository", "source")) else {}),
+                    "rules": rules,
+                }
+            },
+            "invocations": [invocation],
+            "artifacts": artifacts,
+            "results": _RESULTS,
+            "columnKind": "unicodeCodePoints",
+        }
+        if any(a["location"].get("uriBaseId") for a in artifacts):
+            run["originalUriBaseIds"] = {"%SRCROOT%": {"description": {"text": "The folder gclint ran in."}}}
+        document = json.dumps({"$schema": SCHEMA, "version": "2.1.0", "runs": [run]}, indent=2, ensure_ascii=False)
+        head, tail = document.split(json.dumps(_RESULTS, ensure_ascii=False), 1)
+        out = self.out
+        out.write(head)
+        if self._spool.empty:
+            out.write("[]")
+        else:
+            out.write("[")
+            separator = "\n"
+            for line in self._spool.lines():
+                data = json.loads(line)
+                result = {"ruleId": data["ruleId"], "ruleIndex": index[data["ruleId"]], **data}
+                text = json.dumps(result, indent=2, ensure_ascii=False).replace("\n", "\n        ")
+                out.write(separator + "        " + text)
+                separator = ",\n"
+            out.write("\n      ]")
+        out.write(tail)
+        out.write("\n")
+        self._spool.close()
+
+
+def build(results: list[FileResult], ctx) -> dict:
+    """The SARIF log as a dict (``write`` streams it)."""
+    out = io.StringIO()
+    SarifReport.write(results, out, ctx)
+    return json.loads(out.getvalue())
 
 
 def _location(uri: str, base: str | None) -> dict:
@@ -180,8 +213,7 @@ def _location(uri: str, base: str | None) -> dict:
 
 
 def write(results: list[FileResult], out: TextIO, ctx) -> None:
-    json.dump(build(results, ctx), out, indent=2, ensure_ascii=False)
-    out.write("\n")
+    SarifReport.write(results, out, ctx)
 
 
 def _context_properties(r) -> dict:

@@ -2,23 +2,32 @@
 
 from __future__ import annotations
 
-from collections import Counter
 from dataclasses import replace
 from typing import TextIO
 
 from gclint.engine import FileResult
 from gclint.reports.common import Elided, grouped, human, message
+from gclint.reports.stream import Report, Tally
 
 
-def write(results: list[FileResult], out: TextIO, ctx) -> None:
-    for result in results:
+class TextReport(Report):
+    """``--format text`` (and ``concise``): one line per finding, then the totals."""
+
+    def write_file(self, result: FileResult) -> None:
+        out, ctx = self.out, self.ctx
         path = human(result.path)
         for f in grouped(result.findings, ctx.group):
             if isinstance(f, Elided):
                 out.write(f"{path}: {f}\n")
                 continue
             out.write(f"{path}:{f.line}:{f.column}: {f.code}{_mark(f, ctx)} {message(f)}\n")
-    write_summary(results, out, ctx)
+
+    def close(self) -> None:
+        write_summary(self.tally, self.out, self.ctx)
+
+
+def write(results: list[FileResult], out: TextIO, ctx) -> None:
+    TextReport.write(results, out, ctx)
 
 
 def _mark(f, ctx) -> str:
@@ -27,27 +36,17 @@ def _mark(f, ctx) -> str:
     return f" [{f.severity.label}]{fixable}"
 
 
-def _fixable(f, ctx) -> bool:
-    return f.fix is not None and f.fix.safe and ctx.show_fixes
-
-
-def write_summary(results: list[FileResult], out: TextIO, ctx) -> None:
+def write_summary(results: list[FileResult] | Tally, out: TextIO, ctx) -> None:
     """Statistics (with --statistics), then the totals line shared by the text formats."""
-    total = Counter()
-    fixable = 0
-    files_with = 0
-    for result in results:
-        if result.findings:
-            files_with += 1
-        for f in result.findings:
-            total[f.severity.label] += 1
-            if _fixable(f, ctx):
-                fixable += 1
+    tally = results if isinstance(results, Tally) else Tally.of(results)
+    total = tally.severity
+    fixable = tally.fixable if ctx.show_fixes else 0
+    files_with = tally.files_with
     if ctx.statistics:
-        write_statistics(results, out)
+        write_statistics(tally, out)
         for note in ctx.suppressions:
             out.write(f"{'-':>7}  {human(note)}\n")
-    n = sum(total.values())
+    n = tally.total
     parts = [f"{total[k]} {k}{'s' if total[k] != 1 else ''}" for k in ("error", "warning", "info") if total[k]]
     files = f" in {files_with} file{'s' if files_with != 1 else ''}" if n else ""
     if ctx.fixed is not None and (ctx.fixed or n):  # --fix: ruff's "Found 3 errors (2 fixed, 1 remaining)."
@@ -57,26 +56,26 @@ def write_summary(results: list[FileResult], out: TextIO, ctx) -> None:
         out.write(f"Found {found} finding{'s' if found != 1 else ''} ({ctx.fixed} fixed, {remaining}).\n")
     elif n:
         out.write(f"Found {n} finding{'s' if n != 1 else ''} ({', '.join(parts)}){files}.\n")
-    elif any(r.error is not None for r in results):
+    elif tally.unread:
         # never "All checks passed" when something was not checked (an unreadable file or folder)
-        unread = sum(1 for r in results if r.error is not None)
-        checked = len(results) - unread
+        unread = tally.unread
+        checked = tally.files - unread
         out.write(
             f"No findings in the {checked} file{'s' if checked != 1 else ''} checked; {unread} "
             f"{'paths' if unread != 1 else 'path'} could not be checked (see above).\n"
         )
-    elif results:
+    elif tally.files:
         out.write("All checks passed.\n")
     if n and fixable and ctx.fixed is None:
         out.write(f"[*] {fixable} fixable with --fix.\n")
-    checked_as = read_as_line(results)
+    checked_as = read_as_line(tally)
     if checked_as:
         out.write(checked_as + "\n")
 
 
-def read_as_line(results: list[FileResult]) -> str:
+def read_as_line(results: list[FileResult] | Tally) -> str:
     """``Checked as hyrel v5, printer 30m (assumed).`` or, for a mix, each label with its file count."""
-    labels = Counter(r.read_as for r in results if r.error is None and r.read_as)
+    labels = results.labels if isinstance(results, Tally) else Tally.of(results).labels
     if not labels:
         return ""
     if len(labels) == 1:
@@ -85,29 +84,13 @@ def read_as_line(results: list[FileResult]) -> str:
     return "Checked as: " + "; ".join(parts) + "."
 
 
-def statistics(results: list[FileResult]) -> list[dict]:
+def statistics(results: list[FileResult] | Tally) -> list[dict]:
     """Counts per code, most frequent first (``ruff --statistics``): code, name, severity, count,
     fixable (how many have a safe fix), first (where the first one is)."""
-    rows: dict[str, dict] = {}
-    for result in results:
-        for f in result.findings:
-            row = rows.get(f.code)
-            if row is None:
-                row = rows[f.code] = {
-                    "code": f.code,
-                    "name": f.name,
-                    "severity": f.severity.label,
-                    "count": 0,
-                    "fixable": 0,
-                    "first": f"{f.path}:{f.line}",
-                }
-            row["count"] += 1
-            if f.fix is not None and f.fix.safe:
-                row["fixable"] += 1
-    return sorted(rows.values(), key=lambda r: (-r["count"], r["code"]))
+    return (results if isinstance(results, Tally) else Tally.of(results)).statistics()
 
 
-def write_statistics(results: list[FileResult], out: TextIO) -> None:
+def write_statistics(results: list[FileResult] | Tally, out: TextIO) -> None:
     """The statistics table (``--statistics``), ``[*]`` on codes with safe fixes."""
     rows = statistics(results)
     name_width = max((len(row["name"]) for row in rows), default=0)
@@ -120,16 +103,24 @@ def write_statistics(results: list[FileResult], out: TextIO) -> None:
         )
 
 
-def write_statistics_report(results: list[FileResult], out: TextIO, ctx) -> None:
+class StatisticsReport(Report):
     """``--statistics`` in the human formats: the table and the totals, not every finding."""
-    write_summary(results, out, replace(ctx, statistics=True))
+
+    def close(self) -> None:
+        write_summary(self.tally, self.out, replace(self.ctx, statistics=True))
 
 
-def write_full(results: list[FileResult], out: TextIO, ctx) -> None:
+def write_statistics_report(results: list[FileResult], out: TextIO, ctx) -> None:
+    StatisticsReport.write(results, out, ctx)
+
+
+class FullReport(Report):
     """``--format full``: each finding with its source line and a caret under the columns it covers."""
-    from gclint.reports.common import source_line
 
-    for result in results:
+    def write_file(self, result: FileResult) -> None:
+        from gclint.reports.common import source_line
+
+        out, ctx = self.out, self.ctx
         path = human(result.path)
         for f in grouped(result.findings, ctx.group):
             if isinstance(f, Elided):
@@ -148,14 +139,22 @@ def write_full(results: list[FileResult], out: TextIO, ctx) -> None:
                 fix = human(f.fix.message)
                 out.write(f" {' ' * len(str(f.line))} = fix{'' if f.fix.safe else ' (unsafe)'}: {fix}\n")
             out.write("\n")
-    write_summary(results, out, ctx)
+
+    def close(self) -> None:
+        write_summary(self.tally, self.out, self.ctx)
 
 
-def write_grouped(results: list[FileResult], out: TextIO, ctx) -> None:
+def write_full(results: list[FileResult], out: TextIO, ctx) -> None:
+    FullReport.write(results, out, ctx)
+
+
+class GroupedReport(Report):
     """``--format grouped``: findings under their file's name, like ``ruff --output-format grouped``."""
-    for result in results:
+
+    def write_file(self, result: FileResult) -> None:
         if not result.findings:
-            continue
+            return
+        out, ctx = self.out, self.ctx
         out.write(f"{human(result.path)}:\n")
         width = max(len(f"{f.line}:{f.column}") for f in result.findings)
         for f in grouped(result.findings, ctx.group):
@@ -165,4 +164,10 @@ def write_grouped(results: list[FileResult], out: TextIO, ctx) -> None:
             where = f"{f.line}:{f.column}"
             out.write(f"  {where:<{width}} {f.code}{_mark(f, ctx)} {message(f)}\n")
         out.write("\n")
-    write_summary(results, out, ctx)
+
+    def close(self) -> None:
+        write_summary(self.tally, self.out, self.ctx)
+
+
+def write_grouped(results: list[FileResult], out: TextIO, ctx) -> None:
+    GroupedReport.write(results, out, ctx)

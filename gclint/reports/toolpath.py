@@ -22,13 +22,17 @@ from gclint.syntax.source import Source, SourceError
 _WORKING = frozenset({"G1", "G2", "G3", "G2.1", "G3.1", "G2.2", "G3.2", "G2.3", "G3.3", "G81"})
 _MOTION = _WORKING | {"G0", "G28", "G92"}
 MAX_MARKERS = 2000
+# Heads drawn each on its own; the moves of any further head (a job may name a million tools) are drawn
+# together as one more path, so that memory and the page stay bounded.
+MAX_HEADS = 64
+OTHER_HEADS = "other"
 
 
 @dataclass
 class HeadPath:
     """The sampled moves of one head: ``(x, y, working)``; ``working`` is the move that ends there."""
 
-    key: int | None
+    key: int | str | None
     label: str
     points: list[tuple[float, float, bool]] = field(default_factory=list)
     moves: int = 0  # moves seen (before sampling)
@@ -71,7 +75,7 @@ class Marker:
 
 @dataclass
 class Toolpath:
-    heads: dict[int | None, HeadPath] = field(default_factory=dict)
+    heads: dict[int | str | None, HeadPath] = field(default_factory=dict)
     markers: list[Marker] = field(default_factory=list)
     lines: int = 0
     error: str | None = None
@@ -151,6 +155,12 @@ def read_toolpath(
                     head = state.tool
                     if moved:
                         path_of = heads.get(head)
+                        if path_of is None and len(heads) >= MAX_HEADS:
+                            head = OTHER_HEADS
+                            path_of = heads.get(head)
+                            if path_of is None:
+                                label = f"other heads (beyond the first {MAX_HEADS}, drawn together)"
+                                path_of = heads[head] = HeadPath(head, label)
                         if path_of is None:
                             path_of = heads[head] = HeadPath(head, head_label(head, dialect.family))
                         if head != last_head and last_xy is not None:
