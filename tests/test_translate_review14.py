@@ -3,6 +3,8 @@ without its fix."""
 
 from __future__ import annotations
 
+import pytest
+
 from .test_translate_tables import translate
 
 
@@ -37,3 +39,31 @@ def test_1_velocity_extrusion_needs_a_job_without_a_moves() -> None:
 def test_1_g22_in_a_job_with_a_moves_is_a_retract() -> None:
     out, result = translate("machinekit", "G21 G90\nG1 X1 Y1 Z0.2 A1 F600\nG22\nG1 X5 Y5\nG23\n")
     assert "G1 X5 Y5" in out.splitlines() and not any("velocity" in m for m in _codes(result, "TR003"))
+
+
+# -- (2) after G28 (Marlin/RRF): the workspace and the G92 offsets of the axes not homed ------------------
+
+WCS = "M83\nM104 S200\nM109 S200\nG28\nG55\nG1 X10 Y10 Z1 F600\nG1 X15 E1\nG28 X\nG1 X20 E1 F600\n"
+G92 = "M83\nM104 S200\nM109 S200\nG28\nG1 X10 Y10 Z1 F600\nG1 X15 E1\nG92 Z5\nG1 X25 E1\nG28 X Y\nG1 X30 Z6 E1\n"
+
+
+@pytest.mark.parametrize("dialect", ["marlin", "reprap"])
+def test_2_g28_invokes_the_workspace_again(dialect: str) -> None:
+    out, _ = translate(dialect, WCS)
+    lines = out.splitlines()
+    home = lines.index("G28 X0")
+    assert lines[home + 1 : home + 3] == ["G55", "T0"], lines
+
+
+@pytest.mark.parametrize("dialect", ["marlin", "reprap"])
+def test_2_g28_sets_the_g92_offset_of_an_axis_not_homed_again(dialect: str) -> None:
+    out, result = translate(dialect, G92)
+    lines = out.splitlines()
+    home = lines.index("G28 X0 Y0", lines.index("G92 Z5"))
+    assert lines[home + 1 : home + 3] == ["T0", "G92 Z5"], lines
+    assert _codes(result, "TR004")
+
+
+def test_2_an_axis_the_source_homes_gets_no_offset_back() -> None:
+    out, _ = translate("marlin", "G28\nG1 X1 Y1 Z1 F600\nG92 Z5\nG28\nG1 X2\n")
+    assert out.count("G92 Z5") == 1  # the bare G28 homes Z in the source: its offset is gone there too

@@ -116,6 +116,7 @@ class HyrelTranslator(LineWriter, Heads, Program, Motion, ArcMoves, Modal, Spind
         self.wcs = self.DEFAULT_WORKSPACE or "G54"
         self.wcs_selected = self.DEFAULT_WORKSPACE is not None
         self.g53_next = False  # Carvera: a G53 alone on its line applies to the next G0/G1
+        self.g92_axes: set[str] = set()  # X Y Z given a G92 offset since they were last homed (G92.1 clears)
         self.tools = SourceTools()  # what the source firmware believes about its tools (tools.py)
         self.sync_due = True  # (a tool change; the first working move) carry set-point, fan, flow before it
         # native flow: the layer height Hyrel computes the flow with (M756), per layer (motion.py)

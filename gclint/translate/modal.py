@@ -149,6 +149,7 @@ class Modal:
         if not params:
             self.remove(cmd, TR_NOTE, "G92 without axes changes nothing here; dropped", key="G92-bare")
             return
+        self.g92_axes.update(a for a in "XYZ" if a in params)
         values: dict[str, str] = {}
         drop = ""
         ext = self.EXTRUDER
