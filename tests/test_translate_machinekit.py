@@ -122,3 +122,11 @@ def test_machinekit_file_without_a_tool_gets_one() -> None:
 def test_machinekit_subroutine_is_untranslatable() -> None:
     _, codes = translate_rows("machinekit", "o<m104> sub\n#<i> = 1\nM68 E#500 Q#<P>\no<m104> endsub", prelude="")
     assert codes == ["TR005"]
+
+
+@pytest.mark.parametrize("source", ["machinekit", "carvera"])
+def test_a_tool_number_that_is_no_number_is_reported_not_a_crash(source: str) -> None:
+    """Hypothesis found "T--0" (accepted by a strip-then-isdigit test, refused by int())."""
+    for word in ("T--0", "T²"):
+        out, result = translate(source, f"{word} M6\nG1 X1 F100\n")
+        assert "G1 X1" in out and result.findings, word

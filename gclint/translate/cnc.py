@@ -5,6 +5,8 @@ the end of program codes.  research/dialects.md 2.2 and 2.3.
 
 from __future__ import annotations
 
+import re
+
 from typing import ClassVar
 
 from gclint.syntax.nodes import Command
@@ -12,6 +14,7 @@ from gclint.translate.base import HyrelTranslator
 from gclint.translate.output import rewrite
 from gclint.translate.words import fast_float
 
+_TOOL_NUMBER = re.compile(r"-?[0-9]{1,6}")  # (ASCII digits: str.isdigit() also takes "²")
 # The rows Machinekit and Carvera share (the rows every source shares are HyrelTranslator.HANDLERS).
 CNC_HANDLERS: dict[str, str] = {
     "G4": "dwell_seconds",  # G4 P is seconds (LinuxCNC, Carvera grbl mode); Hyrel P is milliseconds
@@ -53,7 +56,7 @@ class CncTranslator(HyrelTranslator):
 
     def tool_command(self, cmd: Command) -> None:
         number = (cmd.code or "T")[1:]
-        if not number.lstrip("-").isdigit() or len(number) > 6:
+        if _TOOL_NUMBER.fullmatch(number) is None:  # (not "--0", which int() refuses)
             self.untranslatable(cmd, "a tool given by an expression cannot be translated", key="T?")
             return
         # LinuxCNC and Carvera: T prepares the tool, M6 changes to it (T6M6)
