@@ -67,3 +67,19 @@ def test_2_g28_sets_the_g92_offset_of_an_axis_not_homed_again(dialect: str) -> N
 def test_2_an_axis_the_source_homes_gets_no_offset_back() -> None:
     out, _ = translate("marlin", "G28\nG1 X1 Y1 Z1 F600\nG92 Z5\nG28\nG1 X2\n")
     assert out.count("G92 Z5") == 1  # the bare G28 homes Z in the source: its offset is gone there too
+
+
+# -- (3) Marlin M0/M1 with a message the grammar cannot read: the pause stays, the message is dropped ------
+
+
+def test_3_marlin_pause_with_a_colon_in_its_message_is_kept() -> None:
+    out, result = translate("marlin", "M0 Remove part: 5 min\nN7 M1 S5 C:\\\\x ; note\nG1 X1 F100\n")
+    lines = out.splitlines()
+    assert lines[:2] == ["M0", "N7 M0 ; note"], lines
+    assert not _codes(result, "TR005")
+    assert _codes(result, "TR004") and _codes(result, "TR003")  # the message; the S5 timeout
+
+
+def test_3_other_unreadable_lines_are_still_dropped() -> None:
+    _, result = translate("marlin", "M10: x\n")
+    assert _codes(result, "TR005")

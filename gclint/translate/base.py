@@ -21,6 +21,7 @@ plain moves), arc_moves.py (G2/G3), modal.py (units, positioning, G92, workspace
 
 from __future__ import annotations
 
+import re
 from collections.abc import Callable, Iterator
 from typing import ClassVar
 
@@ -94,6 +95,10 @@ class HyrelTranslator(LineWriter, Heads, Program, Motion, ArcMoves, Modal, Spind
     TURNS_COUNT_THE_ARC = False  # G2/G3 P: extra full circles (Marlin); LinuxCNC: the turns, P1 the arc itself
     MACHINE = "the source machine's"  # whose machine coordinates G53 names (messages)
     G53_ALONE = "keep"  # G53 with no move on its line: "keep", "drop" (does nothing), "next" (the next G0/G1)
+    # The pauses that take a message as the rest of the line ("M0 [S|P] [string]", Marlin: firmware_codes.md
+    # section 1 "M0, M1 | wait for user | P ms, S s, rest of line = text"): a pattern for the line up to the
+    # message, or None.  A line the grammar cannot read for its message keeps the pause.
+    TEXT_PAUSE: ClassVar[re.Pattern[str] | None] = None
 
     def __init__(self, source: Dialect, target: Dialect, options: TranslateOptions | None = None) -> None:
         super().__init__(source, target, options)
@@ -213,6 +218,20 @@ class HyrelTranslator(LineWriter, Heads, Program, Motion, ArcMoves, Modal, Spind
                         key="huge-comment",
                     )
                     return self.translate_line(short, result)
+            if parsed.kind == "error" and self.TEXT_PAUSE is not None:
+                short = _pause_without_text(self.TEXT_PAUSE, line.raw)
+                if short is not None:
+                    # the pause kept, its message (text the grammar cannot read) dropped
+                    pause = Line(line.number, short, ending, parse_line(short))
+                    if pause.parsed.kind != "error":
+                        self.line, self.edit, self.result = pause, None, result
+                        self.report(
+                            TR_NOTE,
+                            "pause message dropped (it is not a comment on Hyrel, where the text after M0 is a "
+                            "list of Repetrel actions)",
+                            key="M0-message",
+                        )
+                        return self.translate_line(pause, result)
             if parsed.kind == "error":
                 self.line, self.result = line, result
                 dropped = self.edit = LineEdit(line)
@@ -369,3 +388,15 @@ class HyrelTranslator(LineWriter, Heads, Program, Motion, ArcMoves, Modal, Spind
 
     def extended(self, cmd: Command) -> None:
         self.untranslatable(cmd, "a host macro or extended command cannot be translated", key=cmd.code)
+
+
+def _pause_without_text(pattern: re.Pattern[str], raw: str) -> str | None:
+    """The line ``raw`` as a pause with its message text left out (its S/P timeout and its ``;`` comment
+    kept), or None when ``raw`` is no pause with a message."""
+    m = pattern.match(raw)
+    if m is None:
+        return None
+    rest = raw[m.end() :]
+    cut = rest.find(";")
+    comment = rest[cut:] if cut >= 0 else ""
+    return m.group(0).rstrip() + (" " + comment if comment else "")

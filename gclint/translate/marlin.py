@@ -9,6 +9,7 @@ the E mode on Marlin; M30 deletes a file.
 
 from __future__ import annotations
 
+import re
 from typing import ClassVar
 
 import gclint.translate.marlin_codes as codes
@@ -31,6 +32,12 @@ _HOST_ASPECTS: dict[str, tuple[str, ...]] = {
 
 class MarlinToHyrel(HyrelTranslator):
     """Marlin 2.x and Marlin-flavour slicer output -> Hyrel v5."""
+
+    # "M0, M1 | wait for user | P ms, S s, rest of line = text" (firmware_codes.md section 1, Marlin):
+    # the code (after an N number), its S/P timeout words, then the message
+    TEXT_PAUSE: ClassVar[re.Pattern[str] | None] = re.compile(
+        r"[ \t]*(?:[Nn][ \t]*\d+[ \t]*)?[Mm][ \t]*0*[01](?![\d.])(?:[ \t]*[SsPp][ \t]*[-+]?(?:\d+\.?\d*|\.\d+)(?![\w.]))*"
+    )
 
     HANDLERS: ClassVar[dict[str, str]] = {  # besides HyrelTranslator.HANDLERS
         "G4": "dwell",

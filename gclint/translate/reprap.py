@@ -20,6 +20,7 @@ class RepRapToHyrel(MarlinToHyrel):
     """RepRapFirmware 3 (Duet) -> Hyrel v5: like Marlin, plus tool temperatures and offsets in G10, fan values
     0-1, meta commands and macros (untranslatable), M116."""
 
+    TEXT_PAUSE = None  # RepRapFirmware's M0/M1 stop and take no message (dialects.md 1.2 M0): not guessed
     HANDLERS: ClassVar[dict[str, str]] = {
         "M116": "m116",
         "M568": "m568",
