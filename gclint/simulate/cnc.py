@@ -57,6 +57,7 @@ class CncSimulator(Simulator):
             "M4": self.spindle_on,
             "M5": self.spindle_off,
             "M6": self.tool_change,
+            "G4": self.g4,
         }
         for n in range(54, 60):
             h[f"G{n}"] = self.workspace
@@ -195,9 +196,17 @@ class MachinekitSimulator(CncSimulator):
                 "M7": self.coolant_on,
                 "M8": self.coolant_on,
                 "M9": self.coolant_off,
+                # M0 "program pause" (LinuxCNC); M226 a pause of the FDM remap (research/dialects.md 2.2, M226
+                # -> M0); M1 is an optional stop, off unless the operator enables it: not counted
+                "M0": self.pause,
+                "M226": self.pause,
             }
         )
         return h
+
+    def g4_seconds(self, params: dict) -> float | None:
+        p = number(params.get("P"))  # "G4 P seconds" (research/dialects.md G4)
+        return p
 
     def plain_moves(self) -> bool:
         return False  # E is not a word here; plain moves go through motion() with their words checked
@@ -340,9 +349,20 @@ class CarveraSimulator(CncSimulator):
                 "M802": self.vacuum_off,
                 "M821": self.light,
                 "M822": self.light_off,
+                # M600 "Pause (use this to add pauses)" (seeds/carvera-mcodes.md); M25 pauses the file being
+                # played (Smoothieware, research/firmware_codes.md 8); M1 is an optional stop (M333/M334)
+                "M600": self.pause,
+                "M25": self.pause,
             }
         )
         return h
+
+    def g4_seconds(self, params: dict) -> float | None:
+        # grbl mode: "P is decimal seconds"; S adds seconds (research/dialects.md G4)
+        p, s = number(params.get("P")), number(params.get("S"))
+        if p is None and s is None:
+            return None
+        return (p or 0.0) + (s or 0.0)
 
     def plain_moves(self) -> bool:
         return not self.laser_mode and super().plain_moves()

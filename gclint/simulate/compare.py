@@ -8,25 +8,29 @@ re-homing) are not working moves, so they do not count; what they change shows i
 that follow.
 
 For each matched pair every aspect is compared (trace.ASPECTS): where the move ends, the path, what it
-deposits, the feed, and the state it runs in (head, set-point and wait, fan, flow, beds, spindle, laser,
-aux, workspace, units).  A difference that lasts over many moves is one ``Difference`` with a count.
+deposits, the feed, the pauses and the total dwell since the previous working move, and the state it runs
+in (head, set-point and wait, fan, flow, beds, spindle, laser, aux, workspace, units).  A difference that lasts over many moves is one ``Difference`` with a count.
 Finally the end states are compared: what is still hot, blowing, spinning or emitting.
 
 A difference is *explained* when the translation reported a warning-level TR finding for it: a finding
 whose aspects include the difference's, on a source line between the last move where the aspect agreed
-and the move where it first differs (for the end state: anywhere).
+and the move where it first differs (that move's own line included when commands follow the move there:
+they run after it); for the end state anywhere, about the end or about the kind of every device that
+differs.  A finding about one source device (``tool:9``, ``fan:3``) explains only differences about it.
 """
 
 from __future__ import annotations
 
 import math
+import re
 from bisect import bisect_right
 from collections import deque
 from collections.abc import Iterable, Iterator
 from dataclasses import dataclass, field
 
-from gclint.simulate.trace import ASPECTS, NATIVE, EndState, Move
+from gclint.simulate.trace import ASPECTS, NATIVE, PART_FAN, EndState, Move
 
+_DEVICE_LABEL = re.compile(r"(tool|fan) (\d+)(?: \(no head\))?")
 POSITION_TOLERANCE = 0.002  # mm: the translator writes 4 decimals; inches converted from 4 decimals
 CHORD_TOLERANCE = 0.02  # mm: the largest distance allowed between a segment and the arc it replaces
 FEED_TOLERANCE = 0.011  # mm/min (the translator writes 2 decimals)
@@ -78,9 +82,12 @@ class Explanations:
 
     entries: list[tuple[str, frozenset[str], list[int]]] = field(default_factory=list)
 
-    def find(self, aspect: str, lo: int, hi: int, axes: str = "", anchor: int = 0) -> tuple[str, int] | None:
+    def find(
+        self, aspect: str, lo: float, hi: int, axes: str = "", anchor: int = 0, devices: frozenset[str] = frozenset()
+    ) -> tuple[str, int] | None:
         """The first finding for ``aspect`` on a line in (lo, hi]; a position (``axes`` differ, set outright
-        on line ``anchor``) and a spindle speed (``axes`` "speed") as the class says."""
+        on line ``anchor``) and a spindle speed (``axes`` "speed") as the class says; ``devices``: the source
+        devices the difference is about (``tool:9``, ``fan:3``), for findings about one device."""
         best: tuple[str, int] | None = None
         for code, aspects, lines in self.entries:
             start = lo
@@ -89,12 +96,38 @@ class Explanations:
                     if not ("*" in aspects or "position" in aspects or _names_axes(aspects, axes)):
                         continue
                     start = max(lo, anchor - 1)  # a finding on the anchoring line itself counts
-            elif aspect not in aspects and "*" not in aspects and not (axes and f"{aspect}:{axes}" in aspects):
+            elif (
+                aspect not in aspects
+                and "*" not in aspects
+                and not (axes and f"{aspect}:{axes}" in aspects)
+                and not _names_devices(aspects, aspect, devices)
+            ):
                 continue
             i = bisect_right(lines, start)
             if i < len(lines) and lines[i] <= hi and (best is None or lines[i] < best[1]):
                 best = (code, lines[i])
         return best
+
+
+# What a finding about one source device (an aspect ``tool:<n>`` or ``fan:<n>``) may explain: a difference in
+# these aspects that is about that device alone (the head a move is printed by; the fan that differs)
+_DEVICE_ASPECTS = {"tool": frozenset({"head", "temp", "flow", "spindle", "end"}), "fan": frozenset({"aux", "end"})}
+
+
+def _names_devices(aspects: frozenset[str], aspect: str, devices: frozenset[str]) -> bool:
+    """Whether device aspects (``tool:9``) cover every device the difference is about."""
+    if not devices or not devices <= aspects:
+        return False
+    return all(aspect in _DEVICE_ASPECTS.get(d.split(":", 1)[0], ()) for d in devices)
+
+
+def _device(label) -> str | None:
+    """The source device a Hyrel-terms label names when the printer has no address for it: ``tool 9 (no
+    head)`` (trace.Mapping.head) -> ``tool:9``, ``fan 3`` (heat.aux_fans) -> ``fan:3``; None otherwise."""
+    if not isinstance(label, str):
+        return None
+    m = _DEVICE_LABEL.fullmatch(label)
+    return f"{m.group(1)}:{m.group(2)}" if m else None
 
 
 def _names_axes(aspects: frozenset[str], axes: str) -> bool:
@@ -312,7 +345,8 @@ def _spindle(value) -> str:
 def _aux(value: tuple) -> str:
     return (
         ", ".join(
-            f"{name} {_num(v, 1)} %" if v <= 1.0 and "fan" in name else f"{name} {_num(v, 1)}" for name, v in value
+            f"{name} {_num(v * 100, 1)} %" if v <= 1.0 and "fan" in name else f"{name} {_num(v, 1)}"
+            for name, v in value
         )
         or "none"
     )
@@ -366,7 +400,8 @@ class Diff:
         self.differences: list[Difference] = []
         self.open: dict[str, Difference] = {}
         self.last_ok: dict[str, int] = {}
-        self.last_all_ok = 0
+        self.last_all_ok: float = 0
+        self.last_line: float = 0  # the last matched source move
         self.pairs = 0  # matched moves
 
     def run(self, source: Iterable[Move], output: Iterable[Move]) -> None:
@@ -426,6 +461,15 @@ class Diff:
                 bad.append("feed")
                 self.differ("feed", s.line, m.line, _feed(s.feed), _feed(m.feed))
                 break
+        # pauses and dwells since the previous working move (what the output moves of this one add too)
+        pauses = sum(m.pauses for m in run)
+        if s.pauses != pauses:
+            bad.append("pause")
+            self.differ("pause", s.line, first.line, _pauses(s.pauses), _pauses(pauses))
+        dwell = sum(m.dwell for m in run)
+        if not _same_dwell(s.dwell, dwell):
+            bad.append("dwell")
+            self.differ("dwell", s.line, first.line, _dwell(s.dwell), _dwell(dwell))
         # the state it runs in
         a, b = s.look, first.look
         if a != b:
@@ -437,20 +481,31 @@ class Diff:
                     bad.append(aspect)
                     describe = _DESCRIBE[aspect]
                     detail = "speed" if aspect == "spindle" and va and vb and va[0] == vb[0] else ""
-                    self.differ(aspect, s.line, first.line, describe(va), describe(vb), axes=detail)
+                    self.differ(
+                        aspect,
+                        s.line,
+                        first.line,
+                        describe(va),
+                        describe(vb),
+                        axes=detail,
+                        devices=_devices(aspect, a, b),
+                    )
+        # a finding on the move's own line may be about a command after the move there (it runs later)
+        ok_line = s.line - 0.5 if s.tail else s.line
+        self.last_line = ok_line
         if not bad:
             if self.open:
                 for aspect in list(self.open):
                     self.close(aspect)
-            self.last_all_ok = s.line
+            self.last_all_ok = ok_line
             return
         for aspect in list(self.open):
             if aspect not in bad:
                 self.close(aspect)
-                self.last_ok[aspect] = s.line
+                self.last_ok[aspect] = ok_line
         for aspect in ASPECTS:
             if aspect not in bad and aspect != "moves":
-                self.last_ok[aspect] = s.line
+                self.last_ok[aspect] = ok_line
 
     def differ(
         self,
@@ -462,6 +517,7 @@ class Diff:
         hi: int | None = None,
         axes: str = "",
         anchor: int = 0,
+        devices: frozenset[str] = frozenset(),
     ) -> None:
         """A difference on this pair; one going on since an earlier pair only counts."""
         current = self.open.get(aspect)
@@ -472,7 +528,7 @@ class Diff:
         if self.explanations is not None:
             lo = max(self.last_all_ok, self.last_ok.get(aspect, 0))
             top = hi if hi is not None else (source_line if source_line is not None else 1 << 62)
-            diff.explained_by = self.explanations.find(aspect, lo, top, axes, anchor)
+            diff.explained_by = self.explanations.find(aspect, lo, top, axes, anchor, devices)
         self.open[aspect] = diff
         self.differences.append(diff)
 
@@ -482,9 +538,20 @@ class Diff:
     def finish(self, source: EndState, output: EndState) -> None:
         for aspect in list(self.open):
             self.close(aspect)
+        # pauses and dwells after the last working move
+        for aspect, a, b, same, describe in (
+            ("pause", source.pauses, output.pauses, lambda x, y: x == y, _pauses),
+            ("dwell", source.dwell, output.dwell, _same_dwell, _dwell),
+        ):
+            if same(a, b):
+                continue
+            diff = Difference(aspect, source.line or None, output.line or None, describe(a), describe(b))
+            if self.explanations is not None:
+                diff.explained_by = self.explanations.find(aspect, self.last_line, 1 << 62)
+            self.differences.append(diff)
         for name, a, b in (
             ("heaters", source.heaters, output.heaters),
-            ("fans", source.fans, output.fans),
+            ("fans", source.fans, _fold_part_fan(source.fans, output.fans)),
             ("spindles", source.spindles, output.spindles),
             ("emitters", {k: "on" for k in source.emitters}, {k: "on" for k in output.emitters}),
             ("aux", source.aux, output.aux),
@@ -500,11 +567,47 @@ class Diff:
                 f"{name}: {_end(b, percent)}",
             )
             if self.explanations is not None:
-                for aspect in ("end", *_END_ASPECT[name]):
-                    diff.explained_by = self.explanations.find(aspect, 0, 1 << 62)
-                    if diff.explained_by:
-                        break
+                diff.explained_by = self._explain_end(name, a, b)
             self.differences.append(diff)
+
+    def _explain_end(self, name: str, a: dict, b: dict) -> tuple[str, int] | None:
+        """A finding for an end-state difference: about the end, or about the kind of every device that
+        differs (a nozzle's heater: temp; a bed: beds; a head's fan: fan; another fan: aux), or about those
+        very devices (``tool:9``, ``fan:3``)."""
+        assert self.explanations is not None
+        keys = [k for k in set(a) | set(b) if k not in a or k not in b or not _same_end({k: a[k]}, {k: b[k]})]
+        kinds = {_end_kind(name, k) for k in keys}
+        devices = {_device(k) for k in keys}
+        found = self.explanations.find("end", 0, 1 << 62)
+        if found is None and len(kinds) == 1:
+            found = self.explanations.find(kinds.pop(), 0, 1 << 62)
+        if found is None and None not in devices:
+            found = self.explanations.find("end", 0, 1 << 62, devices=frozenset(devices))  # type: ignore[arg-type]
+        return found
+
+
+def _end_kind(name: str, key) -> str:
+    """The aspect an end-state device belongs to."""
+    if name == "heaters":
+        return "beds" if isinstance(key, int) and key >= 20 else "temp"
+    if name == "fans":  # the part fan and heads' fans (a tool with no head included); other fans are aux
+        head = key == PART_FAN or (isinstance(key, int) and key < 20) or (_device(key) or "").startswith("tool:")
+        return "fan" if head else "aux"
+    return _END_ASPECT[name][0]
+
+
+def _devices(aspect: str, a, b) -> frozenset[str]:
+    """The source devices a look difference is about: the head label of a tool with no head (``head``,
+    ``temp``, ``flow``); the fans that differ (``aux``)."""
+    if aspect in ("head", "temp", "flow", "spindle"):
+        found = {_device(a.head)} - {None}
+        return frozenset(found)  # type: ignore[arg-type]
+    if aspect == "aux":
+        x, y = dict(a.aux), dict(b.aux)
+        keys = [k for k in set(x) | set(y) if k not in x or k not in y or abs(x[k] - y[k]) > 0.5]
+        found = {_device(k) for k in keys}
+        return frozenset() if None in found else frozenset(found)  # type: ignore[arg-type]
+    return frozenset()
 
 
 _END_ASPECT = {
@@ -514,6 +617,21 @@ _END_ASPECT = {
     "emitters": ("laser",),
     "aux": ("aux",),
 }
+
+
+def _fold_part_fan(source: dict, output: dict) -> dict:
+    """The output's end fans with its head fans read as the source's one part fan (Marlin's fan 0 is one fan;
+    Hyrel's fans are per head, and the translation moves it to the head that prints): the head fans the
+    source has no key for, when they all run at one speed."""
+    if PART_FAN not in source or PART_FAN in output:
+        return output
+    heads = [k for k in output if isinstance(k, int) and k < 20 and k not in source]
+    values = [output[k] for k in heads]
+    if not heads or max(values) - min(values) > FAN_TOLERANCE:
+        return output
+    folded = {k: v for k, v in output.items() if k not in heads}
+    folded[PART_FAN] = values[0]
+    return folded
 
 
 def _same_end(a: dict, b: dict) -> bool:
@@ -540,6 +658,18 @@ def _end(d: dict, percent: bool = False) -> str:
         else:
             parts.append(f"{key} {_num(v, 3) if isinstance(v, float) else v}")
     return ", ".join(parts)
+
+
+def _pauses(n: int) -> str:
+    return "no pause" if not n else f"{n} pause{'s' if n != 1 else ''}"
+
+
+def _dwell(seconds: float) -> str:
+    return "no dwell" if not seconds else f"dwell {_num(seconds, 3)} s"
+
+
+def _same_dwell(a: float, b: float) -> bool:
+    return abs(a - b) <= 1e-3 + 1e-6 * abs(a)
 
 
 def _feed(v: float | None) -> str:

@@ -74,6 +74,14 @@ class MarlinSimulator(Simulator):
             "M7": self.coolant_on,
             "M8": self.coolant_on,
             "M9": self.coolant_off,
+            "G4": self.g4,
+            # waits for the operator or an event: M0/M1 "wait for user", M25 "pause file print", M226 "wait
+            # for pin state" (research/firmware_codes.md 5), M600 filament change (research/dialects.md M600)
+            "M0": self.pause,
+            "M1": self.pause,
+            "M25": self.pause,
+            "M226": self.pause,
+            "M600": self.pause,
         }
         for n in range(54, 60):
             h[f"G{n}"] = self.workspace
@@ -81,6 +89,13 @@ class MarlinSimulator(Simulator):
 
     def plain_moves(self) -> bool:
         return self.feed_factor == 1.0 and super().plain_moves()
+
+    def g4_seconds(self, params: dict) -> float | None:
+        # "S = s, P = ms; if both, S wins; no args = M400" (research/dialects.md G4; RRF: "P = ms, S = s")
+        if "S" in params:
+            return number(params.get("S"))
+        p = number(params.get("P"))
+        return None if p is None else p / 1000
 
     # -- motion ---------------------------------------------------------------------------------------
 

@@ -18,7 +18,7 @@ references; the Machinekit FDM README in the seeds):
 
 from __future__ import annotations
 
-from gclint.simulate.trace import Mapping
+from gclint.simulate.trace import PART_FAN, Mapping
 
 
 def heat_wait(old: tuple[float, float | None] | None, value: float, both_ways: bool) -> float:
@@ -162,8 +162,10 @@ class ToolHeat:
     def end_fans(self) -> dict:
         out: dict = {}
         part = self.fans.get(0, 0.0)
-        if part > 0 and self.tool is not None and self.owner(0) is None:
-            out[self.mapping.head(self.tool)] = round(part, 3)
+        if part > 0 and self.owner(0) is None:
+            # the one part fan, whatever tool is active: on Hyrel it is the fan of whichever head the
+            # translation gave it (compare.py folds the output's head fans into it)
+            out[PART_FAN] = round(part, 3)
         for tool in sorted(self.tool_fans):
             value = self.own_fan(tool)
             if value:

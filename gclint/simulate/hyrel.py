@@ -21,6 +21,8 @@ Hyrel Gcode page in the seeds (section named) or T_v5:
 
 from __future__ import annotations
 
+from dataclasses import replace
+
 from gclint.dialects.addressing import resolve_v5
 from gclint.simulate.heat import heat_wait
 from gclint.simulate.machine import Simulator, number
@@ -66,6 +68,7 @@ class HyrelSimulator(Simulator):
         self.aux: dict[str, float] = {}
         self.pending_w0: set[int] = set()
         self.ran = False  # a command ran since the last M30 (the job's end state is worth keeping)
+        self._one_shot: float | None = None  # G1 S: this move's flow multiplier
 
     def table(self):
         h = {
@@ -108,6 +111,8 @@ class HyrelSimulator(Simulator):
             "M18": self.motors_off,
             "M84": self.motors_off,
             "M30": self.m30,
+            "G4": self.g4,
+            "M0": self.pause,  # "M0 is a stop until resume command" (M0)
         }
         for n in range(54, 60):
             h[f"G{n}"] = self.workspace
@@ -153,12 +158,22 @@ class HyrelSimulator(Simulator):
         self.ran = True
         if mode == "G0" and "E" in params:
             params = {k: v for k, v in params.items() if k != "E"}  # [fw] G0 E is stripped
-        return super().motion(mode, params, n)
+        # "Sn is a one-time (non-persistent) material flow rate multiplier (rarely used) applied to this move
+        # only" (G1): the move's flow is the head's times S ([fw] 0-15.99, research/dialects.md H15)
+        s = number(params.get("S")) if mode == "G1" and "S" in params else None
+        self._one_shot = None if s is None else max(0.0, min(s, 15.99))
+        try:
+            return super().motion(mode, params, n)
+        finally:
+            self._one_shot = None
 
     def sync(self, start, arc, delta, feed, rapid, native=False):
         if not self.evalues and delta is not None and not rapid:
             native = True  # any E (even a negative one) marks a printing move in native flow
-        return super().sync(start, arc, delta, feed, rapid, native=native)
+        move = super().sync(start, arc, delta, feed, rapid, native=native)
+        if move is not None and self._one_shot is not None:
+            move.look = replace(move.look, flow=round(move.look.flow * self._one_shot, 4))
+        return move
 
     def arc(self, cmd: Command, n: int) -> Move | None:
         saved = self.plane
@@ -175,6 +190,13 @@ class HyrelSimulator(Simulator):
         e = number(cmd.params.get("E"))
         if e is not None:
             self.evalues = e == 1
+
+    def g4_seconds(self, params: dict) -> float | None:
+        # "You may use S or P, or if you use both, the total value will be the pause duration" (G4)
+        s, p = number(params.get("S")), number(params.get("P"))
+        if s is None and p is None:
+            return None
+        return (s or 0.0) + (p or 0.0) / 1000
 
     def home(self, cmd: Command, n: int) -> None:
         listed = "".join(a for a in "XYZAB" if a in cmd.params)
@@ -197,6 +219,7 @@ class HyrelSimulator(Simulator):
         self.end_line = n
         self.trace.end = self.end_state()
         self.trace.end.line = n
+        self.trace.end.pauses, self.trace.end.dwell = self.pauses, self.dwell
         self.evalues = False
         self.fan_range = 100.0
         self.wcs = None

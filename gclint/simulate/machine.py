@@ -75,6 +75,8 @@ class Simulator:
         self.end_line = 0
         self.line = 0
         self._look: Look | None = None
+        self.pauses = 0  # pauses and dwell since the last synchronisation point (compared there)
+        self.dwell = 0.0
 
     # -- the loop --------------------------------------------------------------------------------------
 
@@ -114,7 +116,9 @@ class Simulator:
                         continue
                 if len(raw) > PARSE_LIMIT:  # one trailing comment made it too long: its commands run
                     raw = code_before_long_comment(raw) or raw
-                for cmd in parse_line(raw).commands:
+                commands = parse_line(raw).commands
+                last = len(commands) - 1
+                for k, cmd in enumerate(commands):
                     if self.ended:
                         break
                     if self.FEED_ON_ANY_COMMAND and "F" in cmd.params and cmd.code not in _MOTION:
@@ -127,8 +131,13 @@ class Simulator:
                     else:
                         move = self.other(cmd, n)
                     if move is not None:
+                        if k < last:
+                            move.tail = True
                         yield move
-        self.trace.end = self.end_state()
+        end = self.end_state()
+        if end is not self.trace.end:
+            end.pauses, end.dwell = self.pauses, self.dwell
+        self.trace.end = end
         self.trace.end.line = self.end_line or n
 
     def plain_moves(self) -> bool:
@@ -183,6 +192,23 @@ class Simulator:
 
     def end_state(self) -> EndState:
         return EndState()
+
+    # -- pauses and dwells -------------------------------------------------------------------------------
+
+    def pause(self, cmd: Command, n: int) -> None:
+        """A pause for the operator (M0, a filament change...): counted until the next working move."""
+        self.pauses += 1
+
+    def add_dwell(self, seconds: float | None) -> None:
+        if seconds is not None and seconds > 0:
+            self.dwell += seconds
+
+    def g4_seconds(self, params: dict) -> float | None:
+        """A dwell's length in seconds (the dialect says how S and P count)."""
+        return None
+
+    def g4(self, cmd: Command, n: int) -> None:
+        self.add_dwell(self.g4_seconds(cmd.params))
 
     def end_program(self, cmd: Command, n: int) -> None:
         self.ended = True
@@ -364,7 +390,11 @@ class Simulator:
         if not printing and (rapid or not (self.cnc or self.cutting())):
             return None
         e = NATIVE if native else (delta if printing else None)
-        return Move(self.line, start, end, arc, e, feed, self.look(), rapid, self.frame, tuple(self.anchor))
+        move = Move(self.line, start, end, arc, e, feed, self.look(), rapid, self.frame, tuple(self.anchor))
+        if self.pauses or self.dwell:
+            move.pauses, move.dwell = self.pauses, self.dwell
+            self.pauses, self.dwell = 0, 0.0
+        return move
 
     def arc(self, cmd: Command, n: int) -> Move | None:
         """G2/G3: the end point and the circle (for the path check); the plane's centre words."""

@@ -31,6 +31,8 @@ ASPECTS = (
     "aux",  # other fans and aux ports (air, vacuum)
     "wcs",  # the fixture offsets (workspace) applied
     "units",
+    "pause",  # pauses for the operator (M0, M600...) since the previous working move
+    "dwell",  # seconds of dwell (G4) since the previous working move
     "end",  # what is still on when the job ends
 )
 
@@ -78,6 +80,9 @@ class Mapping:
         )
 
 
+# The end-state key of a source printer's one part-cooling fan (Marlin's fan 0: it cools whatever tool prints)
+PART_FAN = "part fan"
+
 # Hyrel's aux ports by what they are (Gcode page, Controlling Aux Devices): the name the diff shows.
 AUX_PORTS = {"M7": "aux1", "M8": "aux2", "M679": "vacuum", "M685": "air", "M670": "light"}
 
@@ -102,7 +107,21 @@ class Look:
 class Move:
     """One synchronisation point."""
 
-    __slots__ = ("line", "start", "end", "arc", "e", "feed", "look", "rapid", "frames", "anchors")
+    __slots__ = (
+        "line",
+        "start",
+        "end",
+        "arc",
+        "e",
+        "feed",
+        "look",
+        "rapid",
+        "frames",
+        "anchors",
+        "pauses",
+        "dwell",
+        "tail",
+    )
 
     def __init__(self, line, start, end, arc, e, feed, look, rapid=False, frames=(None,) * 5, anchors=(0,) * 5) -> None:
         self.line = line  # 1-based line number in its file
@@ -115,6 +134,9 @@ class Move:
         self.rapid = rapid
         self.frames = frames  # per axis: the workspace its coordinate is in (None: machine coordinates)
         self.anchors = anchors  # per axis: the line that last set it outright (absolute move, homing, G92)
+        self.pauses = 0  # pauses for the operator since the previous synchronisation point
+        self.dwell = 0.0  # seconds of dwell since the previous synchronisation point
+        self.tail = False  # commands follow the move on its line (they run after it)
 
     def __repr__(self) -> str:  # pragma: no cover - debugging aid
         return f"Move(line={self.line}, end={self.end}, e={self.e}, feed={self.feed})"
@@ -130,6 +152,8 @@ class EndState:
     spindles: dict = field(default_factory=dict)  # address -> direction
     emitters: frozenset = frozenset()
     aux: dict = field(default_factory=dict)
+    pauses: int = 0  # pauses after the last working move
+    dwell: float = 0.0  # seconds of dwell after the last working move
 
 
 @dataclass

@@ -1,0 +1,137 @@
+"""``gclint diff`` after a stranger's review: pauses, dwells and Hyrel's one-shot G1 S flow are compared;
+a finding explains only what it is about; a finding on the line of the last agreeing move still counts;
+Marlin's one part fan is compared as one fan at the end."""
+
+from __future__ import annotations
+
+import pytest
+
+from .test_diff import diff_texts, translate_and_diff
+
+JOB = "G28\nM83\nM104 S200\nM109 S200\nM106 S128\nG1 Z0.2 X10 F600\nG1 X20 E1\nG4 S10\nG1 X30 E1\nG1 X40 E1\n"
+
+
+def _edited(old: str, new: str) -> str:
+    text, _, diff = translate_and_diff("marlin", JOB)
+    assert not diff.differences
+    assert old in text
+    return text.replace(old, new, 1)
+
+
+@pytest.mark.parametrize(
+    ("old", "new", "aspect"),
+    [
+        ("G4 S10\n", "", "dwell"),
+        ("G4 S10\n", "G4 S100\n", "dwell"),
+        ("G4 S10\n", "G4 S5 P5000\n", None),  # Hyrel adds S and P: 10 s, the same dwell
+        ("G1 X30 E1\n", "M0\nG1 X30 E1\n", "pause"),
+        ("G1 X30 E1\n", "G1 X30 E1 S3\n", "flow"),  # "Sn is a one-time ... flow rate multiplier"
+        ("G1 X40 E1\n", "G1 X40 E1\nG4 P500\n", "dwell"),  # after the last working move
+        ("G1 X40 E1\n", "G1 X40 E1\nM0\n", "pause"),
+    ],
+)
+def test_edited_pauses_dwells_and_flow_are_differences(old: str, new: str, aspect: str | None) -> None:
+    diff = diff_texts("marlin", JOB, _edited(old, new))
+    assert [d.aspect for d in diff.differences] == ([aspect] if aspect else [])
+
+
+@pytest.mark.parametrize(
+    ("dialect", "source", "output"),
+    [
+        ("marlin", "G1 X1 F100\nG4 P1500\nG1 X2\n", "G1 X1 F100\nG4 S1.5\nG1 X2\n"),  # Marlin P: ms
+        ("marlin", "G1 X1 F100\nG4 S2 P500\nG1 X2\n", "G1 X1 F100\nG4 S2\nG1 X2\n"),  # Marlin: S wins
+        ("machinekit", "G1 X1 F100\nG4 P2\nG1 X2\n", "G1 X1 F100\nG4 S2\nG1 X2\n"),  # LinuxCNC P: seconds
+        ("carvera", "G1 X1 F100\nG4 P2\nG1 X2\n", "G1 X1 F100\nG4 S2\nG1 X2\n"),  # grbl mode P: seconds
+        ("marlin", "G1 X1 F100\nM600\nG1 X2\n", "G1 X1 F100\nM0\nG1 X2\n"),
+        ("reprap", "G1 X1 F100\nM226\nG1 X2\n", "G1 X1 F100\nM0\nG1 X2\n"),
+        ("machinekit", "G1 X1 F100\nM1\nG1 X2\n", "G1 X1 F100\nG1 X2\n"),  # an optional stop
+    ],
+)
+def test_dwells_and_pauses_in_each_dialect(dialect: str, source: str, output: str) -> None:
+    if dialect in ("machinekit", "carvera"):  # CNC jobs: every feed move is a working move
+        src, out = "G21 G90\n" + source, "G21 G90\n" + output
+    else:
+        src = "M83\n" + source.replace("X1 F100", "X1 E1 F100").replace("X2\n", "X2 E1\n")
+        out = "M83\n" + output.replace("X1 F100", "X1 E1 F100").replace("X2\n", "X2 E1\n")
+    timing = {"dwell", "pause"}
+    diff = diff_texts(dialect, src, out)
+    assert not [d for d in diff.differences if d.aspect in timing], diff.differences
+    bare = "".join(line for line in out.splitlines(keepends=True) if not line.startswith(("G4", "M0")))
+    if bare != out:  # and one missing is seen
+        assert {d.aspect for d in diff_texts(dialect, src, bare).differences} & timing
+
+
+def test_finding_on_the_line_of_the_last_agreeing_move_explains() -> None:
+    """C: the M3 after the move on line 3 runs after it; its TR003 (assumed 15000 rpm) explains the speed."""
+    source = "G21 G90 G54\nG0 X0 Y0 Z1\nG1 Z-1 F100 M3 S12000 M7\nG1 X10\nG1 X20 M5 M9\nM2\n"
+    _, _, diff = translate_and_diff("carvera", source)
+    assert diff.differences
+    assert not diff.unexplained(), [(d.aspect, d.source, d.output) for d in diff.unexplained()]
+
+
+# -- D: Marlin's one part fan ---------------------------------------------------------------------------------
+
+SHARED_FAN = (
+    "M83\nM104 T0 S210\nM104 T1 S220\nM109 T0 S210\nM109 T1 S220\nG1 Z0.2 F600\nG1 X10 Y10 E1 F1200\nM106 S255\n"
+    "T1\nG1 X0 Y0 F3000\n"
+)
+
+
+def test_the_part_fan_is_one_fan_at_the_end() -> None:
+    """D: the part fan is at 100 % on both sides; the translator left it on the head that last printed."""
+    text, _, diff = translate_and_diff("marlin", SHARED_FAN)
+    assert not diff.differences, [(d.aspect, d.source, d.output) for d in diff.differences]
+    slower = diff_texts("marlin", SHARED_FAN, text.replace("M106 T0 S255", "M106 T0 S25"))
+    assert [(d.aspect, d.source, d.output) for d in slower.differences] == [
+        ("end", "fans: part fan 100 %", "fans: part fan 9.8 %")
+    ]
+    both = diff_texts("marlin", SHARED_FAN, text.replace("M106 T0 S255", "M106 T0 S255\nM106 T1 S25"))
+    assert [d.aspect for d in both.differences] == ["end"]  # two heads' fans at two speeds are not one fan
+
+
+# -- B: a finding explains only what it is about ----------------------------------------------------------------
+
+
+def _diff_with(dialect: str, source: str, output: str, findings: list[tuple[str, tuple[str, ...], list[int]]]):
+    from gclint import dialects
+    from gclint.simulate import Explanations, Mapping, diff_sources
+    from gclint.syntax.source import Source
+
+    return diff_sources(
+        Source.from_text(source, "source"),
+        Source.from_text(output, "output"),
+        dialects.get(dialect),
+        dialects.get("hyrel"),
+        Mapping(),
+        Explanations([(code, frozenset(aspects), lines) for code, aspects, lines in findings]),
+    )
+
+
+BAMBU = "M83\nM104 S200\nM109 S200\nG1 Z0.2 X10 F600 E1\nG1 X20 E1\nM106 S255\nT9\nG1 X30 E1\nG1 X40 E1\n"
+
+
+def test_a_finding_about_a_tool_with_no_head_explains_only_that_tool() -> None:
+    """B: TR007 (tool 9 has no head) with the aspect ``tool:9`` explains the head and the end state of tool 9,
+    not an edited fan or set-point."""
+    text, result, _ = translate_and_diff("marlin", BAMBU)
+    tr007 = [("TR007", ("tool:9",), [7])]
+    diff = _diff_with("marlin", BAMBU, text, tr007)
+    assert diff.differences and not diff.unexplained(), [(d.aspect, d.source) for d in diff.unexplained()]
+    edited = text.replace("M106 T0 S255", "M106 T0 S25").replace("M109 T0 S200", "M109 T0 S200\nM104 T0 S190")
+    diff = _diff_with("marlin", BAMBU, edited, tr007)
+    unexplained = {(d.aspect, d.source.split(":")[0]) for d in diff.unexplained()}
+    assert ("fan", "100 %") in unexplained
+    assert ("end", "fans") in unexplained
+    assert ("end", "heaters") in unexplained
+
+
+def test_a_finding_about_another_fan_does_not_explain_the_part_fan() -> None:
+    """B: a dropped ``M106 P3`` (an aux fan) explains a difference in fan 3, not one in a head's fan."""
+    source = "M83\nM104 S200\nM109 S200\nM106 P3 S255\nM106 S255\nG1 Z0.2 X10 F600 E1\nM106 P3 S0\nG1 X20 E1\n"
+    output = "M83\nM104 T0 S200\nM109 T0 S200\nM106 C255\nM106 T0 S128\nT0\nG1 Z0.2 X10 F600 E1\nG1 X20 E1\n"
+    for aspects in (("aux",), ("fan:3",)):
+        diff = _diff_with("reprap", source, output, [("TR002", aspects, [4, 7])])
+        found = {d.aspect: d for d in diff.differences}
+        assert found["aux"].source == "fan 3 100 %" and found["aux"].explained_by == ("TR002", 4)
+        assert found["fan"].explained_by is None
+        assert found["end"].explained_by is None  # part fan 100 % -> 50.2 %
