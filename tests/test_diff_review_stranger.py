@@ -135,3 +135,44 @@ def test_a_finding_about_another_fan_does_not_explain_the_part_fan() -> None:
         assert found["aux"].source == "fan 3 100 %" and found["aux"].explained_by == ("TR002", 4)
         assert found["fan"].explained_by is None
         assert found["end"].explained_by is None  # part fan 100 % -> 50.2 %
+
+
+# -- A, as time allowed: inverse-time feed, head and tool offsets -------------------------------------------
+
+
+@pytest.mark.parametrize("dialect", ["machinekit", "carvera"])
+def test_inverse_time_feed_is_converted(dialect: str) -> None:
+    """G93: "1/min in G93 inverse-time": ``G1 X10 F2`` from X0 takes half a minute, 20 mm/min."""
+    source = "G21 G90\nG0 X0 Y0 Z0\nG1 X5 F100\nG93\nG1 X15 F2\nG94\nG1 X20 F100\n"
+    good = diff_texts(dialect, source, "G21\nG90\nG0 X0 Y0 Z0\nG1 X5 F100\nG1 X15 F20\nG1 X20 F100\n")
+    assert not [d for d in good.differences if d.aspect == "feed"], good.differences
+    bad = diff_texts(dialect, source, "G21\nG90\nG0 X0 Y0 Z0\nG1 X5 F100\nG1 X15 F2\nG1 X20 F100\n")
+    assert [(d.aspect, d.source, d.output) for d in bad.differences if d.aspect == "feed"] == [("feed", "F20", "F2")]
+    _, _, translated = translate_and_diff(dialect, source)
+    assert not translated.unexplained()  # the translator reports the G93 it cannot carry
+
+
+@pytest.mark.parametrize(
+    ("old", "new", "change"),
+    [
+        ("T0\n", "M6 T0 O1 Z5\nT0\n", "Z5.2"),  # "M6 T# O1 X20 Y-30 Z40 ... Z40 (Z+40)", invoked by T#
+        ("G1 Z0.2 X10 F600\n", "M660 H1 Z2\nG1 Z0.2 X10 F600 H1\n", "Z2.2"),  # "Z28.2 (+28.2 to Z position)"
+        ("G1 Z0.2 X10 F600\n", "M660 H1 Z2\nG1 Z0.2 X10 F600 H1\nG28 Z0\nG1 Z0.2\n", None),  # G28 clears H
+    ],
+)
+def test_hyrel_head_offsets_move_the_head(old: str, new: str, change: str | None) -> None:
+    diff = diff_texts("marlin", JOB, _edited(old, new))
+    assert [(d.aspect, d.output) for d in diff.differences if d.aspect == "position"] == (
+        [("position", change)] if change else []
+    )
+
+
+def test_reprap_tool_offsets_are_seen() -> None:
+    """RRF ``G10 L1 P1 X10``: tool 1's offset, applied by T1; the translator drops it (a warning)."""
+    source = "G28\nM83\nG10 L1 P1 X10\nM104 S200\nM109 S200\nT1\nM104 S200\nM109 S200\nG1 Z0.2 X10 F600\nG1 X20 E1\n"
+    _, _, diff = translate_and_diff("reprap", source)
+    assert [d.aspect for d in diff.differences] == ["position"]
+    assert "tool 1 offset" in diff.differences[0].source
+    assert diff.differences[0].explained_by is not None and not diff.unexplained()
+    plain = source.replace("G10 L1 P1 X10\n", "G10 L1 P1 X0\n")
+    assert not translate_and_diff("reprap", plain)[2].differences

@@ -15,9 +15,24 @@ one-shot.  No extrusion.
 
 from __future__ import annotations
 
+import math
+
 from gclint.simulate.machine import Simulator, number
 from gclint.simulate.trace import AUX_PORTS, EndState, Look, Move
 from gclint.syntax.nodes import Command
+
+
+def _length(move: Move) -> float | None:
+    """The length of a move's path (mm): an arc's turn and its linear axis, or the straight line."""
+    a, b = move.start, move.end
+    if move.arc is not None:
+        plane, _, radius, _, _, turn = move.arc
+        linear = {17: 2, 18: 1, 19: 0}.get(plane, 2)
+        rise = (b[linear] - a[linear]) if a[linear] is not None and b[linear] is not None else 0.0
+        return float(math.hypot(radius * turn, rise))
+    if any(a[i] is None or b[i] is None for i in range(3)):
+        return None
+    return math.dist(a[:3], b[:3])
 
 
 class CncSimulator(Simulator):
@@ -35,6 +50,8 @@ class CncSimulator(Simulator):
         self.aux: dict[str, float] = {}
         self._g53_line = -1
         self._g53_next = False
+        self.inverse_time = False
+        self.inverse_line = 0
 
     def table(self):
         h = {
@@ -58,6 +75,8 @@ class CncSimulator(Simulator):
             "M5": self.spindle_off,
             "M6": self.tool_change,
             "G4": self.g4,
+            "G93": self.feed_mode,
+            "G94": self.feed_mode,
         }
         for n in range(54, 60):
             h[f"G{n}"] = self.workspace
@@ -85,7 +104,35 @@ class CncSimulator(Simulator):
             return self.motion(self.motion_mode, cmd.params, n)
         return None
 
+    def feed_mode(self, cmd: Command, n: int) -> None:
+        """G93 inverse time: "1/min in G93 inverse-time" (research/dialects.md G1): F on a feed move is the
+        inverse of the minutes it takes, so its feed is F times its length; G94 units per minute."""
+        self.inverse_time = cmd.code == "G93"
+        self.inverse_line = n
+
+    def inverse(self, params: dict, move: Move | None, saved: float | None) -> Move | None:
+        """A feed move in inverse time: its own F (not modal) over its length."""
+        self.feed = saved
+        if move is not None:
+            f = number(params.get("F"))
+            length = _length(move)
+            move.feed = None if f is None or length is None else f * length
+            move.feed_mode = self.inverse_line
+        return move
+
+    def arc(self, cmd: Command, n: int) -> Move | None:
+        if not self.inverse_time:
+            return super().arc(cmd, n)
+        saved = self.feed
+        return self.inverse(cmd.params, super().arc(cmd, n), saved)
+
     def motion(self, mode: str, params: dict, n: int) -> Move | None:
+        if self.inverse_time and mode != "G0":
+            saved = self.feed
+            return self.inverse(params, self._motion(mode, params, n), saved)
+        return self._motion(mode, params, n)
+
+    def _motion(self, mode: str, params: dict, n: int) -> Move | None:
         if "S" in params:
             self.speed(number(params.get("S")))
         if self._g53_line != n and not (self._g53_next and mode in ("G0", "G1")):
@@ -230,7 +277,7 @@ class MachinekitSimulator(CncSimulator):
                 i = "XYZ".index(axis)
                 self.pos[i] = self.shift[i]  # program 0
                 self.anchor[i] = n
-                self.set_frame(i, self.frame_label())
+                self.set_frame(i, self.frame_label(i))
         if bare or "A" in params:
             self.e_pos = 0.0
 

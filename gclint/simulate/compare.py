@@ -459,7 +459,9 @@ class Diff:
         for m in run:
             if not _close(s.feed, m.feed, FEED_TOLERANCE):
                 bad.append("feed")
-                self.differ("feed", s.line, m.line, _feed(s.feed), _feed(m.feed))
+                # in inverse time a feed that agreed by chance (a move of unit length) does not clear the mode:
+                # the finding on the G93 line explains it still
+                self.differ("feed", s.line, m.line, _feed(s.feed), _feed(m.feed), reach=s.feed_mode)
                 break
         # pauses and dwells since the previous working move (what the output moves of this one add too)
         pauses = sum(m.pauses for m in run)
@@ -518,6 +520,7 @@ class Diff:
         axes: str = "",
         anchor: int = 0,
         devices: frozenset[str] = frozenset(),
+        reach: int = 0,
     ) -> None:
         """A difference on this pair; one going on since an earlier pair only counts."""
         current = self.open.get(aspect)
@@ -527,6 +530,8 @@ class Diff:
         diff = Difference(aspect, source_line, output_line, source, output)
         if self.explanations is not None:
             lo = max(self.last_all_ok, self.last_ok.get(aspect, 0))
+            if reach:
+                lo = min(lo, reach - 1)
             top = hi if hi is not None else (source_line if source_line is not None else 1 << 62)
             diff.explained_by = self.explanations.find(aspect, lo, top, axes, anchor, devices)
         self.open[aspect] = diff

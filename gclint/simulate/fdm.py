@@ -298,6 +298,10 @@ class RepRapSimulator(MarlinSimulator):
     E_FOLLOWS_G90 = False  # "extrusion is NOT set to absolute using G90"
     RRF = True
 
+    def __init__(self, dialect, mapping=None, *, cnc: bool = False) -> None:
+        super().__init__(dialect, mapping, cnc=cnc)
+        self.tool_offsets: dict[int, dict[str, float]] = {}  # G10 L1 P<tool> X Y Z
+
     def table(self):
         h = super().table()
         h.update(
@@ -324,6 +328,27 @@ class RepRapSimulator(MarlinSimulator):
             if s is not None:
                 self.heat.set_temp(_index(params.get("P")), s, wait=False)
                 self.dirty()
+        tool = _index(params.get("P"))
+        if tool is not None and number(params.get("L")) in (None, 1):
+            # "G10 P3 X17.8 Y-19.3 Z0.0 ... sets the offset for tool ... 3" (seeds/reprap-gcode-2015.txt G10;
+            # research/dialects.md G10: "G10 L1/L2/L20 P X Y Z... (tool offset / WCS origin)"); T "applies G10
+            # offsets" (research/dialects.md T).  Which way an offset moves the head is not in the sources: an
+            # axis set while the tool has an offset is in the frame "tool N offset", not at a number.
+            offsets = dict(self.tool_offsets.get(tool, {}))
+            for letter in "XYZ":
+                value = number(params.get(letter))
+                if value is not None:
+                    offsets[letter] = value
+            self.tool_offsets[tool] = offsets
+
+    def frame_label(self, i: int = 0) -> str | None:
+        label = super().frame_label(i)
+        if self.wcs == "G53" or not self.tool_offsets or i > 2:
+            return label  # G53: "ignores WCS and tool offsets" (research/dialects.md G53)
+        tool = self.heat.tool
+        if tool is None or not self.tool_offsets.get(tool, {}).get("XYZ"[i]):
+            return label
+        return f"{label} + tool {tool} offset" if label else f"tool {tool} offset"
 
     def m568(self, cmd: Command, n: int) -> None:
         s = number(cmd.params.get("S"))

@@ -69,6 +69,10 @@ class HyrelSimulator(Simulator):
         self.pending_w0: set[int] = set()
         self.ran = False  # a command ran since the last M30 (the job's end state is worth keeping)
         self._one_shot: float | None = None  # G1 S: this move's flow multiplier
+        self.head_offsets: dict[int, tuple[list[float], bool]] = {}  # M6 T# O: (X Y Z A B, move on T: I1)
+        self.registers: dict[int, float] = {}  # M660 H<n> Z<mm>
+        self.head_offset = [0.0] * 5  # the focused head's M6 offsets, invoked by T
+        self.height = 0.0  # the Z of the M660 register a G1 H invoked
 
     def table(self):
         h = {
@@ -111,6 +115,8 @@ class HyrelSimulator(Simulator):
             "M18": self.motors_off,
             "M84": self.motors_off,
             "M30": self.m30,
+            "M6": self.m6,
+            "M660": self.m660,
             "G4": self.g4,
             "M0": self.pause,  # "M0 is a stop until resume command" (M0)
         }
@@ -146,6 +152,16 @@ class HyrelSimulator(Simulator):
         address = self.resolve_command(int(text)).v5
         if address is not None:
             self.focus = address
+            # "M6 declares that a particular head holds a set of X, Y, and/or Z offsets, which will be invoked
+            # during a T (tool change) command"; I1 "store values and move these distances" (M6)
+            values, moves = self.head_offsets.get(address, ([0.0] * 5, False))
+            if moves:
+                for i in range(5):
+                    p = self.pos[i]
+                    if p is not None:
+                        self.pos[i] = p + values[i] - self.head_offset[i]
+            self.head_offset = list(values)
+            self.apply_offsets()
             self.dirty()
 
     def dirty(self) -> None:
@@ -160,6 +176,10 @@ class HyrelSimulator(Simulator):
             params = {k: v for k, v in params.items() if k != "E"}  # [fw] G0 E is stripped
         # "Sn is a one-time (non-persistent) material flow rate multiplier (rarely used) applied to this move
         # only" (G1): the move's flow is the head's times S ([fw] 0-15.99, research/dialects.md H15)
+        if mode == "G1" and "H" in params:  # "Hn is the stored head offset to apply" (G1), until G28
+            h = number(params.get("H"))
+            self.height = self.registers.get(int(h), 0.0) if h is not None else 0.0
+            self.apply_offsets()
         s = number(params.get("S")) if mode == "G1" and "S" in params else None
         self._one_shot = None if s is None else max(0.0, min(s, 15.99))
         try:
@@ -186,6 +206,24 @@ class HyrelSimulator(Simulator):
     def arc_native(self, params: dict) -> bool:
         return "E" in params
 
+    def m6(self, cmd: Command, n: int) -> None:
+        """``M6 T# On Xn Yn Zn An Bn In``: head T#'s offsets ("X20 (X+20)"), invoked by the next T# (M6)."""
+        params = cmd.params
+        if "O" not in params:
+            return  # M6 K1 and the like: behaviour during tool changes only
+        for address in self.addresses(cmd, default_focus=False):
+            values = [(number(params.get(a)) or 0.0) for a in "XYZAB"]
+            self.head_offsets[address] = (values, number(params.get("I")) == 1)
+
+    def m660(self, cmd: Command, n: int) -> None:
+        """``M660 H<register> Z<mm>``: "Z28.2 (+28.2 to Z position)" once a G1 invokes H<register> (M660)."""
+        h, z = number(cmd.params.get("H")), number(cmd.params.get("Z"))
+        if h is not None and z is not None:
+            self.registers[int(h)] = z
+
+    def apply_offsets(self) -> None:
+        self.offset = [self.head_offset[i] + (self.height if i == 2 else 0.0) for i in range(5)]
+
     def m229(self, cmd: Command, n: int) -> None:
         e = number(cmd.params.get("E"))
         if e is not None:
@@ -201,6 +239,11 @@ class HyrelSimulator(Simulator):
     def home(self, cmd: Command, n: int) -> None:
         listed = "".join(a for a in "XYZAB" if a in cmd.params)
         self.clear_shift()  # offsets cleared; an axis not homed keeps its (machine) position
+        # "resets current offsets to 0 - including ... an H (as defined in an M660 and invoked on a G1) ... and
+        # applies a head offset of 0 mm (as in an M6 O0)" (G28)
+        self.height = 0.0
+        self.head_offset = [0.0] * 5
+        self.apply_offsets()
         self.home_axes(listed)
         self.wcs = None
         self.dirty()

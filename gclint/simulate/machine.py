@@ -57,6 +57,8 @@ class Simulator:
         # coordinate minus the shift that G92 (and homing) set
         self.pos: list[float | None] = [None] * 5
         self.shift: list[float] = [0.0] * 5
+        # tool or head offsets in force (Hyrel M6 O and M660/H): added to every absolute coordinate
+        self.offset: list[float] = [0.0] * 5
         # per axis: the workspace its coordinate was set in (None: machine coordinates, no fixture offsets), and
         # the line that last set it outright (an absolute move, homing, G92): what came before that line
         # cannot have moved it (compare.py: which findings explain a position)
@@ -219,8 +221,8 @@ class Simulator:
     def machine(self) -> tuple:
         return tuple(self.pos)
 
-    def frame_label(self) -> str | None:
-        """The coordinate frame a move sets its axes in: the workspace, None for machine coordinates."""
+    def frame_label(self, i: int = 0) -> str | None:
+        """The coordinate frame a move sets axis ``i`` in: the workspace, None for machine coordinates."""
         wcs = self.wcs
         return None if wcs == "G53" else wcs
 
@@ -246,18 +248,18 @@ class Simulator:
                     new[i] = None
                     continue
                 if absolute:
-                    new[i] = v * scale + self.shift[i]
+                    new[i] = v * scale + self.shift[i] + self.offset[i]
                     self.anchor[i] = self.line
-                    label = self.wcs
-                    if self.frame[i] != (None if label == "G53" else label):
-                        self.set_frame(i, self.frame_label())
+                    label = self.frame_label(i)
+                    if self.frame[i] != label:
+                        self.set_frame(i, label)
                 elif new[i] is not None:
                     new[i] = new[i] + v * scale  # type: ignore[operator]
         return new
 
     def logical(self, i: int) -> float | None:
         p = self.pos[i]
-        return None if p is None else p - self.shift[i]
+        return None if p is None else p - self.shift[i] - self.offset[i]
 
     def clear_shift(self) -> None:
         """G92 offsets cleared (G92.1, Hyrel G93 and G28): program coordinates are machine ones again."""
@@ -275,9 +277,9 @@ class Simulator:
                 machine = self.pos[i]
                 if machine is None:  # an unknown place gets a known name: count from here
                     self.pos[i] = machine = v * self.scale
-                self.shift[i] = machine - v * self.scale
+                self.shift[i] = machine - v * self.scale - self.offset[i]
                 self.anchor[i] = self.line
-                self.set_frame(i, self.frame_label())
+                self.set_frame(i, self.frame_label(i))
         ext = self.EXTRUDER
         if ext is not None and ext in params:
             v = number(params[ext])

@@ -121,6 +121,7 @@ class Move:
         "pauses",
         "dwell",
         "tail",
+        "feed_mode",
     )
 
     def __init__(self, line, start, end, arc, e, feed, look, rapid=False, frames=(None,) * 5, anchors=(0,) * 5) -> None:
@@ -137,6 +138,7 @@ class Move:
         self.pauses = 0  # pauses for the operator since the previous synchronisation point
         self.dwell = 0.0  # seconds of dwell since the previous synchronisation point
         self.tail = False  # commands follow the move on its line (they run after it)
+        self.feed_mode = 0  # the line that set the feed mode in force when it is not units per minute (G93)
 
     def __repr__(self) -> str:  # pragma: no cover - debugging aid
         return f"Move(line={self.line}, end={self.end}, e={self.e}, feed={self.feed})"
