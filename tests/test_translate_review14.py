@@ -83,3 +83,52 @@ def test_3_marlin_pause_with_a_colon_in_its_message_is_kept() -> None:
 def test_3_other_unreadable_lines_are_still_dropped() -> None:
     _, result = translate("marlin", "M10: x\n")
     assert _codes(result, "TR005")
+
+
+# -- (4) two source tools on one head are refused --------------------------------------------------------
+
+TWO = "M83\nM104 T0 S220\nM104 T1 S220\nT0\nM109 S220\nG1 X1 Y1 Z0.2 E1 F600\nT1\nM109 T1 S210\nG1 X5 E1\n"
+
+
+def test_4_an_explicit_many_to_one_tool_map_is_refused() -> None:
+    with pytest.raises(ValueError, match="tools 0 and 1 both map to head T1"):
+        translate("marlin", TWO, tool_map="0=T1,1=T1")
+
+
+def test_4_a_clash_with_the_identity_default_is_refused_when_the_job_uses_both() -> None:
+    with pytest.raises(ValueError, match=r"tools 0 and 1 both map to head T1 \(0=T1; tool 1 unmapped"):
+        translate("marlin", TWO, tool_map="0=T1")
+    out, _ = translate("marlin", "M83\nT0\nG1 X1 Y1 Z0.2 E1 F600\n", tool_map="0=T1")  # no tool 1: allowed
+    assert "T1" in out.splitlines()
+
+
+def test_4_the_command_line_refuses_in_one_line_and_writes_nothing(tmp_path) -> None:
+    import subprocess
+    import sys
+
+    src = tmp_path / "two.gcode"
+    src.write_text(TWO)
+    out = tmp_path / "out.gcode"
+    for mapping in ("0=T1,1=T1", "0=T1"):
+        run = subprocess.run(
+            [
+                sys.executable,
+                "-m",
+                "gclint",
+                "translate",
+                "--from",
+                "marlin",
+                "--to",
+                "hyrel",
+                str(src),
+                "-o",
+                str(out),
+                "--tool-map",
+                mapping,
+            ],
+            capture_output=True,
+            text=True,
+            check=False,
+        )
+        assert run.returncode == 2 and not out.exists(), run
+        assert len(run.stderr.strip().splitlines()) == 1 and "tools 0 and 1" in run.stderr

@@ -141,6 +141,7 @@ class HyrelTranslator(LineWriter, Heads, Program, Motion, ArcMoves, Modal, Spind
         self._last_ending = "\n"
         self._aggregate: dict[tuple, list] = {}
         self._head_cache: dict[int, int | None] = {}
+        self._head_users: dict[int, int] = {}  # head address -> the source tool it prints for (heads.py)
         # the line being translated
         self.line: Line | None = None
         self.edit: LineEdit | None = None

@@ -30,7 +30,7 @@ def run_translate(
     settings: dict[str, str] | None = None,
 ) -> int:
     """Translate one file; returns the exit code."""
-    from gclint.translate.options import TranslateOptions
+    from gclint.translate.options import ToolMapClash, TranslateOptions
 
     try:
         options = TranslateOptions.build(
@@ -80,6 +80,9 @@ def run_translate(
                     out.write(src.encode(text))
                 if _refused(result, unsupported):
                     out.discard()
+    except ToolMapClash as exc:  # two tools of the job on one head: nothing written
+        _error(exc)
+        return 2
     except SourceError as exc:
         _error(exc)
         return 2

@@ -15,6 +15,7 @@ from __future__ import annotations
 
 from gclint.syntax.nodes import Command
 from gclint.translate.findings import TR_LOST, TR_NO_TOOL, TR_NOTE
+from gclint.translate.options import ToolMapClash
 from gclint.translate.output import fmt
 from gclint.translate.words import num
 
@@ -47,9 +48,26 @@ class Heads:
                 self._no_tool(what, index, self.opts.tool(index))  # type: ignore[arg-type]
             return address
         address = cache[index] = self._on_printer(self.opts.tool(index), what, index)  # type: ignore[arg-type]
+        if address is not None:
+            self._head_user(index, address)  # type: ignore[arg-type]
         if address is None and active and self.hy.focus is not None:
             return self.hy.focus
         return address
+
+    def _head_user(self, tool: int, address: int) -> None:
+        """A second source tool on a head another tool of the job already uses (``--tool-map 0=T1`` and tool 1
+        with the identity default) is refused: the head would print, heat and cool for both."""
+        other = self._head_users.setdefault(address, tool)
+        if other == tool:
+            return
+        how = {
+            t: (f"{t}=T{address}" if t in self.opts.tool_map else f"tool {t} unmapped, T{t} by default")
+            for t in (other, tool)
+        }
+        raise ToolMapClash(
+            f"tools {other} and {tool} both map to head T{address} ({how[other]}; {how[tool]}); "
+            f"map tool {tool if tool not in self.opts.tool_map else other} to a head of its own with --tool-map"
+        )
 
     def _on_printer(self, address: int, what: str, index: int) -> int | None:
         if address in self.positions or (what != "tool" and 20 <= address <= 25):

@@ -191,12 +191,24 @@ def parse_settings(values: tuple[str, ...] | list[str]) -> dict[str, str]:
     return out
 
 
+class ToolMapClash(ValueError):
+    """Two source tools map to one Hyrel head (refused: one line, exit 2)."""
+
+
 def _check_tool_map(tool_map: dict[int, int], where: str) -> None:
     """A source tool becomes a Hyrel head: T0-T19 ("we have the ability to control up to 20 tool positions or
     heads", T_v5, Chart of Addresses); a bed, spindle, laser or group address is refused."""
     from gclint.dialects.addressing import resolve_v5
 
+    users: dict[int, int] = {}
     for tool, address in sorted(tool_map.items()):
+        if address in users:
+            # one head cannot print for two tools: it has one set-point, one fan value, one flow, one filament
+            raise ToolMapClash(
+                f"{where}{users[address]}=T{address} and {tool}=T{address}: tools {users[address]} and {tool} both "
+                f"map to head T{address}; map each tool to a head of its own"
+            )
+        users[address] = tool
         if not 0 <= address <= 19:
             raise ValueError(
                 f"{where}{tool}=T{address}: a tool maps to a head (T0-T19); T{address} is "
