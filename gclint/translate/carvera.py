@@ -233,7 +233,7 @@ class CarveraToHyrel(CncTranslator):
             "to Hyrel heads with --tool-map to switch heads instead",
             key="M6-manual",
             cmd=cmd,
-            aspects=("head", "spindle"),
+            aspects=("head", "spindle", "pause"),
         )
 
     def laser_mode(self, cmd: Command) -> None:

@@ -241,7 +241,7 @@ class MarlinToHyrel(HyrelTranslator):
                 "pause timeout dropped: Marlin goes on after S seconds / P ms, Hyrel's M0 waits for Resume",
                 key="M0-timeout",
                 cmd=cmd,
-                aspects=(),
+                aspects=("pause", "dwell"),
             )
         elif params:
             self.report(TR_NOTE, "pause message dropped (it is not a comment on Hyrel)", key="M0-message", cmd=cmd)
@@ -253,7 +253,7 @@ class MarlinToHyrel(HyrelTranslator):
             f"{cmd.code} (filament change) written as a pause: no park, unload or load",
             key="M600",
             cmd=cmd,
-            aspects=(),
+            aspects="pause",
         )
 
     def m30(self, cmd: Command) -> None:

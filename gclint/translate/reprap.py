@@ -315,7 +315,7 @@ class RepRapToHyrel(MarlinToHyrel):
                 "blocking message box written as a pause (the message text is not shown)",
                 key="M291",
                 cmd=cmd,
-                aspects=(),
+                aspects="pause",
             )
         else:
             self.remove(cmd, TR_DROPPED, "message box", key="M291")

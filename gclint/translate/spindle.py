@@ -94,7 +94,7 @@ class Spindles:
                 + (f"a {fmt(dwell)} s dwell added" if dwell is not None else "a pause added (set spindle-stop-dwell)"),
                 key="M3-M4",
                 cmd=cmd,
-                aspects="spindle",
+                aspects=("spindle", "dwell" if dwell is not None else "pause"),
             )
         self.replace(cmd, " ".join(words))
         if stops:
