@@ -132,3 +132,25 @@ def test_4_the_command_line_refuses_in_one_line_and_writes_nothing(tmp_path) -> 
         )
         assert run.returncode == 2 and not out.exists(), run
         assert len(run.stderr.strip().splitlines()) == 1 and "tools 0 and 1" in run.stderr
+
+
+# -- (5) RepRapFirmware M109 T selects the tool: the part fan and the flow follow, as at a T change ---------
+
+RRF_M109 = (
+    "M83\nM104 T0 S200\nM104 T1 S200\nT0\nM116\nG1 Z0.2 F600\nG1 X10 Y10 E1 F1200\nM106 S255\nM221 S90\n"
+    "M109 T1 S200\nG1 X20 Y10 E1\nM106 S128\n"
+)
+
+
+def test_5_rrf_m109_t_moves_the_part_fan_to_the_selected_tool() -> None:
+    out, _ = translate("reprap", RRF_M109)
+    lines = out.splitlines()
+    t1 = lines.index("T1")
+    move = lines.index("G1 X20 Y10 E1")
+    assert t1 < lines.index("M107 T0") < move and t1 < lines.index("M106 T1 S255") < move, lines
+    assert "M106 T1 S128" in lines  # the fan of the tool M109 T1 selected
+
+
+def test_5_marlin_m109_t_selects_nothing() -> None:
+    out, _ = translate("marlin", RRF_M109)
+    assert "M106 T0 S128" in out.splitlines() and "M106 T1" not in out

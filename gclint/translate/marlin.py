@@ -422,10 +422,16 @@ class MarlinToHyrel(HyrelTranslator):
                 cmd=cmd,
                 aspects="temp",
             )
-        if self.RRF and index is not None and address is not None and address != self.hy.focus:
-            # RepRapFirmware's M109 T also selects the tool
-            self.after(f"T{address}", note="RepRapFirmware's M109 T selects the tool")
-            self.hy.focus = address
+        if self.RRF and index is not None and address is not None:
+            # "RRF M109 T selects the tool" (dialects.md 1.3 and 2.1 M109 rows): a tool change, with what the
+            # tool prints with (set-point, part fan, flow) carried to its head before its first working move
+            if address != self.hy.focus:
+                self.after(f"T{address}", note="RepRapFirmware's M109 T selects the tool")
+                old, self.hy.focus = self.hy.focus, address
+                self.spindle_to_head(old, address)  # type: ignore[attr-defined]  (spindle.Spindles)
+            if index != self.state.tool:
+                self.sync_due = True
+            self.state.tool = index  # the source interpreter does not select it: the translator's view
 
     def _slot(self, cmd: Command, default: int) -> int | None:
         """RepRapFirmware's bed/chamber slot P: P0 the first (T24), P1 the second (T25)."""
