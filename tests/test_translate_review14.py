@@ -154,3 +154,27 @@ def test_5_rrf_m109_t_moves_the_part_fan_to_the_selected_tool() -> None:
 def test_5_marlin_m109_t_selects_nothing() -> None:
     out, _ = translate("marlin", RRF_M109)
     assert "M106 T0 S128" in out.splitlines() and "M106 T1" not in out
+
+
+# -- (6) pauses: Carvera M1 after M334 (optional stop mode on), Marlin/RRF and Carvera M25 -----------------
+
+
+def test_6_carvera_m1_pauses_after_m334_only() -> None:
+    out, result = translate("carvera", "G1 X1 F100\nM1\nM334\nM01 (Optional Stop)\nM333\nM1\n")
+    assert [line for line in out.splitlines() if line.startswith("M0")] == [
+        "M0 ; gclint: optional stop (M334) (Optional Stop)"
+    ]
+    dropped = [f for f in result.findings if f.code == "TR001" and "optional stop" in f.message]
+    assert [f.line for f in dropped] == [2] and "2 lines like this" in dropped[0].message  # lines 2 and 6
+
+
+@pytest.mark.parametrize("dialect", ["marlin", "reprap", "carvera"])
+def test_6_m25_in_a_job_is_a_pause(dialect: str) -> None:
+    out, _ = translate(dialect, "G1 X1 F100\nM25\nG1 X2\n")
+    lines = out.splitlines()
+    assert any(line.startswith("M0 ; gclint: pause") for line in lines), lines
+
+
+def test_6_carvera_line_by_line_mode_is_a_warning() -> None:
+    _, result = translate("carvera", "M336\nG1 X1 F100\n")
+    assert any("line-by-line" in m for m in _codes(result, "TR002"))

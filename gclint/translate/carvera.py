@@ -37,6 +37,10 @@ class CarveraToHyrel(CncTranslator):
         "M18": "disengage",
         "M84": "disengage",
         "M600": "pause",
+        "M25": "pause",
+        "M1": "optional_stop",
+        "M333": "optional_stop_mode",
+        "M334": "optional_stop_mode",
         "M321": "laser_mode",
         "M322": "laser_mode_off",
         "M801": "vacuum",
@@ -45,17 +49,21 @@ class CarveraToHyrel(CncTranslator):
         "M822": "light_off",
     }
     DROPPED: ClassVar[dict[str, tuple[str, str]]] = {
-        **_codes("M1", TR_DROPPED, "optional stop (off unless M334 enables it)"),
         **_codes(
-            "M105 M114 M115 M119 M27 M957 M117 M118 M118.1 M20 M21 M23 M24 M25 M26 M503 M500 M501 M502 M504 "
+            "M105 M114 M115 M119 M27 M957 M117 M118 M118.1 M20 M21 M23 M24 M26 M503 M500 M501 M502 M504 "
             "M498 M498.1 M499 M499.1 M499.2 M493.4 M601",
             TR_DROPPED,
             "report, message or file operation",
         ),
         **_codes(
-            "M331 M332 M333 M334 M335 M336 M811 M812 M831 M832 M841 M842 M881 M882 M885 M886 M887 M888 M1000",
+            "M331 M332 M335 M811 M812 M831 M832 M841 M842 M881 M882 M885 M886 M887 M888 M1000",
             TR_DROPPED,
             "Carvera machine feature with no effect on the toolpath",
+        ),
+        **_codes(
+            "M336",
+            TR_LOST,
+            'line-by-line execution mode ("Pauses after each line", carvera-mcodes.md M336): the pauses are lost',
         ),
         **_codes("M221", TR_DROPPED, "soft endstops on/off (Carvera's M221 is not a flow command)"),
         **_codes("M82 M83", TR_DROPPED, "extruder mode (no extrusion here)"),
@@ -87,6 +95,7 @@ class CarveraToHyrel(CncTranslator):
         self.laser_fire = False  # M3 in laser mode
         self.laser_power = 0.0  # percent, modal (S on moves)
         self.laser_power_written: float | None = None
+        self.optional_stop = False  # M334 turned optional stop mode on (M333 off)
 
     def focus_address(self) -> int | None:
         return self.opts.spindle_address()
@@ -164,8 +173,37 @@ class CarveraToHyrel(CncTranslator):
                 TR_APPROX, f"{cmd.code} with axes: Hyrel cuts every motor", key="M18", cmd=cmd, aspects="position"
             )
 
+    def optional_stop_mode(self, cmd: Command) -> None:
+        """M333 "Turn off optional stop mode", M334 "Turn on optional stop mode. See M01" (carvera-mcodes.md;
+        the firmware's own test, corpus TEST_M01_M333_M334_OptionalStop.cnc: after M334 "The program should
+        pause" at each M01).  Hyrel has no optional stop: the translator decides at each M1."""
+        self.optional_stop = cmd.code == "M334"
+        state = "on: the M1 after it become pauses (M0)" if self.optional_stop else "off: the M1 after it are dropped"
+        self.remove(cmd, TR_NOTE, f"optional stop mode {state}", key=("optional-stop", cmd.code))
+
+    def optional_stop(self, cmd: Command) -> None:
+        """M1 pauses when optional stop mode is on (M334), else it does nothing (carvera-mcodes.md M1, M333,
+        M334)."""
+        if self.optional_stop:
+            self.pause_command(cmd, "M0 ; gclint: optional stop (M334)")
+            self.report(
+                TR_NOTE,
+                "optional stop with optional stop mode on (M334): written as Hyrel's pause M0",
+                key="M1-on",
+                cmd=cmd,
+            )
+            return
+        self.remove(
+            cmd,
+            TR_DROPPED,
+            "optional stop with optional stop mode off (no M334 before it in the job): no pause; dropped (if the "
+            "operator turned the mode on at the console, the Carvera pauses here and Hyrel does not)",
+            key="M1",
+            aspects=(),
+        )
+
     def pause(self, cmd: Command) -> None:
-        self.pause_command(cmd, "M0 ; gclint: pause (Carvera M600)")
+        self.pause_command(cmd, f"M0 ; gclint: pause (Carvera {cmd.code})")
 
     # -- spindle, tools, laser ----------------------------------------------------------------------------
 

@@ -77,6 +77,7 @@ class MarlinToHyrel(HyrelTranslator):
         "M226": "m226",
         "M300": "beep",
         "M600": "filament_change",
+        "M25": "print_pause",
         "M601": "filament_change",
         "M30": "m30",
         "M2": "m2",
@@ -245,6 +246,19 @@ class MarlinToHyrel(HyrelTranslator):
             )
         elif params:
             self.report(TR_NOTE, "pause message dropped (it is not a comment on Hyrel)", key="M0-message", cmd=cmd)
+
+    def print_pause(self, cmd: Command) -> None:
+        """M25 "pause file print" (firmware_codes.md section 1, Marlin: "M24, M25 | start-resume / pause file
+        print"; RepRapFirmware "M25 pause"): inside the job it pauses the print until it is resumed."""
+        self.pause_command(cmd, "M0 ; gclint: pause (M25)")
+        self.report(
+            TR_APPROX,
+            "M25 (pause the file print until it is resumed) written as Hyrel's pause M0; what the firmware does "
+            "on pause (a park move, heaters) is not made",
+            key="M25",
+            cmd=cmd,
+            aspects="pause",
+        )
 
     def filament_change(self, cmd: Command) -> None:
         self.pause_command(cmd, "M0 ; gclint: filament change")

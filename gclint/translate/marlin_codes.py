@@ -21,7 +21,7 @@ NO_EFFECT = {
     **_codes("M486 M555", TR_DROPPED, "object labels and print area for the host"),
     **_codes("M75 M76 M77 M78", TR_DROPPED, "print job timer and statistics"),
     **_codes("M108 M110", TR_DROPPED, "host protocol"),
-    **_codes("M20 M21 M22 M23 M24 M25 M26 M28 M29 M32 M33 M34 M524 M928", TR_DROPPED, "SD card operation"),
+    **_codes("M20 M21 M22 M23 M24 M26 M28 M29 M32 M33 M34 M524 M928", TR_DROPPED, "SD card operation"),
     **_codes(
         "M500 M501 M502 M504 M510 M511 M512 M575 M993 M994 M995 M997 M999",
         TR_DROPPED,
