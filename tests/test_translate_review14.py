@@ -178,3 +178,13 @@ def test_6_m25_in_a_job_is_a_pause(dialect: str) -> None:
 def test_6_carvera_line_by_line_mode_is_a_warning() -> None:
     _, result = translate("carvera", "M336\nG1 X1 F100\n")
     assert any("line-by-line" in m for m in _codes(result, "TR002"))
+
+
+# -- (7) --set tool-offsets=m6 writes RepRapFirmware's G10 L1 tool offsets too -----------------------------
+
+
+def test_7_g10_l1_tool_offsets_are_written_as_m6() -> None:
+    out, result = translate("reprap", "G10 L1 P1 X10 Y0 Z0.5\n", tool_offsets="m6")
+    assert "M6 T1 O2 X-10 Y0 Z-0.5" in out.splitlines() and _codes(result, "TR003")
+    out, result = translate("reprap", "G10 L1 P1 X10 Y0 Z0.5\n")
+    assert "M6" not in out and any("tool-offsets=m6" in m for m in _codes(result, "TR002"))

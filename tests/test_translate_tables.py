@@ -344,6 +344,13 @@ REPRAP = [
     Row("2.1 RRF G10 L1 P X Y Z (tool offset)", "G10 L1 P0 X-9 Y39 Z-5", "", "TR002"),
     Row("2.1 RRF G10 P X Y Z (tool offset)", "G10 P0 X-9 Y39 Z-5", "", "TR002"),
     Row(
+        "2.1 RRF G10 L1 P X Y Z, tool-offsets=m6",
+        "G10 L1 P1 X10 Y0 Z0.5",
+        "M6 T1 O2 X-10 Y0 Z-0.5",
+        "TR003",
+        settings={"tool_offsets": "m6"},
+    ),
+    Row(
         "2.1 RRF G10 P X Y Z, tool-offsets=m6",
         "G10 P1 X-9 Y39 Z-5",
         "M6 T1 O2 X9 Y-39 Z5",

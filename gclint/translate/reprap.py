@@ -184,6 +184,11 @@ class RepRapToHyrel(MarlinToHyrel):
         params = cmd.params
         if "L" in params:
             level = num(params.get("L"))
+            if level == 1 and "P" in params and any(a in params for a in "XYZ") and self.opts.tool_offsets == "m6":
+                # "RRF G10 L1 P<t> X Y Z (tool offset) | default dropped; opt M6 T<map> O<reg> X Y Z"
+                # (dialects.md 2.1): as G10 P<t> X Y Z
+                self._offsets_as_m6(cmd, self._tool_index(cmd, "P"))
+                return
             if level in (2, 20):
                 self.untranslatable(
                     cmd,
@@ -194,7 +199,7 @@ class RepRapToHyrel(MarlinToHyrel):
                 self.remove(
                     cmd,
                     TR_LOST,
-                    "tool offsets: Repetrel declares head offsets itself (M6)",
+                    "tool offsets: Repetrel declares head offsets itself (M6; set tool-offsets=m6 to write them)",
                     key="G10-offset",
                     aspects=("position", "offsets"),
                 )
