@@ -188,3 +188,15 @@ def test_7_g10_l1_tool_offsets_are_written_as_m6() -> None:
     assert "M6 T1 O2 X-10 Y0 Z-0.5" in out.splitlines() and _codes(result, "TR003")
     out, result = translate("reprap", "G10 L1 P1 X10 Y0 Z0.5\n")
     assert "M6" not in out and any("tool-offsets=m6" in m for m in _codes(result, "TR002"))
+
+
+# -- (8) Carvera M321 (laser mode) drops the tool: the spindle stops ---------------------------------------
+
+
+def test_8_carvera_laser_mode_stops_the_spindle() -> None:
+    out, _ = translate(
+        "carvera", "G21 G90\nT1 M6\nM3 S10000\nG1 X1 Z-1 F100\nM321\nS0.5 M3\nG1 X10 S0.5\nM322\nM2\n", tool_map="1=T0"
+    )
+    lines = out.splitlines()
+    assert lines.index("M5 T0") < lines.index("M620 T0 E1") < lines.index("G1 X10 E1"), lines
+    assert lines.count("M5 T0") == 1  # not again in the footer

@@ -275,6 +275,18 @@ class CarveraToHyrel(CncTranslator):
         )
 
     def laser_mode(self, cmd: Command) -> None:
+        running = sorted(self.hy.spindles_on)
+        if running:
+            # M321: "The machine will drop the current tool automatically" (carvera-mcodes.md): the spindle
+            # stops with it, as at an ATC change (SPINDLE_STOPS_AT_TOOL_CHANGE)
+            self.before(*(f"M5 T{a}" for a in running), note="laser mode drops the tool: the spindle stops")
+            self.hy.spindles_on.clear()
+            self.report(
+                TR_NOTE,
+                "laser mode (M321) drops the current tool: the running spindle is stopped before the laser",
+                key="M321-spindle",
+                cmd=cmd,
+            )
         self.laser = True
         self.extra_always = True  # every move: firing moves get E1 and the power
         address = self.opts.laser_address()
