@@ -271,7 +271,7 @@ class Linter:
         numbered_hooks = tuple(r.check_line for r in rules if r.on_numbered)
         issue_hooks = tuple(r.check_issues for r in rules if r.on_issue)
         comment_hooks = tuple(r.check_comment for r in rules if r.on_comment)
-        # (security rules: lines a firmware edits before it reads them, read again as it does; rules/security.py)
+        # (security rules: lines a firmware edits before it reads them, read again as it does; rules/security/views.py)
         views: dict = {}  # (one search per line for the rules that share a pattern)
         for r in rules:
             if getattr(r, "on_line_matching", None) is not None:

@@ -339,13 +339,13 @@ def test_one_hyrel_only_code_beats_the_extension(line: str, extension: str) -> N
     assert context.dialect == "hyrel", context.why()
 
 
-PLAIN_HEATING_JOB = "G21\nG90\nG28 X0 Y0\nM104 T0 S215\nM109 T0 S215\nT0\nG1 X50 Y50 E1 F1800\nG1 X60 Y50 E2\nM107\nM30\n"
+PLAIN_HEATING_JOB = (
+    "G21\nG90\nG28 X0 Y0\nM104 T0 S215\nM109 T0 S215\nT0\nG1 X50 Y50 E1 F1800\nG1 X60 Y50 E2\nM107\nM30\n"
+)
 
 
 @pytest.mark.parametrize("extension", [".nc", ".cnc", ".tap", ".ngc"])
-def test_content_that_rules_out_the_extensions_dialect_rules_out_the_extension(
-    tmp_path: Path, extension: str
-) -> None:
+def test_content_that_rules_out_the_extensions_dialect_rules_out_the_extension(tmp_path: Path, extension: str) -> None:
     """Nothing in this job is one dialect's alone, but Carvera has no M104 and Machinekit moves carry no E:
     the CNC extensions do not make it a CNC program (it was checked as Machinekit, with two false errors)."""
     job = tmp_path / ("job" + extension)

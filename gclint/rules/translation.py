@@ -201,7 +201,7 @@ class CommentBecomesAction(TranslationRule):
     example_good = "M0"
     source = (
         "Hyrel Gcode page, M0 Stop Until Resume and M792 Execute Action (SAY, PIC, VID, SEND, BEEP, SHELL); "
-        "gclint/rules/security.py (SC rules)"
+        "gclint/rules/security/ (SC rules)"
     )
 
 

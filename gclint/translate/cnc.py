@@ -6,7 +6,6 @@ the end of program codes.  research/dialects.md 2.2 and 2.3.
 from __future__ import annotations
 
 import re
-
 from typing import ClassVar
 
 from gclint.syntax.nodes import Command

@@ -363,7 +363,7 @@ class M0UnknownAction(Rule):
         mask"); the Gcode page does not say what M792 does with it.  A misspelt action (SPEAK, BEEEP) may be
         silently lost.  Info only.  Text that holds SHELL anywhere is not reported here: it is a security
         finding (SC001), since nothing says Repetrel will not run it.  Actions are read as the SC rules
-        read them (gclint/rules/security.py: any case, without invisible characters, after punctuation).
+        read them (gclint/rules/security/actions.py: any case, without invisible characters, after punctuation).
     """
     example_bad = "M792 ; SPEAK Hello Wilbur"
     example_good = "M792 ; SAY Hello Wilbur"

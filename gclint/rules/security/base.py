@@ -1,0 +1,92 @@
+"""The base of the SC rules: what they listen to, and reading the firmwares' views of a line."""
+
+from __future__ import annotations
+
+from gclint import secrets
+from gclint.rules.base import Rule, Severity
+from gclint.rules.security.common import _LEADING_CODE, _LEADING_NAME, _code, _mask_machine_password
+from gclint.rules.security.views import _VIEW_TRIGGER, _views_of
+from gclint.syntax.nodes import Command, Line
+
+
+class _SecurityRule(Rule):
+    """Listens to ``codes`` on parsed lines and, on lines with a parse error, to the code that starts the line.
+
+    Subclasses implement ``inspect(line, code, rest, column, cmd)``: ``rest`` is the line's text after the
+    code word (comments included), ``column`` the 1-based column where ``rest`` starts, ``cmd`` the parsed
+    command or None.
+    """
+
+    on_issue = True
+    # the engine calls check_view for lines this finds (gclint/engine.py)
+    on_line_matching = _VIEW_TRIGGER
+
+    def __init__(self, ctx) -> None:
+        super().__init__(ctx)
+        self._view: tuple[str, Line, int] | None = None  # (how, the line as written, offset) while reading a view
+
+    def check(self, line: Line, cmd: Command) -> None:
+        word = cmd.word
+        start = word.end_column if word is not None else cmd.column
+        self.inspect(line, cmd.code or "", line.raw[start - 1 :], start, cmd)
+
+    def check_issues(self, line: Line) -> None:
+        if line.parsed.commands and any(c.code in self.codes for c in line.parsed.commands):
+            return  # already seen by check()
+        m = _LEADING_CODE.match(line.raw)
+        if m is not None:
+            code = _code(m.group(1), m.group(2))
+        else:  # a Klipper command ("RUN_SHELL_COMMAND\u00a0CMD=x"): Klipper reads names in any case
+            m = _LEADING_NAME.match(line.raw)
+            if m is None:
+                return
+            code = m.group(1).upper()
+        if code in self.codes:
+            self.inspect(line, code, line.raw[m.end() :], m.end() + 1, None)
+
+    def check_view(self, line: Line) -> None:
+        """Read ``line`` as each firmware that edits it first reads it (``firmware_views``), reporting on
+        ``line`` with the reading named."""
+        for how, view, offset in _views_of(line):
+            self._view = (how, line, offset)
+            try:
+                parsed = view.parsed
+                for cmd in parsed.commands:
+                    if cmd.code in self.codes:
+                        self.check(view, cmd)
+                if parsed.issues and self.on_issue:
+                    self.check_issues(view)
+                # (no check_line: SC003's console lines are Smoothieware's, which reads its lines as they are)
+            finally:
+                self._view = None
+
+    def inspect(self, line: Line, code: str, rest: str, column: int, cmd: Command | None) -> None:
+        raise NotImplementedError
+
+    def report_masked(self, line: Line, message: str, column: int, severity: Severity | None = None) -> None:
+        """Report with the message and the source line masked (no secret reaches any output).  While a
+        firmware's view of a line is read, the finding goes on the line as written, naming the view, unless
+        the line already has it."""
+        if self._view is not None:
+            how, line, offset = self._view
+            if any(
+                f.line == line.number and f.code == self.code and f.message.endswith(secrets.mask(message))
+                for f in self._findings_on(line.number)
+            ):
+                return
+            message = f"{how}: {message}"
+            column = offset + column if offset else 1
+        self.report(line, secrets.mask(message), column=column, severity=severity)
+        finding = self.ctx.findings[-1]
+        if finding.line == line.number and finding.source is not None:
+            # (the line, or its beginning for a very long one)
+            finding.source = _mask_machine_password(secrets.mask(finding.source))
+
+    def _findings_on(self, number: int) -> list:
+        """The findings already made on line ``number`` (they are made in line order)."""
+        out = []
+        for finding in reversed(self.ctx.findings):
+            if finding.line != number:
+                break
+            out.append(finding)
+        return out

@@ -1,0 +1,335 @@
+"""SC004, SC005: running and changing files on the printer."""
+
+from __future__ import annotations
+
+import re
+
+from gclint.rules.base import Severity, register
+from gclint.rules.security.base import _SecurityRule
+from gclint.rules.security.common import _NUMBER, _excerpt, _quote, _starts_line, _strip_comment
+from gclint.syntax.nodes import Command, Line
+
+# -- files on the printer ---------------------------------------------------------------------------------
+
+
+def _file_argument(code: str, rest: str, cmd: Command | None) -> str | None:
+    """The file a command names, or None when it names none (``M98 P100`` calls subprogram 100)."""
+    argument = _strip_comment(rest)
+    if not argument:
+        return None
+    if code == "M98":
+        if cmd is not None and cmd.words:
+            p = cmd.raw("P")
+            if p is None:
+                return None
+            if p.startswith('"'):
+                return p.strip('"')
+            if _NUMBER.fullmatch(p):
+                return None  # subprogram or macro number (Fanuc, Carvera macros/####.cnc)
+        if argument[:1] in "Pp":
+            value = argument[1:].strip(" \t")
+            if not value or _NUMBER.fullmatch(value.split()[0]) or value.startswith("["):
+                return None
+            return value.strip('"')
+        return argument if not _NUMBER.fullmatch(argument) else None
+    if code == "M98.1" and "{" in argument:
+        return argument[argument.find("{") + 1 :].rstrip("} \t")  # M98.1 L2 {gcodes/test.cnc}
+    if "!" in argument:  # Marlin M32 P !/models/part.gco#
+        return argument[argument.find("!") + 1 :].split("#", 1)[0]
+    return argument.strip('"')
+
+
+_MACRO_NUMBER = re.compile(r"[Pp][ \t]*+(\d{1,9}+)(?:\.0*+)?(?![\d.])")
+
+
+def _macro_number(rest: str, cmd: Command | None) -> int | None:
+    """The number of ``M98 P1234`` (a Carvera macro file, a LinuxCNC/Fanuc subprogram), or None."""
+    if cmd is not None and cmd.words:
+        p = cmd.raw("P")
+        return int(float(p)) if p is not None and _NUMBER.fullmatch(p) and float(p) >= 0 else None
+    m = _MACRO_NUMBER.match(_strip_comment(rest))
+    return int(m.group(1)) if m is not None else None
+
+
+def _reprap_configuration(path: str) -> bool:
+    """Whether ``path`` is a RepRapFirmware system or macro file: ``.g``, or under ``sys/`` or ``macros/``."""
+    parts = path.replace("\\", "/").lower().split("/")
+    return parts[-1].endswith(".g") or "sys" in parts[:-1] or "macros" in parts[:-1]
+
+
+def _reprap_system_file(path: str) -> bool:
+    """Whether ``path`` is a RepRapFirmware system file: a ``.g`` file right in a ``sys/`` folder (config.g
+    and the files it runs); a job (``.gcode``) placed there, or deeper, is not."""
+    parts = path.replace("\\", "/").lower().split("/")
+    return len(parts) >= 2 and parts[-2] == "sys" and parts[-1].endswith(".g")
+
+
+@register
+class RunsFile(_SecurityRule):
+    code = "SC004"
+    name = "runs-file"
+    severity = Severity.WARNING
+    summary = (
+        "The job runs or selects another file on the printer (M98 with a path or a macro number, M98.1, M32, M23,"
+        " Klipper SDCARD_PRINT_FILE)"
+    )
+    explanation = """
+        M98 P"file" (RepRapFirmware macros), M98 P1234 (Carvera: the file gcodes/macros/1234.cnc), M98.1
+        {path} (Carvera), M32 (select and start a file), M23 (select a file for M24) and Klipper's
+        SDCARD_PRINT_FILE FILENAME=... (load a file and start it) make the firmware run a file that is not
+        in this job.  What runs is whatever that file holds on the machine at print time, which this check
+        cannot see; on a shared or networked printer it may have been changed.  Prefer self-contained jobs;
+        when a macro is intended, silence this code for those files with per-file-ignores in the
+        configuration.  A job cannot silence SC findings itself: "; noqa: SC004" and "; gclint:
+        disable=SC" are ignored for the security rules.
+
+        M98 P with a number is a subprogram of the same file in LinuxCNC (Fanuc style,
+        research/firmware_codes.md section 7), so it is not reported in a job read as
+        Machinekit/LinuxCNC; elsewhere it is, since a Carvera runs gcodes/macros/<number>.cnc for it.
+
+        RepRapFirmware's own configuration is macros calling macros: the firmware runs homeall.g for G28,
+        tpre0.g for T0, M<n>.g for a code it does not have, and these files call each other with M98
+        (research/firmware_codes.md section 6).  So M98 in a RepRapFirmware system or macro file (a `.g`
+        file, or a file in a `sys/` or `macros/` folder, checked as RepRapFirmware) is not reported: it
+        runs another part of the same configuration.  A job that calls a macro still is.
+    """
+    example_bad = 'M98 P"0:/macros/prime.g"'
+    example_good = """
+        ; gclint-test: dialect=machinekit
+        M98 P100 L2
+    """
+    source = (
+        "RepRap G-code page (M23, M32, M98); Carvera M-code table (M98 P####: gcodes/macros/####.cnc, M98.1, M32,"
+        " M23); Klipper docs/G-Codes.md [virtual_sdcard] (SDCARD_PRINT_FILE: load a file and start SD print)"
+    )
+    codes = ("M98", "M98.1", "M32", "M23", "SDCARD_PRINT_FILE")
+
+    def __init__(self, ctx) -> None:
+        super().__init__(ctx)
+        self.configuration = ctx.dialect.name == "reprap" and _reprap_configuration(ctx.path)
+
+    def inspect(self, line: Line, code: str, rest: str, column: int, cmd: Command | None) -> None:
+        if not _starts_line(line, cmd) or (code == "M98" and self.configuration):
+            return
+        if code == "SDCARD_PRINT_FILE":
+            name = cmd.params.get("FILENAME") if cmd is not None else None
+            target = f" {_quote(name.strip(chr(34)))}" if name else ""
+            where = cmd.column if cmd is not None else 1
+            self.report_masked(
+                line,
+                f"SDCARD_PRINT_FILE loads and starts the file{target} on a Klipper printer: code outside this job",
+                where,
+            )
+            return
+        name = _file_argument(code, rest, cmd)
+        if name is None:
+            if code == "M98" and self.ctx.dialect.family != "linuxcnc":
+                number = _macro_number(rest, cmd)
+                if number is not None:
+                    self.report_masked(
+                        line,
+                        f"M98 P{number} runs the file gcodes/macros/{number}.cnc on a Carvera: code outside this job",
+                        column,
+                    )
+            return
+        verb = {"M23": "selects", "M32": "selects and starts"}.get(code, "runs")
+        self.report_masked(line, f"{code} {verb} the file {_quote(name)} on the printer: code outside this job", column)
+
+
+# RepRapFirmware 3.4 and later: "echo >file ...", ">>file" (StringParser.cpp ProcessEchoCommand: '>' opens the
+# file for writing, '>>' for appending; any text starting with '>' is read as a redirect).
+_ECHO_REDIRECT = re.compile(
+    r"""[ \t]*+(?:[Nn][ \t]*+\d{1,12}+[ \t]*+)?echo[ \t]*+(>{1,3}+)[ \t]*+("(?:[^"\r\n]|"")*+"?|\{[^}\r\n]*+\}?|[^ \t;]*+)"""
+)
+_LOG_FILE = re.compile(r"(?i)\.(?:txt|log)$")
+# Codes whose file effect belongs to one firmware (research/firmware_codes.md): Smoothieware keeps settings
+# in a config-override file (section 8: M500 save overrides, M502 delete override file, M504 save to a
+# named file; seeds/carvera-mcodes.md M502 "deletes config-override"), RepRapFirmware writes
+# config-override.g (section 6: M500-M503 config-override); Marlin keeps them in EEPROM (sections 1 and 5:
+# save / load / defaults / report / validate settings), so a job read as Marlin is not reported.
+_CONFIG_OVERRIDE = {
+    "M500": "writes the machine's settings into its config-override file (Smoothieware/Carvera config-override,"
+    " RepRapFirmware config-override.g)",
+    "M502": "deletes the config-override file on Smoothieware/Carvera (the machine falls back to config.txt)",
+    "M504": "writes the machine's settings into a named config-override file on Smoothieware/Carvera",
+}
+
+
+# Codes that replace the printer's firmware (research/firmware_codes.md: section 1 Prusa Buddy M997 firmware
+# update; section 5 Marlin M997 firmware update, M936 OTA update; section 6 RepRapFirmware M997 firmware update).
+_FIRMWARE_UPDATE = {
+    "M997": "starts a firmware update (Marlin, Prusa Buddy, RepRapFirmware): a job must not replace the printer's"
+    " firmware",
+    "M936": "starts an over-the-air firmware update (Marlin)",
+}
+
+
+@register
+class ChangesPrinterFiles(_SecurityRule):
+    code = "SC005"
+    name = "changes-printer-files"
+    severity = Severity.ERROR
+    summary = (
+        "The job deletes, writes or renames files on the printer, or replaces its firmware (M30 <file>, M28, M471,"
+        " M472, M559, M560, echo >file, M928/M929 into a non-log file, M500/M502/M504, M505, M997, M936, Klipper"
+        " SAVE_CONFIG and SAVE_VARIABLE)"
+    )
+    explanation = """
+        In Marlin and RepRapFirmware "M30 file" deletes that file from the SD card, M28 writes the
+        following lines into a file instead of running them (M28 /sys/config.g replaces the printer's
+        configuration), M471 renames or moves a file, M472 deletes one and M559/M560 upload configuration
+        or web files.  RepRapFirmware 3.4 and later write the text of "echo >"file" ..." into a file
+        (">>" appends), so "echo >"0:/sys/config.g" "M112"" replaces the configuration; "M929 P"file" S1"
+        logs into a file, which in a .g file puts log lines into a macro the printer runs (log files
+        ending in .txt or .log are not reported).  On Smoothieware (Carvera) M500 writes the
+        config-override file, M502 deletes it and M504 writes a named one (RepRapFirmware's M500 writes
+        config-override.g); in a job read as Marlin they are the EEPROM settings and not reported.
+        Klipper's SAVE_CONFIG overwrites the printer's config file and restarts the host, and SAVE_VARIABLE
+        writes a variable to disk.  Marlin's M928 logs the commands that follow into a named file on the SD
+        card (a .txt or .log file is not reported, as for M929); RepRapFirmware's M505 makes another folder
+        the system folder, so the printer reads its config.g from there; M997 (Marlin, Prusa, RepRapFirmware)
+        and M936 (Marlin) update the firmware.
+
+        A job that changes the printer's files outlives the print: it can break the next job, the
+        machine's limits or its safety settings.  Plain "M30" (end of program) is fine, as are a bare M471
+        or M472 (on the Carvera they pair the wireless probe and switch its laser on).  In a job read as
+        Hyrel, M30 is "End of Program" and takes no file, but the finding stays: the dialect is read from
+        the job itself, and a job that names a file after M30 deletes it wherever Marlin or RepRapFirmware
+        runs it.  The same holds for RepRapFirmware system and macro files: a macro package that writes
+        its own files is reported, and a configuration repository silences this code for those files
+        with per-file-ignores.
+
+        Smoothieware (Carvera) runs every G and M code of a line, so "G0 X0 M502" is reported (on the
+        M502) in every dialect; the dialect's own exemptions still hold.
+    """
+    example_bad = "M30 /sys/config.g"
+    example_good = "M30"
+    source = (
+        "RepRap G-code page (M28, M30, M471, M559, M560); research/firmware_codes.md sections 6 (M472 delete, M929"
+        " logging, M500-M503 config-override) and 8 (M500, M502 delete override file, M504); RepRapFirmware"
+        " StringParser.cpp ProcessEchoCommand (echo >file, >>file); Klipper docs/G-Codes.md [configfile]"
+        " SAVE_CONFIG and [save_variables] SAVE_VARIABLE; research/firmware_codes.md sections 2 and 5 (M928 SD"
+        " logging into a file), 6 (M505 set system folder), 1, 5 and 6 (M997 firmware update), 5 (M936 OTA"
+        " update), 8 (several G/M words on one line are split at each G/M)"
+    )
+    codes = (
+        "M30",
+        "M28",
+        "M471",
+        "M472",
+        "M559",
+        "M560",
+        "M929",
+        "M500",
+        "M502",
+        "M504",
+        "echo",
+        "SAVE_CONFIG",
+        "SAVE_VARIABLE",
+        "M928",
+        "M505",
+        "M997",
+        "M936",
+    )
+
+    def inspect(self, line: Line, code: str, rest: str, column: int, cmd: Command | None) -> None:
+        if not _starts_line(line, cmd):
+            return
+        if code == "echo":
+            self._echo(line, cmd.column if cmd is not None else 1)
+            return
+        if code in ("SAVE_CONFIG", "SAVE_VARIABLE"):
+            where = cmd.column if cmd is not None else 1
+            what = (
+                "overwrites the printer's config file and restarts Klipper"
+                if code == "SAVE_CONFIG"
+                else "writes a variable to the printer's [save_variables] file"
+            )
+            self.report_masked(line, f"{code} {what}", where)
+            return
+        if code in _FIRMWARE_UPDATE:
+            self.report_masked(line, f"{code} {_FIRMWARE_UPDATE[code]}{_excerpt(rest)}", column)
+            return
+        if code in _CONFIG_OVERRIDE:
+            if self.ctx.dialect.name != "marlin":
+                self.report_masked(line, f"{code} {_CONFIG_OVERRIDE[code]}", column)
+            return
+        argument = re.sub(r"\*\d+\s*$", "", _strip_comment(rest))  # (a "*99" checksum is no file name)
+        if code in ("M30", "M28"):
+            if not argument.strip():
+                return
+            if code == "M30" and cmd is not None and cmd.words and not any(w.kind == "string" for w in cmd.words):
+                return  # "M30 P1": parameter words, no file name
+            action = "deletes" if code == "M30" else "writes the following lines into"
+            where = "on the printer"
+            if code == "M30" and self.ctx.dialect.family == "hyrel":
+                # the dialect is read from the job, which an attacker writes: the gate does not rest on it
+                where = "on a Marlin or RepRapFirmware printer (on Hyrel, M30 ends the program and takes no file)"
+            self.report_masked(line, f"{code} {action} the file {_quote(argument.strip(chr(34)))} {where}", column)
+            return
+        if code == "M929":
+            self._logging(line, argument, column, cmd)
+            return
+        if code == "M928":
+            name = argument.strip().strip('"')
+            if name and not (_LOG_FILE.search(name) and "{" not in name):  # (as M929: a .txt/.log file is a log)
+                self.report_masked(
+                    line,
+                    f"M928 starts logging the commands that follow into the file {_quote(name)}"
+                    " on the printer's SD card (Marlin, Prusa MK3)",
+                    column,
+                )
+            return
+        if code == "M505":
+            self.report_masked(
+                line,
+                f"M505 moves RepRapFirmware's system folder{_excerpt(argument)}: the printer then reads config.g and"
+                " its other system files from there",
+                column,
+            )
+            return
+        if code in ("M471", "M472") and not argument.strip():
+            return  # Carvera: pair the wireless probe, switch its laser on
+        action = {
+            "M471": "renames or moves a file",
+            "M472": "deletes a file",
+            "M559": "uploads a configuration file",
+            "M560": "uploads a web file",
+        }[code]
+        self.report_masked(line, f"{code} {action} on the printer{_excerpt(argument)}", column)
+
+    def check_issues(self, line: Line) -> None:
+        super().check_issues(line)
+        if any(c.code == "echo" for c in line.parsed.commands):
+            return  # already seen by check()
+        if "echo" in line.raw:
+            self._echo(line, 1)
+
+    def _echo(self, line: Line, column: int) -> None:
+        m = _ECHO_REDIRECT.match(line.raw)
+        if m is None:
+            return
+        mode = "appends its text to" if len(m.group(1)) > 1 else "writes its text into"
+        target = f" {_quote(m.group(2).strip(chr(34)))}" if m.group(2).strip('"') else ""
+        self.report_masked(
+            line, f"echo {m.group(1)} {mode} the file{target} on a RepRapFirmware printer (3.4 and later)", column
+        )
+
+    def _logging(self, line: Line, argument: str, column: int, cmd: Command | None) -> None:
+        if cmd is not None and cmd.words:
+            target, level = cmd.raw("P"), cmd.raw("S")
+        else:
+            m_p = re.search(r"""(?i)P[ \t]*+("[^"]*+"?|\S+)""", argument)
+            m_s = re.search(r"(?i)S[ \t]*+(\S+)", argument)
+            target, level = (m_p.group(1) if m_p else None), (m_s.group(1) if m_s else None)
+        if target is None or (level is not None and _NUMBER.fullmatch(level) and float(level) == 0):
+            return  # the default log file (eventlog.txt), or logging stopped
+        name = target.strip('"')
+        if _LOG_FILE.search(name) and "{" not in name:
+            return
+        self.report_masked(
+            line,
+            f"M929 logs into the file {_quote(name)}: log lines written into a file the printer runs (a .g macro)"
+            " become G-code",
+            column,
+        )

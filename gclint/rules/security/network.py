@@ -1,0 +1,71 @@
+"""SC007: network services switched on."""
+
+from __future__ import annotations
+
+import re
+
+from gclint.rules.base import Severity, register
+from gclint.rules.security.base import _SecurityRule
+from gclint.rules.security.common import _NUMBER, _starts_line, _strip_comment
+from gclint.rules.security.files import _reprap_system_file
+from gclint.syntax.nodes import Command, Line
+
+# -- network services ----------------------------------------------------------------------------------------
+
+# RepRapFirmware src/Networking/NetworkDefs.h: HttpProtocol = 0, FtpProtocol = 1, TelnetProtocol = 2,
+# MulticastDiscoveryProtocol = 3, MqttProtocol = 4 (M586 P); S1 enables, S0 disables
+# (research/firmware_codes.md section 6: M586 network protocols).
+_PROTOCOLS = {
+    0: "HTTP (the web interface: files, configuration, any G-code)",
+    1: "FTP (read and write access to the SD card)",
+    2: "Telnet (a G-code console)",
+    3: "multicast discovery",
+    4: "MQTT",
+}
+
+
+@register
+class OpensNetworkService(_SecurityRule):
+    code = "SC007"
+    name = "opens-network-service"
+    severity = Severity.ERROR
+    summary = "The job switches on a network service of the printer (RepRapFirmware M586: HTTP, FTP, Telnet)"
+    explanation = """
+        RepRapFirmware's "M586 P<protocol> S1" switches on a network service: P0 the web interface (HTTP),
+        P1 FTP, P2 Telnet.  FTP reads and writes every file on the SD card and Telnet is a G-code console,
+        both protected only by the M551 password (if one is set).  A job that turns them on leaves the
+        machine open to anyone on its network after the print.  The network belongs in the printer's
+        configuration: M586 in a `.g` file right in a RepRapFirmware `sys/` folder (config.g and the files
+        it runs, checked as RepRapFirmware) is not reported; a job placed in such a folder is.  Switching a service off (S0) is not reported.
+    """
+    example_bad = "M586 P2 S1"
+    example_good = "M586 P2 S0"
+    source = (
+        "research/firmware_codes.md section 6 (M586 network protocols); RepRapFirmware src/Networking/NetworkDefs.h"
+        " (protocol numbers: 0 HTTP, 1 FTP, 2 Telnet)"
+    )
+    codes = ("M586",)
+
+    def __init__(self, ctx) -> None:
+        super().__init__(ctx)
+        self.configuration = ctx.dialect.name == "reprap" and _reprap_system_file(ctx.path)
+
+    def inspect(self, line: Line, code: str, rest: str, column: int, cmd: Command | None) -> None:
+        if self.configuration or not _starts_line(line, cmd):
+            return
+        if cmd is not None and cmd.words:
+            protocol, state = cmd.raw("P"), cmd.raw("S")
+        else:
+            argument = _strip_comment(rest)
+            m_p = re.search(r"(?i)P[ \t]*+(\S+)", argument)
+            m_s = re.search(r"(?i)S[ \t]*+(\S+)", argument)
+            protocol, state = (m_p.group(1) if m_p else None), (m_s.group(1) if m_s else None)
+        if state is None or (_NUMBER.fullmatch(state) and float(state) == 0):
+            return
+        number = int(float(protocol)) if protocol is not None and _NUMBER.fullmatch(protocol) else None
+        what = _PROTOCOLS.get(number, f"network protocol P{protocol}") if number is not None else "a network service"
+        self.report_masked(
+            line,
+            f"M586 switches on {what}: anyone on the printer's network can reach the machine through it after this job",
+            column,
+        )
