@@ -200,3 +200,26 @@ def test_8_carvera_laser_mode_stops_the_spindle() -> None:
     lines = out.splitlines()
     assert lines.index("M5 T0") < lines.index("M620 T0 E1") < lines.index("G1 X10 E1"), lines
     assert lines.count("M5 T0") == 1  # not again in the footer
+
+
+# -- (9) laser power: RepRapFirmware after M452, Marlin's inline power (dialects.md 2.1 laser rows) --------
+
+
+def test_9_rrf_m452_makes_m3_s_and_move_s_laser_power() -> None:
+    out, result = translate("reprap", "G21 G90\nM452\nM3 S128\nG1 X10 F600\nG1 X20 S255\nM5\n")
+    lines = out.splitlines()
+    assert "M3 T0 S50.2" not in lines and "M620 T0 E1" in lines
+    assert lines.index("M621 P50.2") < lines.index("G1 X10 F600 E1") < lines.index("M621 P100")
+    assert "G1 X20 E1" in lines and any("M452" in m for m in _codes(result, "TR003"))
+
+
+def test_9_marlin_inline_laser_power_after_m3_s0() -> None:
+    out, _ = translate("marlin", "G21 G90\nM3 S0\nG1 X10 S128 F600\nG1 X20\nG1 X30 S0\nM5\n")
+    lines = out.splitlines()
+    assert lines.index("M620 T0 E1") < lines.index("M621 P50.2") < lines.index("G1 X10 F600 E1")
+    assert "G1 X20 E1" in lines and "G1 X30" in lines
+
+
+def test_9_m3_without_power_is_reported() -> None:
+    out, result = translate("marlin", "G21 G90\nS10000 M3 G1 X10 F100\nM5\n")
+    assert "M3 T0" in out.splitlines() and any("M3 without S" in m for m in _codes(result, "TR003"))

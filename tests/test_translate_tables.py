@@ -142,7 +142,13 @@ MARLIN = [
         settings={"retract": "explicit"},
     ),
     Row("2.1 G1 E only: its F is carried to the next G1", "G1 E-0.8 F2100\nG1 X5", "G1 X5 F2100", "TR004"),
-    Row("2.1 G1 ... S (Marlin laser power)", "G1 X10 S200", "G1 X10", "TR003"),
+    Row(
+        "2.1 G1 ... S (Marlin laser power): M621 P before the move, E1",
+        "M3 S0\nG1 X10 S200",
+        "M3 T0 S0\nM620 T0 E1\nM621 P78.4\nG1 X10 E1",
+        "TR003",
+    ),
+    Row("2.1 G1 ... S with no M3/M4: the laser enabled, not fired", "G1 X10 S200", "M620 T0 E1\nG1 X10", "TR003"),
     Row("2.1 G1 without F after a feed-only line", "G1 F4437\nG1 X5 E0.1", "G1 F4437\nG1 X5 E0.1"),
     # G2/G3 (X9)
     Row("2.1 G2 X Y I J E native: E1", "G2 X10 Y0 I5 J0 E1", "G2 X10 Y0 I5 J0 E1", settings={"flow": "native"}),
@@ -157,7 +163,12 @@ MARLIN = [
     ),
     Row("2.1 G2/G3 R too small for the chord", "G1 X0 Y0\nG2 X10 Y0 R2", "G1 X0 Y0", "TR005"),
     # 2.1 G2/G3 P (extra turns): G1 segments, see test_arc_turns
-    Row("2.1 G2/G3 S (laser power)", "G2 X10 Y0 I5 J0 S100", "G2 X10 Y0 I5 J0", "TR003"),
+    Row(
+        "2.1 G2/G3 S (laser power)",
+        "M3 S0\nG2 X10 Y0 I5 J0 S100",
+        "M3 T0 S0\nM620 T0 E1\nM621 P39.2\nG2 X10 Y0 I5 J0 E1",
+        "TR003",
+    ),
     Row("2.1 G2/G3 K dropped in the XY plane", "G2 X10 Y0 I5 J0 K1", "G2 X10 Y0 I5 J0"),
     # 2.1 G2/G3 in G18/G19: G1 segments, see test_arc_other_plane
     # G4
@@ -330,6 +341,13 @@ MARLIN = [
 ]
 
 REPRAP = [
+    Row("2.1 RRF G1 S outside laser mode (no M452): dropped", "G1 X10 S200", "G1 X10", "TR003"),
+    Row(
+        "2.1 RRF M452 (laser mode): M3 S and G1 S are laser power (M620/M621, E1)",
+        "M452\nM3 S255\nG1 X10\nG1 X20 S0\nM5\nM451",
+        "M620 T0 E1\nM621 P100\nG1 X10 E1\nG1 X20\nM621 P0\nM620 T0 E0",
+        "TR003",
+    ),
     Row("2.1 RRF G1 H1 (homing move)", "G1 H1 X-240 F3000", "", "TR005", out="homing macros are machine-specific"),
     Row(
         "2.1 RRF M203 max-feed=convert (already mm/min)",
@@ -556,6 +574,8 @@ _NOT_RRF = (
     "Bambu",
     "X1 unknown",
     "M3 laser",
+    "laser power",  # Marlin's inline laser power; RepRapFirmware's needs M452 (REPRAP rows)
+    "the laser enabled",
     "T<n> F S",
     "M84 S",
     "M106 P2",

@@ -91,10 +91,29 @@ class MarlinToHyrel(HyrelTranslator):
 
     # -- motion ---------------------------------------------------------------------------------------
 
+    def __init__(self, source, target, options=None) -> None:
+        super().__init__(source, target, options)
+        self.laser = False  # S on moves and M3/M4 S are laser power (Marlin: inline power; RRF: M452)
+        self.laser_fire = False  # M3/M4 in laser mode (M5 stops it)
+        self.cutter_on = False  # the source's M3/M4 (even at S0) until M5
+        self.laser_power: float | None = None  # percent, modal
+        self.laser_power_written: float | None = None
+
     def move_extra(self, cmd: Command, rapid: bool) -> tuple[str, tuple[str, ...]] | None:
         params = cmd.params
         drop = ""
-        if "S" in params:
+        add: tuple[str, ...] = ()
+        if "S" in params and not self.laser and not self.RRF:
+            # Marlin: "S = laser power" on G0/G1/G2/G3 (dialects.md 1.1, LASER_FEATURE): the machine is a laser
+            self.enter_laser(cmd, "a move with S (Marlin's inline laser power)")
+        if self.laser:
+            if "S" in params:
+                drop += "S"
+                s = num(params.get("S"))
+                if s is not None:
+                    self.laser_power = self.laser_percent(cmd, s)
+            add = self.laser_move(cmd, rapid)
+        elif "S" in params:
             drop += "S"
             self.report(
                 TR_APPROX,
@@ -115,9 +134,84 @@ class MarlinToHyrel(HyrelTranslator):
         for letter in "UVWCHK" if cmd.code in ("G0", "G1") else "UVWCH":
             if letter in params:
                 drop += letter
-        if drop:
-            return drop, ()
+        if drop or add:
+            return drop, add
         return None
+
+    # -- laser (dialects.md 2.1: "M3/M4 laser -> M620 T<laser> E1 (once) + M621 P<pct>; moves with power get
+    # E1"; "G1 ... S<p> (Marlin laser power) -> M621 P<%> before the move; strip S; %=S/255*100 (PWM)") ------
+
+    def enter_laser(self, cmd: Command, why: str) -> None:
+        """From here S is laser power: a spindle started before (the same cutter) stops, the laser is enabled."""
+        self.laser = True
+        self.extra_always = True  # every move: firing moves get E1 and the power
+        address = self.opts.laser_address()
+        running = sorted(self.hy.spindles_on)
+        if running:
+            self.before(*(f"M5 T{a}" for a in running), note="the cutter is a laser: no spindle")
+            self.hy.spindles_on.clear()
+        self.laser_fire = self.cutter_on  # switched on with M3/M4 before (Marlin: M3 S0, then power on the moves)
+        if address not in self.hy.emitters_on:
+            self.before(f"M620 T{address} E1", note="laser enabled")
+            self.hy.emitters_on.add(address)
+        self.report(
+            TR_APPROX,
+            f"laser mode ({why}): the laser is Hyrel device T{address} (set laser=T#); M3/M4 S and the S on moves "
+            "are its power, written as M621 P (percent of 255); firing moves get E1",
+            key="laser-mode",
+            cmd=cmd,
+            aspects=("laser", "spindle", "e"),  # the cutter is a laser, its cuts Hyrel printing moves (E1)
+        )
+
+    def leave_laser(self, cmd: Command) -> None:
+        address = self.opts.laser_address()
+        self.laser = self.laser_fire = False
+        self.extra_always = False
+        if address in self.hy.emitters_on:
+            self.hy.emitters_on.discard(address)
+            self.replace(cmd, f"M620 T{address} E0")
+        else:
+            self.consume(cmd)
+
+    def laser_percent(self, cmd: Command, s: float) -> float:
+        """Marlin's cutter power unit is PWM 0-255 by default; RepRapFirmware's laser S is 0-255 (dialects.md
+        1.2 M3)."""
+        return min(100.0, max(0.0, s / 255 * 100))
+
+    def laser_move(self, cmd: Command, rapid: bool) -> tuple[str, ...]:
+        """A move in laser mode: the power before it when it changes, E1 when it fires."""
+        power = self.laser_power
+        if not self.laser_fire or power is None or power <= 0:
+            return ()
+        if rapid:
+            self.report(
+                TR_APPROX,
+                "a G0 while the laser is on: written as a travel move (whether the source fires on G0 depends on "
+                "its firmware's configuration)",
+                key="laser-G0",
+                cmd=cmd,
+                aspects="laser",
+            )
+            return ()
+        if self.laser_power_written != power:
+            self.before(f"M621 P{fmt(power, 1)}", note="laser power")
+            self.laser_power_written = power
+        return ("E1",)
+
+    def laser_spindle(self, cmd: Command, s: float | None) -> None:
+        """M3/M4 in laser mode: firing on (the moves with power get E1), the power if given."""
+        self.laser_fire = True
+        if s is not None:
+            self.laser_power = self.laser_percent(cmd, s)
+        elif self.laser_power is None:
+            self.report(
+                TR_APPROX,
+                f"{cmd.code} without a power and none set before: the laser does not fire until a power is given",
+                key="laser-no-power",
+                cmd=cmd,
+                aspects="laser",
+            )
+        self.consume(cmd)
 
     def dwell(self, cmd: Command) -> None:
         params = cmd.params
@@ -348,8 +442,20 @@ class MarlinToHyrel(HyrelTranslator):
         s = num(cmd.params.get("S"))
         if s is None:
             s = num(cmd.params.get("O"))  # Marlin: "O" is the power as PWM 0-255
+        self.cutter_on = True
+        if self.laser:
+            self.laser_spindle(cmd, s)
+            return
         if s is None:
             self.spindle_on(cmd, None)
+            self.report(
+                TR_APPROX,
+                f"{cmd.code} without S: the power the source runs it at (an earlier S, the firmware's default) is not "
+                "known; written without S",
+                key="M3-no-S",
+                cmd=cmd,
+                aspects="spindle:speed",
+            )
             return
         if self.RRF:
             self.spindle_on(cmd, self.rpm_percent(s))
@@ -365,6 +471,16 @@ class MarlinToHyrel(HyrelTranslator):
         )
 
     def spindle_stop(self, cmd: Command) -> None:
+        self.cutter_on = False
+        if self.laser:
+            # "M5 -> M5 T<spindle> (or M621 P0 for laser)" (dialects.md 2.1)
+            self.laser_fire = False
+            if self.laser_power_written:
+                self.replace(cmd, "M621 P0")
+                self.laser_power_written = 0.0
+            else:
+                self.consume(cmd)
+            return
         self.spindle_off(cmd)
 
     # -- temperatures ---------------------------------------------------------------------------------------

@@ -22,6 +22,9 @@ class RepRapToHyrel(MarlinToHyrel):
 
     TEXT_PAUSE = None  # RepRapFirmware's M0/M1 stop and take no message (dialects.md 1.2 M0): not guessed
     HANDLERS: ClassVar[dict[str, str]] = {
+        "M451": "printer_mode",
+        "M452": "printer_mode",
+        "M453": "printer_mode",
         "M116": "m116",
         "M568": "m568",
         "M98": "macro",
@@ -41,7 +44,7 @@ class RepRapToHyrel(MarlinToHyrel):
             "M575 M576 M577 M578 M579 M580 M581 M582 M584 M585 M586 M587 M588 M589 M594 M595 M596 M597 M598 "
             "M599 M650 M651 M667 M669 M671 M673 M674 M675 M905 M918 M929 M950 M951 M952 M953 M954 M955 M956 "
             "M957 M998 M409 M409.1 M408 M36 M36.1 M37 M38 M39 M101 M102 M103 M144 M470 M471 M472 M500.1 "
-            "M569.1 M569.2 M569.3 M569.4 M569.5 M569.6 M569.7 M569.8 M569.9 M586.4 M292 M450 M451 M452 M453 "
+            "M569.1 M569.2 M569.3 M569.4 M569.5 M569.6 M569.7 M569.8 M569.9 M586.4 M292 M450 "
             "M201.1 M260.1 M260.2 M261.1 M261.2 M374 M375 M376 M505 M86",
             TR_DROPPED,
             "RepRapFirmware configuration or report (Repetrel configures the Hyrel machine)",
@@ -66,7 +69,7 @@ class RepRapToHyrel(MarlinToHyrel):
     def move(self, cmd: Command) -> None:
         params = cmd.params
         homing = "H" in params and num(params.get("H")) not in (None, 0)
-        if homing or (cmd.code == "G1" and num(params.get("S")) in (1, 2)):
+        if homing or (not self.laser and cmd.code == "G1" and num(params.get("S")) in (1, 2)):
             self.untranslatable(
                 cmd,
                 "homing or endstop-sensing move (G1 H/S) is machine-specific; Hyrel's G1 H "
@@ -80,6 +83,17 @@ class RepRapToHyrel(MarlinToHyrel):
             )
             return
         super().move(cmd)
+
+    def printer_mode(self, cmd: Command) -> None:
+        """M451 FFF, M452 laser, M453 CNC printer mode (firmware_codes.md section 3, RepRapFirmware): in laser
+        mode M3/M4 S and the S on moves are the laser power."""
+        if cmd.code == "M452":
+            self.enter_laser(cmd, "M452")
+            self.consume(cmd)
+        elif self.laser:
+            self.leave_laser(cmd)
+        else:
+            self.remove(cmd, TR_DROPPED, "printer mode (FFF or CNC)", key="M45x")
 
     def fallback(self, cmd: Command) -> None:
         code = cmd.code
