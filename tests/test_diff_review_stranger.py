@@ -176,3 +176,16 @@ def test_reprap_tool_offsets_are_seen() -> None:
     assert diff.differences[0].explained_by is not None and not diff.unexplained()
     plain = source.replace("G10 L1 P1 X10\n", "G10 L1 P1 X0\n")
     assert not translate_and_diff("reprap", plain)[2].differences
+
+
+def test_carvera_optional_stop_pauses_in_optional_stop_mode() -> None:
+    """Carvera M1 pauses after "M334 Turn on optional stop mode", not before it or after M333."""
+    source = "G21 G90\nG0 X0 Y0 Z0\nG1 X5 F100\nM1\nG1 X6\nM334\nM1\nG1 X7\nM333\nM1\nG1 X8\n"
+    output = "G21\nG90\nG54\nG0 X0 Y0 Z0\nG1 X5 F100\nG1 X6\nM0\nG1 X7\nG1 X8\n"
+    assert not [d for d in diff_texts("carvera", source, output).differences if d.aspect == "pause"]
+    moved = output.replace("M0\nG1 X7\n", "G1 X7\nM0\n")
+    assert [d.source_line for d in diff_texts("carvera", source, moved).differences if d.aspect == "pause"] == [
+        8
+    ]  # then at 11: one entry, 2 moves
+    _, _, diff = translate_and_diff("carvera", source)
+    assert not diff.differences

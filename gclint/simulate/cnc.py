@@ -380,6 +380,7 @@ class CarveraSimulator(CncSimulator):
     def __init__(self, dialect, mapping=None, *, cnc: bool = True) -> None:
         super().__init__(dialect, mapping, cnc=cnc)
         self.laser_mode = False
+        self.stops = False  # optional stop mode (M334): M1 pauses
         self.firing = False  # M3 in laser mode
         self.power = 0.0  # percent
 
@@ -397,12 +398,25 @@ class CarveraSimulator(CncSimulator):
                 "M821": self.light,
                 "M822": self.light_off,
                 # M600 "Pause (use this to add pauses)" (seeds/carvera-mcodes.md); M25 pauses the file being
-                # played (Smoothieware, research/firmware_codes.md 8); M1 is an optional stop (M333/M334)
+                # played (Smoothieware, research/firmware_codes.md 8); M1 is an optional stop, a pause in optional
+                # stop mode
                 "M600": self.pause,
                 "M25": self.pause,
+                "M1": self.optional_stop,
+                "M333": self.stop_mode,
+                "M334": self.stop_mode,
             }
         )
         return h
+
+    def optional_stop(self, cmd: Command, n: int) -> None:
+        if self.stops:
+            self.pause(cmd, n)
+
+    def stop_mode(self, cmd: Command, n: int) -> None:
+        # "M333 Turn off optional stop mode", "M334 Turn on optional stop mode. See M01" (seeds/carvera-mcodes.md;
+        # its M1 row names them the other way round: the rows of the codes themselves are followed here)
+        self.stops = cmd.code == "M334"
 
     def g4_seconds(self, params: dict) -> float | None:
         # grbl mode: "P is decimal seconds"; S adds seconds (research/dialects.md G4)
