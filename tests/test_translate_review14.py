@@ -223,3 +223,15 @@ def test_9_marlin_inline_laser_power_after_m3_s0() -> None:
 def test_9_m3_without_power_is_reported() -> None:
     out, result = translate("marlin", "G21 G90\nS10000 M3 G1 X10 F100\nM5\n")
     assert "M3 T0" in out.splitlines() and any("M3 without S" in m for m in _codes(result, "TR003"))
+
+
+# -- (10) Machinekit G20: the extruder A is an angular axis, not scaled by 25.4 ------------------------------
+
+
+def test_10_machinekit_g20_leaves_the_a_axis_alone() -> None:
+    out, result = translate("machinekit", "G20 G90\nG1 X1 Y1 A1 F50\nG92 A0\n")
+    lines = out.splitlines()
+    assert "G1 X25.4 Y25.4 E1 F1270" in lines and "G92 E0" in lines
+    assert any("angular" in m for m in _codes(result, "TR003"))
+    out, _ = translate("marlin", "G20 G90 M82\nG1 X1 Y1 E1 F50\n")
+    assert "G1 X25.4 Y25.4 E25.4 F1270" in out.splitlines()  # Marlin's E is a length

@@ -218,18 +218,19 @@ class ArcMoves:
         if extruding and self.evalues and not self.hy.m229_written:
             self.before_extrusion()
         e_words: list[str | None] = [None] * len(points)
+        escale = scale if self.E_LINEAR else 1.0  # an angular extruder axis is not scaled by G20
         if ext in params:
             if extruding and self.evalues:
                 n = len(points)
                 if self.e_absolute():
                     e0 = (st.e_position if ext == "E" else st.position.get("A")) or 0.0
                     for k in range(1, n):
-                        e_words[k - 1] = "E" + fmt((e0 + delta * k / n) * scale, 5)  # type: ignore[operator]
+                        e_words[k - 1] = "E" + fmt((e0 + delta * k / n) * escale, 5)  # type: ignore[operator]
                     e_words[-1] = "E" + self.scaled_e(params[ext])
                 else:
                     done = 0.0
                     for k in range(1, n + 1):
-                        total = round(delta * k / n * scale, 5)  # type: ignore[operator]
+                        total = round(delta * k / n * escale, 5)  # type: ignore[operator]
                         e_words[k - 1] = "E" + fmt(total - done, 5)
                         done = total
             elif extruding:

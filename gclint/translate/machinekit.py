@@ -25,6 +25,11 @@ class MachinekitToHyrel(CncTranslator):
     E_MODE_FOLLOWS_POSITIONING: str | None = "the extruder (A) follows G90/G91 in Machinekit"
     FAN_MAX = 255.0
     EXTRA_LETTERS: ClassVar[frozenset[str]] = frozenset("FEBCUVWSP")
+    # The extruder A is an angular axis ("[AXIS_3] # Extruders ... TYPE = ANGULAR", ANGULAR_UNITS = degree:
+    # corpus machinekit/taz_cramps/TAZ_5_CRAMPS.ini); G20 scales lengths only (dialects.md X10: "multiply X Y Z
+    # I J K R F (and linear E) by 25.4"), so A amounts are not converted under G20 (reported: a configuration
+    # with a linear A would scale them)
+    E_LINEAR = False
 
     HANDLERS: ClassVar[dict[str, str]] = {  # besides cnc.CNC_HANDLERS
         "G22": "retract",
@@ -126,6 +131,17 @@ class MachinekitToHyrel(CncTranslator):
         if "A" in cmd.params:
             self.extruder_axis(cmd)
         super().arc(cmd)
+
+    def scaled_e(self, text: str | None) -> str:
+        if self.inch:
+            self.report(
+                TR_APPROX,
+                "G20 (inches): the extruder A is not converted, as an angular axis (TAZ_5_CRAMPS.ini: A TYPE = "
+                "ANGULAR, degree); a machine configured with a linear A would scale it by 25.4",
+                key="A-inch",
+                aspects="e",
+            )
+        return text or "0"
 
     def extruder_axis(self, cmd: Command) -> None:
         """A move with an A word: the extruder is an axis, no velocity extrusion from here."""

@@ -318,8 +318,12 @@ class Motion:
             return feed * INCH
         return feed
 
+    # The extrusion word is a length that G20 makes inches (X10: "multiply X Y Z I J K R F (and linear E) by
+    # 25.4"); Machinekit's A is an angular axis, which G20 does not scale.
+    E_LINEAR = True
+
     def scaled_e(self, text: str | None) -> str:
-        if self.inch:
+        if self.inch and self.E_LINEAR:
             v = num(text)
             if v is not None:
                 return fmt(v * INCH, 5)
