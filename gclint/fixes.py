@@ -26,7 +26,7 @@ from gclint.io import AtomicWriter, OutputError
 from gclint.noqa import INLINE_UNSUPPRESSIBLE, with_noqa
 from gclint.rules.base import Edit, Finding, Fix
 from gclint.syntax.source import Source, SourceError
-from gclint.textsafe import human
+from gclint.textsafe import human, human_path
 
 _ROUNDS = 4  # checks of the fixed text at most (each round takes back at least one fix)
 
@@ -226,7 +226,7 @@ def _diff(path: str, edits: dict[int, list[Edit]], context: int = 3) -> Iterator
             ranges[-1][1] = last
         else:
             ranges.append([first, last])
-    shown = human(path)
+    shown = human_path(path)
     yield f"--- {shown}\n+++ {shown} (fixed)\n"
     index, lines = 0, []
     for number, raw, text, _ in _fixed_lines(Source.open(path), edits):

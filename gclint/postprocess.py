@@ -182,8 +182,9 @@ def _translate(src: Source, dialect: Dialect, target: Dialect, outcome: Outcome,
 def write_report(outcome: Outcome, out: TextIO, fail_on: str, limit: int | None = None) -> None:
     """The text report: what was done, then ``name:line:col: CODE message`` per finding."""
     from gclint.reports.common import human, message
+    from gclint.textsafe import human_path
 
-    out.write(f"gclint {__version__} postprocess: {human(outcome.display)}\n")
+    out.write(f"gclint {__version__} postprocess: {human_path(outcome.display)}\n")
     if outcome.error:
         out.write(f"error: {human(outcome.error)}\n")
         return
@@ -195,10 +196,10 @@ def write_report(outcome: Outcome, out: TextIO, fail_on: str, limit: int | None 
     findings = outcome.findings
     shown = findings if limit is None else findings[:limit]
     for f in shown:
-        out.write(f"{human(f.path)}:{f.line}:{f.column}: {f.code} [{f.severity.label}] {message(f)}\n")
+        out.write(f"{human_path(f.path)}:{f.line}:{f.column}: {f.code} [{f.severity.label}] {message(f)}\n")
     if limit is not None and len(findings) > limit:
         out.write(f"... and {len(findings) - limit} more")
-        out.write(f" (see {human(outcome.report_path)})\n" if outcome.report_path else "\n")
+        out.write(f" (see {human_path(outcome.report_path)})\n" if outcome.report_path else "\n")
     counts = {k: 0 for k in ("error", "warning", "info")}
     for f in findings:
         counts[f.severity.label] += 1
@@ -243,7 +244,7 @@ def main(
     outcome = run(path, to=to, source=source, printer=printer, loaded=loaded, report=report)
     if no_report:
         outcome.report_path = None
-    from gclint.textsafe import human
+    from gclint.textsafe import human, human_path
 
     if outcome.error:
         err.write(f"gclint: {human(outcome.error)}\n")
@@ -253,7 +254,7 @@ def main(
     if outcome.report_error:
         err.write(f"gclint: {human(outcome.report_error)}\n")
     elif outcome.report_path:
-        err.write(f"report: {human(outcome.report_path)}\n")
+        err.write(f"report: {human_path(outcome.report_path)}\n")
     return outcome.exit_code(fail_on, untranslatable_fails=True)
 
 

@@ -10,7 +10,8 @@ bidirectional overrides, characters XML cannot carry, undecodable bytes kept as 
   (text, full, grouped, github, html, explain, the --diff, error lines and notes, reports);
 * ``json_safe``: encoded JSON with the characters a terminal acts on written as ``\\uNNNN``.
 
-``human`` is idempotent, so text escaped once (an error message) can go through it again.
+``human`` is idempotent, so text escaped once (an error message) can go through it again.  ``human_path``
+is ``human`` for a file name: a tab is escaped too (it would shift what the name shows).
 """
 
 from __future__ import annotations
@@ -91,3 +92,8 @@ def json_safe(text: str) -> str:
     if _JSON_UNSAFE.search(text):
         text = _JSON_UNSAFE.sub(_json_escape, text)
     return text
+
+
+def human_path(path: str) -> str:
+    """A file name for human output: ``human``, and its tabs written as ``\\x09`` too."""
+    return human(path).replace("\t", "\\x09")

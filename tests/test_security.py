@@ -427,6 +427,10 @@ def test_human_formats_escape_control_characters(tmp_path: Path, fmt: str) -> No
     _no_controls(out, fmt)
     assert "SC001" in out
     assert all(line.count(".gcode") <= 1 for line in out.splitlines()), "a newline in the file name split a line"
+    tabbed = tmp_path / "t\tab.gcode"  # a tab in a file name is escaped too (it shifts what the name shows)
+    tabbed.write_bytes(ESC_JOB.encode())
+    shown = run_cli("check", "--no-cache", "--format", fmt, str(tabbed)).stdout.decode()
+    assert "t\\x09ab.gcode" in shown and "t\tab" not in shown
 
 
 def test_error_lines_explain_and_postprocess_escape_control_characters(tmp_path: Path) -> None:

@@ -395,7 +395,7 @@ def _apply_fixes(
     as the files are now and the number of findings fixed (or that would be)."""
     from gclint import runner
     from gclint.fixes import fix_file
-    from gclint.textsafe import human
+    from gclint.textsafe import human_path
 
     out: list[FileResult] = []
     fixed = 0
@@ -412,7 +412,7 @@ def _apply_fixes(
             if show and outcome.applied:
                 from collections import Counter
 
-                click.echo(f"Fixed in {human(r.path)}:")
+                click.echo(f"Fixed in {human_path(r.path)}:")
                 names = {f.code: f.name for f in outcome.applied}
                 for code, n in sorted(Counter(f.code for f in outcome.applied).items()):
                     click.echo(f"  {n} x {code} ({names[code]})")

@@ -153,9 +153,9 @@ def cura_script(folder: str | None, to_stdout: bool) -> None:
     except OSError as exc:
         _fail(f"{folder or '.'}: cannot write {cs.SCRIPT_NAME}: {exc.strerror or exc}")
         return
-    from gclint.textsafe import human
+    from gclint.textsafe import human, human_path
 
-    click.echo(f"wrote {human(str(path))}")
+    click.echo(f"wrote {human_path(str(path))}")
     folders = cs.cura_script_folders()
     if folder is None:
         if folders:

@@ -15,6 +15,7 @@ from gclint.engine import FileResult
 from gclint.reports.common import human
 from gclint.reports.stream import Report
 from gclint.rules.base import Severity
+from gclint.textsafe import human_path
 
 COMMANDS = {Severity.ERROR: "error", Severity.WARNING: "warning", Severity.INFO: "notice"}
 
@@ -35,7 +36,7 @@ def _command(kind: str, properties: dict[str, object], text: str) -> str:
 class GithubReport(Report):
     def write_file(self, r: FileResult) -> None:
         out = self.out
-        path = human(r.path)
+        path = human_path(r.path)
         if r.error:
             out.write(_command("error", {"file": path, "title": "gclint"}, human(r.error)) + "\n")
             return

@@ -23,6 +23,7 @@ from gclint.engine import FileResult
 from gclint.reports.common import human, message, rule_docs, source_line
 from gclint.reports.stream import Report, Spool
 from gclint.reports.toolpath import Toolpath, read_toolpath
+from gclint.textsafe import human_path
 
 PLOT_WIDTH = 640
 PLOT_HEIGHT = 480
@@ -193,7 +194,7 @@ def _file_view(index: int, result: FileResult, plot_budget: int, limit: int = HT
         if plot is None and plot_error is None:
             plot_error = "no XY moves in this file"
     return FileView(
-        path=human(result.path),
+        path=human_path(result.path),
         anchor=f"file-{index}",
         result=result,
         counts=result.counts(),

@@ -8,6 +8,7 @@ from typing import TextIO
 from gclint.engine import FileResult
 from gclint.reports.common import Elided, grouped, human, message
 from gclint.reports.stream import Report, Tally
+from gclint.textsafe import human_path
 
 
 class TextReport(Report):
@@ -15,7 +16,7 @@ class TextReport(Report):
 
     def write_file(self, result: FileResult) -> None:
         out, ctx = self.out, self.ctx
-        path = human(result.path)
+        path = human_path(result.path)
         for f in grouped(result.findings, ctx.group):
             if isinstance(f, Elided):
                 out.write(f"{path}: {f}\n")
@@ -121,7 +122,7 @@ class FullReport(Report):
         from gclint.reports.common import source_line
 
         out, ctx = self.out, self.ctx
-        path = human(result.path)
+        path = human_path(result.path)
         for f in grouped(result.findings, ctx.group):
             if isinstance(f, Elided):
                 out.write(f"{path}: {f}\n\n")
@@ -155,7 +156,7 @@ class GroupedReport(Report):
         if not result.findings:
             return
         out, ctx = self.out, self.ctx
-        out.write(f"{human(result.path)}:\n")
+        out.write(f"{human_path(result.path)}:\n")
         width = max(len(f"{f.line}:{f.column}") for f in result.findings)
         for f in grouped(result.findings, ctx.group):
             if isinstance(f, Elided):

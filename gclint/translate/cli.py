@@ -131,15 +131,18 @@ def _refused(result: TranslationResult, unsupported: str) -> bool:
 def _report(result: TranslationResult, unsupported: str) -> None:
     if unsupported == "ignore" and not result.refused:
         return
-    from gclint.reports.common import human, message  # masks secrets, escapes file text
+    from gclint.reports.common import message  # masks secrets, escapes file text
+    from gclint.textsafe import human_path
 
     for f in result.findings:
         if unsupported != "ignore" or f.severity >= Severity.ERROR:
-            _say(f"{human(f.path)}:{f.line}:{f.column}: {f.code} {message(f)}")
+            _say(f"{human_path(f.path)}:{f.line}:{f.column}: {f.code} {message(f)}")
     if result.refused:
-        _say(f"gclint: {human(result.path)}: not translated: the output would make the host computer run a program")
+        _say(
+            f"gclint: {human_path(result.path)}: not translated: the output would make the host computer run a program"
+        )
     elif unsupported == "error" and _refused(result, unsupported):
         _say(
-            f"gclint: {human(result.path)}: not translated: {len(result.findings)} construct(s) cannot be translated "
+            f"gclint: {human_path(result.path)}: not translated: {len(result.findings)} construct(s) cannot be translated "
             "exactly (--unsupported error)"
         )
