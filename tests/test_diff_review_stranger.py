@@ -189,3 +189,13 @@ def test_carvera_optional_stop_pauses_in_optional_stop_mode() -> None:
     ]  # then at 11: one entry, 2 moves
     _, _, diff = translate_and_diff("carvera", source)
     assert not diff.differences
+
+
+def test_a_difference_about_several_fans_needs_a_finding_for_each() -> None:
+    """B: ``fan 2, fan 3 -> none`` is explained by findings about fan 2 and fan 3, not by one of them."""
+    source = "M83\nM104 S200\nM109 S200\nM106 P2 S100\nM106 P3 S180\nG1 Z0.2 X10 F600 E1\n"
+    output = "M229 E1 D1\nM83\nM104 T0 S200\nM109 T0 S200\nT0\nG1 Z0.2 X10 F600 E1\n"
+    both = _diff_with("marlin", source, output, [("TR002", ("fan:2",), [4]), ("TR002", ("fan:3",), [5])])
+    assert [(d.aspect, d.explained_by) for d in both.differences] == [("aux", ("TR002", 4)), ("end", ("TR002", 4))]
+    one = _diff_with("marlin", source, output, [("TR002", ("fan:2",), [4])])
+    assert [(d.aspect, d.explained_by) for d in one.differences] == [("aux", None), ("end", None)]

@@ -96,29 +96,39 @@ class Explanations:
                     if not ("*" in aspects or "position" in aspects or _names_axes(aspects, axes)):
                         continue
                     start = max(lo, anchor - 1)  # a finding on the anchoring line itself counts
-            elif (
-                aspect not in aspects
-                and "*" not in aspects
-                and not (axes and f"{aspect}:{axes}" in aspects)
-                and not _names_devices(aspects, aspect, devices)
-            ):
+            elif aspect not in aspects and "*" not in aspects and not (axes and f"{aspect}:{axes}" in aspects):
                 continue
             i = bisect_right(lines, start)
             if i < len(lines) and lines[i] <= hi and (best is None or lines[i] < best[1]):
                 best = (code, lines[i])
+        if best is None and devices:
+            best = self._devices(aspect, lo, hi, devices)
         return best
+
+    def _devices(self, aspect: str, lo: float, hi: int, devices: frozenset[str]) -> tuple[str, int] | None:
+        """A difference about source devices each of which a finding in (lo, hi] is about (``tool:9``,
+        ``fan:3``): the first of those findings; None when one device has none."""
+        if not all(aspect in _DEVICE_ASPECTS.get(d.split(":", 1)[0], ()) for d in devices):
+            return None
+        first: tuple[str, int] | None = None
+        for device in devices:
+            found: tuple[str, int] | None = None
+            for code, aspects, lines in self.entries:
+                if device not in aspects:
+                    continue
+                i = bisect_right(lines, lo)
+                if i < len(lines) and lines[i] <= hi and (found is None or lines[i] < found[1]):
+                    found = (code, lines[i])
+            if found is None:
+                return None
+            if first is None or found[1] < first[1]:
+                first = found
+        return first
 
 
 # What a finding about one source device (an aspect ``tool:<n>`` or ``fan:<n>``) may explain: a difference in
 # these aspects that is about that device alone (the head a move is printed by; the fan that differs)
 _DEVICE_ASPECTS = {"tool": frozenset({"head", "temp", "flow", "spindle", "end"}), "fan": frozenset({"aux", "end"})}
-
-
-def _names_devices(aspects: frozenset[str], aspect: str, devices: frozenset[str]) -> bool:
-    """Whether device aspects (``tool:9``) cover every device the difference is about."""
-    if not devices or not devices <= aspects:
-        return False
-    return all(aspect in _DEVICE_ASPECTS.get(d.split(":", 1)[0], ()) for d in devices)
 
 
 def _device(label) -> str | None:
