@@ -235,3 +235,14 @@ def test_10_machinekit_g20_leaves_the_a_axis_alone() -> None:
     assert any("angular" in m for m in _codes(result, "TR003"))
     out, _ = translate("marlin", "G20 G90 M82\nG1 X1 Y1 E1 F50\n")
     assert "G1 X25.4 Y25.4 E25.4 F1270" in out.splitlines()  # Marlin's E is a length
+
+
+# -- (11) RepRapFirmware M568 A (heater state): not heated on a guess ---------------------------------------
+
+
+def test_11_m568_with_a_heater_state_does_not_heat_the_tool() -> None:
+    out, result = translate("reprap", "M83\nM568 P1 S220 A0\nM104 T0 S200\nT0\nM116\nG1 X1 Y1 Z0.2 E1 F600\n")
+    assert "T1 S220" not in out and "M109 T0 S200 R2" in out.splitlines()
+    assert any("heater state" in m for m in _codes(result, "TR003"))
+    out, _ = translate("reprap", "M568 P1 S220\n")
+    assert "M104 T1 S220" in out.splitlines()  # no A: the active temperature, as before

@@ -281,6 +281,20 @@ class RepRapToHyrel(MarlinToHyrel):
     def m568(self, cmd: Command) -> None:
         params = cmd.params
         index = self._tool_index(cmd, "P")
+        s = num(params.get("S"))
+        if "A" in params and s is not None and s > 0:
+            # "M568 | Tool settings: P tool, R standby, S active, A heater state" (dialects.md 1.2): the sources
+            # give no values for A, so whether the heater is on is unknown; heating a tool the source leaves off
+            # or at standby would change the job (and a later M116 would wait for it)
+            self.remove(
+                cmd,
+                TR_APPROX,
+                f"A{params['A']} sets the tool's heater state, whose values the sources do not give: the active "
+                f"temperature S{params['S']} is not written (if the tool is active, add M104 T# S{params['S']})",
+                key="M568-A",
+                aspects="temp",
+            )
+            return
         if "S" in params:
             if "R" in params:
                 self.report(
