@@ -493,9 +493,9 @@ def _check_tasks(tasks: list[tuple[str, Options]]) -> list[tuple[FileResult, str
 
 
 def _stdin():
-    import sys
+    from gclint.syntax.source import stdin
 
-    return sys.stdin.buffer
+    return stdin()
 
 
 def default_jobs() -> int:

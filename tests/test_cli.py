@@ -165,3 +165,24 @@ def test_fix_applies_safe_fixes_only(tmp_path):
     assert proc.returncode == 0, proc.stdout
     assert job.read_text() == "N1 G1 X1*96\n"  # XOR of the bytes of "N1 G1 X1"
     assert run_cli("check", str(job), "--dialect", "marlin").returncode == 0
+
+
+def test_closed_standard_input_is_one_error_line():
+    import subprocess
+    import sys
+
+    for args in (("check", "-"), ("check", "--fix", "-"), ("explain", "-"), ("summary", "-")):
+        proc = subprocess.run([sys.executable, "-m", "gclint", *args], stdin=subprocess.DEVNULL, capture_output=True)
+        assert proc.returncode in (0, 2), args  # (an empty input is fine)
+        closed = subprocess.run(
+            [
+                sys.executable,
+                "-c",
+                "import os, sys, runpy; os.close(0); sys.stdin = None; sys.argv = ['gclint', *sys.argv[1:]];"
+                " runpy.run_module('gclint', run_name='__main__')",
+                *args,
+            ],
+            capture_output=True,
+        )
+        assert closed.returncode == 2 and b"standard input is closed" in closed.stderr, (args, closed.stderr)
+        assert b"Traceback" not in closed.stderr and b"internal error" not in closed.stderr

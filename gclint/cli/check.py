@@ -453,12 +453,17 @@ def _fix_stdin(
     from gclint import runner
     from gclint.fixes import fix_stream
     from gclint.reports.text import write as write_text
-    from gclint.syntax.source import Source, SourceError
+    from gclint.syntax.source import Source, SourceError, stdin
 
+    try:
+        given = stdin()
+    except SourceError as exc:
+        click.echo(f"gclint: {exc}", err=True)
+        return 2
     options = runner.options_for(name, Options(), overrides, config_file)
     linter = runner.linter_for(options)
     with tempfile.SpooledTemporaryFile(max_size=16 << 20) as buffer:  # read twice: check, then fix
-        shutil.copyfileobj(sys.stdin.buffer, buffer)
+        shutil.copyfileobj(given, buffer)
 
         def read() -> Source:
             buffer.seek(0)

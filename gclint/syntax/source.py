@@ -85,6 +85,13 @@ class ByteView:
             self.lines.append((self._number, text.decode("utf-8", "surrogateescape")))
 
 
+def stdin() -> BinaryIO:
+    """Standard input's bytes; a closed standard input (``gclint check - <&-``) is a SourceError."""
+    if sys.stdin is None or getattr(sys.stdin, "buffer", None) is None:
+        raise SourceError("-: standard input is closed")
+    return sys.stdin.buffer
+
+
 class SourceError(Exception):
     """A file that cannot be read as G-code; the message is one line for the user."""
 
@@ -178,7 +185,7 @@ class Source:
         """Open a file path (``-`` for standard input).  With ``digest``, a regular file is hashed as it is
         read (``sha256``); pipes and devices are read once as a stream and never hashed."""
         if path == "-":
-            return cls(sys.stdin.buffer, "-", cut_long_lines=cut_long_lines)
+            return cls(stdin(), "-", cut_long_lines=cut_long_lines)
         try:
             stream: BinaryIO = open(path, "rb")  # noqa: SIM115 - closed by Source.close / iteration end
         except FileNotFoundError:
