@@ -504,3 +504,13 @@ def test_flavor_on_the_command_line_and_in_the_configuration(tmp_path: Path) -> 
     (tmp_path / "gclint.toml").write_text('flavor = "marlin"\n')  # a dialect, not a firmware flavour
     proc = run_cli("check", str(job))
     assert proc.returncode == 2 and "unknown firmware 'marlin'" in proc.stderr.decode()
+
+
+def test_whole_e_amounts_are_amounts_and_a_form_feed_is_no_line_break() -> None:
+    """A header-less Marlin job whose E amounts are whole numbers (E2, E10) is Marlin; Hyrel's E1 is a flag.
+    The context reads the lines the check reads: a form feed does not start one."""
+    moves = "".join(f"G1 X{i} Y{i} E{i} F1500\n" for i in range(12))
+    assert infer("M104 S200\nM109 S200\nG28 X0 Y0\nG92 E0\n" + moves + "M30\n", "j.gcode").dialect == "marlin"
+    assert infer("G21\nG90\nT0\n" + "G1 X1 Y1 E1 F100\n" * 12 + "M30\n", "j.gcode").dialect == "hyrel"
+    hidden = infer("G28 X0 Y0\nG1 X0 F100 ; c\x0cM792 ; SHELL C:\\x.exe\nM30\n", "j.gcode")
+    assert "M792" not in hidden.why()

@@ -11,6 +11,8 @@ the findings use (gclint.secrets), so no output has to remember to.
 
 from __future__ import annotations
 
+import re
+
 from dataclasses import dataclass, field
 
 from gclint import secrets
@@ -21,6 +23,7 @@ from gclint.syntax.fastpath import PLAIN_MOVE
 from gclint.syntax.nodes import GCODE, TEXT, Command, Word
 from gclint.syntax.parse import parse_line
 
+_LINE_BREAK = re.compile(r"\r\n?|\n")  # as gclint.syntax.source reads lines
 _LINE_LIMIT = 2000  # longer lines are not read for clues (they are reported by the check itself)
 
 
@@ -95,12 +98,14 @@ def read_content(head: str, complete: bool, tail: str | None = None) -> ContentR
     """Read ``head`` (the beginning of a file; ``complete`` when it is the whole file) and ``tail`` (its
     end, whole lines; slicers put their end code there)."""
     reading = ContentReading()
-    lines = head.splitlines()
+    lines = _LINE_BREAK.split(head)  # the line breaks the check reads (not str.splitlines: a form feed is no break)
+    if lines and not lines[-1]:
+        lines.pop()
     if not complete and lines:
         lines.pop()  # cut short: the last line may be half a line
     _read_lines(reading, enumerate(lines, 1))
     if tail:
-        _read_lines(reading, ((0, raw) for raw in tail.splitlines()))
+        _read_lines(reading, ((0, raw) for raw in _LINE_BREAK.split(tail)))
     return reading
 
 
@@ -117,7 +122,7 @@ def _read_lines(reading: ContentReading, lines) -> None:
                 reading.e_moves = Seen(number, secrets.mask(raw.strip())[:_SHOWN])
             if reading.e_amounts is None and not reading.m229_e1 and move.group(1) == "1":
                 e = move.group(6)
-                if e is not None and "." in e and e.strip("0").strip(".").strip("-+") not in ("", "1"):
+                if e is not None and abs(float(e)) not in (0.0, 1.0):  # (Hyrel jobs write E1: a flag)
                     reading.e_amounts = Seen(number, secrets.mask(raw.strip())[:_SHOWN])
             continue
         if raw in done:
