@@ -58,6 +58,7 @@ class ContentReading:
     e_amounts: Seen | None = None  # a working move with a fractional E before any M229 E1
     e_moves: Seen | None = None  # a move with an E word (Machinekit has none: gclint.dialects Dialect.move_letters)
     m229_e1: bool = False
+    whole_e: set[str] = field(default_factory=set)  # whole E amounts other than 0 and 1 seen so far
     lines_read: set[str] = field(default_factory=set)  # the lines parsed (a repeated line is read once)
 
 
@@ -122,8 +123,13 @@ def _read_lines(reading: ContentReading, lines) -> None:
                 reading.e_moves = Seen(number, secrets.mask(raw.strip())[:_SHOWN])
             if reading.e_amounts is None and not reading.m229_e1 and move.group(1) == "1":
                 e = move.group(6)
-                if e is not None and abs(float(e)) not in (0.0, 1.0):  # (Hyrel jobs write E1: a flag)
-                    reading.e_amounts = Seen(number, secrets.mask(raw.strip())[:_SHOWN])
+                # a fractional amount, or the third whole amount other than 0 and 1 (E2, E3, E4: a Hyrel job
+                # writes E1 as a flag, and a hand-written one may count a few moves)
+                if e is not None and abs(float(e)) not in (0.0, 1.0):
+                    if "." in e.rstrip("0").rstrip(".") or len(reading.whole_e) >= 2 and e not in reading.whole_e:
+                        reading.e_amounts = Seen(number, secrets.mask(raw.strip())[:_SHOWN])
+                    else:
+                        reading.whole_e.add(e)
             continue
         if raw in done:
             continue  # a line read before says nothing new (only where each clue is first seen is kept)
