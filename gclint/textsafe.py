@@ -53,6 +53,7 @@ _FORMAT_CHARACTERS = (
     "\u2066-\u206f\ufeff\ufff9-\ufffb\U000110bd\U000110cd\U00013430-\U0001343f\U0001bca0-\U0001bca3"
     "\U0001d173-\U0001d17a\U000e0001\U000e0020-\U000e007f"
 )
+FORMAT_CHARACTERS = re.compile(f"[{_FORMAT_CHARACTERS}]")  # (also read by the SC rules' firmware views)
 # For text shown on a terminal as one line: the controls above plus line breaks (a file name with a newline
 # would forge a line of its own), the line and paragraph separators (they split what a terminal or a browser
 # shows) and the format characters.  Tabs stay.

@@ -205,3 +205,14 @@ def test_translator_guard_passes_lines_an_action_hides_in():
         result = TranslationResult("job.gcode", "marlin", "hyrel")
         HostActionGuard(result).check(text)
         assert result.refused, text
+
+
+def test_an_invisible_format_character_before_the_code_hides_nothing(tmp_path):
+    """A BOM or zero-width space mid-file (files joined with cat) turned the line into SX001 only, which the
+    job switched off."""
+    job = tmp_path / "z.gcode"
+    job.write_text("; gclint: disable=SX001\nG28 X0 Y0\n\ufeffM792 ; SHELL C:\\x.exe\n\u200bM30 /config.gco\nM30\n")
+    proc = run_cli("check", "--no-cache", str(job))
+    out = proc.stdout.decode()
+    assert proc.returncode == 1 and "3:1: SC001" in out and "4:1: SC005" in out, out
+    assert "invisible format characters" in out

@@ -7,6 +7,7 @@ import threading
 
 from gclint.syntax.nodes import Line
 from gclint.syntax.parse import parse_line
+from gclint.textsafe import FORMAT_CHARACTERS
 
 # -- the line as each firmware reads it ----------------------------------------------------------------------
 #
@@ -40,6 +41,7 @@ SMOOTHIE_VIEW = "read as Smoothieware (Carvera) splits the line at each G and M 
 # may have are both read (and say so).
 ERASED_VIEW = "read with each backspace or DEL erasing the character before it, comments included (a firmware may)"
 DROPPED_VIEW = "read without its control characters (a firmware may drop them)"
+INVISIBLE_VIEW = "read without its invisible format characters (a BOM or zero-width space a firmware may skip)"
 
 
 def _marlin_reads(raw: str, parens: bool) -> str:
@@ -126,6 +128,8 @@ def firmware_views(raw: str) -> list[tuple[str, str, int]]:
                 erased.append(char)
         add(ERASED_VIEW, _CONTROL.sub("", "".join(erased)), 0)
         add(DROPPED_VIEW, _CONTROL.sub("", raw), 0)
+    if FORMAT_CHARACTERS.search(raw) is not None:  # (a BOM mid-file, where files were joined with cat)
+        add(INVISIBLE_VIEW, FORMAT_CHARACTERS.sub("", _CONTROL.sub("", raw)), 0)
     trimmed = raw.strip()
     if trimmed != raw.strip(" \t"):
         lead = len(raw) - len(raw.lstrip())
