@@ -4,6 +4,7 @@ to each file, spread the work over processes, and return results in a stable ord
 from __future__ import annotations
 
 import os
+import re
 import stat
 from collections import deque
 from collections.abc import Callable, Iterable, Iterator
@@ -26,10 +27,23 @@ GCODE_EXTENSIONS = (".gcode", ".gco", ".g", ".nc", ".ngc", ".cnc", ".tap")
 OWN_EXTENSIONS = (".gcode", ".gco")
 
 
+# A G or M code starting a line: what a firmware would run, whatever the first line of the file claims.
+_GCODE_LINE = re.compile(rb"(?m)^[ \t]*+(?:[Nn][0-9]{1,9}+[ \t]*+)?[GgMm][ \t]*+[0-9]")
+
+
 def skippable(result: FileResult, walked: set[str]) -> bool:
     """Whether ``result`` is a file found in a folder (or named under --force-exclude) that is another
-    format with a shared extension: skipped with a note rather than an error."""
-    return result.not_gcode and result.path in walked and not result.path.lower().endswith(OWN_EXTENSIONS)
+    format with a shared extension: skipped with a note rather than an error.  A text file (no NUL byte in
+    its head) with G-code lines is not skipped, whatever its first line claims (``#!``, a NetCDF magic
+    number): a job's author writes its first line, and a firmware runs the rest."""
+    if not (result.not_gcode and result.path in walked and not result.path.lower().endswith(OWN_EXTENSIONS)):
+        return False
+    try:
+        with open(result.path, "rb") as fh:
+            head = fh.read(1 << 16)
+    except OSError:
+        return True
+    return b"\0" in head or _GCODE_LINE.search(head) is None
 
 
 def collect(

@@ -16,7 +16,7 @@ import pytest
 
 from gclint import runner
 
-from .conftest import ROOT
+from .conftest import ROOT, run_cli
 
 HOSTILE = "; gclint: dialect=hyrel\nM792 ; SHELL C:\\x.exe\n"
 CLEAN = "; gclint: dialect=hyrel\nG28 X0 Y0\n"
@@ -183,3 +183,19 @@ def test_other_formats_with_a_shared_extension_are_skipped_but_a_broken_gcode_fi
     (folder / "broken.gcode").write_bytes(bytes(range(256)) * 4)  # a .gcode is G-code by name: broken
     proc = run_cli("check", str(folder))
     assert proc.returncode == 2 and "broken.gcode" in proc.stderr.decode() and "binary" in proc.stderr.decode()
+
+
+def test_a_text_file_with_gcode_lines_is_not_skipped_for_its_first_line(tmp_path):
+    """The job's author writes the first line: '#!x' or a NetCDF magic number over G-code lines must not make
+    a walk skip the file (exit 0 at a gate).  A real NetCDF file (binary) and an ANTLR grammar are skipped."""
+    folder = tmp_path / "w"
+    folder.mkdir()
+    (folder / "job.nc").write_bytes(b"#!x\nG0 X0 Y0\nrm /sd/config.txt\nM30\n")
+    (folder / "job2.nc").write_bytes(b"CDF\x01\nG0 X0 Y0\nrm /sd/config.txt\nM30\n")
+    (folder / "real.nc").write_bytes(b"CDF\x01\x00\x00\x00\x00G0\n")
+    (folder / "grammar.g").write_bytes(b"grammar T;\nrule : A ;\n")
+    proc = run_cli("check", "--no-cache", str(folder))
+    err = proc.stderr.decode()
+    assert proc.returncode == 2, err
+    assert "job.nc: a script" in err and "job2.nc: NetCDF" in err and "skipped" not in err.split("job.nc")[1][:40]
+    assert "real.nc: NetCDF data (.nc), not G-code: skipped" in err and "grammar.g: an ANTLR grammar" in err
