@@ -25,6 +25,7 @@ from gclint.engine import FileResult, Linter
 from gclint.io import AtomicWriter, OutputError
 from gclint.noqa import INLINE_UNSUPPRESSIBLE, with_noqa
 from gclint.rules.base import Edit, Finding, Fix
+from gclint.syntax.parse import parse_line
 from gclint.syntax.source import Source, SourceError
 from gclint.textsafe import human, human_path
 
@@ -124,7 +125,11 @@ def add_noqa(result: FileResult) -> FixOutcome:
     """``check --add-noqa``: a ``; noqa: CODES`` on every line with findings (an archive of old jobs keeps
     its findings as they are and new ones stand out, as ruff's --add-noqa), written as --fix writes:
     atomically, and only if the file is still what was checked.  Security findings (SC) cannot be
-    silenced by the job and are left out."""
+    silenced by the job and are left out, and so are lines whose comment a pause or action code reads as its
+    text (M0, M1, M792 and the codes translated to M0: a noqa there would change what the printer says or
+    does); ``reverted`` says which."""
+    from gclint.rules.security import ACTION_CODES, PAUSE_CODES
+
     outcome = FixOutcome(result)
     by_line: dict[int, list[str]] = {}
     for f in result.findings:
@@ -145,6 +150,12 @@ def add_noqa(result: FileResult) -> FixOutcome:
                 for raw, ending in chunk:
                     number += 1
                     codes = by_line.get(number)
+                    if codes and any(c.code in (*ACTION_CODES, *PAUSE_CODES) for c in parse_line(raw).commands):
+                        outcome.reverted.append(
+                            f"{result.path}:{number}: no noqa added: the comment is the text of "
+                            f"{parse_line(raw).commands[0].code} (a noqa would change what it says or does)"
+                        )
+                        codes = None
                     out.write(source.encode((with_noqa(raw, codes) if codes else raw) + ending))
             if source.sha256 != result.digest:
                 out.discard()
@@ -152,7 +163,7 @@ def add_noqa(result: FileResult) -> FixOutcome:
     except (OSError, SourceError, OutputError) as exc:
         outcome.error = str(exc)
         return outcome
-    outcome.fixed = len(by_line)
+    outcome.fixed = len(by_line) - len(outcome.reverted)
     return outcome
 
 

@@ -426,6 +426,7 @@ def _apply_fixes(
 def _add_noqa(results: list[FileResult]) -> int:
     """``--add-noqa``: suppress what each file has now, line by line; says how many lines it marked."""
     from gclint.fixes import add_noqa
+    from gclint.textsafe import human
 
     added, failed = 0, False
     for r in results:
@@ -435,6 +436,8 @@ def _add_noqa(results: list[FileResult]) -> int:
             continue
         outcome = add_noqa(r)
         added += outcome.fixed
+        for why in outcome.reverted:
+            click.echo(f"gclint: note: {human(why)}", err=True)
         if outcome.error is not None:
             _error(outcome.error)
             failed = True
