@@ -49,8 +49,10 @@ _KEYWORDS = re.compile(
 # or else the rest of the line (a password may hold spaces: "; printhost_password = my secret phrase"; the
 # whole value is masked, never only its first word).  Blank runs are possessive (linear on any line).  The
 # key name has no "." so that a file name ("secret.gcode: permission denied") is not a key.
+# (blanks: any space but a line break, and the invisible format characters a job may hide the "=" with)
+_BLANKS = r"(?:[^\S\r\n]|[\u00ad\u200b-\u200f\u2060-\u2064\ufeff])*+"
 _AFTER_KEYWORD = re.compile(
-    r"""[A-Za-z0-9_-]{0,40}+["']?[ \t]*+[=:][ \t]*+"""
+    rf"""[A-Za-z0-9_-]{{0,40}}+["']?{_BLANKS}[=:]{_BLANKS}"""
     r"""(?:"([^"\r\n]{1,512})"|'([^'\r\n]{1,512})'|([^\s][^\r\n]*+))"""
 )
 _URL_CREDENTIALS = re.compile(r"(?i)\b[a-z][a-z0-9+.-]{0,20}://[^\s/@:;\"'<>]{1,256}:([^\s/@;\"'<>]{1,256})@")
