@@ -1,3 +1,6 @@
+"""gclint.secrets: what the masking finds (most cases are in test_security*.py, through the outputs)."""
+
+from __future__ import annotations
 
 
 def test_blanks_a_job_may_hide_the_equals_sign_with() -> None:
