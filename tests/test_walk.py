@@ -5,6 +5,7 @@ review found a hostile commit could hide from a walk is in test_walk_review.py."
 
 from __future__ import annotations
 
+import functools
 import json
 import os
 import shutil
@@ -48,8 +49,10 @@ def test_an_unreadable_folder_is_reported(tmp_path: Path, monkeypatch) -> None:
     assert problem.path.endswith("sub") and "cannot read this folder: Permission denied" in problem.error
 
 
+@functools.cache
 def _as_nobody() -> list[str] | None:
-    """A command prefix that runs as an unprivileged user (root reads everything), or None."""
+    """A command prefix that runs as an unprivileged user (root reads everything), or None; None too when
+    that user cannot read gclint itself (a checkout in a private folder, as ``mktemp -d`` makes)."""
     if not hasattr(os, "getuid"):
         return None
     if os.getuid() != 0:
@@ -57,7 +60,13 @@ def _as_nobody() -> list[str] | None:
     setpriv = shutil.which("setpriv")
     if setpriv is None:
         return None
-    return [setpriv, "--reuid=65534", "--regid=65534", "--clear-groups"]
+    prefix = [setpriv, "--reuid=65534", "--regid=65534", "--clear-groups"]
+    probe = subprocess.run(
+        [*prefix, sys.executable, "-c", "import gclint"],
+        env={**os.environ, "PYTHONPATH": str(ROOT)},
+        capture_output=True,
+    )
+    return prefix if probe.returncode == 0 else None
 
 
 def _run_unprivileged(prefix: list[str], *args: str, cwd: Path) -> subprocess.CompletedProcess:
