@@ -216,3 +216,13 @@ def test_an_invisible_format_character_before_the_code_hides_nothing(tmp_path):
     out = proc.stdout.decode()
     assert proc.returncode == 1 and "3:1: SC001" in out and "4:1: SC005" in out, out
     assert "invisible format characters" in out
+
+
+def test_a_console_line_behind_a_control_character_is_read(tmp_path):
+    """ "\\x01rm /sd/config.txt": a firmware that drops control characters runs a console command (SC003),
+    and the job had switched off SX001, the only finding left."""
+    job = tmp_path / "d1.nc"
+    job.write_bytes(b"; gclint: disable=SX001\nG28 X0 Y0\n\x01rm /sd/config.txt\n\x7fplay /sd/gcodes/evil.cnc\nM30\n")
+    proc = run_cli("check", "--no-cache", str(job))
+    out = proc.stdout.decode()
+    assert proc.returncode == 1 and "3:1: SC003" in out and "4:1: SC003" in out, out

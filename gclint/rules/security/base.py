@@ -5,7 +5,7 @@ from __future__ import annotations
 from gclint import secrets
 from gclint.rules.base import Rule, Severity
 from gclint.rules.security.common import _LEADING_CODE, _LEADING_NAME, _code, _mask_machine_password
-from gclint.rules.security.views import _VIEW_TRIGGER, _views_of
+from gclint.rules.security.views import _VIEW_TRIGGER, DROPPED_VIEW, ERASED_VIEW, INVISIBLE_VIEW, _views_of
 from gclint.syntax.nodes import Command, Line
 
 
@@ -18,6 +18,9 @@ class _SecurityRule(Rule):
     """
 
     on_issue = True
+    # the views whose lines are read whole too (check_line): those where a firmware may drop characters
+    # before the first one (SC003: "\x01rm /sd/config.txt"); not Smoothieware's own split, which keeps them
+    LINE_VIEWS = frozenset({ERASED_VIEW, DROPPED_VIEW, INVISIBLE_VIEW})
     # the engine calls check_view for lines this finds (gclint/engine.py)
     on_line_matching = _VIEW_TRIGGER
 
@@ -56,7 +59,8 @@ class _SecurityRule(Rule):
                         self.check(view, cmd)
                 if parsed.issues and self.on_issue:
                     self.check_issues(view)
-                # (no check_line: SC003's console lines are Smoothieware's, which reads its lines as they are)
+                if how in self.LINE_VIEWS and self.on_line_starting_with and view.raw[:1] in self.on_line_starting_with:
+                    self.check_line(view)
             finally:
                 self._view = None
 
