@@ -12,7 +12,6 @@ the findings use (gclint.secrets), so no output has to remember to.
 from __future__ import annotations
 
 import re
-
 from dataclasses import dataclass, field
 
 from gclint import secrets
