@@ -274,6 +274,13 @@ def check(
 
     bar = progress_bar.ProgressBar(files) if progress_bar.wanted(progress, fmt, files) else None
     cache = None if (no_cache or fix or show_diff or add_noqa) else ResultCache(cache_dir)
+    run_options = {  # (the same run, file by file for the reports or whole for the fixes)
+        "explicit_config": config_file,
+        "jobs": jobs or (runner.default_jobs() if len(files) > 1 else 1),
+        "stdin_name": stdin_filename or "-",
+        "progress": bar.advance if bar is not None else None,
+        "cache": cache,
+    }
     if not (fix or show_diff or add_noqa):  # file by file: memory does not grow with the run
         ctx = ReportContext(
             tool_version=__version__, group=not no_group, suppressions=[n.describe() for n in suppressions]
@@ -283,16 +290,7 @@ def check(
             from gclint.rules.base import all_rules
 
             all_rules()
-            checked = runner.results(
-                files,
-                Options(),
-                overrides,
-                explicit_config=config_file,
-                jobs=jobs or (runner.default_jobs() if len(files) > 1 else 1),
-                stdin_name=stdin_filename or "-",
-                progress=bar.advance if bar is not None else None,
-                cache=cache,
-            )
+            checked = runner.results(files, Options(), overrides, **run_options)
             tally, slim = _report(report, ctx, output, problems, checked, walked, bar)
         except RuleError as exc:
             _fail(str(exc))
@@ -316,16 +314,7 @@ def check(
         from gclint.rules.base import all_rules
 
         all_rules()
-        results = runner.run(
-            files,
-            Options(),
-            overrides,
-            explicit_config=config_file,
-            jobs=jobs or (runner.default_jobs() if len(files) > 1 else 1),
-            stdin_name=stdin_filename or "-",
-            progress=bar.advance if bar is not None else None,
-            cache=cache,
-        )
+        results = runner.run(files, Options(), overrides, **run_options)
     except RuleError as exc:
         _fail(str(exc))
         return
