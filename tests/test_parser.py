@@ -133,6 +133,8 @@ def test_text_command_reads_plain_words_as_parameters():
         ("G0 X10 (clamp", "SX005"),
         ("G1 X1.2.3", "SX006"),
         ("G1 X--1", "SX006"),
+        ("G1 X\u0661\u0660 Y5", "SX006"),  # Arabic-Indic digits: Python reads them as numbers, no firmware does
+        ("M109 T0 S\u0662\u0660\u0660", "SX006"),
         ("G1 0.200 F10000", "SX007"),
         ("G1 X1 *12 Y2", "SX001"),  # checksum not at the end
         ("M", "SX001"),

@@ -36,7 +36,7 @@ from gclint.syntax.nodes import (
 # Numbers as nodes.FAST_NUMBER reads them; the canonical pattern also uses possessive quantifiers: it never
 # needs to backtrack, and that makes it about 25% faster.
 _NUM = FAST_NUMBER
-_NUM_P = r"[-+]?+(?:\d{1,30}+(?:\.\d{0,30}+)?+|\.\d{1,30}+)"
+_NUM_P = r"[-+]?+(?:[0-9]{1,30}+(?:\.[0-9]{0,30}+)?+|\.[0-9]{1,30}+)"
 _CANON = re.compile(rf"[ \t]*+[A-Z]{_NUM_P}(?:[ \t]++[A-Z]{_NUM_P})*+[ \t]*+")
 _GENERAL = re.compile(rf"[ \t]*(?:[A-Za-z][ \t]*{_NUM}[ \t]*)+")
 _WORD = FAST_WORD
@@ -50,7 +50,7 @@ PLAIN_MOVE = re.compile(
     rf"G([01])(?:{_SEP}F({_NUM_P}))?+(?:{_SEP}X({_NUM_P}))?+(?:{_SEP}Y({_NUM_P}))?+(?:{_SEP}Z({_NUM_P}))?+"
     rf"(?:{_SEP}E({_NUM_P}))?+(?(2)|(?:{_SEP}F({_NUM_P}))?+)[ \t]{{0,64}}+"
 )
-_LINENO_VALUE = re.compile(r"\d+(?:\.\d+)?")
+_LINENO_VALUE = re.compile(r"[0-9]+(?:\.[0-9]+)?")
 _LETTER_AND_VALUE = itemgetter(0, slice(1, None))  # "X10.5" -> ("X", "10.5"), in C
 
 _BLANK = ParsedLine(kind="blank")

@@ -35,11 +35,11 @@ PERCENT = "percent"  # % program delimiter
 # Every letter a word can have (grammar.lark: A-Z in either case, read as upper case, and LinuxCNC's @ ^ $).
 WORD_LETTERS = frozenset("ABCDEFGHIJKLMNOPQRSTUVWXYZ@^$")
 
-_STRICT_NUMBER = re.compile(r"[-+]?(?:\d+(?:\.\d*)?|\.\d+)|0x[0-9A-Fa-f]+")  # unambiguous: linear time
+_STRICT_NUMBER = re.compile(r"[-+]?(?:[0-9]+(?:\.[0-9]*)?|\.[0-9]+)|0x[0-9A-Fa-f]+")  # unambiguous: linear time
 # A number as the fast path reads it (gclint.syntax.fastpath).  Unambiguous ("\d+\.?\d*" can split a run of
 # digits many ways: exponential backtracking on a long line of words that ends in junk), at most 30 digits
 # before and after the point: longer numbers are reported (SX006) by the grammar path.
-FAST_NUMBER = r"[-+]?(?:\d{1,30}(?:\.\d{0,30})?|\.\d{1,30})"
+FAST_NUMBER = r"[-+]?(?:[0-9]{1,30}(?:\.[0-9]{0,30})?|\.[0-9]{1,30})"
 FAST_WORD = re.compile(rf"([A-Za-z])[ \t]*({FAST_NUMBER})")  # a letter and a number: group 1, group 2
 
 
