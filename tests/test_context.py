@@ -121,7 +121,7 @@ def test_content_beats_the_slicer_flavour_and_says_so() -> None:
     )
     context = infer(hyrel, "part.gcode")
     assert context.dialect == "hyrel" and context.origin == "content"
-    assert "slicer header says marlin" in context.conflict and context.weak
+    assert "the slicer says marlin" in context.conflict and context.weak
     env = infer(hyrel.replace(";FLAVOR:Marlin\n", ""), "part.gcode", env_flavor="reprap")
     assert env.dialect == "hyrel" and "SLIC3R_GCODE_FLAVOR=reprap" in env.conflict
 

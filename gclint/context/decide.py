@@ -328,7 +328,7 @@ def _weigh(
         reasons = _top_reasons(points.group[group])
         if header_group is not None:
             conflict = (
-                f"the slicer header says {header_best} ({header_texts[header_best][0]}), but the content is "  # type: ignore[index]
+                f"the slicer says {header_best} ({header_texts[header_best][0]}), but the content is "  # type: ignore[index]
                 f"{_GROUP_LABEL[group]}: content wins"
             )
         strength = STRONG if best >= _STRONG and lead >= _LEAD and not conflict else WEAK
