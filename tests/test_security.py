@@ -485,3 +485,11 @@ def test_sarif_fingerprints_are_not_hashes_of_secrets(tmp_path: Path) -> None:
     for code in {r["ruleId"] for r in results}:
         raw = "\0".join((code, str(job), line)).encode()
         assert hashlib.sha256(raw).hexdigest()[:32] not in prints
+
+
+def test_github_annotations_encode_a_line_break_in_a_file_name(tmp_path: Path) -> None:
+    """GitHub reads %0A back as the line break, so the annotation finds its file (a raw \\x0a would not)."""
+    job = tmp_path / "a\nb.gcode"
+    job.write_bytes(ESC_JOB.encode())
+    out = run_cli("check", "--no-cache", "--format", "github", str(job)).stdout.decode()
+    assert "file=" in out and "a%0Ab.gcode" in out and "\\x0a" not in out

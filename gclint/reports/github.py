@@ -15,7 +15,6 @@ from gclint.engine import FileResult
 from gclint.reports.common import human
 from gclint.reports.stream import Report
 from gclint.rules.base import Severity
-from gclint.textsafe import human_path
 
 COMMANDS = {Severity.ERROR: "error", Severity.WARNING: "warning", Severity.INFO: "notice"}
 
@@ -36,7 +35,8 @@ def _command(kind: str, properties: dict[str, object], text: str) -> str:
 class GithubReport(Report):
     def write_file(self, r: FileResult) -> None:
         out = self.out
-        path = human_path(r.path)
+        # (line breaks kept for escape_property to write as %0A, as GitHub reads them back)
+        path = human(r.path, keep_line_breaks=True).replace("\t", "\\x09")
         if r.error:
             out.write(_command("error", {"file": path, "title": "gclint"}, human(r.error)) + "\n")
             return
