@@ -131,6 +131,7 @@ def add_noqa(result: FileResult) -> FixOutcome:
     from gclint.rules.security import ACTION_CODES, PAUSE_CODES
 
     outcome = FixOutcome(result)
+    texts = frozenset((*ACTION_CODES, *PAUSE_CODES))  # codes whose comment is their text
     by_line: dict[int, list[str]] = {}
     for f in result.findings:
         if not f.code.startswith(INLINE_UNSUPPRESSIBLE) and f.code not in by_line.setdefault(f.line, []):
@@ -150,10 +151,11 @@ def add_noqa(result: FileResult) -> FixOutcome:
                 for raw, ending in chunk:
                     number += 1
                     codes = by_line.get(number)
-                    if codes and any(c.code in (*ACTION_CODES, *PAUSE_CODES) for c in parse_line(raw).commands):
+                    action = codes and next((c.code for c in parse_line(raw).commands if c.code in texts), None)
+                    if action:
                         outcome.reverted.append(
-                            f"{result.path}:{number}: no noqa added: the comment is the text of "
-                            f"{parse_line(raw).commands[0].code} (a noqa would change what it says or does)"
+                            f"{result.path}:{number}: no noqa added: the comment is the text of {action} (a noqa "
+                            "would change what it says or does)"
                         )
                         codes = None
                     out.write(source.encode((with_noqa(raw, codes) if codes else raw) + ending))
