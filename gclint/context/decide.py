@@ -342,10 +342,11 @@ def _weigh(
             and not path.lower().endswith(_GENERIC)
         ]
         # content that rules a dialect out rules out its extension too (a Hyrel job saved as .nc)
-        by_extension = [n for n in named if points.misfit(n) is None]
+        misfits = {n: points.misfit(n) for n in named}
+        by_extension = [n for n in named if misfits[n] is None]
         if named and not by_extension:
             conflict = "; ".join(
-                f"the extension {_extension(path)} is {n}'s, but {points.misfit(n)}: not read as {n}" for n in named
+                f"the extension {_extension(path)} is {n}'s, but {misfits[n]}: not read as {n}" for n in named
             )
         if len(by_extension) == 1:
             group, origin = group_of[by_extension[0]], EXTENSION
