@@ -8,7 +8,7 @@ a ``G1`` line only touches the rules that listen to ``G1``.
 from __future__ import annotations
 
 import os
-from collections.abc import Callable, Iterable
+from collections.abc import Callable, Iterable, Iterator
 from dataclasses import dataclass, field, replace
 from itertools import chain
 
@@ -17,17 +17,23 @@ from gclint.context import Context, infer_source
 from gclint.filecontext import MAX_FINDINGS, PER_LINE, SOURCE_LIMIT, FileContext
 from gclint.machine.interpreter import Interpreter
 from gclint.machine.profiles import DEFAULT_PROFILE, get_profile
-from gclint.noqa import INLINE_UNSUPPRESSIBLE, NO_CODES
+from gclint.noqa import INLINE_UNSUPPRESSIBLE, NO_CODES, may_direct
 from gclint.options import Options
 from gclint.rules.base import ANY_T, Finding, Rule, all_rules, matches, select_rules
-from gclint.syntax.fastpath import PLAIN_MOVE
+from gclint.syntax.fastpath import PLAIN_MOVE, PLAIN_MOVE_LONGEST, PLAIN_RUN
 from gclint.syntax.nodes import EXTENDED, GCODE, Command, Line
 from gclint.syntax.parse import parse_line
 from gclint.syntax.sniff import not_gcode_reason
-from gclint.syntax.source import NotGcode, Source, SourceError
+from gclint.syntax.source import NotGcode, Source, SourceError, split_lines
 
 # Options and FileContext live in their own modules (gclint.options, gclint.filecontext), so that the rules
 # can name the context they report into without importing the engine; they are importable from here too.
+
+
+def _always(comment: str) -> bool:  # (the comment hint of a rule that has none: it reads every comment)
+    return True
+
+
 __all__ = [
     "MAX_FINDINGS",
     "PER_LINE",
@@ -351,9 +357,75 @@ class Linter:
         state = ctx.state
         read_directives = ctx.read_directives
         parse = parse_line
-        number = 0
         get = dispatch.get
-        for chunk in source.chunks():
+
+        # Runs of plain moves and comment lines (fastpath.PLAIN_RUN) are applied in bulk when no rule would
+        # look at them (Interpreter.plain_run); a comment line a directive or a hook may be about is read on
+        # its own.  Comment lines that need no reading are remembered (they repeat: ";WIDTH:0.45").
+        bulk = shortest_long is None or shortest_long >= PLAIN_MOVE_LONGEST
+        comment_hints = tuple(r.comment_hint or _always for r in rules if r.on_comment)
+        every_comment = ";" in first_chars
+        clean: set[str] = set()
+
+        def needs_reading(comment: str) -> bool:
+            if every_comment or may_direct(comment) or (shortest_long is not None and len(comment) > shortest_long):
+                return True
+            return any(hint(comment) for hint in comment_hints) or any(wants(comment) for wants, _ in view_hooks)
+
+        def bulk_apply(block: str, start: int, end: int) -> Iterator[tuple[int, list[tuple[str, str]]]]:
+            # whole lines of a run with no comment that needs reading
+            nonlocal total
+            if (
+                plain is None
+                or plain["0"][1]
+                or plain["1"][1]
+                or (after_end_hooks and state.after_m30)
+                or not interpreter.plain_run(block, start, end)
+            ):
+                yield total, split_lines(block[start:end])
+            total += block.count("\n", start, end)
+
+        def pieces() -> Iterator[tuple[int, list[tuple[str, str]]]]:
+            # The file as (number of the line before, lines to read one by one).
+            nonlocal total
+            search = PLAIN_RUN.search if bulk else None
+            for block in source.blocks():
+                if block.__class__ is list:
+                    yield total, block
+                    total += len(block)
+                    continue
+                at = 0
+                while True:
+                    run = search(block, at) if search is not None else None
+                    start, end = run.span() if run is not None else (len(block), len(block))
+                    if start > at:
+                        lines = split_lines(block[at:start])
+                        yield total, lines
+                        total += len(lines)
+                    if run is None:
+                        break
+                    at = end
+                    comment = start if block[start] == ";" else block.find("\n;", start, end) + 1 or end
+                    while comment < end:
+                        stop = block.find("\n", comment, end)
+                        text = block[comment : stop - 1 if block[stop - 1] == "\r" else stop]
+                        if text not in clean:
+                            if needs_reading(text):
+                                if comment > start:
+                                    yield from bulk_apply(block, start, comment)
+                                start = stop + 1
+                                yield total, split_lines(block[comment:start])
+                                total += 1
+                            else:
+                                if len(clean) >= 8192:
+                                    clean.clear()
+                                clean.add(text)
+                        comment = block.find("\n;", stop, end) + 1 or end
+                    if start < end:
+                        yield from bulk_apply(block, start, end)
+
+        total = number = 0  # (total: the lines read so far)
+        for number, chunk in pieces():
             for raw, ending in chunk:
                 number += 1
                 if plain is not None and raw[:1] == "G" and len(raw) <= long_limit:
@@ -448,8 +520,7 @@ class Linter:
                                 hook(line)
                             except Exception as exc:
                                 disable(hook, exc, number)
-        result.lines = number
-        state.line_number = number
+        result.lines = state.line_number = total
         for r in list(rules):
             try:
                 r.finish()

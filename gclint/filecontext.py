@@ -13,7 +13,7 @@ from gclint.dialects.base import Dialect
 from gclint.machine.interpreter import Interpreter
 from gclint.machine.profiles import PrinterProfile, get_profile
 from gclint.machine.state import MachineState
-from gclint.noqa import DIRECTIVE, INLINE_UNSUPPRESSIBLE, NOQA, selectors
+from gclint.noqa import DIRECTIVE, INLINE_UNSUPPRESSIBLE, NOQA, may_direct, selectors
 from gclint.options import Options
 from gclint.rules.base import Finding, Fix, Rule, Severity, matches
 from gclint.secrets import mask_quoted
@@ -154,7 +154,7 @@ class FileContext:
         found = False
         for comment in line.parsed.comments:
             body = comment.body
-            if "noqa" in body or "NOQA" in body or "gclint" in body.lower():
+            if may_direct(body):
                 found = True
                 m = NOQA.search(body)
                 if m:

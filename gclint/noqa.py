@@ -14,6 +14,13 @@ from functools import cache, lru_cache
 # none of these ends the list ("; noqa: DL001 site macro" names DL001).
 NOQA = re.compile(r"(?i)(?:^|[;(])[ \t]*+noqa\b(?:[ \t]*:[ \t]*([^;)\r\n]*))?")
 DIRECTIVE = re.compile(r"(?i)\bgclint:\s*(disable|enable)\b(?:\s*=\s*([^;)\r\n]*))?")
+
+
+def may_direct(comment: str) -> bool:
+    """Whether a comment may hold a noqa or a gclint directive (most comments do not)."""
+    return "noqa" in comment or "NOQA" in comment or "gclint" in comment.lower()
+
+
 _SELECTOR = re.compile(r"[A-Za-z]{2}\d{0,3}|[A-Za-z][A-Za-z0-9]*(?:-[A-Za-z0-9]+)+")
 NO_CODES = "?"  # what a "noqa:" with no code after it gives: it suppresses nothing, and is an error
 # Findings a job can never silence itself (noqa, gclint: disable): the security rules.  A hostile job would

@@ -112,6 +112,11 @@ def _hinted(text: str) -> bool:
     )
 
 
+def may_hold(text: str) -> bool:
+    """Whether ``text`` may hold a secret (``find`` finds none in a text for which this is False)."""
+    return (len(text) >= 32 and _HEX_RUN.search(text) is not None) or _hinted(text)
+
+
 # Values that are placeholders, not secrets: "; printhost_password = " has none, "= none", "= ***".
 _PLACEHOLDERS = frozenset(
     {

@@ -52,12 +52,63 @@ def test_the_pattern_takes_only_plain_moves():
 
 def test_the_route_is_taken_where_no_rule_looks():
     linter = Linter(Options(dialect="marlin"))
-    source = Source.from_text("G1 X1 Y2\n", "<t>")
+    source = Source.from_text("G1 X1 Y2\nM400\nG1 X3 E1\n", "<t>")
     ctx, result = linter.prepare(source)
     calls = []
     ctx.interpreter.plain_move = lambda *a: calls.append(a)  # type: ignore[method-assign]
+    ctx.interpreter.plain_run = lambda *a: calls.append(a[1:]) or False  # type: ignore[method-assign]
     linter._run(source, ctx, result)
-    assert calls == [("G1", 1, "1", "2", None, None, None)]
+    # each run of plain moves is offered whole, then (refused here) applied one move after the other
+    assert calls == [(0, 9), ("G1", 1, "1", "2", None, None, None), (14, 23), ("G1", 3, "3", None, None, "1", None)]
+
+
+def test_runs_of_plain_moves_are_applied_whole():
+    linter = Linter(Options(dialect="marlin"))
+    first = "G28\nG1 Z.3 F600\nG1 X1 Y1 E1\n"  # the first feed and print: one line after the other
+    second = "G1 X2 E2\r\nG0 X3 F9000\nG1 Y4 E2.5\nG1 E2\n"  # applied whole
+    source = Source.from_text(first + "M400\n" + second + ";end\n", "<t>")
+    ctx, result = linter.prepare(source)
+    runs = []
+    offer = ctx.interpreter.plain_run
+    ctx.interpreter.plain_run = lambda *a: runs.append((*a[1:], offer(*a))) and runs[-1][-1]  # type: ignore[method-assign]
+    linter._run(source, ctx, result)
+    at = len(first) + 5
+    assert runs == [(4, len(first), False), (at, at + len(second) + len(";end\n"), True)]  # (comments join runs)
+    st = ctx.state
+    assert st.position.snapshot() == {"X": 3.0, "Y": 4.0, "Z": 0.3}
+    assert (st.feed, st.e_position, st.motion_mode, st.first_move_line, st.first_print_line) == (9000.0, 2.0, "G1", 2, 3)
+    assert result.lines == 9
+
+
+def test_comment_lines_a_rule_may_read_are_read_one_by_one():
+    linter = Linter(Options(dialect="marlin"))
+    lines = ["G28", "G1 X0 Y0 Z.2 F600", "G1 X1 E1", ";TYPE:WALL", "G1 X2 E2", "; api_key = 0123456789ABCDEF0123456789ABCDEF"]
+    lines += [";WIDTH:0.4", "G1 X3 E3", "G1 X4 E4 ; noqa: SC006", "G1 X5 E5", "; gclint: disable=SC006", ";x", "G1 X6"]
+    source = Source.from_text("\n".join(lines) + "\n", "<t>")
+    ctx, result = linter.prepare(source)
+    runs, read = [], []
+    offer, parse = ctx.interpreter.plain_run, ctx.read_directives
+    ctx.interpreter.plain_run = lambda text, a, b: runs.append(text[a:b].count("\n")) or offer(text, a, b)  # type: ignore[method-assign]
+    ctx.read_directives = lambda line: read.append(line.number) or parse(line)  # type: ignore[method-assign]
+    linter._run(source, ctx, result)
+    # the comments with a secret and a directive are read on their own, the others go with the moves (the
+    # first four lines one by one all the same: they hold the job's first move and print)
+    assert runs == [4, 2, 1, 2] and read == [4, 6, 9, 11]
+    assert [f.code for f in result.findings or ctx.findings] == ["SC006"]
+    assert ctx.state.position.snapshot() == {"X": 6.0, "Y": 0.0, "Z": 0.2} and ctx.state.e_position == 5.0
+
+
+def test_the_run_pattern_takes_the_lines_the_move_pattern_takes():
+    lines = ["G1 X10 Y20 E.5", "G0 F7200 X1 Y2 Z.3", "G1 F100 X1 F200", "G1 X1 F2", "G1 F1 X2", "G1  ", "G1 Y1 X2"]
+    lines += ["G1 X1 ; c", "G1\tX1\t", "G1 X" + "9" * 31, "G0 E1 F1 F2", "G1 Z1 E1 F1"]
+    from gclint.syntax.fastpath import PLAIN_RUN
+
+    for line in lines:
+        assert bool(PLAIN_RUN.fullmatch(line + "\n")) == bool(PLAIN_MOVE.fullmatch(line)), line
+        assert bool(PLAIN_RUN.fullmatch(line + "\r\n")) == bool(PLAIN_MOVE.fullmatch(line)), line
+        assert not PLAIN_RUN.fullmatch(line + "\r")
+    # a line with F first followed by one with F last is one run (no group carries over)
+    assert PLAIN_RUN.fullmatch("G1 F1 X1\nG1 X2 F2\n")
 
 
 @pytest.mark.parametrize(

@@ -92,6 +92,9 @@ def _clue_index(owners) -> tuple[dict[str, list[tuple[str, Clue]]], list[tuple[s
 _BY_CODE, _GENERAL = _clue_index(candidates())
 # the marks of a firmware flavour in the content (Klipper's extended commands), read in the same pass
 _FLAVOR_BY_CODE, _FLAVOR_GENERAL = _clue_index(all_firmware())
+# the general clues by the kind of command they may match (filled as kinds are met)
+_GENERAL_BY_KIND: dict[str, tuple[tuple[str, Clue], ...]] = {}
+_FLAVOR_BY_KIND: dict[str, tuple[tuple[str, Clue], ...]] = {}
 
 
 def read_content(head: str, complete: bool, tail: str | None = None) -> ContentReading:
@@ -137,16 +140,28 @@ def _read_lines(reading: ContentReading, lines) -> None:
             _read_command(reading, cmd, number, raw)
 
 
+def _of_kind(kind: str, entries: list[tuple[str, Clue]]) -> tuple[tuple[str, Clue], ...]:
+    """The clues of ``entries`` a command of ``kind`` may match (in their order)."""
+    return tuple((owner, clue) for owner, clue in entries if clue.kind is None or clue.kind == kind)
+
+
 def _read_command(reading: ContentReading, cmd: Command, number: int, raw: str) -> None:
     code = cmd.code
     seen = None
+    if reading.clues:  # (the first command tries every clue: each candidate's entry is made in that order)
+        general = _GENERAL_BY_KIND.get(cmd.kind) or _GENERAL_BY_KIND.setdefault(cmd.kind, _of_kind(cmd.kind, _GENERAL))
+        flavor = _FLAVOR_BY_KIND.get(cmd.kind) or _FLAVOR_BY_KIND.setdefault(
+            cmd.kind, _of_kind(cmd.kind, _FLAVOR_GENERAL)
+        )
+    else:
+        general, flavor = _GENERAL, _FLAVOR_GENERAL
     for candidate, clue in _BY_CODE.get(code, ()) if code is not None else ():  # type: ignore[arg-type]
         seen = _match(reading, candidate, clue, cmd, number, raw, seen)
-    for candidate, clue in _GENERAL:
+    for candidate, clue in general:
         seen = _match(reading, candidate, clue, cmd, number, raw, seen)
     for firmware, clue in _FLAVOR_BY_CODE.get(code, ()) if code is not None else ():  # type: ignore[arg-type]
         seen = _match(reading, firmware, clue, cmd, number, raw, seen, reading.flavor_clues)
-    for firmware, clue in _FLAVOR_GENERAL:
+    for firmware, clue in flavor:
         seen = _match(reading, firmware, clue, cmd, number, raw, seen, reading.flavor_clues)
     if code is None or cmd.kind not in (GCODE, TEXT):
         return

@@ -7,18 +7,22 @@ job but deletes a file on Marlin; G90 resets the E mode on Marlin only).  Facts 
 
 from __future__ import annotations
 
+import re
 from collections.abc import Callable
-from functools import partial
+from functools import partial, reduce
+from operator import add
 
 from gclint.dialects.addressing import GROUP_MEMBERS, Address, resolve_v5
 from gclint.dialects.base import Dialect
 from gclint.machine.state import EVALUES, NATIVE, MachineState
+from gclint.syntax.fastpath import PLAIN_E, PLAIN_NUMBER
 from gclint.syntax.nodes import GCODE, IMPLICIT, Command, Line, is_number, to_number
 
 Handler = Callable[[Command, Line], None]
 
 _AXES = "XYZAB"
 _MOTION = frozenset({"G0", "G1", "G2", "G3"})
+_G0_FEED = re.compile(r"(?m)^G0[^\n]*F")  # (a G0 with F in a run of plain moves)
 
 
 def _int(text: str | None) -> int | None:
@@ -27,6 +31,18 @@ def _int(text: str | None) -> int | None:
         return None
     value = to_number(text)  # (hex such as "0x0b" included; None when not finite)
     return int(value) if value is not None and value == int(value) else None
+
+
+def _last_word(text: str, letter: str, start: int, end: int) -> int:
+    """Where the last ``letter`` word of a move line in ``text[start:end]`` (plain moves and comments) is,
+    or -1."""
+    at = text.rfind(letter, start, end)
+    while at >= 0:
+        line = text.rfind("\n", start, at) + 1 or start
+        if text[line] == "G":
+            return at
+        at = text.rfind(letter, start, line)
+    return -1
 
 
 class Interpreter:
@@ -244,6 +260,46 @@ class Interpreter:
         st.motion_mode = mode
         if e is not None:
             self._extrude(e, mode, number)
+
+    def plain_run(self, text: str, start: int, end: int) -> bool:
+        """Apply ``text[start:end]``, whole lines that are plain moves or comments (``fastpath.PLAIN_RUN``),
+        as ``plain_move`` would one line after the other, without cutting the text into lines: what a
+        run leaves is its last X, Y, Z, F, E and G0/G1.  Returns False, having changed nothing, when the
+        run may change more than that (relative moves, the first move, feed or print of the job, a
+        one-shot G0 feed): then the caller applies the lines one by one."""
+        if text[start] != "G" and text.find("\nG", start, end) < 0:
+            return True  # comments only
+        st = self.state
+        if not st.absolute or st.first_move_line is None:
+            return False
+        e_at = _last_word(text, "E", start, end)
+        if e_at >= 0 and (
+            st.first_print_since_tool_line is None  # (first: it is the one a tool change clears)
+            or st.first_print_since_home_line is None
+            or st.first_print_since_m30_line is None
+            or not st.printed
+        ):
+            return False  # a move of the run may be the first print: it sets line numbers
+        f_at = _last_word(text, "F", start, end)
+        if f_at >= 0 and (not st.working_feed_set or (self.g0_feed_one_shot and _G0_FEED.search(text, start, end))):
+            return False
+        number = PLAIN_NUMBER.match
+        values = st.position.values
+        for axis in "XYZ":
+            at = _last_word(text, axis, start, end)
+            if at >= 0:
+                values[axis] = number(text, at + 1).group()
+        if f_at >= 0:
+            st.feed = float(number(text, f_at + 1).group())
+        last = text.rfind("\nG", start, end) + 1
+        st.motion_mode = "G0" if text[last + 1 if last else start + 1] == "0" else "G1"
+        st.moved = True
+        if e_at >= 0:
+            if st.e_absolute:
+                st.e_position = float(number(text, e_at + 1).group())
+            elif st.e_position is not None:  # (summed in order, as one move after the other does)
+                st.e_position = reduce(add, map(float, PLAIN_E.findall(text, start, end)), st.e_position)
+        return True
 
     def _extrude(self, e: str | None, mode: str, number: int) -> None:
         st = self.state

@@ -15,7 +15,7 @@ from __future__ import annotations
 import os
 import re
 import textwrap
-from collections.abc import Iterable
+from collections.abc import Callable, Iterable
 from dataclasses import dataclass, field
 from enum import IntEnum
 from functools import cache
@@ -171,6 +171,10 @@ class Rule:
     # call check_line for lines whose first character is one of these (never "G": plain moves stay fast)
     on_line_starting_with: ClassVar[frozenset[str]] = frozenset()
     on_comment: ClassVar[bool] = False  # call check_comment for every comment
+    # With on_comment: a test (a staticmethod) that is true for every comment text check_comment may have
+    # something to say about; the engine skips the comment lines it is false for.  None: every comment.
+    comment_hint: ClassVar[Callable[[str], bool] | None] = None
+    on_line_matching: ClassVar[re.Pattern | None] = None  # call check_view for lines this pattern finds
     on_unknown_code: ClassVar[bool] = False  # call check for codes the dialect does not have
     on_numbered: ClassVar[bool] = False  # call check_line for lines with an N number or a checksum
     on_issue: ClassVar[bool] = False  # call check_issues for lines with syntax issues

@@ -160,12 +160,12 @@ class _CancellableSource(Source):
 
     cancel: threading.Event | None = None
 
-    def chunks(self) -> Iterator[list[tuple[str, str]]]:
+    def blocks(self) -> Iterator[str | list[tuple[str, str]]]:  # (chunks() reads blocks() too)
         cancel = self.cancel
-        for chunk in super().chunks():
+        for block in super().blocks():
             if cancel is not None and cancel.is_set():
                 raise Cancelled()
-            yield chunk
+            yield block
 
 
 def check_text(text: str, path: str, options: Options, cancel: threading.Event | None = None) -> FileResult:

@@ -50,6 +50,20 @@ PLAIN_MOVE = re.compile(
     rf"G([01])(?:{_SEP}F({_NUM_P}))?+(?:{_SEP}X({_NUM_P}))?+(?:{_SEP}Y({_NUM_P}))?+(?:{_SEP}Z({_NUM_P}))?+"
     rf"(?:{_SEP}E({_NUM_P}))?+(?(2)|(?:{_SEP}F({_NUM_P}))?+)[ \t]{{0,64}}+"
 )
+# Runs of lines the engine may read in bulk (Linter._run, Interpreter.plain_run): from a line start, one
+# or more whole lines, each a PLAIN_MOVE or a ";" comment of printable ASCII, ended by LF or CR LF.  The
+# moves are the lines PLAIN_MOVE takes, written without groups (in a repeated group, a group keeps its
+# value from the line before).
+_WORDS = "".join(rf"(?:{_SEP}{letter}{_NUM_P})?+" for letter in "XYZE")
+PLAIN_RUN = re.compile(
+    rf"(?m)^(?:(?:G[01](?:{_SEP}F{_NUM_P}{_WORDS}|{_WORDS}(?:{_SEP}F{_NUM_P})?+)[ \t]{{0,64}}+|;[\t\x20-\x7e]*+)"
+    r"\r?\n)+"
+)
+# The longest a plain move can be: "G0", five words of at most 64 blanks, a letter and a 62-character
+# number, and 64 trailing blanks.
+PLAIN_MOVE_LONGEST = 2 + 5 * (64 + 1 + 62) + 64
+PLAIN_NUMBER = re.compile(_NUM_P)  # (the number after a letter of a plain move)
+PLAIN_E = re.compile(rf"(?m)^G[01][^E\r\n]*+E({_NUM_P})")  # (the E amounts of the moves of a run)
 _LINENO_VALUE = re.compile(r"[0-9]+(?:\.[0-9]+)?")
 _LETTER_AND_VALUE = itemgetter(0, slice(1, None))  # "X10.5" -> ("X", "10.5"), in C
 

@@ -277,6 +277,14 @@ class Source:
 
     def chunks(self) -> Iterator[list[tuple[str, str]]]:
         """Yield lists of ``(text, ending)`` pairs, in file order, a chunk of the file at a time."""
+        for block in self.blocks():
+            yield block if block.__class__ is list else split_lines(block)
+
+    def blocks(self) -> Iterator[str | list[tuple[str, str]]]:
+        """The chunks of ``chunks()``, each either a list of ``(text, ending)`` pairs or, most often, the
+        chunk's text: whole lines, each with its ending, which ``split_lines`` turns into those pairs.
+        For readers that scan the text before (or instead of) cutting it into lines (the engine's runs
+        of plain moves)."""
         if self._consumed:
             raise RuntimeError("a Source can be read once")
         self._consumed = True
@@ -295,7 +303,7 @@ class Source:
         for chunk in self.chunks():
             yield from chunk
 
-    def _utf8_chunks(self) -> Iterator[list[tuple[str, str]]]:
+    def _utf8_chunks(self) -> Iterator[str | list[tuple[str, str]]]:
         read = self._stream.read
 
         def pieces() -> Iterator[bytes]:
@@ -313,7 +321,7 @@ class Source:
 
         yield from self._lines(pieces(), b"", b"\n", b"\r", decode)
 
-    def _decoded_chunks(self) -> Iterator[list[tuple[str, str]]]:
+    def _decoded_chunks(self) -> Iterator[str | list[tuple[str, str]]]:
         decoder = codecs.getincrementaldecoder(self.encoding)("surrogatepass")
         view = self.byte_view = ByteView(self.display)
 
@@ -338,8 +346,8 @@ class Source:
 
         yield from self._lines(pieces(), "", "\n", "\r", lambda text: text)
 
-    def _lines(self, pieces: Iterator, empty, lf, cr, decode) -> Iterator[list[tuple[str, str]]]:
-        """Cut ``pieces`` (bytes or text) into lines.  Every piece is searched for line endings once and a
+    def _lines(self, pieces: Iterator, empty, lf, cr, decode) -> Iterator[str | list[tuple[str, str]]]:
+        """Cut ``pieces`` (bytes or text) into blocks of whole lines (see ``blocks``).  Every piece is searched for line endings once and a
         partial line is carried over only up to ``LINE_LIMIT``: time is linear, memory bounded."""
         pending = empty
         eof = False
@@ -351,11 +359,16 @@ class Source:
                 pending = pending + more if pending else more
             cut = _last_line_end(pending, eof, lf, cr)
             if cut:
-                lines = split_lines(decode(pending[:cut]))
-                if cut > LINE_LIMIT and max(map(len, map(_TEXT, lines))) > LINE_LIMIT:
-                    self._limit(lines, empty)
-                self.lines_read += len(lines)
-                yield lines
+                text = decode(pending[:cut])
+                if cut > LINE_LIMIT:  # (only then can a line be longer than the limit)
+                    lines = split_lines(text)
+                    if max(map(len, map(_TEXT, lines))) > LINE_LIMIT:
+                        self._limit(lines, empty)
+                    self.lines_read += len(lines)
+                    yield lines
+                else:
+                    self.lines_read += count_lines(text)
+                    yield text
                 pending = pending[cut:]
             if eof:
                 if pending:
@@ -436,6 +449,13 @@ def _last_line_end(buffer, eof: bool, lf=b"\n", cr=b"\r") -> int:
             return max(lf_at, buffer.rfind(cr, 0, cr_at)) + 1
         return cr_at + 1
     return lf_at + 1
+
+
+def count_lines(text: str) -> int:
+    """How many lines ``split_lines(text)`` gives (CR LF, CR and LF each end a line)."""
+    lf = text.count("\n")
+    cr = text.count("\r")
+    return lf + cr - text.count("\r\n") if cr else lf
 
 
 def split_lines(text: str) -> list[tuple[str, str]]:

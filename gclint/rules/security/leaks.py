@@ -34,6 +34,7 @@ class LeakedSecret(_SecurityRule):
     )
     codes = ("M117", "M118", "M551", "M587", "M589")
     on_comment = True
+    comment_hint = staticmethod(secrets.may_hold)
 
     def __init__(self, ctx) -> None:
         super().__init__(ctx)
