@@ -9,7 +9,7 @@ from hypothesis import given
 from hypothesis import strategies as st
 
 from gclint import dialects
-from gclint.dialects.base import HeadScan, _top_level_alternation
+from gclint.dialects.base import HeadScan, _plan
 from gclint.syntax.source import Source, SourceError
 from tests.conftest import CORPUS, needs_corpus
 
@@ -20,11 +20,17 @@ def _plain(pattern: str, head: str) -> bool:
     return re.search(pattern, head, re.MULTILINE) is not None
 
 
-def test_top_level_alternation():
-    assert _top_level_alternation("a|b")
-    assert not _top_level_alternation("x(?:a|b)")
-    assert not _top_level_alternation("x[|]")
-    assert not _top_level_alternation(r"x\|y")
+def test_the_texts_every_match_contains():
+    assert _plan("a|b")[1] == ()  # (one character: not worth a test)
+    assert _plan("repetrel|hyrel")[1] == ("repetrel", "hyrel")
+    assert _plan(r"x(?:ab|cd)")[1] == ("ab", "cd")
+    assert _plan("x[|]y")[1] == ("x|y",) and _plan(r"xy\|z")[1] == ("xy|z",)
+    assert _plan(r"(?i)^[;(].*\bskeinforge\b[^\n]*")[1:] == (("skeinforge",), True)
+    assert _plan(r"(?i)^[;(].*\b(?:RepRapFirmware|RRF|Duet ?[23W]\w*)\b")[1] == ("RepRapFirmware", "RRF", "Duet")
+    assert _plan(r"^;\s*FLAVOR:\s*RepRap\s*\(RepRap\)")[1] == ("(RepRap)",)  # (the longest)
+    assert _plan(r"^M229\b|^; hand")[1] == ("M229", "; hand")
+    assert _plan(r"(?:ab)?cdx")[1] == ("cdx",) and _plan(r"ab*")[1] == ()  # (optional parts are not needed)
+    assert _plan(r"Ab(?i:xyz)")[1] == ("Ab",)  # (a part that ignores case in one that does not: not used)
 
 
 @given(

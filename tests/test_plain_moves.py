@@ -76,13 +76,26 @@ def test_runs_of_plain_moves_are_applied_whole():
     assert runs == [(4, len(first), False), (at, at + len(second) + len(";end\n"), True)]  # (comments join runs)
     st = ctx.state
     assert st.position.snapshot() == {"X": 3.0, "Y": 4.0, "Z": 0.3}
-    assert (st.feed, st.e_position, st.motion_mode, st.first_move_line, st.first_print_line) == (9000.0, 2.0, "G1", 2, 3)
+    assert (st.feed, st.e_position, st.motion_mode, st.first_move_line, st.first_print_line) == (
+        9000.0,
+        2.0,
+        "G1",
+        2,
+        3,
+    )
     assert result.lines == 9
 
 
 def test_comment_lines_a_rule_may_read_are_read_one_by_one():
     linter = Linter(Options(dialect="marlin"))
-    lines = ["G28", "G1 X0 Y0 Z.2 F600", "G1 X1 E1", ";TYPE:WALL", "G1 X2 E2", "; api_key = 0123456789ABCDEF0123456789ABCDEF"]
+    lines = [
+        "G28",
+        "G1 X0 Y0 Z.2 F600",
+        "G1 X1 E1",
+        ";TYPE:WALL",
+        "G1 X2 E2",
+        "; api_key = 0123456789ABCDEF0123456789ABCDEF",
+    ]
     lines += [";WIDTH:0.4", "G1 X3 E3", "G1 X4 E4 ; noqa: SC006", "G1 X5 E5", "; gclint: disable=SC006", ";x", "G1 X6"]
     source = Source.from_text("\n".join(lines) + "\n", "<t>")
     ctx, result = linter.prepare(source)

@@ -18,11 +18,12 @@ from gclint import secrets
 from gclint.dialects import Dialect, all_dialects, get
 from gclint.dialects.base import Clue
 from gclint.firmware import all_firmware
-from gclint.syntax.fastpath import PLAIN_MOVE
+from gclint.syntax.fastpath import PLAIN_MOVE, PLAIN_RUN
 from gclint.syntax.nodes import GCODE, TEXT, Command, Word
 from gclint.syntax.parse import parse_line
 
 _LINE_BREAK = re.compile(r"\r\n?|\n")  # as gclint.syntax.source reads lines
+_LAST_BREAK = re.compile(r"(?:\r\n?|\n)\Z")
 _LINE_LIMIT = 2000  # longer lines are not read for clues (they are reported by the check itself)
 
 
@@ -101,15 +102,46 @@ def read_content(head: str, complete: bool, tail: str | None = None) -> ContentR
     """Read ``head`` (the beginning of a file; ``complete`` when it is the whole file) and ``tail`` (its
     end, whole lines; slicers put their end code there)."""
     reading = ContentReading()
-    lines = _LINE_BREAK.split(head)  # the line breaks the check reads (not str.splitlines: a form feed is no break)
-    if lines and not lines[-1]:
-        lines.pop()
-    if not complete and lines:
-        lines.pop()  # cut short: the last line may be half a line
-    _read_lines(reading, enumerate(lines, 1))
+    if not complete:  # cut short: the last line may be half a line
+        whole = head[: -len(end.group())] if (end := _LAST_BREAK.search(head)) else head
+        head = whole[: max(whole.rfind("\n"), whole.rfind("\r")) + 1]
+    _read_text(reading, head, True)
     if tail:
-        _read_lines(reading, ((0, raw) for raw in _LINE_BREAK.split(tail)))
+        _read_text(reading, tail, False)
     return reading
+
+
+def _read_text(reading: ContentReading, text: str, numbered: bool) -> None:
+    """Read the lines of ``text``; once the moves have said what they can (``_moves_read``), runs of plain
+    moves and comments (the engine's fastpath.PLAIN_RUN) are passed over whole."""
+    number = 0
+
+    def read(start: int, end: int) -> None:
+        nonlocal number
+        lines = _LINE_BREAK.split(text[start:end])  # the line breaks the check reads (a form feed is none)
+        if not lines[-1]:
+            lines.pop()
+        _read_lines(reading, enumerate(lines, number + 1) if numbered else ((0, raw) for raw in lines))
+        number += len(lines)
+
+    at = 0
+    while at < len(text):
+        run = PLAIN_RUN.search(text, at)
+        stop = run.start() if run is not None else len(text)
+        if stop > at:
+            read(at, stop)
+        if run is None:
+            return
+        if _moves_read(reading):
+            number += text.count("\n", stop, run.end())
+        else:
+            read(stop, run.end())
+        at = run.end()
+
+
+def _moves_read(reading: ContentReading) -> bool:
+    """Whether plain moves can tell ``reading`` nothing more (see ``_read_lines``)."""
+    return reading.e_moves is not None and (reading.e_amounts is not None or reading.m229_e1)
 
 
 def _read_lines(reading: ContentReading, lines) -> None:

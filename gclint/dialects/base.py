@@ -161,50 +161,57 @@ def span(letter: str, first: int, last: int) -> str:
     return " ".join(f"{letter}{i}" for i in range(first, last + 1))
 
 
-_FLAGS = re.compile(r"\(\?([im]+)\)")
-_LITERALS = re.compile(r"[\w ]+(?:\|[\w ]+)*")  # "repetrel|hyrel": plain words, one of which must occur
-_LEADING = re.compile(r"\^?(?:\\s\*)?;?(?:\\s\*)?([A-Za-z0-9_]+)(.?)")  # "^\s*M229\b" -> "M229"
+try:  # CPython's own reading of a pattern, for the texts every match contains (a faster test first)
+    from re import _parser as _sre_parse
+except ImportError:  # pragma: no cover - another Python: every pattern is simply run
+    _sre_parse = None
 
 
 @cache
 def _plan(pattern: str) -> tuple[re.Pattern[str], tuple[str, ...], bool]:
-    """How to test ``pattern`` quickly: the compiled pattern, the texts one of which must occur in the head
-    for it to match (empty: no such test), and whether that test ignores case."""
-    flags = _FLAGS.match(pattern)
-    body = pattern[flags.end() :] if flags else pattern
-    ignore_case = bool(flags and "i" in flags.group(1))
+    """How to test ``pattern`` quickly: the compiled pattern, the texts one of which every match contains
+    (empty: no such test), and whether that test ignores case."""
     compiled = re.compile(pattern, re.MULTILINE)
-    if _LITERALS.fullmatch(body):
-        return compiled, tuple(body.split("|")), ignore_case
-    lead = _LEADING.match(body)
-    if lead is None or _top_level_alternation(body):
-        return compiled, (), ignore_case
-    literal = lead.group(1)
-    if lead.group(2) in ("?", "*", "{"):  # the last character is optional
-        literal = literal[:-1]
-    return compiled, ((literal,) if len(literal) >= 2 else ()), ignore_case
+    ignore_case = bool(compiled.flags & re.IGNORECASE)
+    try:
+        tree = _sre_parse.parse(pattern) if _sre_parse is not None else None
+    except Exception:  # pragma: no cover - a pattern re compiled is parsed the same way
+        tree = None
+    return compiled, (_needed(list(tree), ignore_case) if tree is not None else ()), ignore_case
 
 
-def _top_level_alternation(pattern: str) -> bool:
-    """Whether ``pattern`` has a ``|`` outside every group and character class."""
-    depth, i, in_class = 0, 0, False
-    while i < len(pattern):
-        c = pattern[i]
-        if c == "\\":
-            i += 2
+def _needed(items: list, ignore_case: bool) -> tuple[str, ...]:
+    """In a parsed sequence: the most selective required text (a run of literal characters, the longest),
+    or else the texts one of which must occur (a branch whose alternatives each start with one)."""
+    p = _sre_parse
+    options: list[tuple[str, ...]] = []
+    run: list[str] = []
+    for op, arg in [*items, (None, None)]:
+        if op is p.LITERAL:
+            run.append(chr(arg))
             continue
-        if in_class:
-            in_class = c != "]"
-        elif c == "[":
-            in_class = True
-        elif c == "(":
-            depth += 1
-        elif c == ")":
-            depth -= 1
-        elif c == "|" and depth == 0:
-            return True
-        i += 1
-    return False
+        if run:
+            options.append(("".join(run),))
+            run = []
+        if op is p.SUBPATTERN:
+            _group, add_flags, _del_flags, sub = arg
+            if ignore_case or not add_flags & re.IGNORECASE:  # ((?i:...) in a case-sensitive pattern: no)
+                options.append(_needed(list(sub), ignore_case))
+        elif op is p.BRANCH:
+            leads = tuple(_lead(alternative) for alternative in arg[1])
+            options.append(leads if all(leads) else ())
+    options = [o for o in options if o and min(map(len, o)) >= 2]
+    return max(options, key=lambda o: (len(o) == 1, min(map(len, o))), default=())
+
+
+def _lead(alternative) -> str:
+    """The literal characters an alternative of a branch starts with."""
+    out = []
+    for op, arg in alternative:
+        if op is not _sre_parse.LITERAL:
+            break
+        out.append(chr(arg))
+    return "".join(out)
 
 
 class HeadScan:
