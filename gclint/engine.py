@@ -20,7 +20,7 @@ from gclint.machine.profiles import DEFAULT_PROFILE, get_profile
 from gclint.noqa import INLINE_UNSUPPRESSIBLE, NO_CODES, may_direct
 from gclint.options import Options
 from gclint.rules.base import ANY_T, Finding, Rule, all_rules, matches, select_rules
-from gclint.syntax.fastpath import PLAIN_MOVE, PLAIN_MOVE_LONGEST, PLAIN_RUN
+from gclint.syntax.fastpath import ARC_RUN, PLAIN_MOVE, PLAIN_RUN, RUN_LINE_LONGEST
 from gclint.syntax.nodes import EXTENDED, GCODE, Command, Line
 from gclint.syntax.parse import parse_line
 from gclint.syntax.sniff import not_gcode_reason
@@ -359,10 +359,12 @@ class Linter:
         parse = parse_line
         get = dispatch.get
 
-        # Runs of plain moves and comment lines (fastpath.PLAIN_RUN) are applied in bulk when no rule would
-        # look at them (Interpreter.plain_run); a comment line a directive or a hook may be about is read on
-        # its own.  Comment lines that need no reading are remembered (they repeat: ";WIDTH:0.45").
-        bulk = shortest_long is None or shortest_long >= PLAIN_MOVE_LONGEST
+        # Runs of plain moves, comment lines and (when no rule looks at them either) arcs are applied in
+        # bulk when no rule would look at them (Interpreter.plain_run); a comment line a directive or a hook
+        # may be about is read on its own.  Comment lines that need no reading are remembered (they repeat:
+        # ";WIDTH:0.45").
+        bulk = shortest_long is None or shortest_long >= RUN_LINE_LONGEST
+        runs = ARC_RUN if plain is not None and self._plain_arcs(build, interpreter) else PLAIN_RUN
         comment_hints = tuple(r.comment_hint or _always for r in rules if r.on_comment)
         every_comment = ";" in first_chars
         clean: set[str] = set()
@@ -388,7 +390,7 @@ class Linter:
         def pieces() -> Iterator[tuple[int, list[tuple[str, str]]]]:
             # The file as (number of the line before, lines to read one by one).
             nonlocal total
-            search = PLAIN_RUN.search if bulk else None
+            search = runs.search if bulk else None
             for block in source.blocks():
                 if block.__class__ is list:
                     yield total, block
@@ -528,6 +530,19 @@ class Linter:
                 disable(r.finish, exc, None)
 
     plain_moves_enabled = True  # the tests switch this off to compare
+
+    @staticmethod
+    def _plain_arcs(build: Callable, interpreter: Interpreter) -> bool:
+        """Whether the arcs of runs (fastpath.ARC_RUN: G2/G3 with X Y Z I J E F) need no rule in this file:
+        none listens to G2/G3 but for letters those arcs never carry, and the interpreter's own arc
+        handler applies them."""
+        for code in ("G2", "G3"):
+            always, filtered, apply = build(Command(code, GCODE, 1, {}))
+            if always or any(not letters.isdisjoint("XYZIJEF") for _, letters in filtered):
+                return False
+            if apply != interpreter._arc:
+                return False
+        return True
 
     def _plain_moves(
         self, build: Callable, interpreter: Interpreter, line_hooks: tuple

@@ -111,17 +111,27 @@ def test_comment_lines_a_rule_may_read_are_read_one_by_one():
     assert ctx.state.position.snapshot() == {"X": 6.0, "Y": 0.0, "Z": 0.2} and ctx.state.e_position == 5.0
 
 
-def test_the_run_pattern_takes_the_lines_the_move_pattern_takes():
-    lines = ["G1 X10 Y20 E.5", "G0 F7200 X1 Y2 Z.3", "G1 F100 X1 F200", "G1 X1 F2", "G1 F1 X2", "G1  ", "G1 Y1 X2"]
-    lines += ["G1 X1 ; c", "G1\tX1\t", "G1 X" + "9" * 31, "G0 E1 F1 F2", "G1 Z1 E1 F1"]
-    from gclint.syntax.fastpath import PLAIN_RUN
+def test_the_run_patterns():
+    from gclint.syntax.fastpath import ARC_RUN, PLAIN_MOVE_RUN, PLAIN_RUN
 
-    for line in lines:
-        assert bool(PLAIN_RUN.fullmatch(line + "\n")) == bool(PLAIN_MOVE.fullmatch(line)), line
-        assert bool(PLAIN_RUN.fullmatch(line + "\r\n")) == bool(PLAIN_MOVE.fullmatch(line)), line
-        assert not PLAIN_RUN.fullmatch(line + "\r")
+    lines = ["G1 X10 Y20 E.5", "G0 F7200 X1 Y2 Z.3", "G1 F100 X1 F200", "G1 X1 F2", "G1 F1 X2", "G1  ", "G1 Y1 X2"]
+    lines += ["G1 X1 ; c", "G1\tX1\t", "G1 X" + "9" * 31, "G0 E1 F1 F2", "G1 Z1 E1 F1", "G1 X1 S2", "g1 x1", "G01 X1"]
+    for line in lines:  # the context's runs: the lines PLAIN_MOVE takes
+        assert bool(PLAIN_MOVE_RUN.fullmatch(line + "\n")) == bool(PLAIN_MOVE.fullmatch(line)), line
+        assert bool(PLAIN_MOVE_RUN.fullmatch(line + "\r\n")) == bool(PLAIN_MOVE.fullmatch(line)), line
+        assert not PLAIN_MOVE_RUN.fullmatch(line + "\r") and not PLAIN_RUN.fullmatch(line + "\r")
     # a line with F first followed by one with F last is one run (no group carries over)
-    assert PLAIN_RUN.fullmatch("G1 F1 X1\nG1 X2 F2\n")
+    assert PLAIN_MOVE_RUN.fullmatch("G1 F1 X1\nG1 X2 F2\n")
+    # the engine's: X Y Z E F in any order, each at most once (a repeated word is SX002, read on its own)
+    for line in ["G1 Y1 X2", "G1 Z.2 X1 Y1 E.5", "G0 F1 E2 Z3 Y4 X5", "G1 X1 Y2 F3 E4", "G1", ";x"]:
+        assert PLAIN_RUN.fullmatch(line + "\n") and PLAIN_RUN.fullmatch(line + "\r\n"), line
+    for line in ["G1 X1 X2", "G1 F1 X1 F2", "G1 E1 Y1 E2", "G1 Z1 Y1 X1 E1 F1 Z2", "G1 X1 ; c", "G1 X1 S2", "g1 x1"]:
+        assert not PLAIN_RUN.fullmatch(line + "\n") and not ARC_RUN.fullmatch(line + "\n"), line
+    # arcs (where no rule looks at them): X Y Z I J E in that order, F first or last
+    assert ARC_RUN.fullmatch("G2 X1 Y2 I3 J4 E5\nG3 F1 X1 Y1 I1 J1\n;c\nG1 Y1 X1\nG2 X1 Y1 I1 J1 E1 F1\n")
+    assert not PLAIN_RUN.fullmatch("G2 X1 Y2 I3 J4\n")
+    for line in ["G2 X1 I1 X2", "G2 X1 R1", "G2 J1 I1", "G2 X1 F1 E1", "G2 F1 X1 F2", "G2 X1 P2"]:
+        assert not ARC_RUN.fullmatch(line + "\n"), line
 
 
 @pytest.mark.parametrize(
@@ -146,11 +156,20 @@ def _move(draw) -> str:
     return draw(st.sampled_from(["G0", "G1"])) + "".join(" " + w for w in words)
 
 
+@st.composite
+def _arc(draw) -> str:
+    letters = draw(st.lists(st.sampled_from("XYZIJEFR"), max_size=7, unique=False))
+    words = [f"{letter}{draw(numbers())}" for letter in letters]
+    return draw(st.sampled_from(["G2", "G3"])) + "".join(" " + w for w in words)
+
+
 @given(
     st.lists(
         st.one_of(
             _move(),
             _move(),
+            _arc(),
+            st.sampled_from([";TYPE:WALL", "; api_key = 0123456789ABCDEF0123456789ABCDEF", "; gclint: disable=SX002"]),
             st.sampled_from(["G91", "G90", "M82", "M83", "M30", "G92 E0", "M18", "M84", "M229 E1 D1", "G93", "G94"]),
             any_line().filter(lambda line: "\x00" not in line),
         ),

@@ -18,7 +18,7 @@ from gclint import secrets
 from gclint.dialects import Dialect, all_dialects, get
 from gclint.dialects.base import Clue
 from gclint.firmware import all_firmware
-from gclint.syntax.fastpath import PLAIN_MOVE, PLAIN_RUN
+from gclint.syntax.fastpath import PLAIN_MOVE, PLAIN_MOVE_RUN
 from gclint.syntax.nodes import GCODE, TEXT, Command, Word
 from gclint.syntax.parse import parse_line
 
@@ -113,7 +113,7 @@ def read_content(head: str, complete: bool, tail: str | None = None) -> ContentR
 
 def _read_text(reading: ContentReading, text: str, numbered: bool) -> None:
     """Read the lines of ``text``; once the moves have said what they can (``_moves_read``), runs of plain
-    moves and comments (the engine's fastpath.PLAIN_RUN) are passed over whole."""
+    moves and comments (fastpath.PLAIN_MOVE_RUN) are passed over whole."""
     number = 0
 
     def read(start: int, end: int) -> None:
@@ -126,7 +126,7 @@ def _read_text(reading: ContentReading, text: str, numbered: bool) -> None:
 
     at = 0
     while at < len(text):
-        run = PLAIN_RUN.search(text, at)
+        run = PLAIN_MOVE_RUN.search(text, at)
         stop = run.start() if run is not None else len(text)
         if stop > at:
             read(at, stop)

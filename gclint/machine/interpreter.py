@@ -22,6 +22,7 @@ Handler = Callable[[Command, Line], None]
 
 _AXES = "XYZAB"
 _MOTION = frozenset({"G0", "G1", "G2", "G3"})
+_RUN_MODES = {"0": "G0", "1": "G1", "2": "G2", "3": "G3"}  # (the digit of a move or arc of a run)
 _G0_FEED = re.compile(r"(?m)^G0[^\n]*F")  # (a G0 with F in a run of plain moves)
 
 
@@ -262,9 +263,10 @@ class Interpreter:
             self._extrude(e, mode, number)
 
     def plain_run(self, text: str, start: int, end: int) -> bool:
-        """Apply ``text[start:end]``, whole lines that are plain moves or comments (``fastpath.PLAIN_RUN``),
-        as ``plain_move`` would one line after the other, without cutting the text into lines: what a
-        run leaves is its last X, Y, Z, F, E and G0/G1.  Returns False, having changed nothing, when the
+        """Apply ``text[start:end]``, whole lines that are plain moves, comments and, where the engine
+        allows them, arcs (``fastpath.PLAIN_RUN``, ``ARC_RUN``), as ``plain_move`` and ``_arc`` would one
+        line after the other, without cutting the text into lines: what a run leaves is its last X, Y, Z,
+        F, E and motion mode.  Returns False, having changed nothing, when the
         run may change more than that (relative moves, the first move, feed or print of the job, a
         one-shot G0 feed): then the caller applies the lines one by one."""
         if text[start] != "G" and text.find("\nG", start, end) < 0:
@@ -292,7 +294,7 @@ class Interpreter:
         if f_at >= 0:
             st.feed = float(number(text, f_at + 1).group())
         last = text.rfind("\nG", start, end) + 1
-        st.motion_mode = "G0" if text[last + 1 if last else start + 1] == "0" else "G1"
+        st.motion_mode = _RUN_MODES[text[last + 1 if last else start + 1]]
         st.moved = True
         if e_at >= 0:
             if st.e_absolute:

@@ -18,6 +18,7 @@ Three tiers, cheapest first:
 from __future__ import annotations
 
 import re
+from functools import cache
 from operator import itemgetter
 
 from gclint.syntax.build import TEXT_CODES, assemble
@@ -51,19 +52,45 @@ PLAIN_MOVE = re.compile(
     rf"(?:{_SEP}E({_NUM_P}))?+(?(2)|(?:{_SEP}F({_NUM_P}))?+)[ \t]{{0,64}}+"
 )
 # Runs of lines the engine may read in bulk (Linter._run, Interpreter.plain_run): from a line start, one
-# or more whole lines, each a PLAIN_MOVE or a ";" comment of printable ASCII, ended by LF or CR LF.  The
-# moves are the lines PLAIN_MOVE takes, written without groups (in a repeated group, a group keeps its
-# value from the line before).
-_WORDS = "".join(rf"(?:{_SEP}{letter}{_NUM_P})?+" for letter in "XYZE")
-PLAIN_RUN = re.compile(
-    rf"(?m)^(?:(?:G[01](?:{_SEP}F{_NUM_P}{_WORDS}|{_WORDS}(?:{_SEP}F{_NUM_P})?+)[ \t]{{0,64}}+|;[\t\x20-\x7e]*+)"
-    r"\r?\n)+"
+# or more whole lines ended by LF or CR LF, each a G0/G1 with X Y Z E F words (each at most once, in any
+# order), a ";" comment of printable ASCII or, in ARC_RUN, a G2/G3 with X Y Z I J E words in that order
+# and F first or last.  Numbers and blanks as in PLAIN_MOVE; no groups (in a repeated group, a group
+# keeps its value from the line before).
+
+
+def _any_order(letters: str) -> str:
+    """Words of ``letters``, each at most once, in any order (a tree of the orders: no backtracking)."""
+
+    @cache
+    def after(used: str) -> str:
+        rest = [letter for letter in letters if letter not in used]
+        if not rest:
+            return ""
+        return f"(?:{_SEP}(?:" + "|".join(f"{x}{_NUM_P}{after(used + x)}" for x in rest) + "))?+"
+
+    return after("")
+
+
+def _in_order(letters: str) -> str:
+    return "".join(rf"(?:{_SEP}{letter}{_NUM_P})?+" for letter in letters)
+
+
+_RUN_MOVE = "G[01]" + _any_order("XYZEF")
+_RUN_ARC = rf"G[23](?:{_SEP}F{_NUM_P}{_in_order('XYZIJE')}|{_in_order('XYZIJE')}(?:{_SEP}F{_NUM_P})?+)"
+_RUN_COMMENT = r";[\t\x20-\x7e]*+"
+_PLAIN_WORDS = _in_order("XYZE")
+# Runs of exactly the moves PLAIN_MOVE takes, and comments (what gclint.context reads nothing from)
+PLAIN_MOVE_RUN = re.compile(
+    rf"(?m)^(?:(?:G[01](?:{_SEP}F{_NUM_P}{_PLAIN_WORDS}|{_PLAIN_WORDS}(?:{_SEP}F{_NUM_P})?+)[ \t]{{0,64}}+"
+    rf"|{_RUN_COMMENT})\r?\n)+"
 )
-# The longest a plain move can be: "G0", five words of at most 64 blanks, a letter and a 62-character
-# number, and 64 trailing blanks.
-PLAIN_MOVE_LONGEST = 2 + 5 * (64 + 1 + 62) + 64
+PLAIN_RUN = re.compile(rf"(?m)^(?:(?:{_RUN_MOVE}[ \t]{{0,64}}+|{_RUN_COMMENT})\r?\n)+")
+ARC_RUN = re.compile(rf"(?m)^(?:(?:(?:{_RUN_MOVE}|{_RUN_ARC})[ \t]{{0,64}}+|{_RUN_COMMENT})\r?\n)+")
+# The longest line of a run: "G0", seven words of at most 64 blanks, a letter and a 62-character number,
+# and 64 trailing blanks.
+RUN_LINE_LONGEST = 2 + 7 * (64 + 1 + 62) + 64
 PLAIN_NUMBER = re.compile(_NUM_P)  # (the number after a letter of a plain move)
-PLAIN_E = re.compile(rf"(?m)^G[01][^E\r\n]*+E({_NUM_P})")  # (the E amounts of the moves of a run)
+PLAIN_E = re.compile(rf"(?m)^G[0-3][^E\r\n]*+E({_NUM_P})")  # (the E amounts of the moves of a run)
 _LINENO_VALUE = re.compile(r"[0-9]+(?:\.[0-9]+)?")
 _LETTER_AND_VALUE = itemgetter(0, slice(1, None))  # "X10.5" -> ("X", "10.5"), in C
 
