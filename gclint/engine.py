@@ -8,6 +8,7 @@ a ``G1`` line only touches the rules that listen to ``G1``.
 from __future__ import annotations
 
 import os
+import re
 from collections.abc import Callable, Iterable, Iterator
 from dataclasses import dataclass, field, replace
 from itertools import chain
@@ -20,7 +21,7 @@ from gclint.machine.profiles import DEFAULT_PROFILE, get_profile
 from gclint.noqa import INLINE_UNSUPPRESSIBLE, NO_CODES, may_direct
 from gclint.options import Options
 from gclint.rules.base import ANY_T, Finding, Rule, all_rules, matches, select_rules
-from gclint.syntax.fastpath import ARC_RUN, PLAIN_MOVE, PLAIN_RUN, RUN_LINE_LONGEST
+from gclint.syntax.fastpath import PLAIN_MOVE, RUN_LINE_LONGEST, run_pattern
 from gclint.syntax.nodes import EXTENDED, GCODE, Command, Line
 from gclint.syntax.parse import parse_line
 from gclint.syntax.sniff import not_gcode_reason
@@ -28,6 +29,8 @@ from gclint.syntax.source import NotGcode, Source, SourceError, split_lines
 
 # Options and FileContext live in their own modules (gclint.options, gclint.filecontext), so that the rules
 # can name the context they report into without importing the engine; they are importable from here too.
+
+_COMMENT_LINES = re.compile(r"\n;[^\r\n]*+")  # (a literal start: searched fast)
 
 
 def _always(comment: str) -> bool:  # (the comment hint of a rule that has none: it reads every comment)
@@ -363,34 +366,67 @@ class Linter:
         # bulk when no rule would look at them (Interpreter.plain_run); a comment line a directive or a hook
         # may be about is read on its own.  Comment lines that need no reading are remembered (they repeat:
         # ";WIDTH:0.45").
-        bulk = shortest_long is None or shortest_long >= RUN_LINE_LONGEST
-        runs = ARC_RUN if plain is not None and self._plain_arcs(build, interpreter) else PLAIN_RUN
+        runs_allowed = shortest_long is None or shortest_long >= RUN_LINE_LONGEST
+        runs = run_pattern(plain is not None and self._plain_arcs(build, interpreter))
         comment_hints = tuple(r.comment_hint or _always for r in rules if r.on_comment)
         every_comment = ";" in first_chars
         clean: set[str] = set()
+        # the comments of a run are first tested together, joined by line breaks: the tests are true of such
+        # a text when they are true of one of its lines (Rule.comment_hint; multi-line view patterns)
+        together = not every_comment and all(wants.__self__.flags & re.MULTILINE for wants, _ in view_hooks)
+
+        tests = (may_direct, *comment_hints, *(wants for wants, _ in view_hooks))
 
         def needs_reading(comment: str) -> bool:
-            if every_comment or may_direct(comment) or (shortest_long is not None and len(comment) > shortest_long):
+            if every_comment or (shortest_long is not None and len(comment) > shortest_long):
                 return True
-            return any(hint(comment) for hint in comment_hints) or any(wants(comment) for wants, _ in view_hooks)
+            return any(test(comment) for test in tests)
 
-        def bulk_apply(block: str, start: int, end: int) -> Iterator[tuple[int, list[tuple[str, str]]]]:
-            # whole lines of a run with no comment that needs reading
-            nonlocal total
-            if (
+        def any_needs_reading(block: str, start: int, end: int) -> bool:
+            comments = _COMMENT_LINES.findall(block, start, end)  # (each after its line break)
+            if block[start] == ";":
+                first = block[start : block.find("\n", start)]
+                comments.append("\n" + (first[:-1] if first[-1:] == "\r" else first))
+            return bool(comments) and needs_reading("".join(comments))  # (long when one of them is)
+
+        def parts(block: str, start: int, end: int) -> list[tuple[int, int, bool]]:
+            # a run as (start, end, read one by one): cut around each comment line that needs reading
+            if together and not any_needs_reading(block, start, end):
+                return [(start, end, False)]
+            out = []
+            comment = start if block[start] == ";" else block.find("\n;", start, end) + 1 or end
+            while comment < end:
+                stop = block.find("\n", comment, end) + 1
+                text = block[comment : stop - 2 if block[stop - 2] == "\r" else stop - 1]
+                if text not in clean:
+                    if needs_reading(text):
+                        if comment > start:
+                            out.append((start, comment, False))
+                        out.append((comment, stop, True))
+                        start = stop
+                    else:
+                        if len(clean) >= 8192:
+                            clean.clear()
+                        clean.add(text)
+                comment = block.find("\n;", stop - 1, end) + 1 or end
+            if start < end:
+                out.append((start, end, False))
+            return out
+
+        def bulk(block: str, start: int, end: int) -> bool:
+            # whether whole lines of a run were applied at once (else they are read one by one)
+            return not (
                 plain is None
                 or plain["0"][1]
                 or plain["1"][1]
                 or (after_end_hooks and state.after_m30)
                 or not interpreter.plain_run(block, start, end)
-            ):
-                yield total, split_lines(block[start:end])
-            total += block.count("\n", start, end)
+            )
 
         def pieces() -> Iterator[tuple[int, list[tuple[str, str]]]]:
             # The file as (number of the line before, lines to read one by one).
             nonlocal total
-            search = runs.search if bulk else None
+            search = runs.search if runs_allowed else None
             for block in source.blocks():
                 if block.__class__ is list:
                     yield total, block
@@ -407,24 +443,10 @@ class Linter:
                     if run is None:
                         break
                     at = end
-                    comment = start if block[start] == ";" else block.find("\n;", start, end) + 1 or end
-                    while comment < end:
-                        stop = block.find("\n", comment, end)
-                        text = block[comment : stop - 1 if block[stop - 1] == "\r" else stop]
-                        if text not in clean:
-                            if needs_reading(text):
-                                if comment > start:
-                                    yield from bulk_apply(block, start, comment)
-                                start = stop + 1
-                                yield total, split_lines(block[comment:start])
-                                total += 1
-                            else:
-                                if len(clean) >= 8192:
-                                    clean.clear()
-                                clean.add(text)
-                        comment = block.find("\n;", stop, end) + 1 or end
-                    if start < end:
-                        yield from bulk_apply(block, start, end)
+                    for a, b, alone in parts(block, start, end):
+                        if alone or not bulk(block, a, b):
+                            yield total, split_lines(block[a:b])
+                        total += block.count("\n", a, b)
 
         total = number = 0  # (total: the lines read so far)
         for number, chunk in pieces():

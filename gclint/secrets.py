@@ -100,13 +100,19 @@ def _hinted(text: str) -> bool:
         or "pwd" in t
         or "bearer" in t
         or "://" in t
-        or "gh" in t
+        or "ghp_" in t  # (GitHub tokens: gh[pousr]_ and github_pat_; not "gh" alone: ";HEIGHT:0.2")
+        or "gho_" in t
+        or "ghu_" in t
+        or "ghs_" in t
+        or "ghr_" in t
+        or "github_pat_" in t
         or "akia" in t
         or "xox" in t
         or "glpat-" in t
         or "sk-" in t
         or "eyj" in t
-        or "58" in t
+        or "587" in t  # (M587, M589, M551: not "58" alone, a common digit pair)
+        or "589" in t
         or "551" in t
         or "auth" in t
     )
@@ -207,7 +213,7 @@ def find(text: str) -> list[Secret]:
                 group = m.lastindex or 3
                 if not _placeholder(m.group(group)):
                     found.append(Secret(m.start(group), m.end(group), "credentials"))
-        if "58" in text or "551" in text:
+        if "587" in text or "589" in text or "551" in text:
             found.extend(_command_passwords(text))
     if len(found) <= 1:
         return found

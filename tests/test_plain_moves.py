@@ -7,12 +7,14 @@ on every corpus file and on generated jobs, in every dialect.
 from __future__ import annotations
 
 import dataclasses
+import re
 
 import pytest
 from hypothesis import given
 from hypothesis import strategies as st
 
 from gclint.engine import Linter, Options
+from gclint.rules.base import Rule
 from gclint.syntax.fastpath import PLAIN_MOVE
 from gclint.syntax.source import Source
 from tests.conftest import CORPUS, corpus_job, needs_corpus
@@ -112,7 +114,9 @@ def test_comment_lines_a_rule_may_read_are_read_one_by_one():
 
 
 def test_the_run_patterns():
-    from gclint.syntax.fastpath import ARC_RUN, PLAIN_MOVE_RUN, PLAIN_RUN
+    from gclint.syntax.fastpath import PLAIN_MOVE_RUN, run_pattern
+
+    PLAIN_RUN, ARC_RUN = run_pattern(False), run_pattern(True)  # noqa: N806
 
     lines = ["G1 X10 Y20 E.5", "G0 F7200 X1 Y2 Z.3", "G1 F100 X1 F200", "G1 X1 F2", "G1 F1 X2", "G1  ", "G1 Y1 X2"]
     lines += ["G1 X1 ; c", "G1\tX1\t", "G1 X" + "9" * 31, "G0 E1 F1 F2", "G1 Z1 E1 F1", "G1 X1 S2", "g1 x1", "G01 X1"]
@@ -200,3 +204,60 @@ def test_same_on_the_corpus(folder, path):
     _same(job, dialect, is_path=True)
     if dialect != "hyrel-v4":
         _same(job, "hyrel", is_path=True)  # every Hyrel rule on, the most G1 listeners
+
+
+class _LongLines(Rule):
+    code = "ZZ901"
+    on_line_longer_than = 1000
+
+    def check_line(self, line):
+        self.report(line, "long")
+
+
+class _CommentsWithX(Rule):  # (no comment_hint: every comment is read)
+    code = "ZZ902"
+    on_comment = True
+
+    def check_comment(self, line, comment):
+        if "x" in comment.text:
+            self.report(line, "x")
+
+
+class _HintedComments(_CommentsWithX):
+    code = "ZZ903"
+    comment_hint = staticmethod(lambda text: "x" in text)
+
+
+class _WidthLines(Rule):  # a view pattern that is not multi-line: comment lines are tested one by one
+    code = "ZZ904"
+    on_line_matching = re.compile("^;WIDTH")
+
+    def check_view(self, line):
+        self.report(line, "width")
+
+
+class _MultiLineWidth(_WidthLines):
+    code = "ZZ905"
+    on_line_matching = re.compile("(?m)^;WIDTH")
+
+
+@pytest.mark.parametrize("rule", [_LongLines, _CommentsWithX, _HintedComments, _WidthLines, _MultiLineWidth])
+def test_rules_see_the_comment_lines_of_runs_they_ask_for(rule):
+    lines = ["G28", "G1 X0 Y0 Z.2 F600", "G1 X1 E1", "M400", ";a", "G1 X2 E2", ";" + "y" * 1000, ";WIDTH:0.4"]
+    lines += ["G1 X3 E3", ";x", "G2 X1 Y1 I1 J1 E4", ";" + "z" * 999, ";WIDTH:0.5", "G1 X4 E5", ";b x"]
+    runs_applied = []
+    for ending in ("\n", "\r\n"):
+        text = ending.join(lines) + ending
+        found = {}
+        for plain in (True, False):
+            linter = Linter(Options(dialect="marlin"))
+            linter.rule_classes = [*linter.rule_classes, rule]
+            linter.plain_moves_enabled = plain
+            source = Source.from_text(text, "<t>")
+            ctx, result = linter.prepare(source)
+            offer = ctx.interpreter.plain_run
+            ctx.interpreter.plain_run = lambda *a, offer=offer: runs_applied.append(offer(*a)) or runs_applied[-1]  # type: ignore[method-assign]
+            linter._run(source, ctx, result)
+            found[plain] = [(f.line, f.code) for f in ctx.findings if f.code == rule.code]
+        assert found[True] == found[False] and found[True], (rule, ending, found)
+    assert True in runs_applied  # (the moves after M400 are applied whole, around the lines read)

@@ -181,10 +181,11 @@ def _read_command(reading: ContentReading, cmd: Command, number: int, raw: str) 
     code = cmd.code
     seen = None
     if reading.clues:  # (the first command tries every clue: each candidate's entry is made in that order)
-        general = _GENERAL_BY_KIND.get(cmd.kind) or _GENERAL_BY_KIND.setdefault(cmd.kind, _of_kind(cmd.kind, _GENERAL))
-        flavor = _FLAVOR_BY_KIND.get(cmd.kind) or _FLAVOR_BY_KIND.setdefault(
-            cmd.kind, _of_kind(cmd.kind, _FLAVOR_GENERAL)
-        )
+        kind = cmd.kind
+        if kind not in _GENERAL_BY_KIND:
+            _GENERAL_BY_KIND[kind] = _of_kind(kind, _GENERAL)
+            _FLAVOR_BY_KIND[kind] = _of_kind(kind, _FLAVOR_GENERAL)
+        general, flavor = _GENERAL_BY_KIND[kind], _FLAVOR_BY_KIND[kind]
     else:
         general, flavor = _GENERAL, _FLAVOR_GENERAL
     for candidate, clue in _BY_CODE.get(code, ()) if code is not None else ():  # type: ignore[arg-type]

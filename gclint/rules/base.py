@@ -172,9 +172,15 @@ class Rule:
     on_line_starting_with: ClassVar[frozenset[str]] = frozenset()
     on_comment: ClassVar[bool] = False  # call check_comment for every comment
     # With on_comment: a test (a staticmethod) that is true for every comment text check_comment may have
-    # something to say about; the engine skips the comment lines it is false for.  None: every comment.
+    # something to say about; the engine skips the comment lines it is false for.  It must also be true of
+    # several comments joined by line breaks when it is true of one of them (a test for words, as
+    # secrets.may_hold is): the engine tests the comment lines of a run of moves together.  None: every
+    # comment is read.
     comment_hint: ClassVar[Callable[[str], bool] | None] = None
-    on_line_matching: ClassVar[re.Pattern | None] = None  # call check_view for lines this pattern finds
+    # call check_view for lines this pattern finds.  A multi-line pattern ((?m)) must find a match in lines
+    # joined by line breaks when it finds one in one of them, and none that starts at a line break: then the
+    # engine tests the comment lines of a run together, else one by one.
+    on_line_matching: ClassVar[re.Pattern | None] = None
     on_unknown_code: ClassVar[bool] = False  # call check for codes the dialect does not have
     on_numbered: ClassVar[bool] = False  # call check_line for lines with an N number or a checksum
     on_issue: ClassVar[bool] = False  # call check_issues for lines with syntax issues

@@ -84,8 +84,15 @@ PLAIN_MOVE_RUN = re.compile(
     rf"(?m)^(?:(?:G[01](?:{_SEP}F{_NUM_P}{_PLAIN_WORDS}|{_PLAIN_WORDS}(?:{_SEP}F{_NUM_P})?+)[ \t]{{0,64}}+"
     rf"|{_RUN_COMMENT})\r?\n)+"
 )
-PLAIN_RUN = re.compile(rf"(?m)^(?:(?:{_RUN_MOVE}[ \t]{{0,64}}+|{_RUN_COMMENT})\r?\n)+")
-ARC_RUN = re.compile(rf"(?m)^(?:(?:(?:{_RUN_MOVE}|{_RUN_ARC})[ \t]{{0,64}}+|{_RUN_COMMENT})\r?\n)+")
+
+
+@cache
+def run_pattern(arcs: bool) -> re.Pattern[str]:
+    """The runs of plain moves and comments, with arcs or without (compiled on first use: it is large)."""
+    line = f"(?:{_RUN_MOVE}|{_RUN_ARC})" if arcs else _RUN_MOVE
+    return re.compile(rf"(?m)^(?:(?:{line}[ \t]{{0,64}}+|{_RUN_COMMENT})\r?\n)+")
+
+
 # The longest line of a run: "G0", seven words of at most 64 blanks, a letter and a 62-character number,
 # and 64 trailing blanks.
 RUN_LINE_LONGEST = 2 + 7 * (64 + 1 + 62) + 64

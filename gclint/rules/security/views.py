@@ -24,7 +24,8 @@ _CONTROL = re.compile("[\x00-\x08\x0b-\x1f\x7f]")
 # A line some firmware reads differently from gclint: a character other than printable ASCII and tab, or
 # an M code after the first two characters of its code (Smoothieware splits the line there; no SC rule
 # listens to a G code).
-_VIEW_TRIGGER = re.compile("[^\t\x20-\x7e]|^[^;(]{2}[^;(]*?M[ \t]*+[0-9]")
+# (Multi-line and within a line, for the engine's runs of comment lines: rules.base.Rule.on_line_matching.)
+_VIEW_TRIGGER = re.compile("(?m)[^\t\n\r\x20-\x7e]|^[^;(\n\r]{2}[^;(\n\r]*?M[ \t]*+[0-9]")
 # Smoothieware's GcodeDispatch: comments start at the first ";" or "(", and the rest is cut before each "G"
 # and "M" from its third character on ("find_first_of("GM", 2)"); M117 and M1000 take the rest of the line.
 _SMOOTHIE_COMMENT = re.compile("[;(]")
