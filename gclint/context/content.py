@@ -112,8 +112,9 @@ def read_content(head: str, complete: bool, tail: str | None = None) -> ContentR
 
 
 def _read_text(reading: ContentReading, text: str, numbered: bool) -> None:
-    """Read the lines of ``text``; once the moves have said what they can (``_moves_read``), runs of plain
-    moves and comments (fastpath.PLAIN_MOVE_RUN) are passed over whole."""
+    """Read the lines of ``text``; runs of plain moves and comments (fastpath.PLAIN_MOVE_RUN) are passed
+    over whole once the moves have said what they can (``_moves_read``), and always when they hold only
+    comments."""
     number = 0
 
     def read(start: int, end: int) -> None:
@@ -132,8 +133,8 @@ def _read_text(reading: ContentReading, text: str, numbered: bool) -> None:
             read(at, stop)
         if run is None:
             return
-        if _moves_read(reading):
-            number += text.count("\n", stop, run.end())
+        if _moves_read(reading) or (text[stop] != "G" and text.find("\nG", stop, run.end()) < 0):
+            number += text.count("\n", stop, run.end())  # (nothing to read: moves said all, or comments only)
         else:
             read(stop, run.end())
         at = run.end()
@@ -241,8 +242,11 @@ def _match(
     seen: Seen | None,
     into: dict[str, dict[Clue, Seen]] | None = None,
 ) -> Seen | None:
-    found = (reading.clues if into is None else into).setdefault(candidate, {})
-    if clue in found:
+    table = reading.clues if into is None else into
+    found = table.get(candidate)
+    if found is None:
+        found = table[candidate] = {}
+    elif clue in found:
         return seen
     try:
         matched = clue.matches(cmd)

@@ -250,7 +250,7 @@ class HeadScan:
         return found
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, eq=False)  # (each clue is one object: compared and hashed as itself, fast)
 class Clue:
     """Content that marks a dialect: a command with ``code`` (or of command ``kind``) for which ``test``
     holds.  ``says`` is the reason shown to the user ("M6 T# O# declares a head's offsets");
