@@ -555,7 +555,7 @@ class Linter:
 
     @staticmethod
     def _plain_arcs(build: Callable, interpreter: Interpreter) -> bool:
-        """Whether the arcs of runs (fastpath.ARC_RUN: G2/G3 with X Y Z I J E F) need no rule in this file:
+        """Whether the arcs of runs (fastpath.run_pattern: G2/G3 with X Y Z I J E F) need no rule in this file:
         none listens to G2/G3 but for letters those arcs never carry, and the interpreter's own arc
         handler applies them."""
         for code in ("G2", "G3"):

@@ -127,9 +127,18 @@ def test_the_run_patterns():
     # a line with F first followed by one with F last is one run (no group carries over)
     assert PLAIN_MOVE_RUN.fullmatch("G1 F1 X1\nG1 X2 F2\n")
     # the engine's: X Y Z E F in any order, each at most once (a repeated word is SX002, read on its own)
-    for line in ["G1 Y1 X2", "G1 Z.2 X1 Y1 E.5", "G0 F1 E2 Z3 Y4 X5", "G1 X1 Y2 F3 E4", "G1", ";x"]:
+    for line in ["G1 Y1 X2", "G1 Z.2 X1 Y1 E.5", "G0 F1 E2 Z3 Y4 X5", "G1 X1 Y2 F3 E4", "G1", ";x", ""]:
         assert PLAIN_RUN.fullmatch(line + "\n") and PLAIN_RUN.fullmatch(line + "\r\n"), line
-    for line in ["G1 X1 X2", "G1 F1 X1 F2", "G1 E1 Y1 E2", "G1 Z1 Y1 X1 E1 F1 Z2", "G1 X1 ; c", "G1 X1 S2", "g1 x1"]:
+    for line in [
+        "G1 X1 X2",
+        "G1 F1 X1 F2",
+        "G1 E1 Y1 E2",
+        "G1 Z1 Y1 X1 E1 F1 Z2",
+        "G1 X1 ; c",
+        "G1 X1 S2",
+        "g1 x1",
+        " ",
+    ]:
         assert not PLAIN_RUN.fullmatch(line + "\n") and not ARC_RUN.fullmatch(line + "\n"), line
     # arcs (where no rule looks at them): X Y Z I J E in that order, F first or last
     assert ARC_RUN.fullmatch("G2 X1 Y2 I3 J4 E5\nG3 F1 X1 Y1 I1 J1\n;c\nG1 Y1 X1\nG2 X1 Y1 I1 J1 E1 F1\n")
@@ -173,7 +182,9 @@ def _arc(draw) -> str:
             _move(),
             _move(),
             _arc(),
-            st.sampled_from([";TYPE:WALL", "; api_key = 0123456789ABCDEF0123456789ABCDEF", "; gclint: disable=SX002"]),
+            st.sampled_from(
+                [";TYPE:WALL", "; api_key = 0123456789ABCDEF0123456789ABCDEF", "; gclint: disable=SX002", ""]
+            ),
             st.sampled_from(["G91", "G90", "M82", "M83", "M30", "G92 E0", "M18", "M84", "M229 E1 D1", "G93", "G94"]),
             any_line().filter(lambda line: "\x00" not in line),
         ),

@@ -263,12 +263,12 @@ class Interpreter:
             self._extrude(e, mode, number)
 
     def plain_run(self, text: str, start: int, end: int) -> bool:
-        """Apply ``text[start:end]``, whole lines that are plain moves, comments and, where the engine
-        allows them, arcs (``fastpath.PLAIN_RUN``, ``ARC_RUN``), as ``plain_move`` and ``_arc`` would one
+        """Apply ``text[start:end]``, whole lines that are plain moves, comments, empty lines and, where
+        the engine allows them, arcs (``fastpath.run_pattern``), as ``plain_move`` and ``_arc`` would one
         line after the other, without cutting the text into lines: what a run leaves is its last X, Y, Z,
-        F, E and motion mode.  Returns False, having changed nothing, when the
-        run may change more than that (relative moves, the first move, feed or print of the job, a
-        one-shot G0 feed): then the caller applies the lines one by one."""
+        F, E and motion mode.  Returns False, having changed nothing, when the run may change more than
+        that (relative moves, the first move, feed or print of the job, a one-shot G0 feed): then the
+        caller applies the lines one by one."""
         if text[start] != "G" and text.find("\nG", start, end) < 0:
             return True  # comments only
         st = self.state

@@ -53,8 +53,8 @@ PLAIN_MOVE = re.compile(
 )
 # Runs of lines the engine may read in bulk (Linter._run, Interpreter.plain_run): from a line start, one
 # or more whole lines ended by LF or CR LF, each a G0/G1 with X Y Z E F words (each at most once, in any
-# order), a ";" comment of printable ASCII or, in ARC_RUN, a G2/G3 with X Y Z I J E words in that order
-# and F first or last.  Numbers and blanks as in PLAIN_MOVE; no groups (in a repeated group, a group
+# order), a ";" comment of printable ASCII, an empty line or, with arcs, a G2/G3 with X Y Z I J E words in
+# that order and F first or last.  Numbers and blanks as in PLAIN_MOVE; no groups (in a repeated group, a group
 # keeps its value from the line before).
 
 
@@ -90,7 +90,7 @@ PLAIN_MOVE_RUN = re.compile(
 def run_pattern(arcs: bool) -> re.Pattern[str]:
     """The runs of plain moves and comments, with arcs or without (compiled on first use: it is large)."""
     line = f"(?:{_RUN_MOVE}|{_RUN_ARC})" if arcs else _RUN_MOVE
-    return re.compile(rf"(?m)^(?:(?:{line}[ \t]{{0,64}}+|{_RUN_COMMENT})\r?\n)+")
+    return re.compile(rf"(?m)^(?:(?:{line}[ \t]{{0,64}}+|{_RUN_COMMENT}|)\r?\n)+")
 
 
 # The longest line of a run: "G0", seven words of at most 64 blanks, a letter and a 62-character number,
