@@ -7,10 +7,13 @@ with an SX001 issue: parsing never raises.
 
 from __future__ import annotations
 
+import hashlib
+import io
 import re
 from functools import lru_cache
 from pathlib import Path
 
+import lark
 from lark import Lark, Token, Tree
 from lark.exceptions import LarkError, UnexpectedCharacters, UnexpectedInput
 
@@ -43,31 +46,56 @@ from gclint.syntax.nodes import (
 )
 
 GRAMMAR_PATH = Path(__file__).resolve().parent.parent / "grammar.lark"
+# The parse tables lark builds from the grammar (about 40 ms at each start), saved with Lark.save: package
+# data written by ``python -m gclint.syntax.larkparse``, read only when their first line names this lark
+# version and this grammar (else the grammar is built as before).  tests/test_grammar_tables.py checks
+# that they are current and parse as the grammar does.
+TABLES_PATH = GRAMMAR_PATH.with_name("grammar.tables")
 
 _KLIPPER_PARAM = re.compile(r"""([A-Za-z_][A-Za-z0-9_]*)=("(?:[^"\\]|\\.)*"|'[^']*'|\S*)""")
+_OPTIONS = {"parser": "lalr", "lexer": "contextual", "maybe_placeholders": False}
+
+
+def tables_key(grammar: str) -> bytes:
+    """The first line of the tables made from ``grammar`` by the installed lark."""
+    digest = hashlib.sha256(grammar.encode("utf-8")).hexdigest()
+    return f"gclint grammar tables: lark {lark.__version__}, grammar sha256 {digest}\n".encode()
+
+
+def _plugins() -> dict:
+    """lark-cython, when installed, about doubles the speed of this fallback parser (measured in
+    bench/bench_parser.py); the trees are the same."""
+    try:
+        import lark_cython  # type: ignore[import-not-found]
+    except ImportError:  # pragma: no cover - optional accelerator
+        return {}
+    return {"_plugins": lark_cython.plugins}
 
 
 @lru_cache(maxsize=1)
 def parser() -> Lark:
-    """The LALR parser for one line (built once per process).
-
-    lark-cython, when installed, about doubles the speed of this fallback parser (measured in
-    bench/bench_parser.py); the trees are the same.
-    """
-    options: dict = {}
+    """The LALR parser for one line (loaded or built once per process)."""
+    grammar = GRAMMAR_PATH.read_text(encoding="utf-8")
     try:
-        import lark_cython  # type: ignore[import-not-found]
+        data = TABLES_PATH.read_bytes()
+    except OSError:
+        data = b""
+    key = tables_key(grammar)
+    if data.startswith(key):
+        try:
+            return Lark.__new__(Lark)._load(io.BytesIO(data[len(key) :]), **_plugins())
+        except Exception:  # pragma: no cover - tables this lark cannot read: build them
+            pass
+    return Lark(grammar, **_OPTIONS, **_plugins())
 
-        options["_plugins"] = lark_cython.plugins
-    except ImportError:  # pragma: no cover - optional accelerator
-        pass
-    return Lark(
-        GRAMMAR_PATH.read_text(encoding="utf-8"),
-        parser="lalr",
-        lexer="contextual",
-        maybe_placeholders=False,
-        **options,
-    )
+
+def write_tables() -> Path:
+    """Save the parse tables of the grammar (``python -m gclint.syntax.larkparse``)."""
+    grammar = GRAMMAR_PATH.read_text(encoding="utf-8")
+    out = io.BytesIO()
+    Lark(grammar, **_OPTIONS).save(out)  # (without plugins: they are given again when the tables are loaded)
+    TABLES_PATH.write_bytes(tables_key(grammar) + out.getvalue())
+    return TABLES_PATH
 
 
 def parse_with_lark(raw: str) -> ParsedLine:
@@ -314,3 +342,7 @@ class _Builder:
             extra=tuple(extra),
             kind="code",
         )
+
+
+if __name__ == "__main__":
+    print(f"wrote {write_tables()}")
