@@ -278,3 +278,25 @@ def test_rules_see_the_comment_lines_of_runs_they_ask_for(rule):
             found[plain] = [(f.line, f.code) for f in ctx.findings if f.code == rule.code]
         assert found[True] == found[False] and found[True], (rule, ending, found)
     assert True in runs_applied  # (the moves after M400 are applied whole, around the lines read)
+
+
+def test_a_run_of_a_million_lines_takes_no_memory_to_find():
+    # (the runs repeat possessively: a backtracking repeat kept ~200 bytes per line, 239 MB on a flood of
+    # 40 million empty lines, found by a stranger review)
+    import tracemalloc
+
+    from gclint.syntax.fastpath import PLAIN_MOVE_RUN, run_pattern
+
+    for pattern, text in [
+        (run_pattern(True), "G1 X1\n" + ";c\n\n" * 300_000),
+        (run_pattern(False), "G1 X1\r\n" + "G1 Y1 E1\r\n" * 300_000),
+        (PLAIN_MOVE_RUN, "G1 X1\n" + ";c\n" * 300_000),
+    ]:
+        tracemalloc.start()
+        try:
+            found = pattern.search(text)
+            peak = tracemalloc.get_traced_memory()[1]
+        finally:
+            tracemalloc.stop()
+        assert found is not None and found.span() == (0, len(text))
+        assert peak < 1 << 20

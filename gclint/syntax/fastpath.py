@@ -82,7 +82,7 @@ _PLAIN_WORDS = _in_order("XYZE")
 # Runs of exactly the moves PLAIN_MOVE takes, and comments (what gclint.context reads nothing from)
 PLAIN_MOVE_RUN = re.compile(
     rf"(?m)^(?:(?:G[01](?:{_SEP}F{_NUM_P}{_PLAIN_WORDS}|{_PLAIN_WORDS}(?:{_SEP}F{_NUM_P})?+)[ \t]{{0,64}}+"
-    rf"|{_RUN_COMMENT})\r?\n)+"
+    rf"|{_RUN_COMMENT})\r?\n)++"
 )
 
 
@@ -90,7 +90,7 @@ PLAIN_MOVE_RUN = re.compile(
 def run_pattern(arcs: bool) -> re.Pattern[str]:
     """The runs of plain moves and comments, with arcs or without (compiled on first use: it is large)."""
     line = f"(?:{_RUN_MOVE}|{_RUN_ARC})" if arcs else _RUN_MOVE
-    return re.compile(rf"(?m)^(?:(?:{line}[ \t]{{0,64}}+|{_RUN_COMMENT}|)\r?\n)+")
+    return re.compile(rf"(?m)^(?:(?:{line}[ \t]{{0,64}}+|{_RUN_COMMENT}|)\r?\n)++")
 
 
 # The longest line of a run: "G0", seven words of at most 64 blanks, a letter and a 62-character number,
