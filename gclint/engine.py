@@ -25,7 +25,7 @@ from gclint.syntax.fastpath import PLAIN_MOVE, RUN_LINE_LONGEST, run_pattern
 from gclint.syntax.nodes import EXTENDED, GCODE, Command, Line
 from gclint.syntax.parse import parse_line
 from gclint.syntax.sniff import not_gcode_reason
-from gclint.syntax.source import NotGcode, Source, SourceError, split_lines
+from gclint.syntax.source import NotGcode, Source, SourceError, line_slices, split_lines
 
 # Options and FileContext live in their own modules (gclint.options, gclint.filecontext), so that the rules
 # can name the context they report into without importing the engine; they are importable from here too.
@@ -383,11 +383,15 @@ class Linter:
             return any(test(comment) for test in tests)
 
         def any_needs_reading(block: str, start: int, end: int) -> bool:
-            comments = _COMMENT_LINES.findall(block, start, end)  # (each after its line break)
             if block[start] == ";":
                 first = block[start : block.find("\n", start)]
-                comments.append("\n" + (first[:-1] if first[-1:] == "\r" else first))
-            return bool(comments) and needs_reading("".join(comments))  # (long when one of them is)
+                if needs_reading(first[:-1] if first[-1:] == "\r" else first):
+                    return True
+            for a, b in line_slices(block, start, end):  # (a few thousand comments at a time)
+                comments = _COMMENT_LINES.findall(block, a - (a > start), b)  # (each after its line break)
+                if comments and needs_reading("".join(comments)):  # (long when one of them is)
+                    return True
+            return False
 
         def parts(block: str, start: int, end: int) -> list[tuple[int, int, bool]]:
             # a run as (start, end, read one by one): cut around each comment line that needs reading
@@ -437,15 +441,17 @@ class Linter:
                     run = search(block, at) if search is not None else None
                     start, end = run.span() if run is not None else (len(block), len(block))
                     if start > at:
-                        lines = split_lines(block[at:start])
-                        yield total, lines
-                        total += len(lines)
+                        for a, b in line_slices(block, at, start):  # (a few thousand lines at a time)
+                            lines = split_lines(block[a:b])
+                            yield total, lines
+                            total += len(lines)
                     if run is None:
                         break
                     at = end
                     for a, b, alone in parts(block, start, end):
                         if alone or not bulk(block, a, b):
-                            yield total, split_lines(block[a:b])
+                            for x, y in line_slices(block, a, b):
+                                yield total, split_lines(block[x:y])
                         total += block.count("\n", a, b)
 
         total = number = 0  # (total: the lines read so far)

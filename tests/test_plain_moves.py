@@ -300,3 +300,20 @@ def test_a_run_of_a_million_lines_takes_no_memory_to_find():
             tracemalloc.stop()
         assert found is not None and found.span() == (0, len(text))
         assert peak < 1 << 20
+
+
+def test_a_comment_that_needs_reading_is_found_anywhere_in_a_long_run():
+    # (runs are tested a few thousand lines at a time, line_slices: the first line of each slice counts too)
+    from gclint.syntax.source import HEAD, line_slices
+
+    lines = ["G28", "G1 X0 Y0 Z.2 F600", "G1 X1 E1", "M400"] + [";c"] * 70_000 + ["G1 X2 E2"]
+    text = "\n".join(lines) + "\n"
+    second_block = text.rfind("\n", 0, HEAD) + 1  # (the first block is the head's whole lines)
+    cuts = [a for a, _ in line_slices(text, second_block, len(text))][1:3]
+    assert cuts, "the run spans several slices"
+    for cut in cuts:
+        for number in range(text.count("\n", 0, cut) - 1, text.count("\n", 0, cut) + 3):
+            job = list(lines)
+            job[number - 1] = "; api_key = 0123456789ABCDEF0123456789ABCDEF"
+            findings = Linter(Options(dialect="marlin")).check_text("\n".join(job) + "\n").findings
+            assert [(f.line, f.code) for f in findings] == [(number, "SC006")], number

@@ -451,6 +451,19 @@ def _last_line_end(buffer, eof: bool, lf=b"\n", cr=b"\r") -> int:
     return lf_at + 1
 
 
+def line_slices(text: str, start: int, end: int, size: int = 1 << 16) -> Iterator[tuple[int, int]]:
+    """``text[start:end]``, whole lines, as spans of about ``size`` characters that end after a line
+    ending: a reader that makes an object per line holds a few thousand at a time, not a chunk's worth
+    (a megabyte of empty lines is a million lines)."""
+    while end - start > size:
+        cut = text.find("\n", start + size, end) + 1 or text.find("\r", start + size, end) + 1  # (no LF: CR)
+        if not cut or cut >= end:
+            break
+        yield start, cut
+        start = cut
+    yield start, end
+
+
 def count_lines(text: str) -> int:
     """How many lines ``split_lines(text)`` gives (CR LF, CR and LF each end a line)."""
     lf = text.count("\n")
