@@ -9,7 +9,7 @@ from __future__ import annotations
 
 import os
 import re
-from collections.abc import Callable, Iterable, Iterator
+from collections.abc import Callable, Iterable
 from dataclasses import dataclass, field, replace
 from itertools import chain
 
@@ -18,24 +18,18 @@ from gclint.context import Context, infer_source
 from gclint.filecontext import MAX_FINDINGS, PER_LINE, SOURCE_LIMIT, FileContext
 from gclint.machine.interpreter import Interpreter
 from gclint.machine.profiles import DEFAULT_PROFILE, get_profile
-from gclint.noqa import INLINE_UNSUPPRESSIBLE, NO_CODES, may_direct
+from gclint.noqa import INLINE_UNSUPPRESSIBLE, NO_CODES
 from gclint.options import Options
 from gclint.rules.base import ANY_T, Finding, Rule, all_rules, matches, select_rules
-from gclint.syntax.fastpath import PLAIN_MOVE, RUN_LINE_LONGEST, run_pattern
+from gclint.runs import Runs, comment_tests
+from gclint.syntax.fastpath import PLAIN_MOVE, run_pattern
 from gclint.syntax.nodes import EXTENDED, GCODE, Command, Line
 from gclint.syntax.parse import parse_line
 from gclint.syntax.sniff import not_gcode_reason
-from gclint.syntax.source import NotGcode, Source, SourceError, line_slices, split_lines
+from gclint.syntax.source import NotGcode, Source, SourceError
 
 # Options and FileContext live in their own modules (gclint.options, gclint.filecontext), so that the rules
 # can name the context they report into without importing the engine; they are importable from here too.
-
-_COMMENT_LINES = re.compile(r"\n;[^\r\n]*+")  # (a literal start: searched fast)
-
-
-def _always(comment: str) -> bool:  # (the comment hint of a rule that has none: it reads every comment)
-    return True
-
 
 __all__ = [
     "MAX_FINDINGS",
@@ -362,100 +356,24 @@ class Linter:
         parse = parse_line
         get = dispatch.get
 
-        # Runs of plain moves, comment lines and (when no rule looks at them either) arcs are applied in
-        # bulk when no rule would look at them (Interpreter.plain_run); a comment line a directive or a hook
-        # may be about is read on its own.  Comment lines that need no reading are remembered (they repeat:
-        # ";WIDTH:0.45").
-        runs_allowed = shortest_long is None or shortest_long >= RUN_LINE_LONGEST
-        runs = run_pattern(plain is not None and self._plain_arcs(build, interpreter))
-        comment_hints = tuple(r.comment_hint or _always for r in rules if r.on_comment)
-        every_comment = ";" in first_chars
-        clean: set[str] = set()
-        # the comments of a run are first tested together, joined by line breaks: the tests are true of such
-        # a text when they are true of one of its lines (Rule.comment_hint; multi-line view patterns)
-        together = not every_comment and all(wants.__self__.flags & re.MULTILINE for wants, _ in view_hooks)
+        # Runs of plain moves, comment lines, empty lines and (when no rule looks at them either) arcs are
+        # applied at once when no rule would look at them (gclint.runs); the other lines come one by one.
+        view_patterns = tuple(wants for wants, _ in view_hooks)
+        runs = Runs(
+            run_pattern(self._plain_arcs(build, interpreter)) if plain is not None else None,
+            interpreter,
+            comment_tests(rules, view_patterns),
+            together=all(wants.__self__.flags & re.MULTILINE for wants in view_patterns),
+            every_comment=";" in first_chars,
+            longest=shortest_long,
+        )
 
-        tests = (may_direct, *comment_hints, *(wants for wants, _ in view_hooks))
+        def may_apply() -> bool:
+            # (the rules' plain filters and the hooks after the end of the job would look at the moves)
+            return not (plain is None or plain["0"][1] or plain["1"][1] or (after_end_hooks and state.after_m30))
 
-        def needs_reading(comment: str) -> bool:
-            if every_comment or (shortest_long is not None and len(comment) > shortest_long):
-                return True
-            return any(test(comment) for test in tests)
-
-        def any_needs_reading(block: str, start: int, end: int) -> bool:
-            if block[start] == ";":
-                first = block[start : block.find("\n", start)]
-                if needs_reading(first[:-1] if first[-1:] == "\r" else first):
-                    return True
-            for a, b in line_slices(block, start, end):  # (a few thousand comments at a time)
-                comments = _COMMENT_LINES.findall(block, a - (a > start), b)  # (each after its line break)
-                if comments and needs_reading("".join(comments)):  # (long when one of them is)
-                    return True
-            return False
-
-        def parts(block: str, start: int, end: int) -> list[tuple[int, int, bool]]:
-            # a run as (start, end, read one by one): cut around each comment line that needs reading
-            if together and not any_needs_reading(block, start, end):
-                return [(start, end, False)]
-            out = []
-            comment = start if block[start] == ";" else block.find("\n;", start, end) + 1 or end
-            while comment < end:
-                stop = block.find("\n", comment, end) + 1
-                text = block[comment : stop - 2 if block[stop - 2] == "\r" else stop - 1]
-                if text not in clean:
-                    if needs_reading(text):
-                        if comment > start:
-                            out.append((start, comment, False))
-                        out.append((comment, stop, True))
-                        start = stop
-                    else:
-                        if len(clean) >= 8192:
-                            clean.clear()
-                        clean.add(text)
-                comment = block.find("\n;", stop - 1, end) + 1 or end
-            if start < end:
-                out.append((start, end, False))
-            return out
-
-        def bulk(block: str, start: int, end: int) -> bool:
-            # whether whole lines of a run were applied at once (else they are read one by one)
-            return not (
-                plain is None
-                or plain["0"][1]
-                or plain["1"][1]
-                or (after_end_hooks and state.after_m30)
-                or not interpreter.plain_run(block, start, end)
-            )
-
-        def pieces() -> Iterator[tuple[int, list[tuple[str, str]]]]:
-            # The file as (number of the line before, lines to read one by one).
-            nonlocal total
-            search = runs.search if runs_allowed else None
-            for block in source.blocks():
-                if block.__class__ is list:
-                    yield total, block
-                    total += len(block)
-                    continue
-                at = 0
-                while True:
-                    run = search(block, at) if search is not None else None
-                    start, end = run.span() if run is not None else (len(block), len(block))
-                    if start > at:
-                        for a, b in line_slices(block, at, start):  # (a few thousand lines at a time)
-                            lines = split_lines(block[a:b])
-                            yield total, lines
-                            total += len(lines)
-                    if run is None:
-                        break
-                    at = end
-                    for a, b, alone in parts(block, start, end):
-                        if alone or not bulk(block, a, b):
-                            for x, y in line_slices(block, a, b):
-                                yield total, split_lines(block[x:y])
-                        total += block.count("\n", a, b)
-
-        total = number = 0  # (total: the lines read so far)
-        for number, chunk in pieces():
+        number = 0
+        for number, chunk in runs.lines(source, may_apply):
             for raw, ending in chunk:
                 number += 1
                 if plain is not None and raw[:1] == "G" and len(raw) <= long_limit:
@@ -550,7 +468,7 @@ class Linter:
                                 hook(line)
                             except Exception as exc:
                                 disable(hook, exc, number)
-        result.lines = state.line_number = total
+        result.lines = state.line_number = runs.total
         for r in list(rules):
             try:
                 r.finish()

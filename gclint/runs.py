@@ -1,0 +1,138 @@
+"""Runs: the stretches of a job the engine applies at once instead of line by line.
+
+Most of a sliced job is runs of plain moves, comment lines and empty lines (and arcs, where no rule
+listens to them): ``fastpath.run_pattern`` finds them in a chunk's text, and ``Interpreter.plain_run``
+applies a run with a few ``rfind`` calls.  A comment line of a run is read on its own when a directive, a
+comment hook or a view hook may be about it (the run's comments are first tested together, joined by
+line breaks: ``Rule.comment_hint`` and multi-line ``on_line_matching`` patterns promise that this is
+safe).  Everything else, and a run the interpreter cannot apply at once, goes line by line to the
+engine's loop.  tests/test_plain_moves.py checks that findings and state are the same either way.
+"""
+
+from __future__ import annotations
+
+import re
+from collections.abc import Callable, Iterator
+
+from gclint.machine.interpreter import Interpreter
+from gclint.noqa import may_direct
+from gclint.syntax.fastpath import RUN_LINE_LONGEST
+from gclint.syntax.source import Source, line_slices, split_lines
+
+_COMMENT_LINES = re.compile(r"\n;[^\r\n]*+")  # (a literal start: searched fast)
+_CLEAN_LIMIT = 8192  # comment lines remembered as needing no reading (they repeat: ";WIDTH:0.45")
+
+
+class Runs:
+    """How one file's runs are read.
+
+    ``tests``: what makes a comment line one to read on its own (each true of lines joined by line breaks
+    when true of one of them, where ``together``); ``longest``: the shortest line a long-line hook wants
+    (None: no such hook); ``every_comment``: every comment line is read (a hook on lines starting ";").
+    """
+
+    def __init__(
+        self,
+        pattern: re.Pattern[str] | None,
+        interpreter: Interpreter,
+        tests: tuple[Callable[[str], object], ...],
+        *,
+        together: bool,
+        every_comment: bool,
+        longest: int | None,
+    ) -> None:
+        self.search = (
+            pattern.search if pattern is not None and (longest is None or longest >= RUN_LINE_LONGEST) else None
+        )
+        self.plain_run = interpreter.plain_run
+        self.tests = tests
+        self.together = together and not every_comment
+        self.every_comment = every_comment
+        self.longest = longest
+        self.clean: set[str] = set()
+        self.total = 0  # lines read so far
+
+    def lines(self, source: Source, may_apply: Callable[[], bool]) -> Iterator[tuple[int, list[tuple[str, str]]]]:
+        """The lines of ``source`` to read one by one, as (number of the line before, lines); the runs in
+        between are applied (while ``may_apply()``: no rule would look at their moves)."""
+        search = self.search
+        for block in source.blocks():
+            if block.__class__ is list:
+                yield self.total, block
+                self.total += len(block)
+                continue
+            at = 0
+            while True:
+                run = search(block, at) if search is not None else None
+                start, end = run.span() if run is not None else (len(block), len(block))
+                if start > at:
+                    yield from self._one_by_one(block, at, start)
+                if run is None:
+                    break
+                at = end
+                for a, b, alone in self.parts(block, start, end):
+                    if alone or not (may_apply() and self.plain_run(block, a, b)):
+                        yield from self._one_by_one(block, a, b)
+                    else:
+                        self.total += block.count("\n", a, b)
+
+    def _one_by_one(self, block: str, start: int, end: int) -> Iterator[tuple[int, list[tuple[str, str]]]]:
+        for a, b in line_slices(block, start, end):  # (a few thousand lines at a time)
+            lines = split_lines(block[a:b])
+            yield self.total, lines
+            self.total += len(lines)
+
+    def needs_reading(self, comment: str) -> bool:
+        """Whether a comment line (or several, joined by line breaks) is to be read on its own."""
+        if self.every_comment or (self.longest is not None and len(comment) > self.longest):
+            return True
+        return any(test(comment) for test in self.tests)
+
+    def any_needs_reading(self, block: str, start: int, end: int) -> bool:
+        """Whether a comment line of the run ``block[start:end]`` may need reading (tested together)."""
+        if block[start] == ";":
+            first = block[start : block.find("\n", start)]
+            if self.needs_reading(first[:-1] if first[-1:] == "\r" else first):
+                return True
+        for a, b in line_slices(block, start, end):  # (a few thousand comments at a time)
+            comments = _COMMENT_LINES.findall(block, a - (a > start), b)  # (each after its line break)
+            if comments and self.needs_reading("".join(comments)):  # (long when one of them is)
+                return True
+        return False
+
+    def parts(self, block: str, start: int, end: int) -> list[tuple[int, int, bool]]:
+        """The run ``block[start:end]`` as (start, end, read one by one): cut around each comment line that
+        needs reading."""
+        if self.together and not self.any_needs_reading(block, start, end):
+            return [(start, end, False)]
+        out = []
+        clean = self.clean
+        comment = start if block[start] == ";" else block.find("\n;", start, end) + 1 or end
+        while comment < end:
+            stop = block.find("\n", comment, end) + 1
+            text = block[comment : stop - 2 if block[stop - 2] == "\r" else stop - 1]
+            if text not in clean:
+                if self.needs_reading(text):
+                    if comment > start:
+                        out.append((start, comment, False))
+                    out.append((comment, stop, True))
+                    start = stop
+                else:
+                    if len(clean) >= _CLEAN_LIMIT:
+                        clean.clear()
+                    clean.add(text)
+            comment = block.find("\n;", stop - 1, end) + 1 or end
+        if start < end:
+            out.append((start, end, False))
+        return out
+
+
+def comment_tests(rules, view_patterns) -> tuple[Callable[[str], object], ...]:
+    """What makes a comment line of a run one to read on its own: a directive, a rule's comment hint (a
+    rule with none reads every comment), a view hook's pattern."""
+    hints = tuple(r.comment_hint or _always for r in rules if r.on_comment)
+    return (may_direct, *hints, *view_patterns)
+
+
+def _always(comment: str) -> bool:  # (the comment hint of a rule that has none: it reads every comment)
+    return True
