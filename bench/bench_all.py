@@ -77,13 +77,15 @@ def main() -> None:
         memory = bench_memory.measure(5_000_000, folder)
     print(f"  {memory['seconds']:.1f} s, peak RSS {memory['peak_mb']:.1f} MB, exit {memory['exit']}")
 
+    # (goals: issue 16 for check and check --dialect hyrel; the others from the earlier performance issue.
+    # The ratios to check time, below, grow as check gets faster.)
     rows = [
-        ("check --jobs 1 vs regex baseline", speed["check"] / speed["regex"], ">= 0.5x"),
-        ("check --dialect hyrel vs regex baseline", speed["check-hyrel"] / speed["regex"], ">= 0.5x"),
+        ("check --jobs 1 vs regex baseline", speed["check"] / speed["regex"], ">= 1.0x"),
+        ("check --dialect hyrel vs regex baseline", speed["check-hyrel"] / speed["regex"], ">= 0.6x"),
         ("check of Hyrel jobs (every rule) vs regex", hyrel_ratio, ">= 0.5x"),
     ]
     if "gcodeparser" in speed:
-        rows.append(("check --jobs 1 vs gcodeparser", speed["check"] / speed["gcodeparser"], ">= 2.5x"))
+        rows.append(("check --jobs 1 vs gcodeparser", speed["check"] / speed["gcodeparser"], ">= 3.5x"))
     rows += [
         ("translate time / check time (in process)", speed["check"] / speed["translate"], "<= 2x"),
         ("--jobs 2 vs --jobs 1 (corpus)", scale["jobs1"] / scale["jobs2"], ">= 1.7x"),
