@@ -144,14 +144,18 @@ class ProgressBar:
         """``with bar.above(): print(...)``: the bar is erased while something else is written to the
         terminal (a report written as files are checked, an error), and drawn again below it at the next tick."""
         with self._lock:
-            try:
-                if self._shown:
-                    self.stream.write("\r" + " " * self._shown + "\r")
-                    self.stream.flush()
-            except (OSError, ValueError):
-                pass
-            self._shown = 0
+            self._erase()
             yield
+
+    def _erase(self) -> None:
+        # (under the lock) blank the bar's line and go back to its start
+        try:
+            if self._shown:
+                self.stream.write("\r" + " " * self._shown + "\r")
+                self.stream.flush()
+        except (OSError, ValueError):
+            pass
+        self._shown = 0
 
     def close(self) -> None:
         """Stop ticking and erase the bar, so the report starts on a clean line."""
@@ -159,13 +163,7 @@ class ProgressBar:
             if self._stop.is_set() and not self._shown:
                 return
             self._stop.set()
-            try:
-                if self._shown:
-                    self.stream.write("\r" + " " * self._shown + "\r")
-                    self.stream.flush()
-            except (OSError, ValueError):
-                pass
-            self._shown = 0
+            self._erase()
         if self._thread is not threading.current_thread():
             self._thread.join(timeout=1)
 
