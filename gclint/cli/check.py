@@ -4,6 +4,8 @@ from __future__ import annotations
 
 import os
 import sys
+from collections.abc import Iterator
+from contextlib import contextmanager
 
 import click
 
@@ -286,18 +288,9 @@ def check(
             tool_version=__version__, group=not no_group, suppressions=[n.describe() for n in suppressions]
         )
         report = reports(statistics)[fmt]
-        try:
-            from gclint.rules.base import all_rules
-
-            all_rules()
+        with _checking(bar):
             checked = runner.results(files, Options(), overrides, **run_options)
             tally, slim = _report(report, ctx, output, problems, checked, walked, bar)
-        except RuleError as exc:
-            _fail(str(exc))
-            return
-        finally:
-            if bar is not None:
-                bar.close()
         for note in cache.notes if cache is not None else ():
             _note(note)
         if verbose or fmt not in MACHINE_FORMATS:  # after the report: a report that cannot be written is one line
@@ -310,17 +303,8 @@ def check(
         if not exit_zero and tally.worst is not None and tally.worst >= Severity.parse(fail_on):
             sys.exit(1)
         return
-    try:
-        from gclint.rules.base import all_rules
-
-        all_rules()
+    with _checking(bar):
         results = runner.run(files, Options(), overrides, **run_options)
-    except RuleError as exc:
-        _fail(str(exc))
-        return
-    finally:
-        if bar is not None:
-            bar.close()
     if fix or show_diff or add_noqa:  # never through a link put in a walked folder since it was walked
         for i, r in enumerate(results):
             if (target := runner.outside_walk(r.path, walk_roots)) is not None:
@@ -593,3 +577,19 @@ def _write_report(writer, results: list[FileResult], ctx, output: str | None) ->
         write_text(output, lambda out: writer(results, out, ctx))  # atomically, never through a link
     except OutputError as exc:
         _fail(f"{exc} (the report was not written)")
+
+
+@contextmanager
+def _checking(bar) -> Iterator[None]:
+    """Around the check: the rules (plugins included) loaded first, a broken plugin one usage error, and
+    the progress bar closed whatever happens."""
+    try:
+        from gclint.rules.base import all_rules
+
+        all_rules()
+        yield
+    except RuleError as exc:
+        _fail(str(exc))  # (raises)
+    finally:
+        if bar is not None:
+            bar.close()
