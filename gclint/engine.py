@@ -359,18 +359,21 @@ class Linter:
         # Runs of plain moves, comment lines, empty lines and (when no rule looks at them either) arcs are
         # applied at once when no rule would look at them (gclint.runs); the other lines come one by one.
         view_patterns = tuple(wants for wants, _ in view_hooks)
+        run_filters = self._run_filters(build) if plain is not None else None
         runs = Runs(
-            run_pattern(self._plain_arcs(build, interpreter)) if plain is not None else None,
+            run_pattern(self._plain_arcs(build, interpreter), shortest_long) if plain is not None else None,
             interpreter,
             comment_tests(rules, view_patterns),
             together=all(wants.__self__.flags & re.MULTILINE for wants in view_patterns),
             every_comment=";" in first_chars,
             longest=shortest_long,
+            alone=_alone(run_filters) if run_filters is not None else None,
         )
 
         def may_apply() -> bool:
-            # (the rules' plain filters and the hooks after the end of the job would look at the moves)
-            return not (plain is None or plain["0"][1] or plain["1"][1] or (after_end_hooks and state.after_m30))
+            # (a rule's plain filter without a run filter, and the hooks after the end of the job, would look
+            # at the moves)
+            return not (plain is None or run_filters is None or (after_end_hooks and state.after_m30))
 
         number = 0
         for number, chunk in runs.lines(source, may_apply):
@@ -490,6 +493,22 @@ class Linter:
                 return False
         return True
 
+    @staticmethod
+    def _run_filters(build: Callable) -> tuple[Callable[[str, int, int], list[int] | None], ...] | None:
+        """The run filters of the rules with a plain filter (``Rule.run_filter``), or None when one of them
+        has none (then runs are read line by line)."""
+        out = []
+        for code in ("G0", "G1"):
+            for handler in build(Command(code, GCODE, 1, {}))[0]:
+                rule = handler.__self__
+                if getattr(rule, "plain_filter", None) is not None:
+                    run_filter = getattr(rule, "run_filter", None)
+                    if run_filter is None:
+                        return None
+                    if run_filter not in out:
+                        out.append(run_filter)
+        return tuple(out)
+
     def _plain_moves(
         self, build: Callable, interpreter: Interpreter, line_hooks: tuple
     ) -> dict[str, tuple[str, tuple[Callable[..., bool], ...]]] | None:
@@ -514,6 +533,28 @@ class Linter:
                 return None
             out[code[1]] = (code, filters)
         return out
+
+
+def _alone(
+    run_filters: tuple[Callable[[str, int, int], list[int] | None], ...],
+) -> Callable[[str, int, int], list[int] | None] | None:
+    """The lines of a run to read on their own (gclint.runs): those a rule's run filter may want."""
+    if not run_filters:
+        return None
+
+    def alone(text: str, start: int, end: int) -> list[int] | None:
+        found: list[int] = []
+        for run_filter in run_filters:
+            try:
+                lines = run_filter(text, start, end)
+            except Exception:  # (line by line, a failing rule's own filter or check raises and it is dropped)
+                return None
+            if lines is None:
+                return None
+            found += lines
+        return found
+
+    return alone
 
 
 def _rule_failed(result: FileResult, rule: type[Rule], exc: Exception, line_number: int | None) -> None:

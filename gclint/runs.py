@@ -16,19 +16,22 @@ from collections.abc import Callable, Iterator
 
 from gclint.machine.interpreter import Interpreter
 from gclint.noqa import may_direct
-from gclint.syntax.fastpath import RUN_LINE_LONGEST
 from gclint.syntax.source import Source, line_slices, split_lines
 
 _COMMENT_LINES = re.compile(r"\n;[^\r\n]*+")  # (a literal start: searched fast)
+_AGAIN = 1024  # (characters of a run read line by line before the rules are asked again whether they want it)
 _CLEAN_LIMIT = 8192  # comment lines remembered as needing no reading (they repeat: ";WIDTH:0.45")
 
 
 class Runs:
     """How one file's runs are read.
 
+    ``pattern``: the runs (``fastpath.run_pattern``, whose moves are never longer than ``longest``);
     ``tests``: what makes a comment line one to read on its own (each true of lines joined by line breaks
     when true of one of them, where ``together``); ``longest``: the shortest line a long-line hook wants
-    (None: no such hook); ``every_comment``: every comment line is read (a hook on lines starting ";").
+    (None: no such hook); ``every_comment``: every comment line is read (a hook on lines starting ";");
+    ``alone``: the starts of the lines of a run to read on their own, the others being applied in bulk
+    around them (None from it: read the whole run line by line); see ``Linter._run``.
     """
 
     def __init__(
@@ -40,15 +43,17 @@ class Runs:
         together: bool,
         every_comment: bool,
         longest: int | None,
+        alone: Callable[[str, int, int], list[int] | None] | None = None,
     ) -> None:
-        self.search = (
-            pattern.search if pattern is not None and (longest is None or longest >= RUN_LINE_LONGEST) else None
-        )
+        self.search = pattern.search if pattern is not None else None
         self.plain_run = interpreter.plain_run
         self.tests = tests
         self.together = together and not every_comment
         self.every_comment = every_comment
         self.longest = longest
+        # (a comment line longer than ``longest``, after the line break before it; the pattern's moves are not)
+        self.long_line = re.compile(rf"\n[^\r\n]{{{longest + 1}}}") if longest is not None else None
+        self.alone = alone
         self.clean: set[str] = set()
         self.total = 0  # lines read so far
 
@@ -71,10 +76,37 @@ class Runs:
                     break
                 at = end
                 for a, b, alone in self.parts(block, start, end):
-                    if alone or not (may_apply() and self.plain_run(block, a, b)):
+                    if alone:
                         yield from self._one_by_one(block, a, b)
                     else:
-                        self.total += block.count("\n", a, b)
+                        yield from self._apply(block, a, b, may_apply)
+
+    def _apply(
+        self, block: str, a: int, b: int, may_apply: Callable[[], bool]
+    ) -> Iterator[tuple[int, list[tuple[str, str]]]]:
+        """Apply the run ``block[a:b]``, but for the lines to read on their own."""
+        while a < b:
+            cuts = None if not may_apply() else self.alone(block, a, b) if self.alone is not None else ()
+            if cuts is None:  # (a few lines, then ask again: what the rules wait for may come)
+                stop = block.find("\n", max(a, min(a + _AGAIN, b) - 1), b) + 1
+                yield from self._one_by_one(block, a, stop)
+                a = stop
+                continue
+            for cut in sorted(set(cuts)) if len(cuts) > 1 else cuts:
+                if cut > a:
+                    if may_apply() and self.plain_run(block, a, cut):
+                        self.total += block.count("\n", a, cut)
+                    else:
+                        yield from self._one_by_one(block, a, cut)
+                a = block.find("\n", cut, b) + 1  # (a run's lines each end with a line break)
+                yield self.total, split_lines(block[cut:a])
+                self.total += 1
+            if a < b:
+                if may_apply() and self.plain_run(block, a, b):
+                    self.total += block.count("\n", a, b)
+                else:
+                    yield from self._one_by_one(block, a, b)
+            return
 
     def _one_by_one(self, block: str, start: int, end: int) -> Iterator[tuple[int, list[tuple[str, str]]]]:
         for a, b in line_slices(block, start, end):  # (a few thousand lines at a time)
@@ -83,7 +115,7 @@ class Runs:
             self.total += len(lines)
 
     def needs_reading(self, comment: str) -> bool:
-        """Whether a comment line (or several, joined by line breaks) is to be read on its own."""
+        """Whether a comment line is to be read on its own."""
         if self.every_comment or (self.longest is not None and len(comment) > self.longest):
             return True
         return any(test(comment) for test in self.tests)
@@ -96,8 +128,12 @@ class Runs:
                 return True
         for a, b in line_slices(block, start, end):  # (a few thousand comments at a time)
             comments = _COMMENT_LINES.findall(block, a - (a > start), b)  # (each after its line break)
-            if comments and self.needs_reading("".join(comments)):  # (long when one of them is)
-                return True
+            if comments:
+                joined = "".join(comments)
+                if (self.long_line is not None and self.long_line.search(joined)) or any(
+                    test(joined) for test in self.tests
+                ):
+                    return True
         return False
 
     def parts(self, block: str, start: int, end: int) -> list[tuple[int, int, bool]]:

@@ -25,6 +25,7 @@ from __future__ import annotations
 
 import re
 from dataclasses import dataclass
+from functools import lru_cache
 
 __all__ = ["Secret", "find", "mask", "mask_quoted", "has_secret", "MASK_CHAR"]
 
@@ -258,7 +259,13 @@ def has_secret(text: str) -> bool:
 
 def mask(text: str) -> str:
     """``text`` with every secret value replaced by ``*`` (same length); text without secrets is returned
-    as is (the same object), so calling it on every line of a report is cheap."""
+    as is, so calling it on every line of a report is cheap (short texts are remembered: messages repeat)."""
+    if len(text) <= _REMEMBERED:
+        return _mask_remembered(text)
+    return _mask(text)
+
+
+def _mask(text: str) -> str:
     if not text:
         return text
     secrets = find(text)
@@ -274,11 +281,22 @@ def mask(text: str) -> str:
     return "".join(parts)
 
 
+_REMEMBERED = 512  # (the longest text whose masked form is remembered: 4,096 of them at most)
+_mask_remembered = lru_cache(maxsize=4096)(_mask)
+
+
 def mask_quoted(text: str, line: str) -> str:
     """``text``, a message about ``line``, with its own secrets masked and every secret value of ``line``
     it quotes: a message may quote a word without what makes it a secret ("P"pass1234" is repeated in
     M587" has no M587 before the P)."""
-    values = sorted({line[s.start : s.end] for s in find(line)}, key=len, reverse=True) if line else ()
-    for value in values:
+    for value in _values_remembered(line) if len(line) <= _REMEMBERED else _values(line):
         text = text.replace(value, MASK_CHAR * len(value))
     return mask(text)
+
+
+def _values(line: str) -> tuple[str, ...]:
+    """The secret values of ``line``, longest first."""
+    return tuple(sorted({line[s.start : s.end] for s in find(line)}, key=len, reverse=True)) if line else ()
+
+
+_values_remembered = lru_cache(maxsize=4096)(_values)

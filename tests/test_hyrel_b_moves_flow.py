@@ -140,6 +140,16 @@ def test_hy060_once_and_not_with_m229_anywhere():
     assert lines("G1 X1 E1 F600\n" * 10, "HY060") == []
 
 
+def test_hy060_stops_looking_after_look_at_moves_whatever_their_amounts():
+    # (a job that cycles through a few amounts: the rule looks at LOOK_AT moves with E, then stops)
+    from gclint.rules.hyrel.flow import SlicerEWithoutM229
+
+    head = "".join(f"G1 X{i} Y1 E{0.3 + i % 3 / 100:.2f} F600\n" for i in range(SlicerEWithoutM229.LOOK_AT))
+    later = "".join(f"G1 X{i} Y2 E{0.5 + i / 100:.2f}\n" for i in range(8))
+    assert lines(head + later, "HY060") == []
+    assert lines(head[: head.index("\n") + 1] + later, "HY060") == [1]
+
+
 def test_hy030_g0_with_e():
     assert lines("G0 X1 E1\nG1 X2 E1 F600\n", "HY030") == [1]
 

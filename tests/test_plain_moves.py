@@ -113,6 +113,76 @@ def test_comment_lines_a_rule_may_read_are_read_one_by_one():
     assert ctx.state.position.snapshot() == {"X": 6.0, "Y": 0.0, "Z": 0.2} and ctx.state.e_position == 5.0
 
 
+def _how_read(dialect: str, text: str, monkeypatch, *more_rules: type[Rule]) -> tuple[list[int], int]:
+    """The lines of ``text`` read one by one, and how many lines runs applied in bulk."""
+    import gclint.engine
+
+    linter = Linter(Options(dialect=dialect))
+    linter.rule_classes = [*linter.rule_classes, *more_rules]
+    source = Source.from_text(text, "<t>")
+    ctx, result = linter.prepare(source)
+    alone: list[int] = []
+    bulk = [0]
+
+    class Recorded(gclint.engine.Line):
+        __slots__ = ()
+
+        def __init__(self, number, *rest) -> None:
+            alone.append(number)
+            super().__init__(number, *rest)
+
+    monkeypatch.setattr(gclint.engine, "Line", Recorded)
+    move, offer = ctx.interpreter.plain_move, ctx.interpreter.plain_run
+    ctx.interpreter.plain_move = lambda mode, number, *words: alone.append(number) or move(mode, number, *words)  # type: ignore[method-assign]
+
+    def plain_run(block: str, a: int, b: int) -> bool:
+        applied = offer(block, a, b)
+        bulk[0] += block.count("\n", a, b) if applied else 0
+        return applied
+
+    ctx.interpreter.plain_run = plain_run  # type: ignore[method-assign]
+    linter._run(source, ctx, result)
+    assert len(alone) + bulk[0] == result.lines  # (every line once)
+    return sorted(alone), bulk[0]
+
+
+_SLICED = "".join(f"G1 X{i} Y1 E{0.3 + i / 100:.2f}\n" for i in range(8))  # (HY060 decides: sliced)
+
+
+@pytest.mark.parametrize(
+    "e_mode,travel,expected",
+    [
+        # relative E: a retract and a prime (G1 with E and no X or Y), a negative or zero E while moving
+        ("M83", "G1 E-.8 F2100\nG0 F7200 X5 Y5\nG1 Z.2 F720\nG1 E.8 F2100\n", [1, 4]),
+        ("M83", "G1 X5 Y5 E-.1\nG1 F2100 E+0.0\nG1 Y6 X5 E0.\nG1 X7 E.05\n", [1, 2, 3]),
+        # absolute E: an amount that goes back (a retract, a wipe); the same amount again is fine
+        ("M82", "G1 X5 Y5 E9000\nG1 X6 E9000\nG1 F2100 E8999\nG1 X7 Y7 E8998\nG1 E9000 F2100\n", [3, 4, 5]),
+        # G0 with E (HY030), whatever the mode
+        ("M83", "G0 X5 E1\nG1 X6 Y6 E.2\n", [1]),
+    ],
+)
+def test_hyrel_runs_are_applied_around_the_moves_a_rule_wants(e_mode, travel, expected, monkeypatch):
+    head = f"G28\n{e_mode}\nG1 X1 Y1 Z.2 E1 F600\n{_SLICED}"  # (one by one: the first print, HY060 deciding)
+    moves = "".join(f"G1 X{i} Y{i} E{i * 10}\n" for i in range(2, 200))  # (E forward in either mode)
+    tail = "".join(f"G1 X{i} Y{i} E{i * 10}\n" for i in range(1000, 1100))
+    job = head + moves + travel + tail
+    skip = (head + moves).count("\n")
+    alone, bulk = _how_read("hyrel", job, monkeypatch)
+    assert [n - skip for n in alone if n > skip] == expected
+    assert bulk >= len(moves.splitlines()) // 2 + len(tail.splitlines())
+    _same(job, "hyrel")
+
+
+def test_hyrel_long_lines_are_read_one_by_one(monkeypatch):
+    # HY029 looks at lines longer than 100 characters: runs take only moves surely shorter
+    long = "G1 X1.1234567 Y2.1234567 Z3.1234567 E4.1234567 F5000.12345" + " " * 50
+    job = "G28\nG1 X1 Y1 Z.2 E1 F600\n" + _SLICED + "G1 X2 Y2 E2\n" * 200 + long + "\n" + "G1 X3 Y3 E3\n" * 200
+    alone, bulk = _how_read("hyrel", job, monkeypatch)
+    assert job.count("\n") - 200 in alone and bulk >= 200
+    assert "HY029" in [f.code for f in Linter(Options(dialect="hyrel")).check_text(job).findings]
+    _same(job, "hyrel")
+
+
 def test_the_run_patterns():
     from gclint.syntax.fastpath import PLAIN_MOVE_RUN, run_pattern
 
@@ -278,6 +348,44 @@ def test_rules_see_the_comment_lines_of_runs_they_ask_for(rule):
             found[plain] = [(f.line, f.code) for f in ctx.findings if f.code == rule.code]
         assert found[True] == found[False] and found[True], (rule, ending, found)
     assert True in runs_applied  # (the moves after M400 are applied whole, around the lines read)
+
+
+class _AtX7(Rule):  # a plugin rule on G1 with a plain filter and a run filter
+    code = "ZZ906"
+    codes = ("G1",)
+
+    def plain_filter(self, mode, x, y, z, e, f) -> bool:
+        return x == "7"
+
+    def run_filter(self, text: str, start: int, end: int) -> list[int] | None:
+        return [m.start() for m in re.finditer(r"(?m)^G1 X7\b", text[:end]) if m.start() >= start]
+
+    def check(self, line, cmd):
+        if cmd.params.get("X") == "7":
+            self.report(line, "at X7")
+
+
+class _BrokenRunFilter(_AtX7):
+    code = "ZZ907"
+
+    def run_filter(self, text: str, start: int, end: int) -> list[int] | None:
+        raise RuntimeError("broken")
+
+
+@pytest.mark.parametrize("rule", [_AtX7, _BrokenRunFilter])
+def test_a_rule_with_a_run_filter_sees_the_moves_it_wants(rule, monkeypatch):
+    job = "G28\nG1 X0 Y0 Z.2 F600\nG1 X1 E1\n" + "".join(f"G1 X{i % 10} Y{i} E{i + 2}\n" for i in range(300))
+    found = {}
+    for plain in (True, False):
+        linter = Linter(Options(dialect="marlin"))
+        linter.rule_classes = [*linter.rule_classes, rule]
+        linter.plain_moves_enabled = plain
+        result = linter.check_text(job)
+        assert result.error is None
+        found[plain] = [f.line for f in result.findings if f.code == rule.code]
+    assert found[True] == found[False] == [4 + i for i in range(300) if i % 10 == 7]
+    alone, bulk = _how_read("marlin", job, monkeypatch, rule)
+    assert bulk > 200 if rule is _AtX7 else bulk == 0
 
 
 def test_a_run_of_a_million_lines_takes_no_memory_to_find():

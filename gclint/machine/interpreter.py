@@ -7,7 +7,6 @@ job but deletes a file on Marlin; G90 resets the E mode on Marlin only).  Facts 
 
 from __future__ import annotations
 
-import re
 from collections.abc import Callable
 from functools import partial, reduce
 from operator import add
@@ -23,7 +22,6 @@ Handler = Callable[[Command, Line], None]
 _AXES = "XYZAB"
 _MOTION = frozenset({"G0", "G1", "G2", "G3"})
 _RUN_MODES = {"0": "G0", "1": "G1", "2": "G2", "3": "G3"}  # (the digit of a move or arc of a run)
-_G0_FEED = re.compile(r"(?m)^G0[^\n]*F")  # (a G0 with F in a run of plain moves)
 
 
 def _int(text: str | None) -> int | None:
@@ -34,13 +32,13 @@ def _int(text: str | None) -> int | None:
     return int(value) if value is not None and value == int(value) else None
 
 
-def _last_word(text: str, letter: str, start: int, end: int) -> int:
-    """Where the last ``letter`` word of a move line in ``text[start:end]`` (plain moves and comments) is,
-    or -1."""
+def _last_word(text: str, letter: str, start: int, end: int, not_on: str = "") -> int:
+    """Where the last ``letter`` word of a move line (not a ``not_on`` one, "G0" say) in ``text[start:end]``
+    (plain moves and comments) is, or -1."""
     at = text.rfind(letter, start, end)
     while at >= 0:
         line = text.rfind("\n", start, at) + 1 or start
-        if text[line] == "G":
+        if text[line] == "G" and not (not_on and text.startswith(not_on, line)):
             return at
         at = text.rfind(letter, start, line)
     return -1
@@ -267,8 +265,8 @@ class Interpreter:
         the engine allows them, arcs (``fastpath.run_pattern``), as ``plain_move`` and ``_arc`` would one
         line after the other, without cutting the text into lines: what a run leaves is its last X, Y, Z,
         F, E and motion mode.  Returns False, having changed nothing, when the run may change more than
-        that (relative moves, the first move, feed or print of the job, a one-shot G0 feed): then the
-        caller applies the lines one by one."""
+        that (relative moves, the first move, feed or print of the job): then the caller applies the
+        lines one by one."""
         if text[start] != "G" and text.find("\nG", start, end) < 0:
             return True  # comments only
         st = self.state
@@ -282,8 +280,8 @@ class Interpreter:
             or not st.printed
         ):
             return False  # a move of the run may be the first print: it sets line numbers
-        f_at = _last_word(text, "F", start, end)
-        if f_at >= 0 and (not st.working_feed_set or (self.g0_feed_one_shot and _G0_FEED.search(text, start, end))):
+        f_at = _last_word(text, "F", start, end, "G0" if self.g0_feed_one_shot else "")  # (one-shot: no feed)
+        if f_at >= 0 and not st.working_feed_set:
             return False
         number = PLAIN_NUMBER.match
         values = st.position.values

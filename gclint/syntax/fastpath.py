@@ -18,6 +18,7 @@ Three tiers, cheapest first:
 from __future__ import annotations
 
 import re
+from collections.abc import Iterator
 from functools import cache
 from operator import itemgetter
 
@@ -58,7 +59,7 @@ PLAIN_MOVE = re.compile(
 # keeps its value from the line before).
 
 
-def _any_order(letters: str) -> str:
+def _any_order(letters: str, sep: str = _SEP, num: str = _NUM_P) -> str:
     """Words of ``letters``, each at most once, in any order (a tree of the orders: no backtracking)."""
 
     @cache
@@ -66,17 +67,15 @@ def _any_order(letters: str) -> str:
         rest = [letter for letter in letters if letter not in used]
         if not rest:
             return ""
-        return f"(?:{_SEP}(?:" + "|".join(f"{x}{_NUM_P}{after(used + x)}" for x in rest) + "))?+"
+        return f"(?:{sep}(?:" + "|".join(f"{x}{num}{after(used + x)}" for x in rest) + "))?+"
 
     return after("")
 
 
-def _in_order(letters: str) -> str:
-    return "".join(rf"(?:{_SEP}{letter}{_NUM_P})?+" for letter in letters)
+def _in_order(letters: str, sep: str = _SEP, num: str = _NUM_P) -> str:
+    return "".join(rf"(?:{sep}{letter}{num})?+" for letter in letters)
 
 
-_RUN_MOVE = "G[01]" + _any_order("XYZEF")
-_RUN_ARC = rf"G[23](?:{_SEP}F{_NUM_P}{_in_order('XYZIJE')}|{_in_order('XYZIJE')}(?:{_SEP}F{_NUM_P})?+)"
 _RUN_COMMENT = r";[\t\x20-\x7e]*+"
 _PLAIN_WORDS = _in_order("XYZE")
 # Runs of exactly the moves PLAIN_MOVE takes, and comments (what gclint.context reads nothing from)
@@ -84,21 +83,73 @@ PLAIN_MOVE_RUN = re.compile(
     rf"(?m)^(?:(?:G[01](?:{_SEP}F{_NUM_P}{_PLAIN_WORDS}|{_PLAIN_WORDS}(?:{_SEP}F{_NUM_P})?+)[ \t]{{0,64}}+"
     rf"|{_RUN_COMMENT})\r?\n)++"
 )
-
-
-@cache
-def run_pattern(arcs: bool) -> re.Pattern[str]:
-    """The runs of plain moves and comments, with arcs or without (compiled on first use: it is large)."""
-    line = f"(?:{_RUN_MOVE}|{_RUN_ARC})" if arcs else _RUN_MOVE
-    return re.compile(rf"(?m)^(?:(?:{line}[ \t]{{0,64}}+|{_RUN_COMMENT}|)\r?\n)++")
-
-
 # The longest line of a run: "G0", seven words of at most 64 blanks, a letter and a 62-character number,
 # and 64 trailing blanks.
 RUN_LINE_LONGEST = 2 + 7 * (64 + 1 + 62) + 64
+# Where lines longer than some length are read one by one (a rule looks at long lines: HY029's 100), runs
+# take moves of short words: blanks of 1-2 characters, numbers of at most 15 (6 digits, a point and 7).
+_SHORT_SEP = r"[ \t]{1,2}+"
+_SHORT_NUM = r"[-+]?+(?:[0-9]{1,6}+(?:\.[0-9]{0,7}+)?+|\.[0-9]{1,7}+)"
+
+
+def _short_line(words: int) -> int:
+    return 2 + words * (2 + 1 + 15) + 2  # ("G1", the words, 2 trailing blanks)
+
+
+@cache
+def run_pattern(arcs: bool, longest: int | None = None) -> re.Pattern[str] | None:
+    """The runs of plain moves and comments, with arcs or without (compiled on first use: it is large);
+    with ``longest``, of moves at most that long (None: no move is surely short enough)."""
+    sep, num, trail = _SEP, _NUM_P, r"[ \t]{0,64}+"
+    if longest is not None and longest < RUN_LINE_LONGEST:
+        if _short_line(5) > longest:
+            return None
+        sep, num, trail = _SHORT_SEP, _SHORT_NUM, r"[ \t]{0,2}+"
+        arcs = arcs and _short_line(7) <= longest
+    move = "G[01]" + _any_order("XYZEF", sep, num)
+    if arcs:
+        xyzije = _in_order("XYZIJE", sep, num)
+        arc = rf"G[23](?:{sep}F{num}{xyzije}|{xyzije}(?:{sep}F{num})?+)"
+        move = f"(?:{move}|{arc})"
+    return re.compile(rf"(?m)^(?:(?:{move}{trail}|{_RUN_COMMENT}|)\r?\n)++")
+
+
 PLAIN_NUMBER = re.compile(_NUM_P)  # (the number after a letter of a plain move)
 PLAIN_E = re.compile(rf"(?m)^G[0-3][^E\r\n]*+E({_NUM_P})")  # (the E amounts of the moves of a run)
 RUN_E = re.compile(r"E([-+.0-9]++)")  # (the same in a run without comments: every E is a word; found faster)
+# Lines of a run, each pattern written from the line break before the line (a literal start: searched fast;
+# run_lines gives the line starts): a move with E, and its amount; a G1 with E before any X or Y word (G1
+# E-0.8 F2100, G1 F2100 E0.8: every G1 with E and no X or Y is one); a G0 with E.
+RUN_E_AMOUNT = re.compile(rf"\nG[0-3][^E\r\n]*+E({_NUM_P})")
+RUN_G1_E_FIRST = re.compile(rf"\nG1(?:{_SEP}[FZ]{_NUM_P})*+{_SEP}E")
+RUN_G0_E = re.compile(r"\nG0[^E\r\n]*+E")
+# A negative or zero E amount, wherever it is (a comment too: the caller reads the line on its own)
+E_NOT_FORWARD = re.compile(r"E(?:-|\+?+(?=[0.])0*+\.?+0*+(?![0-9]))")
+
+
+def run_lines(pattern: re.Pattern[str], text: str, start: int, end: int) -> Iterator[tuple[int, re.Match[str]]]:
+    """(line start, match) for each line of ``text[start:end]`` (whole lines, from a line start) that
+    ``pattern``, written from the line break before a line, finds."""
+    if start and text[start - 1] == "\n":
+        pos = start - 1
+    else:  # (the first line of the text, or of a chunk: no line break before it)
+        pos = text.find("\n", start, end)
+        if pos < 0:
+            pos = end
+        m = pattern.match("\n" + text[start : pos + 1])
+        if m is not None:
+            yield start, m
+    for m in pattern.finditer(text, pos, end):
+        yield m.start() + 1, m
+
+
+def run_line_starts(pattern: re.Pattern[str], text: str, start: int, end: int) -> list[int]:
+    """The starts of the lines of ``text[start:end]`` that ``pattern`` finds (as ``run_lines``)."""
+    if start and text[start - 1] == "\n":
+        return [m.start() + 1 for m in pattern.finditer(text, start - 1, end)]
+    return [at for at, _ in run_lines(pattern, text, start, end)]
+
+
 _LINENO_VALUE = re.compile(r"[0-9]+(?:\.[0-9]+)?")
 _LETTER_AND_VALUE = itemgetter(0, slice(1, None))  # "X10.5" -> ("X", "10.5"), in C
 

@@ -335,10 +335,10 @@ class SlicerEWithoutM229(MoveRule):
     def move(self, line: Line, cmd: Command) -> None:
         # called for G1 lines with E until the amounts look sliced
         text = cmd.params["E"]
+        self.left -= 1
+        if self.left <= 0:
+            self.moves.slicer_e = None  # (this one is the last looked at)
         if text == self.last or text is None:
-            self.left -= 1
-            if self.left <= 0:
-                self.moves.slicer_e = None
             return
         if self.state.m229_line is not None:
             self.moves.slicer_e = None  # the file uses M229: nothing to report

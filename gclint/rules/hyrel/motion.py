@@ -16,6 +16,15 @@ from typing import ClassVar, Protocol
 
 from gclint.machine.state import NATIVE
 from gclint.rules.base import Rule, Severity, register
+from gclint.syntax.fastpath import (
+    E_NOT_FORWARD,
+    RUN_E,
+    RUN_E_AMOUNT,
+    RUN_G0_E,
+    RUN_G1_E_FIRST,
+    run_line_starts,
+    run_lines,
+)
 from gclint.syntax.nodes import Command, Line, to_number
 
 _MOVES = ("G0", "G1")
@@ -79,12 +88,14 @@ class MoveChecks:
             if leader is not None:  # hand over: the old leader goes back to its own codes and check
                 del leader.check
                 del leader.plain_filter
+                del leader.run_filter
                 leader.codes = tuple(c for c in leader.codes if c not in _MOVES)  # type: ignore[misc]
             checks.leader = rule
             checks.direct = not own_codes
             rule.codes = (*own_codes, *_MOVES)  # type: ignore[misc]
             rule.check = MethodType(_listen if not own_codes else _listen_and_own, rule)  # type: ignore[method-assign]
             rule.plain_filter = checks.wants_plain  # type: ignore[attr-defined]
+            rule.run_filter = checks.wants_in_run  # type: ignore[attr-defined]
         return checks
 
     def wants_plain(self, mode: str, x: str | None, y: str | None, z: str | None, e: str | None, f: str | None) -> bool:
@@ -112,6 +123,52 @@ class MoveChecks:
                 return True
             return self.inverse_time is not None
         return e is not None and self.rapid_e is not None
+
+    def wants_in_run(self, text: str, start: int, end: int) -> list[int] | None:
+        """The starts of the lines of a run (``text[start:end]``, whole lines of plain moves, comments and
+        empty lines: gclint.runs) whose moves ``wants_plain`` may want, in any order, or None when it may
+        want any move of the run.  Decided with the state at the run's start: the engine reads the lines
+        given on their own, and what reading them changes (a member clearing its slot, the working feed
+        set) never makes another line of the run wanted.  A line given may be one no member wants."""
+        st = self.state
+        motors_off = self.motors_off
+        relative_print = self.relative_print
+        if (
+            (
+                motors_off is not None
+                and st.motors_off_line is not None
+                and st.motors_off_line != motors_off.reported_for
+            )
+            or self.slicer_e is not None  # (every G1 with E, until the amounts look sliced)
+            or (self.feed_undefined is not None and not st.working_feed_set)
+            or self.inverse_time is not None
+            or (relative_print is not None and not st.absolute and not relative_print.reported)
+        ):
+            return None
+        found: list[int] = []
+        if self.travel_prints is not None and st.flow_mode == NATIVE:  # (as _prints_forward, without its shortcut)
+            found += run_line_starts(RUN_G1_E_FIRST, text, start, end)  # (every G1 with E and no X or Y)
+            if st.e_absolute:  # (an amount that does not go forward from the one before)
+                last = st.e_position
+                if text.find(";", start, end) < 0:  # (no comment: every E is a move's)
+                    for m in RUN_E.finditer(text, start, end):
+                        value = float(m.group(1))
+                        if value <= 0 or (last is not None and value < last):
+                            found.append(text.rfind("\n", start, m.start()) + 1 or start)
+                        last = value
+                else:
+                    for at, m in run_lines(RUN_E_AMOUNT, text, start, end):
+                        value = float(m.group(1))
+                        if value <= 0 or (last is not None and value < last):
+                            found.append(at)
+                        last = value
+            else:  # (a negative or zero amount)
+                found += [
+                    text.rfind("\n", start, m.start()) + 1 or start for m in E_NOT_FORWARD.finditer(text, start, end)
+                ]
+        if self.rapid_e is not None:
+            found += run_line_starts(RUN_G0_E, text, start, end)
+        return found
 
     def check(self, line: Line, cmd: Command) -> None:
         """Run the G0/G1 checks of every member on one line."""
