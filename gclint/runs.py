@@ -84,29 +84,31 @@ class Runs:
     def _apply(
         self, block: str, a: int, b: int, may_apply: Callable[[], bool]
     ) -> Iterator[tuple[int, list[tuple[str, str]]]]:
-        """Apply the run ``block[a:b]``, but for the lines to read on their own."""
+        """Apply the run ``block[a:b]`` but for the lines to read on their own.  Where the rules may want
+        any line, or the interpreter refuses to apply a stretch, a few lines are read one by one before
+        trying again: what they wait for (the job's first print, a rule done looking) may come."""
         while a < b:
             cuts = None if not may_apply() else self.alone(block, a, b) if self.alone is not None else ()
-            if cuts is None:  # (a few lines, then ask again: what the rules wait for may come)
-                stop = block.find("\n", max(a, min(a + _AGAIN, b) - 1), b) + 1
-                yield from self._one_by_one(block, a, stop)
-                a = stop
-                continue
-            for cut in sorted(set(cuts)) if len(cuts) > 1 else cuts:
-                if cut > a:
-                    if may_apply() and self.plain_run(block, a, cut):
-                        self.total += block.count("\n", a, cut)
-                    else:
-                        yield from self._one_by_one(block, a, cut)
-                a = block.find("\n", cut, b) + 1  # (a run's lines each end with a line break)
-                yield self.total, split_lines(block[cut:a])
-                self.total += 1
-            if a < b:
-                if may_apply() and self.plain_run(block, a, b):
-                    self.total += block.count("\n", a, b)
+            if cuts is not None:
+                for cut in sorted(set(cuts)) if len(cuts) > 1 else cuts:
+                    if cut > a and not self._bulk(block, a, cut, may_apply):
+                        break
+                    a = block.find("\n", cut, b) + 1  # (a run's lines each end with a line break)
+                    yield self.total, split_lines(block[cut:a])
+                    self.total += 1
                 else:
-                    yield from self._one_by_one(block, a, b)
-            return
+                    if a == b or self._bulk(block, a, b, may_apply):
+                        return
+            stop = block.find("\n", max(a, min(a + _AGAIN, b) - 1), b) + 1
+            yield from self._one_by_one(block, a, stop)
+            a = stop
+
+    def _bulk(self, block: str, a: int, b: int, may_apply: Callable[[], bool]) -> bool:
+        """Apply ``block[a:b]`` at once, if the rules and the interpreter allow it."""
+        if may_apply() and self.plain_run(block, a, b):
+            self.total += block.count("\n", a, b)
+            return True
+        return False
 
     def _one_by_one(self, block: str, start: int, end: int) -> Iterator[tuple[int, list[tuple[str, str]]]]:
         for a, b in line_slices(block, start, end):  # (a few thousand lines at a time)

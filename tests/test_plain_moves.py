@@ -173,6 +173,15 @@ def test_hyrel_runs_are_applied_around_the_moves_a_rule_wants(e_mode, travel, ex
     _same(job, "hyrel")
 
 
+def test_a_run_refused_at_first_is_applied_once_what_it_waits_for_is_read(monkeypatch):
+    # (Cura: the job's first print is in a run that lasts to its end; HY060 looks at the first moves)
+    job = "M82\nG92 E0\nG0 F360 X1 Y1 Z.3\n" + "".join(f"G1 X{i} Y{i} E{i}\n" for i in range(1, 3000))
+    for dialect in ("marlin", "hyrel"):
+        alone, bulk = _how_read(dialect, job, monkeypatch)
+        assert len(alone) < 100 and bulk > 2900, (dialect, len(alone))
+        _same(job, dialect)
+
+
 def test_hyrel_long_lines_are_read_one_by_one(monkeypatch):
     # HY029 looks at lines longer than 100 characters: runs take only moves surely shorter
     long = "G1 X1.1234567 Y2.1234567 Z3.1234567 E4.1234567 F5000.12345" + " " * 50
