@@ -21,7 +21,8 @@ from gclint.machine.profiles import DEFAULT_PROFILE, get_profile
 from gclint.noqa import INLINE_UNSUPPRESSIBLE, NO_CODES
 from gclint.options import Options
 from gclint.rules.base import ANY_T, Finding, Rule, all_rules, matches, select_rules
-from gclint.runs import Runs, comment_tests
+from gclint.runs import CodeLines, Runs, comment_tests
+from gclint.syntax.build import TEXT_CODES
 from gclint.syntax.fastpath import PLAIN_MOVE, run_pattern
 from gclint.syntax.nodes import EXTENDED, GCODE, Command, Line
 from gclint.syntax.parse import parse_line
@@ -359,6 +360,23 @@ class Linter:
         # Runs of plain moves, comment lines, empty lines and (when no rule looks at them either) arcs are
         # applied at once when no rule would look at them (gclint.runs); the other lines come one by one.
         view_patterns = tuple(wants for wants, _ in view_hooks)
+
+        def changes_nothing(raw: str) -> bool:
+            # (an M-code line of a run that no rule would look at and the interpreter has nothing to do with)
+            parsed = parse(raw)
+            if parsed.special or len(parsed.commands) != 1 or "M" in first_chars:
+                return False
+            cmd = parsed.commands[0]
+            if cmd.kind != GCODE or cmd.code in TEXT_CODES:
+                return False
+            always, filtered, apply = get(cmd.code) or build(cmd)
+            return (
+                not always
+                and all(letters.isdisjoint(cmd.params) for _, letters in filtered)
+                and apply == interpreter.apply
+                and not any(wants(raw) for wants in view_patterns)
+            )
+
         run_filters = self._run_filters(build) if plain is not None else None
         runs = Runs(
             run_pattern(self._plain_arcs(build, interpreter), shortest_long) if plain is not None else None,
@@ -367,7 +385,8 @@ class Linter:
             together=all(wants.__self__.flags & re.MULTILINE for wants in view_patterns),
             every_comment=";" in first_chars,
             longest=shortest_long,
-            alone=_alone(run_filters) if run_filters is not None else None,
+            alone=_alone(run_filters) if run_filters else None,
+            codes=CodeLines(changes_nothing),
         )
 
         def may_apply() -> bool:
@@ -537,10 +556,8 @@ class Linter:
 
 def _alone(
     run_filters: tuple[Callable[[str, int, int], list[int] | None], ...],
-) -> Callable[[str, int, int], list[int] | None] | None:
+) -> Callable[[str, int, int], list[int] | None]:
     """The lines of a run to read on their own (gclint.runs): those a rule's run filter may want."""
-    if not run_filters:
-        return None
 
     def alone(text: str, start: int, end: int) -> list[int] | None:
         found: list[int] = []

@@ -16,6 +16,7 @@ from collections.abc import Callable, Iterator
 
 from gclint.machine.interpreter import Interpreter
 from gclint.noqa import may_direct
+from gclint.syntax.fastpath import RUN_CODE_LINE, run_lines
 from gclint.syntax.source import Source, line_slices, split_lines
 
 _COMMENT_LINES = re.compile(r"\n;[^\r\n]*+")  # (a literal start: searched fast)
@@ -31,7 +32,8 @@ class Runs:
     when true of one of them, where ``together``); ``longest``: the shortest line a long-line hook wants
     (None: no such hook); ``every_comment``: every comment line is read (a hook on lines starting ";");
     ``alone``: the starts of the lines of a run to read on their own, the others being applied in bulk
-    around them (None from it: read the whole run line by line); see ``Linter._run``.
+    around them (None from it: read the run line by line for a while); ``codes``: the M-code lines of runs
+    to read on their own; see ``Linter._run``.
     """
 
     def __init__(
@@ -44,6 +46,7 @@ class Runs:
         every_comment: bool,
         longest: int | None,
         alone: Callable[[str, int, int], list[int] | None] | None = None,
+        codes: CodeLines | None = None,
     ) -> None:
         self.search = pattern.search if pattern is not None else None
         self.plain_run = interpreter.plain_run
@@ -54,6 +57,7 @@ class Runs:
         # (a comment line longer than ``longest``, after the line break before it; the pattern's moves are not)
         self.long_line = re.compile(rf"\n[^\r\n]{{{longest + 1}}}") if longest is not None else None
         self.alone = alone
+        self.codes = codes
         self.clean: set[str] = set()
         self.total = 0  # lines read so far
 
@@ -84,24 +88,39 @@ class Runs:
     def _apply(
         self, block: str, a: int, b: int, may_apply: Callable[[], bool]
     ) -> Iterator[tuple[int, list[tuple[str, str]]]]:
-        """Apply the run ``block[a:b]`` but for the lines to read on their own.  Where the rules may want
-        any line, or the interpreter refuses to apply a stretch, a few lines are read one by one before
-        trying again: what they wait for (the job's first print, a rule done looking) may come."""
+        """Apply the run ``block[a:b]`` but for the lines to read on their own.  An M-code line that may
+        change the state is read on its own before the rules are asked about the lines after it.  Where
+        the rules may want any line, or the interpreter refuses to apply a stretch, a few lines are read
+        one by one before trying again: what they wait for (the job's first print, a rule done looking)
+        may come."""
         while a < b:
-            cuts = None if not may_apply() else self.alone(block, a, b) if self.alone is not None else ()
-            if cuts is not None:
-                for cut in sorted(set(cuts)) if len(cuts) > 1 else cuts:
-                    if cut > a and not self._bulk(block, a, cut, may_apply):
-                        break
-                    a = block.find("\n", cut, b) + 1  # (a run's lines each end with a line break)
-                    yield self.total, split_lines(block[cut:a])
-                    self.total += 1
-                else:
-                    if a == b or self._bulk(block, a, b, may_apply):
-                        return
-            stop = block.find("\n", max(a, min(a + _AGAIN, b) - 1), b) + 1
+            refused = b  # (the end of the stretch to read line by line, for a while)
+            if may_apply():
+                stop = self.codes.first(block, a, b) if self.codes is not None else b
+                cuts = self.alone(block, a, stop) if self.alone is not None and stop > a else ()
+                if cuts is not None:
+                    for cut in sorted(set(cuts)) if len(cuts) > 1 else cuts:
+                        if cut > a and not self._bulk(block, a, cut, may_apply):
+                            refused = cut
+                            break
+                        a = self._line(block, cut, b)
+                        yield self.total - 1, split_lines(block[cut:a])
+                    else:
+                        if a == stop or self._bulk(block, a, stop, may_apply):
+                            if stop == b:
+                                return
+                            a = self._line(block, stop, b)
+                            yield self.total - 1, split_lines(block[stop:a])
+                            continue
+                        refused = stop
+            stop = block.find("\n", max(a, min(a + _AGAIN, refused) - 1), b) + 1
             yield from self._one_by_one(block, a, stop)
             a = stop
+
+    def _line(self, block: str, start: int, end: int) -> int:
+        """Count the line at ``start`` (read on its own) and return where the next one starts."""
+        self.total += 1
+        return block.find("\n", start, end) + 1  # (a run's lines each end with a line break)
 
     def _bulk(self, block: str, a: int, b: int, may_apply: Callable[[], bool]) -> bool:
         """Apply ``block[a:b]`` at once, if the rules and the interpreter allow it."""
@@ -163,6 +182,33 @@ class Runs:
         if start < end:
             out.append((start, end, False))
         return out
+
+
+class CodeLines:
+    """The M-code lines of runs to read on their own: those ``changes_nothing`` (the engine's) is not sure of.
+    The others (``M204 S500`` where no rule looks at accelerations) go with the run: nothing to apply.
+    Reading one may change what the rules want of the moves after it (M18, M83): ``Runs`` asks the rules'
+    filters about the lines up to it only."""
+
+    def __init__(self, changes_nothing: Callable[[str], bool]) -> None:
+        self.changes_nothing = changes_nothing
+        self.known: dict[str, bool] = {}  # (the lines repeat: "M106 S255", "M204 S1000")
+
+    def first(self, text: str, start: int, end: int) -> int:
+        """The start of the first M-code line of ``text[start:end]`` to read on its own (``end``: none)."""
+        if text[start] != "M" and text.find("\nM", start, end) < 0:
+            return end
+        known = self.known
+        for at, m in run_lines(RUN_CODE_LINE, text, start, end):
+            raw = m.group()[1:]
+            nothing = known.get(raw)
+            if nothing is None:
+                if len(known) >= _CLEAN_LIMIT:
+                    known.clear()
+                nothing = known[raw] = self.changes_nothing(raw)
+            if not nothing:
+                return at
+        return end
 
 
 def comment_tests(rules, view_patterns) -> tuple[Callable[[str], object], ...]:

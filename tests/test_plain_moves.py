@@ -23,8 +23,8 @@ from tests.strategies import DIALECTS, any_line, numbers
 FOLDER_DIALECT = {"hyrel": "hyrel-v4", "linuxcnc": "machinekit"}
 
 
-def _run(text_or_path: str, dialect: str, plain: bool, *, is_path: bool = False):
-    linter = Linter(Options(dialect=dialect))
+def _run(text_or_path: str, dialect: str, plain: bool, *, is_path: bool = False, **options):
+    linter = Linter(Options(dialect=dialect, **options))
     linter.plain_moves_enabled = plain
     source = Source.open(text_or_path) if is_path else Source.from_text(text_or_path, "<t>")
     ctx, result = linter.prepare(source)
@@ -35,9 +35,9 @@ def _run(text_or_path: str, dialect: str, plain: bool, *, is_path: bool = False)
     return findings, state, result.error
 
 
-def _same(text_or_path: str, dialect: str, *, is_path: bool = False) -> None:
-    fast = _run(text_or_path, dialect, True, is_path=is_path)
-    slow = _run(text_or_path, dialect, False, is_path=is_path)
+def _same(text_or_path: str, dialect: str, *, is_path: bool = False, **options) -> None:
+    fast = _run(text_or_path, dialect, True, is_path=is_path, **options)
+    slow = _run(text_or_path, dialect, False, is_path=is_path, **options)
     assert fast == slow
 
 
@@ -54,27 +54,27 @@ def test_the_pattern_takes_only_plain_moves():
 
 def test_the_route_is_taken_where_no_rule_looks():
     linter = Linter(Options(dialect="marlin"))
-    source = Source.from_text("G1 X1 Y2\nM400\nG1 X3 E1\n", "<t>")
+    source = Source.from_text("G1 X1 Y2\nM104 S200\nG1 X3 E1\n", "<t>")  # (M104: a temperature to keep)
     ctx, result = linter.prepare(source)
     calls = []
     ctx.interpreter.plain_move = lambda *a: calls.append(a)  # type: ignore[method-assign]
     ctx.interpreter.plain_run = lambda *a: calls.append(a[1:]) or False  # type: ignore[method-assign]
     linter._run(source, ctx, result)
     # each run of plain moves is offered whole, then (refused here) applied one move after the other
-    assert calls == [(0, 9), ("G1", 1, "1", "2", None, None, None), (14, 23), ("G1", 3, "3", None, None, "1", None)]
+    assert calls == [(0, 9), ("G1", 1, "1", "2", None, None, None), (19, 28), ("G1", 3, "3", None, None, "1", None)]
 
 
 def test_runs_of_plain_moves_are_applied_whole():
     linter = Linter(Options(dialect="marlin"))
     first = "G28\nG1 Z.3 F600\nG1 X1 Y1 E1\n"  # the first feed and print: one line after the other
     second = "G1 X2 E2\r\nG0 X3 F9000\nG1 Y4 E2.5\nG1 E2\n"  # applied whole
-    source = Source.from_text(first + "M400\n" + second + ";end\n", "<t>")
+    source = Source.from_text(first + "M104 S200\n" + second + ";end\n", "<t>")
     ctx, result = linter.prepare(source)
     runs = []
     offer = ctx.interpreter.plain_run
     ctx.interpreter.plain_run = lambda *a: runs.append((*a[1:], offer(*a))) and runs[-1][-1]  # type: ignore[method-assign]
     linter._run(source, ctx, result)
-    at = len(first) + 5
+    at = len(first) + 10
     assert runs == [(4, len(first), False), (at, at + len(second) + len(";end\n"), True)]  # (comments join runs)
     st = ctx.state
     assert st.position.snapshot() == {"X": 3.0, "Y": 4.0, "Z": 0.3}
@@ -180,6 +180,40 @@ def test_a_run_refused_at_first_is_applied_once_what_it_waits_for_is_read(monkey
         alone, bulk = _how_read(dialect, job, monkeypatch)
         assert len(alone) < 100 and bulk > 2900, (dialect, len(alone))
         _same(job, dialect)
+
+
+def test_m_codes_that_change_nothing_go_with_runs(monkeypatch):
+    # M204 (accelerations): no rule looks at it in Marlin and the interpreter keeps no state for it; M104
+    # sets a temperature, a duplicated word is a syntax issue (SX002) and M587 is a code a view pattern is
+    # about (a WiFi password): those are read on their own
+    head = "G28\nG1 X0 Y0 Z.2 F600\nG1 X1 E1\n"
+    moves = "".join(f"G1 X{i} Y{i} E{i + 2}\n" for i in range(300))
+    codes = ["M204 S500", "M204 P1000 T500", "M104 S200", "M204 S5 S6", "M587 S1 P1234", "M221 S100", "M0204 S5"]
+    job = head + moves + "".join(f"{code}\n{moves}" for code in codes)
+    alone, bulk = _how_read("marlin", job, monkeypatch)
+    lines = job.splitlines()
+    assert [lines[n - 1] for n in alone if lines[n - 1][0] == "M"] == ["M104 S200", "M204 S5 S6", "M587 S1 P1234"]
+    assert bulk > 2000
+    _same(job, "marlin")
+    findings = Linter(Options(dialect="marlin")).check_text(job).findings
+    assert [(f.code, lines[f.line - 1]) for f in findings if f.code.startswith(("SX", "SC"))] == [
+        ("SX002", "M204 S5 S6"),
+        ("SC006", "M587 S1 P1234"),
+    ]
+    # in Hyrel M204 is not a code (DL001): read on its own
+    alone, bulk = _how_read("hyrel", job, monkeypatch)
+    assert "M204 S500" in [lines[n - 1] for n in alone]
+
+
+@pytest.mark.parametrize("select", [["HY030"], ["HY031"], ["HY032"], ["HY039"], ["HY060"], ["HY031", "HY039"]])
+def test_a_code_that_changes_the_state_in_a_run_is_read_before_the_moves_after_it(select):
+    # (M18 in a run made the moves after it wanted, M83 and M229 change what a move's E means: the rules'
+    # run filters are asked about the lines up to such a line only)
+    moves = "".join(f"G1 X{i} Y{i} E{i}\n" for i in range(1, 200))
+    tail = "G0 X5 Y5 E1\nG1 X1 Y1 E-1\nG1 E1\nG1 X2 Y2 E0\n" + moves
+    for code in ("M18", "M84", "M83", "M82", "M229 E1 D1", "M107"):
+        job = f"G28\nM82\nG1 X1 Y1 Z.2 E1 F600\n{moves}{code}\n{tail}{code}\n{tail}"
+        _same(job, "hyrel", select=select)
 
 
 def test_hyrel_long_lines_are_read_one_by_one(monkeypatch):

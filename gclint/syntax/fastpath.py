@@ -98,20 +98,29 @@ def _short_line(words: int) -> int:
 
 @cache
 def run_pattern(arcs: bool, longest: int | None = None) -> re.Pattern[str] | None:
-    """The runs of plain moves and comments, with arcs or without (compiled on first use: it is large);
-    with ``longest``, of moves at most that long (None: no move is surely short enough)."""
+    """The runs of plain moves, M-codes of plain words (no E: the engine reads the ones a rule or the
+    interpreter would look at on their own, gclint.runs.CodeLines) and comments, with arcs or without
+    (compiled on first use: it is large); with ``longest``, of lines at most that long but for comments
+    (None: no move is surely short enough)."""
     sep, num, trail = _SEP, _NUM_P, r"[ \t]{0,64}+"
+    move = "G[01]" + _any_order("XYZEF")
+    code = rf"M[0-9]{{1,4}}+(?:{sep}[A-DF-Z]{num}){{0,6}}+"  # (at most RUN_LINE_LONGEST long)
     if longest is not None and longest < RUN_LINE_LONGEST:
         if _short_line(5) > longest:
             return None
         sep, num, trail = _SHORT_SEP, _SHORT_NUM, r"[ \t]{0,2}+"
         arcs = arcs and _short_line(7) <= longest
-    move = "G[01]" + _any_order("XYZEF", sep, num)
+        xyze = _in_order("XYZE", sep, num)  # (in the order slicers write them: a pattern quick to compile)
+        move = rf"G[01](?:{sep}F{num}{xyze}|{xyze}(?:{sep}F{num})?+)"
+        code = rf"M[0-9]{{1,4}}+(?:{sep}[A-DF-Z]{num}){{0,4}}+"  # (shorter than 5 words)
     if arcs:
         xyzije = _in_order("XYZIJE", sep, num)
         arc = rf"G[23](?:{sep}F{num}{xyzije}|{xyzije}(?:{sep}F{num})?+)"
         move = f"(?:{move}|{arc})"
-    return re.compile(rf"(?m)^(?:(?:{move}{trail}|{_RUN_COMMENT}|)\r?\n)++")
+    return re.compile(rf"(?m)^(?:(?:{move}{trail}|{code}{trail}|{_RUN_COMMENT}|)\r?\n)++")
+
+
+RUN_CODE_LINE = re.compile(r"\nM[^\r\n]*+")  # (the M-code lines of a run, after their line break)
 
 
 PLAIN_NUMBER = re.compile(_NUM_P)  # (the number after a letter of a plain move)
