@@ -110,8 +110,7 @@ def run_pattern(arcs: bool, longest: int | None = None) -> re.Pattern[str] | Non
             return None
         sep, num, trail = _SHORT_SEP, _SHORT_NUM, r"[ \t]{0,2}+"
         arcs = arcs and _short_line(7) <= longest
-        xyze = _in_order("XYZE", sep, num)  # (in the order slicers write them: a pattern quick to compile)
-        move = rf"G[01](?:{sep}F{num}{xyze}|{xyze}(?:{sep}F{num})?+)"
+        move = "G[01]" + _any_order("XYZEF", sep, num)
         code = rf"M[0-9]{{1,4}}+(?:{sep}[A-DF-Z]{num}){{0,4}}+"  # (shorter than 5 words)
     if arcs:
         xyzije = _in_order("XYZIJE", sep, num)

@@ -279,6 +279,14 @@ class Command:
 
     def param(self, letter: str) -> Word | None:
         """The parameter word for ``letter`` (first occurrence), with its column."""
+        if self._words is None and self._src is not None:  # (one word built, not all: a rule's report)
+            start, end = self._span  # type: ignore[misc]
+            words = FAST_WORD.finditer(self._src, start, end)
+            next(words, None)  # (the code word)
+            for m in words:
+                if m.group(1).upper() == letter:
+                    return Word(letter, m.group(2), NUMBER, m.group(0), m.start() + 1)
+            return None
         for w in self.words:
             if w.letter == letter:
                 return w
