@@ -21,7 +21,7 @@ from gclint.machine.profiles import DEFAULT_PROFILE, get_profile
 from gclint.noqa import INLINE_UNSUPPRESSIBLE, NO_CODES
 from gclint.options import Options
 from gclint.rules.base import ANY_T, Finding, Rule, all_rules, matches, select_rules
-from gclint.runs import CodeLines, Runs, comment_tests
+from gclint.runs import CodeLines, Runs, combined, comment_tests, rule_run_filters
 from gclint.syntax.build import TEXT_CODES
 from gclint.syntax.fastpath import PLAIN_MOVE, run_pattern
 from gclint.syntax.nodes import EXTENDED, GCODE, Command, Line
@@ -377,7 +377,7 @@ class Linter:
                 and not any(wants(raw) for wants in view_patterns)
             )
 
-        run_filters = self._run_filters(build) if plain is not None else None
+        run_filters = rule_run_filters(build) if plain is not None else None
         runs = Runs(
             run_pattern(self._plain_arcs(build, interpreter), shortest_long) if plain is not None else None,
             interpreter,
@@ -385,7 +385,7 @@ class Linter:
             together=all(wants.__self__.flags & re.MULTILINE for wants in view_patterns),
             every_comment=";" in first_chars,
             longest=shortest_long,
-            alone=_alone(run_filters) if run_filters else None,
+            alone=combined(run_filters) if run_filters else None,
             codes=CodeLines(changes_nothing),
         )
 
@@ -512,22 +512,6 @@ class Linter:
                 return False
         return True
 
-    @staticmethod
-    def _run_filters(build: Callable) -> tuple[Callable[[str, int, int], list[int] | None], ...] | None:
-        """The run filters of the rules with a plain filter (``Rule.run_filter``), or None when one of them
-        has none (then runs are read line by line)."""
-        out = []
-        for code in ("G0", "G1"):
-            for handler in build(Command(code, GCODE, 1, {}))[0]:
-                rule = handler.__self__
-                if getattr(rule, "plain_filter", None) is not None:
-                    run_filter = getattr(rule, "run_filter", None)
-                    if run_filter is None:
-                        return None
-                    if run_filter not in out:
-                        out.append(run_filter)
-        return tuple(out)
-
     def _plain_moves(
         self, build: Callable, interpreter: Interpreter, line_hooks: tuple
     ) -> dict[str, tuple[str, tuple[Callable[..., bool], ...]]] | None:
@@ -552,26 +536,6 @@ class Linter:
                 return None
             out[code[1]] = (code, filters)
         return out
-
-
-def _alone(
-    run_filters: tuple[Callable[[str, int, int], list[int] | None], ...],
-) -> Callable[[str, int, int], list[int] | None]:
-    """The lines of a run to read on their own (gclint.runs): those a rule's run filter may want."""
-
-    def alone(text: str, start: int, end: int) -> list[int] | None:
-        found: list[int] = []
-        for run_filter in run_filters:
-            try:
-                lines = run_filter(text, start, end)
-            except Exception:  # (line by line, a failing rule's own filter or check raises and it is dropped)
-                return None
-            if lines is None:
-                return None
-            found += lines
-        return found
-
-    return alone
 
 
 def _rule_failed(result: FileResult, rule: type[Rule], exc: Exception, line_number: int | None) -> None:

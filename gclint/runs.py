@@ -17,8 +17,10 @@ from collections.abc import Callable, Iterator
 from gclint.machine.interpreter import Interpreter
 from gclint.noqa import may_direct
 from gclint.syntax.fastpath import RUN_CODE_LINE, run_lines
+from gclint.syntax.nodes import GCODE, Command
 from gclint.syntax.source import Source, line_slices, split_lines
 
+RunFilter = Callable[[str, int, int], "list[int] | None"]  # (the starts of the lines of a run a rule may want)
 _COMMENT_LINES = re.compile(r"\n;[^\r\n]*+")  # (a literal start: searched fast)
 _AGAIN = 1024  # (characters of a run read line by line before the rules are asked again whether they want it)
 _CLEAN_LIMIT = 8192  # comment lines remembered as needing no reading (they repeat: ";WIDTH:0.45")
@@ -45,7 +47,7 @@ class Runs:
         together: bool,
         every_comment: bool,
         longest: int | None,
-        alone: Callable[[str, int, int], list[int] | None] | None = None,
+        alone: RunFilter | None = None,
         codes: CodeLines | None = None,
     ) -> None:
         self.search = pattern.search if pattern is not None else None
@@ -220,3 +222,39 @@ def comment_tests(rules, view_patterns) -> tuple[Callable[[str], object], ...]:
 
 def _always(comment: str) -> bool:  # (the comment hint of a rule that has none: it reads every comment)
     return True
+
+
+def rule_run_filters(build: Callable) -> tuple[RunFilter, ...] | None:
+    """The run filters of the rules with a plain filter (``run_filter``, see docs/architecture.md), from
+    the engine's dispatch ``build``; None when one of them has none (then runs are read line by line)."""
+    out: list[RunFilter] = []
+    for code in ("G0", "G1"):
+        for handler in build(Command(code, GCODE, 1, {}))[0]:
+            rule = handler.__self__
+            if getattr(rule, "plain_filter", None) is not None:
+                run_filter = getattr(rule, "run_filter", None)
+                if run_filter is None:
+                    return None
+                if run_filter not in out:
+                    out.append(run_filter)
+    return tuple(out)
+
+
+def combined(run_filters: tuple[RunFilter, ...]) -> RunFilter:
+    """The lines of a run to read on their own: those one of the rules' run filters may want (None when
+    one of them may want any, or fails: line by line, its rule's own filter or check fails and the rule
+    is dropped)."""
+
+    def alone(text: str, start: int, end: int) -> list[int] | None:
+        found: list[int] = []
+        for run_filter in run_filters:
+            try:
+                lines = run_filter(text, start, end)
+            except Exception:
+                return None
+            if lines is None:
+                return None
+            found += lines
+        return found
+
+    return alone
