@@ -12,7 +12,7 @@ engine's loop.  tests/test_plain_moves.py checks that findings and state are the
 from __future__ import annotations
 
 import re
-from collections.abc import Callable, Iterator
+from collections.abc import Callable, Generator, Iterator
 
 from gclint.machine.interpreter import Interpreter
 from gclint.noqa import may_direct
@@ -22,7 +22,7 @@ from gclint.syntax.source import Source, line_slices, split_lines
 
 RunFilter = Callable[[str, int, int], "list[int] | None"]  # (the starts of the lines of a run a rule may want)
 _COMMENT_LINES = re.compile(r"\n;[^\r\n]*+")  # (a literal start: searched fast)
-_AGAIN = 1024  # (characters of a run read line by line before the rules are asked again whether they want it)
+_AGAIN = 1024  # (characters of a run first read line by line before trying again to apply it at once)
 _CLEAN_LIMIT = 8192  # comment lines remembered as needing no reading (they repeat: ";WIDTH:0.45")
 
 
@@ -92,32 +92,55 @@ class Runs:
     ) -> Iterator[tuple[int, list[tuple[str, str]]]]:
         """Apply the run ``block[a:b]`` but for the lines to read on their own.  An M-code line that may
         change the state is read on its own before the rules are asked about the lines after it.  Where
-        the rules may want any line, or the interpreter refuses to apply a stretch, a few lines are read
-        one by one before trying again: what they wait for (the job's first print, a rule done looking)
-        may come."""
+        the rules may want any move, or the interpreter refuses to apply a stretch, some lines are read one
+        by one before trying again (what they wait for, the job's first print or a rule done looking, may
+        come), twice as many each time in a row: the time stays linear when it never comes."""
+        barrier = -1  # the next M-code line to read on its own (b: none), found up to here
+        cuts: list[int] | None = None  # the rules' lines to read on their own before it, from index i
+        i = 0
+        again = _AGAIN
         while a < b:
-            refused = b  # (the end of the stretch to read line by line, for a while)
-            if may_apply():
-                stop = self.codes.first(block, a, b) if self.codes is not None else b
-                cuts = self.alone(block, a, stop) if self.alone is not None and stop > a else ()
-                if cuts is not None:
-                    for cut in sorted(set(cuts)) if len(cuts) > 1 else cuts:
-                        if cut > a and not self._bulk(block, a, cut, may_apply):
-                            refused = cut
-                            break
-                        a = self._line(block, cut, b)
-                        yield self.total - 1, split_lines(block[cut:a])
+            if not may_apply():
+                cuts = None
+                a = yield from self._some(block, a, b, again)
+                again *= 2
+                continue
+            if barrier < a:
+                barrier = self.codes.first(block, a, b) if self.codes is not None else b
+                cuts = None
+            if cuts is None:
+                found = self.alone(block, a, barrier) if self.alone is not None and barrier > a else ()
+                if found is None:  # (any move: the lines before the first move go at once, then some)
+                    move = a if block[a] == "G" else block.find("\nG", a, barrier) + 1 or barrier
+                    if move == a or not self._bulk(block, a, move, may_apply):
+                        a = yield from self._some(block, a, barrier, again)
+                        again *= 2
                     else:
-                        if a == stop or self._bulk(block, a, stop, may_apply):
-                            if stop == b:
-                                return
-                            a = self._line(block, stop, b)
-                            yield self.total - 1, split_lines(block[stop:a])
-                            continue
-                        refused = stop
-            stop = block.find("\n", max(a, min(a + _AGAIN, refused) - 1), b) + 1
-            yield from self._one_by_one(block, a, stop)
-            a = stop
+                        a = move
+                    continue
+                cuts, i = sorted(set(found)) if len(found) > 1 else list(found), 0
+            while i < len(cuts) and cuts[i] < a:
+                i += 1
+            stop = cuts[i] if i < len(cuts) else barrier
+            if stop > a:
+                if not self._bulk(block, a, stop, may_apply):
+                    a = yield from self._some(block, a, stop, again)
+                    again *= 2
+                    continue
+                a, again = stop, _AGAIN
+            if a < b:  # (a line to read on its own: the rules', or the M-code)
+                stop = self._line(block, a, b)
+                yield self.total - 1, split_lines(block[a:stop])
+                a = stop
+
+    def _some(
+        self, block: str, a: int, limit: int, size: int
+    ) -> Generator[tuple[int, list[tuple[str, str]]], None, int]:
+        """Read the lines from ``a`` one by one, about ``size`` characters of them (not past ``limit``, a
+        line start); return where the next line starts."""
+        stop = block.find("\n", max(a, min(a + size, limit) - 1), limit) + 1
+        yield from self._one_by_one(block, a, stop)
+        return stop
 
     def _line(self, block: str, start: int, end: int) -> int:
         """Count the line at ``start`` (read on its own) and return where the next one starts."""

@@ -216,6 +216,31 @@ def test_a_code_that_changes_the_state_in_a_run_is_read_before_the_moves_after_i
         _same(job, "hyrel", select=select)
 
 
+@pytest.mark.parametrize(
+    "dialect,job",
+    [
+        # (a feed only on G0: the interpreter refuses every stretch with an F for good, M204 in between)
+        ("marlin", "M204 S500\nG0 F9000 X10 Y10\nG1 X20 Y20 E1\n" * 30000),
+        # (no working feed ever: HY050 wants every move; comment lines only: the Hyrel rules want any move)
+        ("hyrel", "".join(f"G1 X{i % 200}.5 Y{i % 150}.25\n" for i in range(90000))),
+        ("hyrel", (";" + "x" * 99 + "\n") * 20000),
+    ],
+)
+def test_a_run_never_applied_is_tried_a_bounded_number_of_times(dialect, job, monkeypatch):
+    # (found by a stranger review: each retry searched the rest of the run again, 15 times slower)
+    from gclint.machine.interpreter import Interpreter
+    from gclint.runs import CodeLines
+
+    calls = {"first": 0, "plain_run": 0}
+    first, plain_run = CodeLines.first, Interpreter.plain_run
+    monkeypatch.setattr(CodeLines, "first", lambda *a: calls.__setitem__("first", calls["first"] + 1) or first(*a))
+    monkeypatch.setattr(
+        Interpreter, "plain_run", lambda *a: calls.__setitem__("plain_run", calls["plain_run"] + 1) or plain_run(*a)
+    )
+    Linter(Options(dialect=dialect)).check_text(job)
+    assert calls["first"] <= 10 and calls["plain_run"] <= 60, calls  # (1 KB at a time: thousands)
+
+
 def test_hyrel_long_lines_are_read_one_by_one(monkeypatch):
     # HY029 looks at lines longer than 100 characters: runs take only moves surely shorter
     long = "G1 X1.1234567 Y2.1234567 Z3.1234567 E4.1234567 F5000.12345" + " " * 50
