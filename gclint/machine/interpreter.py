@@ -261,14 +261,15 @@ class Interpreter:
             self._extrude(e, mode, number)
 
     def plain_run(self, text: str, start: int, end: int) -> bool:
-        """Apply ``text[start:end]``, whole lines that are plain moves, comments, empty lines and, where
-        the engine allows them, arcs (``fastpath.run_pattern``), as ``plain_move`` and ``_arc`` would one
+        """Apply ``text[start:end]``, whole lines that are plain moves, comments, empty lines, M-codes that
+        change nothing and, where the engine allows them, arcs (``fastpath.run_pattern``, ``runs.CodeLines``),
+        as ``plain_move`` and ``_arc`` would one
         line after the other, without cutting the text into lines: what a run leaves is its last X, Y, Z,
         F, E and motion mode.  Returns False, having changed nothing, when the run may change more than
         that (relative moves, the first move, feed or print of the job): then the caller applies the
         lines one by one."""
         if text[start] != "G" and text.find("\nG", start, end) < 0:
-            return True  # comments only
+            return True  # (no move: comments, empty lines, M-codes that change nothing)
         st = self.state
         if not st.absolute or st.first_move_line is None:
             return False
