@@ -226,6 +226,11 @@ class Issue:
         return f"Issue({self.code}, col={self.column}, {self.message!r})"
 
 
+def _fast_word(m: re.Match[str]) -> Word:
+    """The word a match of ``FAST_WORD`` in a fast-path command's source is."""
+    return Word(m.group(1).upper(), m.group(2), NUMBER, m.group(0), m.start() + 1)
+
+
 class Command:
     """One command on a line: its code (``G1``, ``M109``, ``T3``, ``G2.1``, ``SET_FAN_SPEED``, ``if``)
     and its parameter words.
@@ -285,7 +290,7 @@ class Command:
             next(words, None)  # (the code word)
             for m in words:
                 if m.group(1).upper() == letter:
-                    return Word(letter, m.group(2), NUMBER, m.group(0), m.start() + 1)
+                    return _fast_word(m)
             return None
         for w in self.words:
             if w.letter == letter:
@@ -321,10 +326,7 @@ class Command:
     def _materialize(self) -> None:
         """Build the code word and parameter words the fast path's canonical tier left unbuilt."""
         start, end = self._span  # type: ignore[misc]
-        words = [
-            Word(m.group(1).upper(), m.group(2), NUMBER, m.group(0), m.start() + 1)
-            for m in FAST_WORD.finditer(self._src, start, end)  # type: ignore[arg-type]
-        ]
+        words = [_fast_word(m) for m in FAST_WORD.finditer(self._src, start, end)]  # type: ignore[arg-type]
         if self.kind == GCODE and words:
             self._word, self._words = words[0], tuple(words[1:])
         else:  # pragma: no cover - only G/M/T commands are left unbuilt
