@@ -150,18 +150,15 @@ class MoveChecks:
             found += run_line_starts(RUN_G1_E_FIRST, text, start, end)  # (every G1 with E and no X or Y)
             if st.e_absolute:  # (an amount that does not go forward from the one before)
                 last = st.e_position
-                if text.find(";", start, end) < 0:  # (no comment: every E is a move's)
-                    for m in RUN_E.finditer(text, start, end):
-                        value = float(m.group(1))
-                        if value <= 0 or (last is not None and value < last):
-                            found.append(text.rfind("\n", start, m.start()) + 1 or start)
-                        last = value
+                if text.find(";", start, end) < 0:  # (no comment: every E is a move's, found faster)
+                    amounts = ((None, m) for m in RUN_E.finditer(text, start, end))
                 else:
-                    for at, m in run_lines(RUN_E_AMOUNT, text, start, end):
-                        value = float(m.group(1))
-                        if value <= 0 or (last is not None and value < last):
-                            found.append(at)
-                        last = value
+                    amounts = run_lines(RUN_E_AMOUNT, text, start, end)
+                for at, m in amounts:
+                    value = float(m.group(1))
+                    if value <= 0 or (last is not None and value < last):
+                        found.append(at if at is not None else text.rfind("\n", start, m.start()) + 1 or start)
+                    last = value
             else:  # (a negative or zero amount)
                 found += [
                     text.rfind("\n", start, m.start()) + 1 or start for m in E_NOT_FORWARD.finditer(text, start, end)
