@@ -387,6 +387,7 @@ class Linter:
             longest=shortest_long,
             alone=combined(run_filters) if run_filters else None,
             codes=CodeLines(changes_nothing),
+            add=ctx.add_on,
         )
 
         def may_apply() -> bool:

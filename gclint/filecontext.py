@@ -95,11 +95,25 @@ class FileContext:
         end_column: int | None = None,
     ) -> None:
         if isinstance(line, Line):
-            number, text = line.number, line.raw
-            if len(text) > SOURCE_LIMIT:
-                text = text[:SOURCE_LIMIT] + "..."
+            self.add_on(rule, line.number, line.raw, column, message, fix=fix, severity=severity, end_column=end_column)
         else:
-            number, text = line, None
+            self.add_on(rule, line, None, column, message, fix=fix, severity=severity, end_column=end_column)
+
+    def add_on(
+        self,
+        rule: Rule | type[Rule],
+        number: int,
+        raw: str | None,
+        column: int,
+        message: str,
+        *,
+        fix: Fix | None = None,
+        severity: Severity | None = None,
+        end_column: int | None = None,
+        plain: bool = False,
+    ) -> None:
+        """``add`` for line ``number`` whose text is ``raw`` (None: not known); ``plain``: the line is of plain
+        number words and the message quotes only them (nothing to mask: a finding on a line of a run)."""
         code = rule.code
         if (self.noqa or self.directives) and self.suppresses(code, number):
             return  # (not kept, so not counted against the bounds below)
@@ -109,20 +123,13 @@ class FileContext:
         if latest is not None and ((same_line and latest[4] >= PER_LINE) or len(self.findings) >= MAX_FINDINGS):
             self._count(latest, number, severity, fix)
             return
-        if isinstance(line, Line):  # once, for every output and the cache: a rule may quote a secret word
-            message = mask_quoted(message, line.raw)
-        finding = Finding(
-            path=self.path,
-            line=number,
-            column=max(1, column),
-            code=code,
-            severity=severity,
-            message=message,
-            name=rule.name,
-            fix=fix,
-            end_column=end_column,
-            source=text,
-        )
+        if raw is not None:  # once, for every output and the cache: a rule may quote a secret word
+            if not plain:
+                message = mask_quoted(message, raw)
+            if len(raw) > SOURCE_LIMIT:
+                raw = raw[:SOURCE_LIMIT] + "..."
+        # (path, line, column, code, severity, message, name, fix, end_column, source: positional, the hot path)
+        finding = Finding(self.path, number, max(1, column), code, severity, message, rule.name, fix, end_column, raw)
         self.findings.append(finding)
         self._latest[code] = [finding, message, 0, 0, latest[4] + 1 if same_line else 1]  # type: ignore[index]
 

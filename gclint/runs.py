@@ -13,14 +13,17 @@ from __future__ import annotations
 
 import re
 from collections.abc import Callable, Generator, Iterator
+from operator import itemgetter
 
 from gclint.machine.interpreter import Interpreter
 from gclint.noqa import may_direct
+from gclint.rules.base import RunFinding
 from gclint.syntax.fastpath import RUN_CODE_LINE, run_lines
 from gclint.syntax.nodes import GCODE, Command
 from gclint.syntax.source import Source, line_slices, split_lines
 
-RunFilter = Callable[[str, int, int], "list[int] | None"]  # (the starts of the lines of a run a rule may want)
+# (the starts of the lines of a run a rule may want, and its findings on lines it need not read: RunFinding)
+RunFilter = Callable[[str, int, int], "list[int | RunFinding] | None"]
 _COMMENT_LINES = re.compile(r"\n;[^\r\n]*+")  # (a literal start: searched fast)
 _AGAIN = 1024  # (characters of a run first read line by line before trying again to apply it at once)
 _CLEAN_LIMIT = 8192  # comment lines remembered as needing no reading (they repeat: ";WIDTH:0.45")
@@ -34,8 +37,9 @@ class Runs:
     when true of one of them, where ``together``); ``longest``: the shortest line a long-line hook wants
     (None: no such hook); ``every_comment``: every comment line is read (a hook on lines starting ";");
     ``alone``: the starts of the lines of a run to read on their own, the others being applied in bulk
-    around them (None from it: read the run line by line for a while); ``codes``: the M-code lines of runs
-    to read on their own; see ``Linter._run``.
+    around them (None from it: read the run line by line for a while), and the findings the rules make on
+    lines they need not read (``RunFinding``: ``add``, FileContext.add_on, adds them in line order);
+    ``codes``: the M-code lines of runs to read on their own; see ``Linter._run``.
     """
 
     def __init__(
@@ -49,6 +53,7 @@ class Runs:
         longest: int | None,
         alone: RunFilter | None = None,
         codes: CodeLines | None = None,
+        add: Callable[..., None] | None = None,
     ) -> None:
         self.search = pattern.search if pattern is not None else None
         self.plain_run = interpreter.plain_run
@@ -60,6 +65,7 @@ class Runs:
         self.long_line = re.compile(rf"\n[^\r\n]{{{longest + 1}}}") if longest is not None else None
         self.alone = alone
         self.codes = codes
+        self.add = add  # (FileContext.add_on: the rules' findings on the lines of runs, RunFinding)
         self.clean: set[str] = set()
         self.total = 0  # lines read so far
 
@@ -97,7 +103,8 @@ class Runs:
         come), twice as many each time in a row: the time stays linear when it never comes."""
         barrier = -1  # the next M-code line to read on its own (b: none), found up to here
         cuts: list[int] | None = None  # the rules' lines to read on their own before it, from index i
-        i = 0
+        reports: list[RunFinding] = []  # the rules' findings on the other lines up to it, from index j
+        i = j = 0
         again = _AGAIN
         while a < b:
             if not may_apply():
@@ -118,20 +125,43 @@ class Runs:
                     else:
                         a = move
                     continue
-                cuts, i = sorted(set(found)) if len(found) > 1 else list(found), 0
+                cuts, reports = _cuts_and_reports(found)
+                i = j = 0
             while i < len(cuts) and cuts[i] < a:
                 i += 1
+            while j < len(reports) and reports[j].at < a:  # (lines read one by one since: they reported)
+                j += 1
             stop = cuts[i] if i < len(cuts) else barrier
             if stop > a:
+                before = self.total
                 if not self._bulk(block, a, stop, may_apply):
                     a = yield from self._some(block, a, stop, again)
                     again *= 2
                     continue
+                if j < len(reports) and reports[j].at < stop:
+                    j = self._report(block, a, before, reports, j, stop)
                 a, again = stop, _AGAIN
             if a < b:  # (a line to read on its own: the rules', or the M-code)
                 stop = self._line(block, a, b)
                 yield self.total - 1, split_lines(block[a:stop])
                 a = stop
+
+    def _report(self, block: str, a: int, total: int, reports: list[RunFinding], j: int, stop: int) -> int:
+        """Add the findings ``reports[j:]`` made on lines before ``stop`` of the stretch ``block[a:stop]``,
+        just applied (its first line is line ``total + 1``); return the index of the next one."""
+        number, pos = total + 1, a
+        add = self.add
+        while j < len(reports):
+            r = reports[j]
+            if r.at >= stop:
+                break
+            number += block.count("\n", pos, r.at)
+            pos = r.at
+            end = block.find("\n", pos)  # (a run's lines each end with a line break)
+            raw = block[pos : end - 1 if block[end - 1] == "\r" else end]
+            add(r.rule, number, raw, r.column, r.message, end_column=r.end_column, plain=raw[0] == "G")  # (a move)
+            j += 1
+        return j
 
     def _some(
         self, block: str, a: int, limit: int, size: int
@@ -234,6 +264,18 @@ class CodeLines:
             if not nothing:
                 return at
         return end
+
+
+def _cuts_and_reports(found: list[int | RunFinding] | tuple) -> tuple[list[int], list[RunFinding]]:
+    """The rules' lines to read on their own (in order), and their findings on other lines (in line order,
+    each line's in the order given)."""
+    cuts = [x for x in found if x.__class__ is int]
+    if len(cuts) == len(found):
+        return sorted(set(cuts)) if len(cuts) > 1 else cuts, []
+    read = set(cuts)
+    reports = [x for x in found if x.__class__ is not int and x.at not in read]
+    reports.sort(key=itemgetter(0))  # (by ``at``)
+    return sorted(read), reports
 
 
 def comment_tests(rules, view_patterns) -> tuple[Callable[[str], object], ...]:

@@ -29,7 +29,8 @@ def _run(text_or_path: str, dialect: str, plain: bool, *, is_path: bool = False,
     source = Source.open(text_or_path) if is_path else Source.from_text(text_or_path, "<t>")
     ctx, result = linter.prepare(source)
     linter._run(source, ctx, result)
-    findings = sorted((f.line, f.column, f.code, f.message) for f in ctx.findings)
+    # (in the order made: past MAX_FINDINGS, which are listed and which counted depends on it)
+    findings = [(f.line, f.column, f.end_column, f.code, f.severity, f.message, f.source) for f in ctx.findings]
     state = {f.name: getattr(ctx.state, f.name) for f in dataclasses.fields(ctx.state) if f.name != "position"}
     state["position"] = ctx.state.position.snapshot()
     return findings, state, result.error
@@ -150,18 +151,20 @@ _SLICED = "".join(f"G1 X{i} Y1 E{0.3 + i / 100:.2f}\n" for i in range(8))  # (HY
 
 
 @pytest.mark.parametrize(
-    "e_mode,travel,expected",
+    "e_mode,travel,found,expected",
     [
-        # relative E: a retract and a prime (G1 with E and no X or Y), a negative or zero E while moving
-        ("M83", "G1 E-.8 F2100\nG0 F7200 X5 Y5\nG1 Z.2 F720\nG1 E.8 F2100\n", [1, 4]),
-        ("M83", "G1 X5 Y5 E-.1\nG1 F2100 E+0.0\nG1 Y6 X5 E0.\nG1 X7 E.05\n", [1, 2, 3]),
+        # relative E: a retract and a prime (G1 with E and no X or Y), a negative or zero E while moving:
+        # HY031's, found without reading the lines (RunFinding)
+        ("M83", "G1 E-.8 F2100\nG0 F7200 X5 Y5\nG1 Z.2 F720\nG1 E.8 F2100\n", [1, 4], []),
+        ("M83", "G1 X5 Y5 E-.1\nG1 F2100 E+0.0\nG1 Y6 X5 E0.\nG1 X7 E.05\n", [1, 2, 3], []),
         # absolute E: an amount that goes back (a retract, a wipe); the same amount again is fine
-        ("M82", "G1 X5 Y5 E9000\nG1 X6 E9000\nG1 F2100 E8999\nG1 X7 Y7 E8998\nG1 E9000 F2100\n", [3, 4, 5]),
-        # G0 with E (HY030), whatever the mode
-        ("M83", "G0 X5 E1\nG1 X6 Y6 E.2\n", [1]),
+        ("M82", "G1 X5 Y5 E9000\nG1 X6 E9000\nG1 F2100 E8999\nG1 X7 Y7 E8998\nG1 E9000 F2100\n", [3, 4, 5], []),
+        ("M82", "G1 Z.3 E9000\nG1 X5 E8999.5\nG1 E9001 X6\nG1 Y7 E9002\n", [2], []),
+        # G0 with E (HY030), whatever the mode: read on its own
+        ("M83", "G0 X5 E1\nG1 X6 Y6 E.2\n", [1], [1]),
     ],
 )
-def test_hyrel_runs_are_applied_around_the_moves_a_rule_wants(e_mode, travel, expected, monkeypatch):
+def test_hyrel_runs_are_applied_around_the_moves_a_rule_wants(e_mode, travel, found, expected, monkeypatch):
     head = f"G28\n{e_mode}\nG1 X1 Y1 Z.2 E1 F600\n{_SLICED}"  # (one by one: the first print, HY060 deciding)
     moves = "".join(f"G1 X{i} Y{i} E{i * 10}\n" for i in range(2, 200))  # (E forward in either mode)
     tail = "".join(f"G1 X{i} Y{i} E{i * 10}\n" for i in range(1000, 1100))
@@ -170,6 +173,8 @@ def test_hyrel_runs_are_applied_around_the_moves_a_rule_wants(e_mode, travel, ex
     alone, bulk = _how_read("hyrel", job, monkeypatch)
     assert [n - skip for n in alone if n > skip] == expected
     assert bulk >= len(moves.splitlines()) // 2 + len(tail.splitlines())
+    findings = Linter(Options(dialect="hyrel")).check_text(job).findings
+    assert [f.line - skip for f in findings if f.line > skip and f.code in ("HY030", "HY031")] == found
     _same(job, "hyrel")
 
 

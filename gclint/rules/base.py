@@ -19,8 +19,9 @@ from collections.abc import Callable, Iterable
 from dataclasses import dataclass, field
 from enum import IntEnum
 from functools import cache
+from operator import attrgetter
 from pathlib import Path
-from typing import TYPE_CHECKING, ClassVar
+from typing import TYPE_CHECKING, ClassVar, NamedTuple
 
 from gclint.syntax.nodes import Command, Comment, Line, Node
 
@@ -101,8 +102,21 @@ class Finding:
             out["fix"] = self.fix.to_dict()
         return out
 
-    def sort_key(self) -> tuple:
-        return (self.path, self.line, self.column, self.code)
+    # (path, line, column, code): the order of reports, as a key for sorting (``key=Finding.sort_key``)
+    sort_key: ClassVar[Callable[[Finding], tuple]] = attrgetter("path", "line", "column", "code")
+
+
+class RunFinding(NamedTuple):
+    """A finding a rule's run filter makes on a line of a run (``run_filter``, docs/architecture.md) in
+    place of having the line read: reading it would make exactly this finding (the rule's ``report``
+    at these columns) and do nothing else but apply the move.  The engine adds it where the line is, in
+    line order, unless another filter wants the line read (then reading it makes the finding)."""
+
+    at: int  # the start of the line in the run's text
+    rule: Rule
+    column: int
+    end_column: int
+    message: str
 
 
 # Every link to a rule's documentation (SARIF helpUri, the language server's codeDescription) is made

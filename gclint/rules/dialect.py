@@ -12,6 +12,8 @@ from gclint.dialects.base import Param
 from gclint.rules.base import Rule, Severity, register
 from gclint.syntax.nodes import EXTENDED, GCODE, IMPLICIT, META, OWORD, TEXT, WORD_LETTERS, Command, Line, to_number
 
+_UNSEEN = ("",)  # (a verdict not made yet)
+
 
 @register
 class UnknownCode(Rule):
@@ -44,15 +46,27 @@ class UnknownCode(Rule):
         flavor = ctx.context.flavor
         self.flavor = firmware.get(flavor) if flavor is not None else None
         self.declared = frozenset(ctx.options.extend_known_codes)
+        self.verdicts: dict[tuple[str, str | None], tuple[str, Severity] | None] = {}  # (codes repeat: M204)
 
     def check(self, line: Line, cmd: Command) -> None:
+        key = (cmd.kind, cmd.code)
+        verdict = self.verdicts.get(key, _UNSEEN)
+        if verdict is _UNSEEN:
+            if len(self.verdicts) >= 4096:
+                self.verdicts.clear()
+            verdict = self.verdicts[key] = self._verdict(cmd)
+        if verdict is not None:
+            self.report(line, verdict[0], node=cmd, severity=verdict[1])
+
+    def _verdict(self, cmd: Command) -> tuple[str, Severity] | None:
+        """The message and severity for a command of this kind and code, or None when it is known."""
         code = cmd.code
         if code is not None and (
             code in self.declared
             or code.upper() in self.declared
             or (self.flavor is not None and self.flavor.knows(code))
         ):
-            return
+            return None
         dialect = self.ctx.dialect
         name = dialect.title.split(" (")[0]  # without the description in brackets
         severity = Severity.parse(dialect.unknown_severity)
@@ -70,10 +84,10 @@ class UnknownCode(Rule):
         elif kind == OWORD:
             message = f"O-word: {name} has no LinuxCNC O-word subroutines or control flow"
         elif kind == IMPLICIT:
-            return
+            return None
         else:
             message = f"'#' parameters: {name} has no LinuxCNC parameters"
-        self.report(line, message, node=cmd, severity=severity)
+        return message, severity
 
     def _checked_against(self) -> str:
         title = self.ctx.dialect.title.split(" (")[0]  # the name, without the description in brackets

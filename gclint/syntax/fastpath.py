@@ -126,12 +126,11 @@ PLAIN_NUMBER = re.compile(_NUM_P)  # (the number after a letter of a plain move)
 PLAIN_E = re.compile(rf"(?m)^G[0-3][^E\r\n]*+E({_NUM_P})")  # (the E amounts of the moves of a run)
 RUN_E = re.compile(r"E([-+.0-9]++)")  # (the same in a run without comments: every E is a word; found faster)
 # Lines of a run, each pattern written from the line break before the line (a literal start: searched fast;
-# run_lines gives the line starts): a move with E, and its amount; a G1 with E before any X or Y word (G1
-# E-0.8 F2100, G1 F2100 E0.8: every G1 with E and no X or Y is one); a G0 with E.
-RUN_E_AMOUNT = re.compile(rf"\nG[0-3][^E\r\n]*+E({_NUM_P})")
+# run_lines gives the line starts): a G1 with E before any X or Y word (G1 E-0.8 F2100, G1 F2100 E0.8: every
+# G1 with E and no X or Y is one); a G0 with E.
 RUN_G1_E_FIRST = re.compile(rf"\nG1(?:{_SEP}[FZ]{_NUM_P})*+{_SEP}E")
 RUN_G0_E = re.compile(r"\nG0[^E\r\n]*+E")
-# A negative or zero E amount, wherever it is (a comment too: the caller reads the line on its own)
+# A negative or zero E amount, wherever it is (a comment too: the caller looks at the line)
 E_NOT_FORWARD = re.compile(r"E(?:-|\+?+(?=[0.])0*+\.?+0*+(?![0-9]))")
 
 

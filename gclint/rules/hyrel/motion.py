@@ -11,19 +11,21 @@ costs a few dict lookups in total.  Rules in other modules (flow.py) join the sa
 
 from __future__ import annotations
 
+from itertools import chain, count, islice
+from math import inf
 from types import MethodType
 from typing import ClassVar, Protocol
 
 from gclint.machine.state import NATIVE
-from gclint.rules.base import Rule, Severity, register
+from gclint.rules.base import Rule, RunFinding, Severity, register
 from gclint.syntax.fastpath import (
     E_NOT_FORWARD,
+    PLAIN_E,
+    PLAIN_NUMBER,
     RUN_E,
-    RUN_E_AMOUNT,
     RUN_G0_E,
     RUN_G1_E_FIRST,
     run_line_starts,
-    run_lines,
 )
 from gclint.syntax.nodes import Command, Line, to_number
 
@@ -124,12 +126,14 @@ class MoveChecks:
             return self.inverse_time is not None
         return e is not None and self.rapid_e is not None
 
-    def wants_in_run(self, text: str, start: int, end: int) -> list[int] | None:
+    def wants_in_run(self, text: str, start: int, end: int) -> list[int | RunFinding] | None:
         """The starts of the lines of a run (``text[start:end]``, whole lines of plain moves, comments and
         empty lines: gclint.runs) whose moves ``wants_plain`` may want, in any order, or None when it may
         want any move of the run.  Decided with the state at the run's start: the engine reads the lines
         given on their own, and what reading them changes (a member clearing its slot, the working feed
-        set) never makes another line of the run wanted.  A line given may be one no member wants."""
+        set) never makes another line of the run wanted.  A line given may be one no member wants.
+        HY031's moves come as its findings (``TravelMarkedPrinting.in_run``): while this answers with
+        lines, no other member looks at a G1 of a run."""
         st = self.state
         motors_off = self.motors_off
         relative_print = self.relative_print
@@ -145,24 +149,9 @@ class MoveChecks:
             or (relative_print is not None and not st.absolute and not relative_print.reported)
         ):
             return None
-        found: list[int] = []
-        if self.travel_prints is not None and st.flow_mode == NATIVE:  # (as _prints_forward, without its shortcut)
-            found += run_line_starts(RUN_G1_E_FIRST, text, start, end)  # (every G1 with E and no X or Y)
-            if st.e_absolute:  # (an amount that does not go forward from the one before)
-                last = st.e_position
-                if text.find(";", start, end) < 0:  # (no comment: every E is a move's, found faster)
-                    amounts = ((None, m) for m in RUN_E.finditer(text, start, end))
-                else:
-                    amounts = run_lines(RUN_E_AMOUNT, text, start, end)
-                for at, m in amounts:
-                    value = float(m.group(1))
-                    if value <= 0 or (last is not None and value < last):
-                        found.append(at if at is not None else text.rfind("\n", start, m.start()) + 1 or start)
-                    last = value
-            else:  # (a negative or zero amount)
-                found += [
-                    text.rfind("\n", start, m.start()) + 1 or start for m in E_NOT_FORWARD.finditer(text, start, end)
-                ]
+        found: list[int | RunFinding] = []
+        if self.travel_prints is not None and st.flow_mode == NATIVE:
+            found += self.travel_prints.in_run(text, start, end)
         if self.rapid_e is not None:
             found += run_line_starts(RUN_G0_E, text, start, end)
         return found
@@ -311,12 +300,7 @@ class TravelMarkedPrinting(MoveRule):
         # called for G1 lines with E while native flow is active
         p = cmd.params
         if not _moves_axis(p):
-            self.report(
-                line,
-                "G1 with only E does nothing in native flow (no motion, nothing dispensed): the head's "
-                "M721/M722 unprime/prime do the retracts; remove it or enable E values with M229 E1 D1",
-                node=cmd,
-            )
+            self.report(line, _E_ONLY, node=cmd)
             return
         text = p["E"]
         if text is None:
@@ -326,18 +310,73 @@ class TravelMarkedPrinting(MoveRule):
         except ValueError:
             return
         st = self.state
-        if value <= 0:
-            why = f"E{text} extrudes nothing"
-        elif st.e_absolute and st.e_position is not None and value < st.e_position:
-            why = f"E{text} goes back from E{st.e_position:g} (a retract while moving)"
-        else:
+        message = _travel_message(text, value, st.e_absolute, st.e_position)
+        if message is None:
             self.fine, self.fine_value = text, value
             return
-        self.report(
-            line,
-            f"{why}, but in native flow any E makes this G1 print along the move; remove E to make it a travel",
-            node=cmd.param("E") or cmd,
-        )
+        self.report(line, message, node=cmd.param("E") or cmd)
+
+    def in_run(self, text: str, start: int, end: int) -> list[RunFinding]:
+        """The findings ``move`` would make on the G1 moves of a run (``text[start:end]``, whole lines of
+        plain moves, comments, empty lines and M-codes without E: gclint.runs), read one after the other
+        from the state at the run's start: no line of a run changes the flow or the E mode, and the E
+        position is followed as the moves change it (an absolute E is the position; every move or arc
+        of a run with E has a number).  In a move of a run the only letters are its words'."""
+        st = self.state
+        found: list[RunFinding] = []
+        e_only = set()  # (where the E word of each G1 with E and no axis is)
+        for at in run_line_starts(RUN_G1_E_FIRST, text, start, end):  # (G1 with E before any X or Y)
+            stop = text.find("\n", at)
+            if text.find("X", at, stop) < 0 and text.find("Y", at, stop) < 0 and text.find("Z", at, stop) < 0:
+                found.append(RunFinding(at, self, 1, 3, _E_ONLY))  # (at the command: "G1", columns 1-3)
+                e_only.add(text.find("E", at, stop))
+        if st.e_absolute:  # (an amount that goes back from the one before, or is not positive)
+            pattern = RUN_E if text.find(";", start, end) < 0 else PLAIN_E  # (no comment: every E is a move's)
+            amounts = pattern.findall(text, start, end)
+            values = list(map(float, amounts))
+            last = st.e_position
+            before = chain((-inf if last is None else last,), values)
+            hits = [i for i, value, previous in zip(count(), values, before) if value <= 0 or value < previous]
+            matches = pattern.finditer(text, start, end)
+            skipped = 0
+            for i in hits:
+                at = next(islice(matches, i - skipped, None)).start(1) - 1  # (the i-th amount's E)
+                skipped = i + 1
+                if at not in e_only:
+                    self._at_e(text, start, at, amounts[i], values[i], values[i - 1] if i else last, found)
+        else:  # (a negative or zero amount, wherever it is: _at_e skips those of comments, G0 and arcs)
+            for m in E_NOT_FORWARD.finditer(text, start, end):
+                at = m.start()
+                amount = PLAIN_NUMBER.match(text, at + 1)
+                if at not in e_only and amount is not None:
+                    self._at_e(text, start, at, amount.group(), float(amount.group()), None, found)
+        return found
+
+    def _at_e(self, text: str, start: int, at: int, amount: str, value: float, last: float | None, found: list) -> None:
+        """Add ``move``'s finding, if any, for the E word at ``at`` (of ``amount``) if it is a G1's that
+        moves an axis (the E position before it is ``last``)."""
+        line = text.rfind("\n", start, at) + 1 or start
+        if text.startswith("G1", line):
+            message = _travel_message(amount, value, self.state.e_absolute, last)
+            if message is not None:  # (at the E word: its letter and number)
+                found.append(RunFinding(line, self, at - line + 1, at - line + 2 + len(amount), message))
+
+
+_E_ONLY = (
+    "G1 with only E does nothing in native flow (no motion, nothing dispensed): the head's "
+    "M721/M722 unprime/prime do the retracts; remove it or enable E values with M229 E1 D1"
+)
+
+
+def _travel_message(text: str, value: float, e_absolute: bool, e_position: float | None) -> str | None:
+    """HY031's message for a G1 moving an axis with E ``text`` (of ``value``), or None: it extrudes forward."""
+    if value <= 0:
+        why = f"E{text} extrudes nothing"
+    elif e_absolute and e_position is not None and value < e_position:
+        why = f"E{text} goes back from E{e_position:g} (a retract while moving)"
+    else:
+        return None
+    return f"{why}, but in native flow any E makes this G1 print along the move; remove E to make it a travel"
 
 
 @register
