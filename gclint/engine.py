@@ -361,21 +361,31 @@ class Linter:
         # applied at once when no rule would look at them (gclint.runs); the other lines come one by one.
         view_patterns = tuple(wants for wants, _ in view_hooks)
 
-        def changes_nothing(raw: str) -> bool:
-            # (an M-code line of a run that no rule would look at and the interpreter has nothing to do with)
+        def effect_of(raw: str) -> tuple[tuple, ...] | None:
+            # (an M-code line of a run the interpreter has nothing to do with, no view pattern is about, and
+            # only pure rules look at: their findings on it, as CodeLines repeats them; None: read it)
             parsed = parse(raw)
             if parsed.special or len(parsed.commands) != 1 or "M" in first_chars:
-                return False
+                return None
             cmd = parsed.commands[0]
             if cmd.kind != GCODE or cmd.code in TEXT_CODES:
-                return False
+                return None
             always, filtered, apply = get(cmd.code) or build(cmd)
-            return (
-                not always
-                and all(letters.isdisjoint(cmd.params) for _, letters in filtered)
-                and apply == interpreter.apply
-                and not any(wants(raw) for wants in view_patterns)
-            )
+            if apply != interpreter.apply or any(wants(raw) for wants in view_patterns):
+                return None
+            handlers = [*always, *(h for h, letters in filtered if not letters.isdisjoint(cmd.params))]
+            if not handlers:
+                return ()
+            if not all(getattr(getattr(h, "__self__", None), "pure", False) for h in handlers):
+                return None
+            line = Line(0, raw, "\n", parsed)
+            try:
+                made = ctx.made_by(lambda: [handler(line, cmd) for handler in handlers])
+            except Exception:  # (read on its own, the rule fails again and is dropped)
+                return None
+            if any(fix is not None for _, _, _, fix, _, _ in made):
+                return None  # (a fix names its line)
+            return tuple((rule, column, end, message, severity) for rule, column, message, _, severity, end in made)
 
         run_filters = rule_run_filters(build) if plain is not None else None
         runs = Runs(
@@ -386,7 +396,7 @@ class Linter:
             every_comment=";" in first_chars,
             longest=shortest_long,
             alone=combined(run_filters) if run_filters else None,
-            codes=CodeLines(changes_nothing),
+            codes=CodeLines(effect_of),
             add=ctx.add_on,
         )
 

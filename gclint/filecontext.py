@@ -133,6 +133,20 @@ class FileContext:
         self.findings.append(finding)
         self._latest[code] = [finding, message, 0, 0, latest[4] + 1 if same_line else 1]  # type: ignore[index]
 
+    def made_by(self, call: Callable[[], object]) -> list[tuple]:
+        """The findings ``call`` makes, as (rule, column, message, fix, severity, end_column), not added."""
+        made: list[tuple] = []
+
+        def record(rule, line, column, message, *, fix=None, severity=None, end_column=None) -> None:
+            made.append((rule, column, message, fix, severity, end_column))
+
+        self.add = record  # type: ignore[method-assign]
+        try:
+            call()
+        finally:
+            del self.add
+        return made
+
     @staticmethod
     def _count(latest: list, number: int, severity: Severity, fix: Fix | None) -> None:
         """Count a finding into the latest one of its code: "(and N more on this line)"."""

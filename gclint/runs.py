@@ -102,8 +102,9 @@ class Runs:
         by one before trying again (what they wait for, the job's first print or a rule done looking, may
         come), twice as many each time in a row: the time stays linear when it never comes."""
         barrier = -1  # the next M-code line to read on its own (b: none), found up to here
+        coded: list[RunFinding] = []  # the findings on the M-code lines before it (CodeLines)
         cuts: list[int] | None = None  # the rules' lines to read on their own before it, from index i
-        reports: list[RunFinding] = []  # the rules' findings on the other lines up to it, from index j
+        reports: list[RunFinding] = []  # the findings on the other lines up to it, from index j
         i = j = 0
         again = _AGAIN
         while a < b:
@@ -113,19 +114,21 @@ class Runs:
                 again *= 2
                 continue
             if barrier < a:
-                barrier = self.codes.first(block, a, b) if self.codes is not None else b
+                barrier, coded = self.codes.first(block, a, b) if self.codes is not None else (b, [])
                 cuts = None
             if cuts is None:
                 found = self.alone(block, a, barrier) if self.alone is not None and barrier > a else ()
                 if found is None:  # (any move: the lines before the first move go at once, then some)
                     move = a if block[a] == "G" else block.find("\nG", a, barrier) + 1 or barrier
+                    before = self.total
                     if move == a or not self._bulk(block, a, move, may_apply):
                         a = yield from self._some(block, a, barrier, again)
                         again *= 2
                     else:
+                        self._report(block, a, before, [r for r in coded if a <= r.at < move], 0, move)
                         a = move
                     continue
-                cuts, reports = _cuts_and_reports(found)
+                cuts, reports = _cuts_and_reports(found, [r for r in coded if r.at >= a])
                 i = j = 0
             while i < len(cuts) and cuts[i] < a:
                 i += 1
@@ -159,7 +162,16 @@ class Runs:
             pos = r.at
             end = block.find("\n", pos)  # (a run's lines each end with a line break)
             raw = block[pos : end - 1 if block[end - 1] == "\r" else end]
-            add(r.rule, number, raw, r.column, r.message, end_column=r.end_column, plain=raw[0] == "G")  # (a move)
+            add(
+                r.rule,
+                number,
+                raw,
+                r.column,
+                r.message,
+                severity=r.severity,
+                end_column=r.end_column,
+                plain=raw[0] == "G",
+            )
             j += 1
         return j
 
@@ -240,40 +252,50 @@ class Runs:
 
 
 class CodeLines:
-    """The M-code lines of runs to read on their own: those ``changes_nothing`` (the engine's) is not sure of.
-    The others (``M204 S500`` where no rule looks at accelerations) go with the run: nothing to apply.
-    Reading one may change what the rules want of the moves after it (M18, M83): ``Runs`` asks the rules'
-    filters about the lines up to it only."""
+    """The M-code lines of runs to read on their own: those ``effect_of`` (the engine's) is not sure of.
+    The others go with the run: ``M204 S500`` where no rule looks at accelerations changes nothing, and
+    where only pure rules (``Rule.pure``) look at it (DL001 on Hyrel), their findings on it are made once
+    and repeated on each such line.  Reading a line may change what the rules want of the moves after it
+    (M18, M83): ``Runs`` asks the rules' filters about the lines up to it only."""
 
-    def __init__(self, changes_nothing: Callable[[str], bool]) -> None:
-        self.changes_nothing = changes_nothing
-        self.known: dict[str, bool] = {}  # (the lines repeat: "M106 S255", "M204 S1000")
+    def __init__(self, effect_of: Callable[[str], tuple[tuple, ...] | None]) -> None:
+        self.effect_of = effect_of
+        self.known: dict[str, tuple[tuple, ...] | None] = {}  # (the lines repeat: "M106 S255", "M204 S1000")
 
-    def first(self, text: str, start: int, end: int) -> int:
-        """The start of the first M-code line of ``text[start:end]`` to read on its own (``end``: none)."""
+    def first(self, text: str, start: int, end: int) -> tuple[int, list[RunFinding]]:
+        """The start of the first M-code line of ``text[start:end]`` to read on its own (``end``: none), and
+        the findings on the M-code lines before it."""
+        found: list[RunFinding] = []
         if text[start] != "M" and text.find("\nM", start, end) < 0:
-            return end
+            return end, found
         known = self.known
         for at, m in run_lines(RUN_CODE_LINE, text, start, end):
             raw = m.group()[1:]
-            nothing = known.get(raw)
-            if nothing is None:
+            effect = known.get(raw, _UNKNOWN)
+            if effect is _UNKNOWN:
                 if len(known) >= _CLEAN_LIMIT:
                     known.clear()
-                nothing = known[raw] = self.changes_nothing(raw)
-            if not nothing:
-                return at
-        return end
+                effect = known[raw] = self.effect_of(raw)
+            if effect is None:
+                return at, found
+            for rule, column, end_column, message, severity in effect:
+                found.append(RunFinding(at, rule, column, end_column, message, severity))
+        return end, found
 
 
-def _cuts_and_reports(found: list[int | RunFinding] | tuple) -> tuple[list[int], list[RunFinding]]:
-    """The rules' lines to read on their own (in order), and their findings on other lines (in line order,
-    each line's in the order given)."""
+_UNKNOWN = (("",),)  # (a line's effect not known yet)
+
+
+def _cuts_and_reports(
+    found: list[int | RunFinding] | tuple, more: list[RunFinding]
+) -> tuple[list[int], list[RunFinding]]:
+    """The rules' lines to read on their own (in order), and the findings (theirs, then ``more``) on other
+    lines (in line order, each line's in the order given)."""
     cuts = [x for x in found if x.__class__ is int]
-    if len(cuts) == len(found):
+    if len(cuts) == len(found) and not more:
         return sorted(set(cuts)) if len(cuts) > 1 else cuts, []
     read = set(cuts)
-    reports = [x for x in found if x.__class__ is not int and x.at not in read]
+    reports = [x for x in (*found, *more) if x.__class__ is not int and x.at not in read]
     reports.sort(key=itemgetter(0))  # (by ``at``)
     return sorted(read), reports
 

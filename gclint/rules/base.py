@@ -115,8 +115,9 @@ class RunFinding(NamedTuple):
     at: int  # the start of the line in the run's text
     rule: Rule
     column: int
-    end_column: int
+    end_column: int | None
     message: str
+    severity: Severity | None = None  # (None: the rule's)
 
 
 # Every link to a rule's documentation (SARIF helpUri, the language server's codeDescription) is made
@@ -196,6 +197,10 @@ class Rule:
     # engine tests the comment lines of a run together, else one by one.
     on_line_matching: ClassVar[re.Pattern | None] = None
     on_unknown_code: ClassVar[bool] = False  # call check for codes the dialect does not have
+    # check's findings on a command depend only on the command's text and the file's settings (dialect,
+    # options), never on the state or the line's number, and it keeps nothing: for an M-code line that
+    # repeats in runs ("M204 S1000") the engine makes them once and repeats them (runs.CodeLines)
+    pure: ClassVar[bool] = False
     on_numbered: ClassVar[bool] = False  # call check_line for lines with an N number or a checksum
     on_issue: ClassVar[bool] = False  # call check_issues for lines with syntax issues
     fixable: ClassVar[bool] = False

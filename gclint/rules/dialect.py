@@ -40,6 +40,7 @@ class UnknownCode(Rule):
         "(research/firmware_codes.md)"
     )
     on_unknown_code = True
+    pure = True
 
     def __init__(self, ctx) -> None:
         super().__init__(ctx)
