@@ -387,9 +387,10 @@ class Linter:
                 return None  # (a fix names its line)
             return tuple((rule, column, end, message, severity) for rule, column, message, _, severity, end in made)
 
-        run_filters = rule_run_filters(build) if plain is not None else None
+        arcs = plain is not None and self._plain_arcs(build, interpreter)
+        run_filters = rule_run_filters(build, arcs) if plain is not None else None
         runs = Runs(
-            run_pattern(self._plain_arcs(build, interpreter), shortest_long) if plain is not None else None,
+            run_pattern(arcs, shortest_long) if plain is not None else None,
             interpreter,
             comment_tests(rules, view_patterns),
             together=all(wants.__self__.flags & re.MULTILINE for wants in view_patterns),
@@ -512,14 +513,15 @@ class Linter:
 
     @staticmethod
     def _plain_arcs(build: Callable, interpreter: Interpreter) -> bool:
-        """Whether the arcs of runs (fastpath.run_pattern: G2/G3 with X Y Z I J E F) need no rule in this file:
-        none listens to G2/G3 but for letters those arcs never carry, and the interpreter's own arc
-        handler applies them."""
+        """Whether runs take arcs (fastpath.run_pattern: G2/G3 with X Y Z I J E F) in this file: the
+        interpreter's own arc handler applies them, and every rule that listens to G2/G3 (for letters those
+        arcs may carry) has a run filter (``rule_run_filters`` asks it about the arcs of runs too)."""
         for code in ("G2", "G3"):
             always, filtered, apply = build(Command(code, GCODE, 1, {}))
-            if always or any(not letters.isdisjoint("XYZIJEF") for _, letters in filtered):
-                return False
             if apply != interpreter._arc:
+                return False
+            listening = (*always, *(handler for handler, letters in filtered if not letters.isdisjoint("XYZIJEF")))
+            if any(getattr(handler.__self__, "run_filter", None) is None for handler in listening):
                 return False
         return True
 

@@ -311,19 +311,24 @@ def _always(comment: str) -> bool:  # (the comment hint of a rule that has none:
     return True
 
 
-def rule_run_filters(build: Callable) -> tuple[RunFilter, ...] | None:
-    """The run filters of the rules with a plain filter (``run_filter``, see docs/architecture.md), from
-    the engine's dispatch ``build``; None when one of them has none (then runs are read line by line)."""
+def rule_run_filters(build: Callable, arcs: bool = False) -> tuple[RunFilter, ...] | None:
+    """The run filters of the rules with a plain filter (``run_filter``, see docs/architecture.md), and with
+    ``arcs`` (runs take arcs: ``Linter._plain_arcs``) of the rules listening to G2/G3 for letters those arcs
+    may carry, from the engine's dispatch ``build``; None when one of them has none (then runs are read
+    line by line)."""
     out: list[RunFilter] = []
-    for code in ("G0", "G1"):
-        for handler in build(Command(code, GCODE, 1, {}))[0]:
-            rule = handler.__self__
-            if getattr(rule, "plain_filter", None) is not None:
-                run_filter = getattr(rule, "run_filter", None)
-                if run_filter is None:
-                    return None
-                if run_filter not in out:
-                    out.append(run_filter)
+    for code in ("G0", "G1", *(("G2", "G3") if arcs else ())):
+        always, filtered, _ = build(Command(code, GCODE, 1, {}))
+        if code in ("G0", "G1"):
+            listening = [h for h in always if getattr(h.__self__, "plain_filter", None) is not None]
+        else:
+            listening = [*always, *(h for h, letters in filtered if not letters.isdisjoint("XYZIJEF"))]
+        for handler in listening:
+            run_filter = getattr(handler.__self__, "run_filter", None)
+            if run_filter is None:
+                return None
+            if run_filter not in out:
+                out.append(run_filter)
     return tuple(out)
 
 

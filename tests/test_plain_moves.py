@@ -262,6 +262,32 @@ def test_hyrel_long_lines_are_read_one_by_one(monkeypatch):
     _same(job, "hyrel")
 
 
+def test_hyrel_runs_take_arcs_of_short_words(monkeypatch):
+    # every arc rule of Hyrel has a run filter: a slicer's arcs go with the runs, but for the ones a rule
+    # may want (no centre, HY017) and those longer than 100 characters (HY029) or possibly so
+    arcs = "".join(f"G{2 + i % 2} X{i}.125 Y57.743 I-1.022 J-.197 E.0191\n" for i in range(300))
+    no_centre = "G2 X5 Y5 I0 J-0.000 E.01\n"
+    wide = "G3 X1000.12345 Y1000.12345 Z1000.12345 I-1000.12345 J-1000.12345 E1000.12345 F1000.12345\n"
+    long = "G3  X1.5  Y2.5  I1  J1  E.01\n"  # (two blanks: possibly long, read on its own; not HY029's)
+    longer = "G3" + "".join(f" {letter}-12345.678901" for letter in "XYZIJE") + " F12345.678901\n"
+    assert len(wide) == 89 and len(longer) == 107
+    job = "G28\nM83\nG1 X1 Y1 Z.2 E1 F600\n" + _SLICED + arcs + no_centre + arcs + wide + long + arcs + longer + arcs
+    alone, bulk = _how_read("hyrel", job, monkeypatch)
+    lines = job.splitlines()
+    read = [lines[n - 1] for n in alone if lines[n - 1].startswith(("G2 ", "G3 "))]
+    assert {no_centre[:-1], long[:-1], longer[:-1]} <= set(read) and wide[:-1] not in read
+    assert len(read) < 100 and bulk >= 1100  # (the first ones while HY060 decides, then every 300 arcs)
+    found = {(f.code, lines[f.line - 1]) for f in Linter(Options(dialect="hyrel")).check_text(job).findings}
+    assert {("HY017", no_centre[:-1]), ("HY029", longer[:-1])} <= found
+    _same(job, "hyrel")
+    # under M229 E1 (HY037) or after G18 (HY052), the arcs are read
+    for head, code in (("M229 E1 D1\n", "HY037"), ("G18\n", "HY052")):
+        alone, bulk = _how_read("hyrel", head + job, monkeypatch)
+        assert len(alone) > 1200, code
+        assert code in {f.code for f in Linter(Options(dialect="hyrel")).check_text(head + job).findings}
+        _same(head + job, "hyrel")
+
+
 def test_the_run_patterns():
     from gclint.syntax.fastpath import PLAIN_MOVE_RUN, run_pattern
 

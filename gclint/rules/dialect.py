@@ -13,6 +13,7 @@ from gclint.rules.base import Rule, Severity, register
 from gclint.syntax.nodes import EXTENDED, GCODE, IMPLICIT, META, OWORD, TEXT, WORD_LETTERS, Command, Line, to_number
 
 _UNSEEN = ("",)  # (a verdict not made yet)
+_ARC_LETTERS = frozenset("XYZIJEF")  # (the words of an arc of a run: fastpath.run_pattern)
 
 
 @register
@@ -233,12 +234,20 @@ class UnknownParameter(Rule):
         }
         self.codes = tuple(self.allowed)
         self._seen: dict[tuple, tuple[str, ...]] = {}
+        if all(self.allowed.get(code, _ARC_LETTERS) >= _ARC_LETTERS for code in ("G2", "G3")):
+            self.run_filter = self._no_arcs
 
     def trigger_letters(self, code: str) -> frozenset[str] | None:
         # Moves are the hot path: call check only when a G0/G1 has a letter the dialect does not allow.
         if code in ("G0", "G1") and code in self.allowed:
             return WORD_LETTERS - self.allowed[code]
         return None
+
+    @staticmethod
+    def _no_arcs(text: str, start: int, end: int) -> list[int]:
+        """The run filter where G2 and G3 take every letter an arc of a run may carry (X Y Z I J E F):
+        it wants none of them (gclint.runs asks it only about arcs)."""
+        return []
 
     def check(self, line: Line, cmd: Command) -> None:
         if cmd.params.keys() <= self.allowed[cmd.code]:  # type: ignore[index]

@@ -92,6 +92,11 @@ _SHORT_SEP = r"[ \t]{1,2}+"
 _SHORT_NUM = r"[-+]?+(?:[0-9]{1,6}+(?:\.[0-9]{0,7}+)?+|\.[0-9]{1,7}+)"
 
 
+# Arcs there: one blank before each word, numbers of at most 11 characters (4 digits, a point and 5)
+_ARC_NUM = r"[-+]?+(?:[0-9]{1,4}+(?:\.[0-9]{0,5}+)?+|\.[0-9]{1,5}+)"
+_ARC_LINE = 2 + 7 * (1 + 1 + 11) + 2  # ("G2", the words, 2 trailing blanks)
+
+
 def _short_line(words: int) -> int:
     return 2 + words * (2 + 1 + 15) + 2  # ("G1", the words, 2 trailing blanks)
 
@@ -105,16 +110,18 @@ def run_pattern(arcs: bool, longest: int | None = None) -> re.Pattern[str] | Non
     sep, num, trail = _SEP, _NUM_P, r"[ \t]{0,64}+"
     move = "G[01]" + _any_order("XYZEF")
     code = rf"M[0-9]{{1,4}}+(?:{sep}[A-DF-Z]{num}){{0,6}}+"  # (at most RUN_LINE_LONGEST long)
+    arc_sep, arc_num = sep, num
     if longest is not None and longest < RUN_LINE_LONGEST:
         if _short_line(5) > longest:
             return None
         sep, num, trail = _SHORT_SEP, _SHORT_NUM, r"[ \t]{0,2}+"
-        arcs = arcs and _short_line(7) <= longest
+        arc_sep, arc_num = r"[ \t]", _ARC_NUM  # (7 words of a slicer's arc fitting: 95 characters at most)
+        arcs = arcs and longest >= _ARC_LINE
         move = "G[01]" + _any_order("XYZEF", sep, num)
         code = rf"M[0-9]{{1,4}}+(?:{sep}[A-DF-Z]{num}){{0,4}}+"  # (shorter than 5 words)
     if arcs:
-        xyzije = _in_order("XYZIJE", sep, num)
-        arc = rf"G[23](?:{sep}F{num}{xyzije}|{xyzije}(?:{sep}F{num})?+)"
+        xyzije = _in_order("XYZIJE", arc_sep, arc_num)
+        arc = rf"G[23](?:{arc_sep}F{arc_num}{xyzije}|{xyzije}(?:{arc_sep}F{arc_num})?+)"
         move = f"(?:{move}|{arc})"
     return re.compile(rf"(?m)^(?:(?:{move}{trail}|{code}{trail}|{_RUN_COMMENT}|)\r?\n)++")
 
@@ -127,9 +134,11 @@ PLAIN_E = re.compile(rf"(?m)^G[0-3][^E\r\n]*+E({_NUM_P})")  # (the E amounts of 
 RUN_E = re.compile(r"E([-+.0-9]++)")  # (the same in a run without comments: every E is a word; found faster)
 # Lines of a run, each pattern written from the line break before the line (a literal start: searched fast;
 # run_lines gives the line starts): a G1 with E before any X or Y word (G1 E-0.8 F2100, G1 F2100 E0.8: every
-# G1 with E and no X or Y is one); a G0 with E.
+# G1 with E and no X or Y is one); a G0 with E; an arc, an arc with E.
 RUN_G1_E_FIRST = re.compile(rf"\nG1(?:{_SEP}[FZ]{_NUM_P})*+{_SEP}E")
 RUN_G0_E = re.compile(r"\nG0[^E\r\n]*+E")
+RUN_ARC = re.compile(r"\nG[23][^\r\n]*+")  # (an arc of a run: its words are X Y Z I J E F)
+RUN_ARC_E = re.compile(r"\nG[23][^E\r\n]*+E")
 # A negative or zero E amount, wherever it is (a comment too: the caller looks at the line)
 E_NOT_FORWARD = re.compile(r"E(?:-|\+?+(?=[0.])0*+\.?+0*+(?![0-9]))")
 

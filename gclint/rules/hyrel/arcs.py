@@ -7,13 +7,19 @@ catalogue in ../shared/research/dialects.md section 3 (H17-H23, F07).  Hyrel's p
 
 from __future__ import annotations
 
+import re
+
 from gclint.dialects.base import Param
 from gclint.rules.base import Rule, Severity, register
 from gclint.rules.dialect import ParamTableRule
+from gclint.syntax.fastpath import RUN_ARC, RUN_ARC_E, run_line_starts, run_lines
 from gclint.syntax.nodes import Command, Line, to_number
 
 _PLAIN = ("G2", "G3")
 _ALL_ARCS = ("G2", "G3", "G2.1", "G3.1", "G2.2", "G3.2", "G2.3", "G3.3")
+
+# A non-zero I or J word of an arc of a run (plain numbers: a digit 1-9 after the sign, zeros and point)
+_NONZERO_CENTRE = re.compile(r"[IJ][-+]?+0*+\.?+0*+[1-9]")
 
 # End and start closer than this (mm) are the same point: G-code is usually written to 3 decimals.
 FULL_CIRCLE_TOLERANCE = 0.001
@@ -86,6 +92,10 @@ class ArcSegmentCountNotFullCircle(Rule):
     codes = _PLAIN
     families = ("hyrel",)
 
+    def run_filter(self, text: str, start: int, end: int) -> list[int]:
+        """None of the arcs of a run (gclint.runs): they carry no S."""
+        return []
+
     def check(self, line: Line, cmd: Command) -> None:
         text = cmd.params.get("S")
         if text is None:
@@ -121,6 +131,10 @@ class ArcRadiusOrK(ParamTableRule):
     example_good = "G2 X20 Y0 I10 J0 F1200"
     source = "Gcode page, G2 Clockwise Arc (catalogue H19)"
     families = ("hyrel",)
+
+    def run_filter(self, text: str, start: int, end: int) -> list[int]:
+        """The arcs of a run (gclint.runs: no R or K) with no non-zero I or J."""
+        return [at for at, m in run_lines(RUN_ARC, text, start, end) if _NONZERO_CENTRE.search(m.group()) is None]
 
     def check(self, line: Line, cmd: Command) -> None:
         super().check(line, cmd)  # R and K are forbidden (table: G2/G3)
@@ -227,6 +241,10 @@ class ArcEAmountIgnored(Rule):
     codes = _ALL_ARCS
     families = ("hyrel",)
 
+    def run_filter(self, text: str, start: int, end: int) -> list[int]:
+        """The arcs of a run with E under M229 E1 (a line of a run changes neither)."""
+        return run_line_starts(RUN_ARC_E, text, start, end) if self.state.e_values() else []
+
     def check(self, line: Line, cmd: Command) -> None:
         if "E" in cmd.params and self.state.e_values():
             self.report(
@@ -259,6 +277,10 @@ class PlainArcInOtherPlane(Rule):
     source = "Gcode page, G16-G19 Arc Plane (catalogue H23)"
     codes = _PLAIN
     families = ("hyrel",)
+
+    def run_filter(self, text: str, start: int, end: int) -> list[int]:
+        """Every arc of a run outside the XY plane (a line of a run does not change the plane)."""
+        return run_line_starts(RUN_ARC, text, start, end) if self.state.plane != 17 else []
 
     def check(self, line: Line, cmd: Command) -> None:
         plane = self.state.plane

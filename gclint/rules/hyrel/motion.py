@@ -85,19 +85,19 @@ class MoveChecks:
         own_codes = tuple(c for c in rule.codes if c not in _MOVES)
         rule.codes = own_codes  # type: ignore[misc]
         rule.move_checks = checks  # type: ignore[attr-defined]
+        # (every member's: its checks of arcs in runs want what the members' moves want, wants_in_run)
+        rule.run_filter = checks.wants_in_run  # type: ignore[attr-defined]
         leader = checks.leader
         if leader is None or (not own_codes and not checks.direct):
             if leader is not None:  # hand over: the old leader goes back to its own codes and check
                 del leader.check
                 del leader.plain_filter
-                del leader.run_filter
                 leader.codes = tuple(c for c in leader.codes if c not in _MOVES)  # type: ignore[misc]
             checks.leader = rule
             checks.direct = not own_codes
             rule.codes = (*own_codes, *_MOVES)  # type: ignore[misc]
             rule.check = MethodType(_listen if not own_codes else _listen_and_own, rule)  # type: ignore[method-assign]
             rule.plain_filter = checks.wants_plain  # type: ignore[attr-defined]
-            rule.run_filter = checks.wants_in_run  # type: ignore[attr-defined]
         return checks
 
     def wants_plain(self, mode: str, x: str | None, y: str | None, z: str | None, e: str | None, f: str | None) -> bool:
@@ -133,7 +133,8 @@ class MoveChecks:
         given on their own, and what reading them changes (a member clearing its slot, the working feed
         set) never makes another line of the run wanted.  A line given may be one no member wants.
         HY031's moves come as its findings (``TravelMarkedPrinting.in_run``): while this answers with
-        lines, no other member looks at a G1 of a run."""
+        lines, no other member looks at a G1 of a run.  It answers for the members' checks of arcs too
+        (HY032, HY039, HY042, HY050, HY053: each looks at a plain arc of a run only where it answers None)."""
         st = self.state
         motors_off = self.motors_off
         relative_print = self.relative_print
