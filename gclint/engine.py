@@ -122,9 +122,12 @@ class Linter:
             return result
         result.digest = source.sha256
         ignored = self.per_file_ignores(path)
-        result.findings = [
-            f for f in ctx.findings if not ctx.suppressed(f) and not (ignored and matches(f.code, ignored))
-        ]
+        if ctx.may_suppress() or ignored:
+            result.findings = [
+                f for f in ctx.findings if not ctx.suppressed(f) and not (ignored and matches(f.code, ignored))
+            ]
+        else:
+            result.findings = list(ctx.findings)
         if source.byte_view is not None and source.byte_view.lines:
             result.findings += self._byte_view_findings(path, source.byte_view.lines, ignored)
         self._check_suppressions(ctx, result)

@@ -115,9 +115,12 @@ class FileContext:
         """``add`` for line ``number`` whose text is ``raw`` (None: not known); ``plain``: the line is of plain
         number words and the message quotes only them (nothing to mask: a finding on a line of a run)."""
         code = rule.code
-        if (self.noqa or self.directives) and self.suppresses(code, number):
+        if (self.noqa.lines or self.directives.lines) and self.suppresses(code, number):
             return  # (not kept, so not counted against the bounds below)
-        severity = self.severity_of(code, severity if severity is not None else rule.severity)
+        if severity is None:
+            severity = rule.severity
+        if self.options.severity:
+            severity = self.severity_of(code, severity)
         latest = self._latest.get(code)
         same_line = latest is not None and latest[0].line == number
         if latest is not None and ((same_line and latest[4] >= PER_LINE) or len(self.findings) >= MAX_FINDINGS):
@@ -190,6 +193,10 @@ class FileContext:
 
     def suppressed(self, finding: Finding) -> bool:
         return self.suppresses(finding.code, finding.line)
+
+    def may_suppress(self) -> bool:
+        """Whether the job has a noqa or a ``gclint: disable`` comment (else ``suppressed`` is always False)."""
+        return bool(self.noqa.lines or self.directives.lines)
 
     def suppresses(self, code: str, number: int) -> bool:
         """Whether a finding of ``code`` on line ``number`` is suppressed by the job's comments (a noqa on
