@@ -27,6 +27,7 @@ RunFilter = Callable[[str, int, int], "list[int | RunFinding] | None"]
 _COMMENT_LINES = re.compile(r"\n;[^\r\n]*+")  # (a literal start: searched fast)
 _AGAIN = 1024  # (characters of a run first read line by line before trying again to apply it at once)
 _CLEAN_LIMIT = 8192  # comment lines remembered as needing no reading (they repeat: ";WIDTH:0.45")
+_QUIET_LONGEST = 1024  # (the longest comments of a run, joined, remembered as needing no reading)
 
 
 class Runs:
@@ -67,6 +68,7 @@ class Runs:
         self.codes = codes
         self.add = add  # (FileContext.add_on: the rules' findings on the lines of runs, RunFinding)
         self.clean: set[str] = set()
+        self.quiet: set[str] = set()  # (the comments of runs, joined, that need no reading)
         self.total = 0  # lines read so far
 
     def lines(self, source: Source, may_apply: Callable[[], bool]) -> Iterator[tuple[int, list[tuple[str, str]]]]:
@@ -210,19 +212,34 @@ class Runs:
 
     def any_needs_reading(self, block: str, start: int, end: int) -> bool:
         """Whether a comment line of the run ``block[start:end]`` may need reading (tested together)."""
+        clean, quiet = self.clean, self.quiet
         if block[start] == ";":
             first = block[start : block.find("\n", start)]
-            if self.needs_reading(first[:-1] if first[-1:] == "\r" else first):
-                return True
+            if first[-1:] == "\r":
+                first = first[:-1]
+            if first not in clean:
+                if self.needs_reading(first):
+                    return True
+                self._remember(clean, first)
         for a, b in line_slices(block, start, end):  # (a few thousand comments at a time)
             comments = _COMMENT_LINES.findall(block, a - (a > start), b)  # (each after its line break)
             if comments:
                 joined = "".join(comments)
+                if joined in quiet:  # (the comments of runs repeat: ";WIPE_START", ";WIPE_END")
+                    continue
                 if (self.long_line is not None and self.long_line.search(joined)) or any(
                     test(joined) for test in self.tests
                 ):
                     return True
+                if len(joined) <= _QUIET_LONGEST:
+                    self._remember(quiet, joined)
         return False
+
+    @staticmethod
+    def _remember(texts: set[str], text: str) -> None:
+        if len(texts) >= _CLEAN_LIMIT:
+            texts.clear()
+        texts.add(text)
 
     def parts(self, block: str, start: int, end: int) -> list[tuple[int, int, bool]]:
         """The run ``block[start:end]`` as (start, end, read one by one): cut around each comment line that
@@ -242,9 +259,7 @@ class Runs:
                     out.append((comment, stop, True))
                     start = stop
                 else:
-                    if len(clean) >= _CLEAN_LIMIT:
-                        clean.clear()
-                    clean.add(text)
+                    self._remember(clean, text)
             comment = block.find("\n;", stop - 1, end) + 1 or end
         if start < end:
             out.append((start, end, False))
