@@ -321,6 +321,12 @@ def test_the_run_patterns():
     run = "G1 X1 E.5\nG1 E-0.8 F2100\nG0 X2\r\n\nG1 F1 E+1. Y2\nG2 X1 Y1 I1 J1 E2\n"
     assert RUN_E.findall(run) == PLAIN_E.findall(run) == [".5", "-0.8", "+1.", "2"]
     assert PLAIN_E.findall(";TYPE:External E1\n" + run) == [".5", "-0.8", "+1.", "2"]
+    from gclint.syntax.fastpath import run_amounts
+
+    for text in (run, ";c\n" + run, "G1 X1\n;c E2\n" + run):  # (without comments, and with, from any line)
+        for start in (0, text.index("\n") + 1):
+            pattern, at = run_amounts(text, start, len(text))
+            assert pattern.findall(text, at, len(text)) == PLAIN_E.findall(text, start, len(text)), (text, start)
     # arcs (where no rule looks at them): X Y Z I J E in that order, F first or last
     assert ARC_RUN.fullmatch("G2 X1 Y2 I3 J4 E5\nG3 F1 X1 Y1 I1 J1\n;c\nG1 Y1 X1\nG2 X1 Y1 I1 J1 E1 F1\n")
     assert not PLAIN_RUN.fullmatch("G2 X1 Y2 I3 J4\n")

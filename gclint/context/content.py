@@ -23,7 +23,6 @@ from gclint.syntax.nodes import GCODE, TEXT, Command, Word
 from gclint.syntax.parse import parse_line
 
 _LINE_BREAK = re.compile(r"\r\n?|\n")  # as gclint.syntax.source reads lines
-_LAST_BREAK = re.compile(r"(?:\r\n?|\n)\Z")
 _LINE_LIMIT = 2000  # longer lines are not read for clues (they are reported by the check itself)
 
 
@@ -103,7 +102,7 @@ def read_content(head: str, complete: bool, tail: str | None = None) -> ContentR
     end, whole lines; slicers put their end code there)."""
     reading = ContentReading()
     if not complete:  # cut short: the last line may be half a line
-        whole = head[: -len(end.group())] if (end := _LAST_BREAK.search(head)) else head
+        whole = head[:-2] if head.endswith("\r\n") else head[:-1] if head.endswith(("\r", "\n")) else head
         head = whole[: max(whole.rfind("\n"), whole.rfind("\r")) + 1]
     _read_text(reading, head, True)
     if tail:

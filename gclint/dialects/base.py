@@ -222,6 +222,7 @@ class HeadScan:
         self.head = head
         self._lowered: str | None = None
         self._seen: dict[str, str | None] = {}
+        self._holds: dict[tuple[str, bool], bool] = {}  # (a required text of several patterns: "printer_model")
 
     @property
     def lowered(self) -> str:
@@ -232,6 +233,13 @@ class HeadScan:
     def matches(self, pattern: str) -> bool:
         return self.found(pattern) is not None
 
+    def _holds_text(self, needed: str, lowered: bool) -> bool:
+        """Whether the head (``lowered``: the lowered head) holds ``needed``."""
+        holds = self._holds.get((needed, lowered))
+        if holds is None:
+            holds = self._holds[needed, lowered] = needed in (self.lowered if lowered else self.head)
+        return holds
+
     def found(self, pattern: str) -> str | None:
         """The text ``pattern`` matches first in the head (stripped, at most 80 characters, secrets masked:
         it is shown as evidence), or None."""
@@ -239,10 +247,9 @@ class HeadScan:
             return self._seen[pattern]
         compiled, needed, ignore_case = _plan(pattern)
         if needed:
-            text = self.lowered if ignore_case else self.head
             if ignore_case:
                 needed = tuple(n.lower() for n in needed)
-            if not any(n in text for n in needed):
+            if not any(self._holds_text(n, ignore_case) for n in needed):
                 self._seen[pattern] = None
                 return None
         m = compiled.search(self.head)

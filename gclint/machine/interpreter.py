@@ -14,7 +14,7 @@ from operator import add
 from gclint.dialects.addressing import GROUP_MEMBERS, Address, resolve_v5
 from gclint.dialects.base import Dialect
 from gclint.machine.state import EVALUES, NATIVE, MachineState
-from gclint.syntax.fastpath import PLAIN_E, PLAIN_NUMBER, RUN_E
+from gclint.syntax.fastpath import PLAIN_NUMBER, run_amounts
 from gclint.syntax.nodes import GCODE, IMPLICIT, Command, Line, is_number, to_number
 
 Handler = Callable[[Command, Line], None]
@@ -299,7 +299,8 @@ class Interpreter:
             if st.e_absolute:
                 st.e_position = float(number(text, e_at + 1).group())
             elif st.e_position is not None:  # (summed in order, as one move after the other does)
-                amounts = (RUN_E if text.find(";", start, end) < 0 else PLAIN_E).findall(text, start, end)
+                pattern, at = run_amounts(text, start, end)
+                amounts = pattern.findall(text, at, end)
                 st.e_position = reduce(add, map(float, amounts), st.e_position)
         return True
 

@@ -131,7 +131,18 @@ RUN_CODE_LINE = re.compile(r"\nM[^\r\n]*+")  # (the M-code lines of a run, after
 
 PLAIN_NUMBER = re.compile(_NUM_P)  # (the number after a letter of a plain move)
 PLAIN_E = re.compile(rf"(?m)^G[0-3][^E\r\n]*+E({_NUM_P})")  # (the E amounts of the moves of a run)
+_RUN_E_LINE = re.compile(rf"\nG[0-3][^E\r\n]*+E({_NUM_P})")  # (the same, each after its line break: faster)
 RUN_E = re.compile(r"E([-+.0-9]++)")  # (the same in a run without comments: every E is a word; found faster)
+
+
+def run_amounts(text: str, start: int, end: int) -> tuple[re.Pattern[str], int]:
+    """How to find the E amounts of the moves and arcs of the run ``text[start:end]`` (group 1 of each match,
+    in order): the pattern, and where to search from (up to ``end``)."""
+    if text.find(";", start, end) < 0:
+        return RUN_E, start
+    if start and text[start - 1] == "\n":
+        return _RUN_E_LINE, start - 1
+    return PLAIN_E, start
 # Lines of a run, each pattern written from the line break before the line (a literal start: searched fast;
 # run_lines gives the line starts): a G1 with E before any X or Y word (G1 E-0.8 F2100, G1 F2100 E0.8: every
 # G1 with E and no X or Y is one); a G0 with E; an arc, an arc with E.

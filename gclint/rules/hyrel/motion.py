@@ -20,11 +20,10 @@ from gclint.machine.state import NATIVE
 from gclint.rules.base import Rule, RunFinding, Severity, register
 from gclint.syntax.fastpath import (
     E_NOT_FORWARD,
-    PLAIN_E,
     PLAIN_NUMBER,
-    RUN_E,
     RUN_G0_E,
     RUN_G1_E_FIRST,
+    run_amounts,
     run_line_starts,
 )
 from gclint.syntax.nodes import Command, Line, to_number
@@ -332,13 +331,13 @@ class TravelMarkedPrinting(MoveRule):
                 found.append(RunFinding(at, self, 1, 3, _E_ONLY))  # (at the command: "G1", columns 1-3)
                 e_only.add(text.find("E", at, stop))
         if st.e_absolute:  # (an amount that goes back from the one before, or is not positive)
-            pattern = RUN_E if text.find(";", start, end) < 0 else PLAIN_E  # (no comment: every E is a move's)
-            amounts = pattern.findall(text, start, end)
+            pattern, at = run_amounts(text, start, end)
+            amounts = pattern.findall(text, at, end)
             values = list(map(float, amounts))
             last = st.e_position
             before = chain((-inf if last is None else last,), values)
             hits = [i for i, value, previous in zip(count(), values, before) if value <= 0 or value < previous]
-            matches = pattern.finditer(text, start, end)
+            matches = pattern.finditer(text, at, end)
             skipped = 0
             for i in hits:
                 at = next(islice(matches, i - skipped, None)).start(1) - 1  # (the i-th amount's E)
