@@ -27,7 +27,7 @@ RunFilter = Callable[[str, int, int], "list[int | RunFinding] | None"]
 _COMMENT_LINES = re.compile(r"\n;[^\r\n]*+")  # (a literal start: searched fast)
 _AGAIN = 1024  # (characters of a run first read line by line before trying again to apply it at once)
 _CLEAN_LIMIT = 8192  # comment lines remembered as needing no reading (they repeat: ";WIDTH:0.45")
-_QUIET_LONGEST = 1024  # (the longest comments of a run, joined, remembered as needing no reading)
+_QUIET_LONGEST = 1024  # (the longest comment line of a run remembered as needing no reading)
 
 
 class Runs:
@@ -68,7 +68,7 @@ class Runs:
         self.codes = codes
         self.add = add  # (FileContext.add_on: the rules' findings on the lines of runs, RunFinding)
         self.clean: set[str] = set()
-        self.quiet: set[str] = set()  # (the comments of runs, joined, that need no reading)
+        self.quiet: set[str] = set()  # (comment lines of runs that need no reading, each after its line break)
         self.total = 0  # lines read so far
 
     def lines(self, source: Source, may_apply: Callable[[], bool]) -> Iterator[tuple[int, list[tuple[str, str]]]]:
@@ -224,15 +224,18 @@ class Runs:
         for a, b in line_slices(block, start, end):  # (a few thousand comments at a time)
             comments = _COMMENT_LINES.findall(block, a - (a > start), b)  # (each after its line break)
             if comments:
-                joined = "".join(comments)
-                if joined in quiet:  # (the comments of runs repeat: ";WIPE_START", ";WIPE_END")
+                # (a comment line of a set that needed no reading needs none: they repeat, ";WIDTH:0.45")
+                comments = [c for c in comments if c not in quiet]
+                if not comments:
                     continue
+                joined = "".join(comments)
                 if (self.long_line is not None and self.long_line.search(joined)) or any(
                     test(joined) for test in self.tests
                 ):
                     return True
-                if len(joined) <= _QUIET_LONGEST:
-                    self._remember(quiet, joined)
+                if len(quiet) + len(comments) > _CLEAN_LIMIT:
+                    quiet.clear()
+                quiet.update(c for c in comments if len(c) <= _QUIET_LONGEST)
         return False
 
     @staticmethod
