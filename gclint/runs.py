@@ -156,26 +156,16 @@ class Runs:
         just applied (its first line is line ``total + 1``); return the index of the next one."""
         number, pos = total + 1, a
         add = self.add
-        while j < len(reports):
-            r = reports[j]
-            if r.at >= stop:
-                break
-            number += block.count("\n", pos, r.at)
-            pos = r.at
-            end = block.find("\n", pos)  # (a run's lines each end with a line break)
-            raw = block[pos : end - 1 if block[end - 1] == "\r" else end]
-            add(
-                r.rule,
-                number,
-                raw,
-                r.column,
-                r.message,
-                severity=r.severity,
-                end_column=r.end_column,
-                plain=raw[0] == "G",
-            )
-            j += 1
-        return j
+        for k in range(j, len(reports)):
+            at, rule, column, end_column, message, severity = reports[k]
+            if at >= stop:
+                return k
+            number += block.count("\n", pos, at)
+            pos = at
+            end = block.find("\n", at)  # (a run's lines each end with a line break)
+            raw = block[at : end - 1 if block[end - 1] == "\r" else end]
+            add(rule, number, raw, column, message, severity=severity, end_column=end_column, plain=raw[0] == "G")
+        return len(reports)
 
     def _some(
         self, block: str, a: int, limit: int, size: int
