@@ -288,6 +288,18 @@ def test_hyrel_runs_take_arcs_of_short_words(monkeypatch):
         _same(head + job, "hyrel")
 
 
+def test_has_arcs_answers_for_any_stretch_in_any_order():
+    import itertools
+
+    from gclint.syntax.fastpath import has_arcs
+
+    for text in ("G1 X1\nG2 X1 I1\nG1 X2\nG1 X3\nG3 X1 J1\n", "G2 X1 I1\nG1 X1\n", "G3 X1\n", "G1 X1\n\n;G2\nG1 X2\n"):
+        starts = [0] + [i + 1 for i, c in enumerate(text) if c == "\n" and i + 1 < len(text)]
+        stretches = list(itertools.combinations([*starts, len(text)], 2))
+        for a, b in [*stretches, *reversed(stretches), *stretches]:  # (the next arc is remembered)
+            assert has_arcs(text, a, b) == any(text.startswith(("G2", "G3"), s) for s in starts if a <= s < b)
+
+
 def test_the_run_patterns():
     from gclint.syntax.fastpath import PLAIN_MOVE_RUN, run_pattern
 

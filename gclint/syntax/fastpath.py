@@ -135,6 +135,24 @@ _RUN_E_LINE = re.compile(rf"\nG[0-3][^E\r\n]*+E({_NUM_P})")  # (the same, each a
 RUN_E = re.compile(r"E([-+.0-9]++)")  # (the same in a run without comments: every E is a word; found faster)
 
 
+_ARC_START = re.compile(r"\nG[23]")  # (an arc line, from the line break before it)
+_next_arc: list = [None, 0, -1]  # (the text asked about last, from where, the start of its next arc line: -1 none)
+
+
+def has_arcs(text: str, start: int, end: int) -> bool:
+    """Whether the run ``text[start:end]`` (from a line start) has an arc.  The next arc of the text asked
+    about last is remembered: the runs of a chunk are asked about in order, and most chunks have none."""
+    cached, since, at = _next_arc
+    if cached is not text or start < since or 0 <= at < start:
+        if start == 0 and text.startswith(("G2", "G3")):
+            at = 0
+        else:
+            m = _ARC_START.search(text, start - 1 if start else 0)
+            at = -1 if m is None else m.start() + 1
+        _next_arc[:] = text, start, at
+    return 0 <= at < end
+
+
 def run_amounts(text: str, start: int, end: int) -> tuple[re.Pattern[str], int]:
     """How to find the E amounts of the moves and arcs of the run ``text[start:end]`` (group 1 of each match,
     in order): the pattern, and where to search from (up to ``end``)."""
@@ -143,12 +161,14 @@ def run_amounts(text: str, start: int, end: int) -> tuple[re.Pattern[str], int]:
     if start and text[start - 1] == "\n":
         return _RUN_E_LINE, start - 1
     return PLAIN_E, start
+
+
 # Lines of a run, each pattern written from the line break before the line (a literal start: searched fast;
 # run_lines gives the line starts): a G1 with E before any X or Y word (G1 E-0.8 F2100, G1 F2100 E0.8: every
 # G1 with E and no X or Y is one); a G0 with E; an arc, an arc with E.
 RUN_G1_E_FIRST = re.compile(rf"\nG1(?:{_SEP}[FZ]{_NUM_P})*+{_SEP}E")
 RUN_G0_E = re.compile(r"\nG0[^E\r\n]*+E")
-RUN_ARC = re.compile(r"\nG[23][^\r\n]*+")  # (an arc of a run: its words are X Y Z I J E F)
+RUN_ARC = re.compile(r"\nG[23][^\r\n]*+")  # (an arc of a run: its words are X Y Z I J E F; see has_arcs)
 RUN_ARC_E = re.compile(r"\nG[23][^E\r\n]*+E")
 # A negative or zero E amount, wherever it is (a comment too: the caller looks at the line)
 E_NOT_FORWARD = re.compile(r"E(?:-|\+?+(?=[0.])0*+\.?+0*+(?![0-9]))")

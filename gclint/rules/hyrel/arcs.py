@@ -12,14 +12,17 @@ import re
 from gclint.dialects.base import Param
 from gclint.rules.base import Rule, Severity, register
 from gclint.rules.dialect import ParamTableRule
-from gclint.syntax.fastpath import RUN_ARC, RUN_ARC_E, run_line_starts, run_lines
+from gclint.syntax.fastpath import RUN_ARC, RUN_ARC_E, has_arcs, run_line_starts
 from gclint.syntax.nodes import Command, Line, to_number
 
 _PLAIN = ("G2", "G3")
 _ALL_ARCS = ("G2", "G3", "G2.1", "G3.1", "G2.2", "G3.2", "G2.3", "G3.3")
 
-# A non-zero I or J word of an arc of a run (plain numbers: a digit 1-9 after the sign, zeros and point)
-_NONZERO_CENTRE = re.compile(r"[IJ][-+]?+0*+\.?+0*+[1-9]")
+# An arc of a run (plain number words: RUN_ARC) with no non-zero I or J: each word another letter's, or an I
+# or J of zeros (from the line break before it)
+_NO_CENTRE_ARC = re.compile(
+    r"\nG[23](?:[ \t]++(?:[XYZEF][^ \t\r\n]*+|[IJ][-+]?+0*+\.?+0*+(?=[ \t\r\n])))*+[ \t]*+\r?\n"
+)
 
 # End and start closer than this (mm) are the same point: G-code is usually written to 3 decimals.
 FULL_CIRCLE_TOLERANCE = 0.001
@@ -134,7 +137,7 @@ class ArcRadiusOrK(ParamTableRule):
 
     def run_filter(self, text: str, start: int, end: int) -> list[int]:
         """The arcs of a run (gclint.runs: no R or K) with no non-zero I or J."""
-        return [at for at, m in run_lines(RUN_ARC, text, start, end) if _NONZERO_CENTRE.search(m.group()) is None]
+        return run_line_starts(_NO_CENTRE_ARC, text, start, end) if has_arcs(text, start, end) else []
 
     def check(self, line: Line, cmd: Command) -> None:
         super().check(line, cmd)  # R and K are forbidden (table: G2/G3)
@@ -243,7 +246,9 @@ class ArcEAmountIgnored(Rule):
 
     def run_filter(self, text: str, start: int, end: int) -> list[int]:
         """The arcs of a run with E under M229 E1 (a line of a run changes neither)."""
-        return run_line_starts(RUN_ARC_E, text, start, end) if self.state.e_values() else []
+        return (
+            run_line_starts(RUN_ARC_E, text, start, end) if self.state.e_values() and has_arcs(text, start, end) else []
+        )
 
     def check(self, line: Line, cmd: Command) -> None:
         if "E" in cmd.params and self.state.e_values():
@@ -280,7 +285,9 @@ class PlainArcInOtherPlane(Rule):
 
     def run_filter(self, text: str, start: int, end: int) -> list[int]:
         """Every arc of a run outside the XY plane (a line of a run does not change the plane)."""
-        return run_line_starts(RUN_ARC, text, start, end) if self.state.plane != 17 else []
+        return (
+            run_line_starts(RUN_ARC, text, start, end) if self.state.plane != 17 and has_arcs(text, start, end) else []
+        )
 
     def check(self, line: Line, cmd: Command) -> None:
         plane = self.state.plane
