@@ -26,6 +26,7 @@ from gclint.syntax.source import Source, line_slices, split_lines
 RunFilter = Callable[[str, int, int], "list[int | RunFinding] | None"]
 _COMMENT_LINES = re.compile(r"\n;[^\r\n]*+")  # (a literal start: searched fast)
 _AGAIN = 1024  # (characters of a run first read line by line before trying again to apply it at once)
+_WINDOW = 1 << 16  # (characters of a run the rules are asked about at once: their findings are held till then)
 _CLEAN_LIMIT = 8192  # comment lines remembered as needing no reading (they repeat: ";WIDTH:0.45")
 _QUIET_LONGEST = 1024  # (the longest comment line of a run remembered as needing no reading)
 
@@ -103,7 +104,8 @@ class Runs:
         the rules may want any move, or the interpreter refuses to apply a stretch, some lines are read one
         by one before trying again (what they wait for, the job's first print or a rule done looking, may
         come), twice as many each time in a row: the time stays linear when it never comes."""
-        barrier = -1  # the next M-code line to read on its own (b: none), found up to here
+        window = -1  # where the stretch the rules were asked about ends: the next M-code line to read on its
+        code_line = False  # own (then code_line), or _WINDOW characters on (their findings are held till then)
         coded: list[RunFinding] = []  # the findings on the M-code lines before it (CodeLines)
         cuts: list[int] | None = None  # the rules' lines to read on their own before it, from index i
         reports: list[RunFinding] = []  # the findings on the other lines up to it, from index j
@@ -115,16 +117,18 @@ class Runs:
                 a = yield from self._some(block, a, b, again)
                 again *= 2
                 continue
-            if barrier < a:
-                barrier, coded = self.codes.first(block, a, b) if self.codes is not None else (b, [])
+            if window < a or (window == a and not code_line):
+                limit = block.find("\n", a + _WINDOW, b) + 1 or b if b - a > _WINDOW else b
+                window, coded = self.codes.first(block, a, limit) if self.codes is not None else (limit, [])
+                code_line = window < limit
                 cuts = None
             if cuts is None:
-                found = self.alone(block, a, barrier) if self.alone is not None and barrier > a else ()
+                found = self.alone(block, a, window) if self.alone is not None and window > a else ()
                 if found is None:  # (any move: the lines before the first move go at once, then some)
-                    move = a if block[a] == "G" else block.find("\nG", a, barrier) + 1 or barrier
+                    move = a if block[a] == "G" else block.find("\nG", a, window) + 1 or window
                     before = self.total
                     if move == a or not self._bulk(block, a, move, may_apply):
-                        a = yield from self._some(block, a, barrier, again)
+                        a = yield from self._some(block, a, window, again)
                         again *= 2
                     else:
                         self._report(block, a, before, [r for r in coded if a <= r.at < move], 0, move)
@@ -136,7 +140,7 @@ class Runs:
                 i += 1
             while j < len(reports) and reports[j].at < a:  # (lines read one by one since: they reported)
                 j += 1
-            stop = cuts[i] if i < len(cuts) else barrier
+            stop = cuts[i] if i < len(cuts) else window
             if stop > a:
                 before = self.total
                 if not self._bulk(block, a, stop, may_apply):
@@ -146,7 +150,7 @@ class Runs:
                 if j < len(reports) and reports[j].at < stop:
                     j = self._report(block, a, before, reports, j, stop)
                 a, again = stop, _AGAIN
-            if a < b:  # (a line to read on its own: the rules', or the M-code)
+            if a < b and (a < window or code_line):  # (a line to read on its own: the rules', or the M-code)
                 stop = self._line(block, a, b)
                 yield self.total - 1, split_lines(block[a:stop])
                 a = stop
