@@ -104,8 +104,10 @@ class Runs:
         the rules may want any move, or the interpreter refuses to apply a stretch, some lines are read one
         by one before trying again (what they wait for, the job's first print or a rule done looking, may
         come), twice as many each time in a row: the time stays linear when it never comes."""
-        window = -1  # where the stretch the rules were asked about ends: the next M-code line to read on its
-        code_line = False  # own (then code_line), or _WINDOW characters on (their findings are held till then)
+        # where the stretch the rules were asked about ends: the next M-code line to read on its own (then
+        # code_line), or about _WINDOW characters on (their findings on it are held till then)
+        window = -1
+        code_line = False
         coded: list[RunFinding] = []  # the findings on the M-code lines before it (CodeLines)
         cuts: list[int] | None = None  # the rules' lines to read on their own before it, from index i
         reports: list[RunFinding] = []  # the findings on the other lines up to it, from index j
