@@ -21,7 +21,7 @@ _ALL_ARCS = ("G2", "G3", "G2.1", "G3.1", "G2.2", "G3.2", "G2.3", "G3.3")
 # An arc of a run (plain number words: RUN_ARC) with no non-zero I or J: each word another letter's, or an I
 # or J of zeros (from the line break before it)
 _NO_CENTRE_ARC = re.compile(
-    r"\nG[23](?:[ \t]++(?:[XYZEF][^ \t\r\n]*+|[IJ][-+]?+0*+\.?+0*+(?=[ \t\r\n])))*+[ \t]*+\r?\n"
+    r"\nG[23](?:[ \t]++(?:[XYZEF][^ \t\r\n]*+|[IJ][-+]?+0*+\.?+0*+(?=[ \t\r\n])))*+[ \t]*+(?=\r?\n)"
 )
 
 # End and start closer than this (mm) are the same point: G-code is usually written to 3 decimals.
