@@ -294,7 +294,7 @@ def test_back_to_back_arcs_with_no_centre_are_each_found():
     job = "G28\nG1 X1 Y1 E1 F600\n" + _SLICED + "G1 X45 Y45 E4.5\nG92 E0\n" + "G2 X5 Y5 I0 J0 E0.1\n" * 4
     lines = job.splitlines()
     found = [f.line for f in Linter(Options(dialect="hyrel")).check_text(job).findings if f.code == "HY017"]
-    assert found == [n for n, t in enumerate(lines, 1) if t.startswith("G2")]
+    assert found == [n for n, t in enumerate(lines, 1) if t.startswith("G2 ")]
     _same(job, "hyrel")
 
 
