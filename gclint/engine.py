@@ -120,6 +120,8 @@ class Linter:
         except SourceError as exc:
             result.error = str(exc)
             return result
+        finally:
+            ctx.release()
         result.digest = source.sha256
         ignored = self.per_file_ignores(path)
         if ctx.may_suppress() or ignored:
@@ -127,7 +129,8 @@ class Linter:
                 f for f in ctx.findings if not ctx.suppressed(f) and not (ignored and matches(f.code, ignored))
             ]
         else:
-            result.findings = list(ctx.findings)
+            result.findings = ctx.findings
+        ctx.findings = []
         if source.byte_view is not None and source.byte_view.lines:
             result.findings += self._byte_view_findings(path, source.byte_view.lines, ignored)
         self._check_suppressions(ctx, result)
@@ -520,8 +523,8 @@ class Linter:
         interpreter's own arc handler applies them, and every rule that listens to G2/G3 (for letters those
         arcs may carry) has a run filter (``rule_run_filters`` asks it about the arcs of runs too)."""
         for code in ("G2", "G3"):
-            always, filtered, apply = build(Command(code, GCODE, 1, {}))
-            if apply != interpreter._arc:
+            always, filtered, _ = build(Command(code, GCODE, 1, {}))
+            if not interpreter.moves_plainly(code):
                 return False
             listening = (*always, *(handler for handler, letters in filtered if not letters.isdisjoint("XYZIJEF")))
             if any(getattr(handler.__self__, "run_filter", None) is None for handler in listening):
@@ -541,10 +544,10 @@ class Linter:
             return None
         out = {}
         for code in ("G0", "G1"):
-            always, filtered, apply = build(Command(code, GCODE, 1, {}))
+            always, filtered, _ = build(Command(code, GCODE, 1, {}))
             if any(not letters.isdisjoint("XYZEF") for _, letters in filtered):
                 return None
-            if getattr(apply, "func", None) != interpreter._motion or apply.keywords != {"mode": code}:
+            if not interpreter.moves_plainly(code):
                 return None
             found = [getattr(handler.__self__, "plain_filter", None) for handler in always]
             filters = tuple(f for f in found if f is not None)

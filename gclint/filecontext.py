@@ -58,6 +58,19 @@ class FileContext:
         #          findings of the code listed on that line]
         self._latest: dict[str, list] = {}
 
+    def release(self) -> None:
+        """Let go of what the file's rules share once they are done (calling their ``release``, if any): those
+        objects hold the rules, which hold this context, a reference cycle that would keep the file's
+        findings until the garbage collector's next full pass (the next file would be read with them still
+        in memory)."""
+        for shared in self.shared.values():
+            release = getattr(shared, "release", None)
+            if release is not None:
+                release()
+        self.shared.clear()
+        self._plain_comments.clear()
+        self._latest.clear()
+
     def enabled(self, code: str) -> bool:
         """Whether the rule ``code`` is selected for this run."""
         return code in self.enabled_codes

@@ -105,6 +105,33 @@ def test_an_internal_error_outside_the_rules_names_the_file(monkeypatch) -> None
     assert "\n" not in result.error and result.path.endswith("limits.gcode")
 
 
+@pytest.mark.parametrize("dialect", ["hyrel", "marlin", "linuxcnc"])
+def test_a_file_is_freed_when_its_check_is_done(monkeypatch, dialect) -> None:
+    # The file's context, rules, state and findings go as soon as the result is out, without a pass of the
+    # garbage collector (reference cycles between them once kept each file's findings while the next file
+    # was read: +4 MB of peak memory on the Marlin folder under --dialect hyrel).
+    import gc
+    import weakref
+
+    made = []
+    prepare = Linter.prepare
+    monkeypatch.setattr(Linter, "prepare", lambda self, source: made.append(prepare(self, source)) or made[-1])
+    job = "M83\nG1 X1 Y1 Z.2 E1 F600\nG1 E-1\nG0 X5 E1\nM104 S200\nT1\nG2 X9 Y9 I1 J1\n; gclint: disable=SC006\nG1 X2 ; noqa: SC006\n" * 50
+    linter = Linter(Options(dialect=dialect, select=["ALL"]))
+    gc.collect()
+    gc.disable()
+    try:
+        result = linter.check_text(job, "job.gcode")
+        assert result.findings and result.error is None
+        ((ctx, _),) = made
+        made.clear()
+        freed = [weakref.ref(ctx), weakref.ref(ctx.interpreter)]  # (the state has slots, no weak reference)
+        del ctx
+        assert [ref() is None for ref in freed] == [True, True]
+    finally:
+        gc.enable()
+
+
 def _write(text: str) -> str:
     import tempfile
 

@@ -2,6 +2,9 @@
 
 from __future__ import annotations
 
+import gc
+import weakref
+
 from gclint import dialects
 from gclint.machine.interpreter import Interpreter
 from gclint.machine.state import EVALUES, NATIVE
@@ -119,3 +122,21 @@ def test_printing_moves():
 def test_implicit_motion_uses_modal_mode():
     st = run("G1 X1\nX5 Y6\n", "machinekit").state
     assert st.position.get("X") == 5 and st.position.get("Y") == 6
+
+
+def test_every_dialect_moves_plainly_and_holds_no_cycle():
+    # runs of moves and arcs are applied by plain_run only where G0-G3 are the plain motion handlers; and
+    # the handler table holds functions, not bound methods, so an interpreter is freed with its file
+    for name in dialects.names():
+        interp = Interpreter(dialects.get(name))
+        assert [interp.moves_plainly(code) for code in ("G0", "G1", "G2", "G3", "G28")] == [True] * 4 + [False]
+        line = Line(1, "G1 X5", "\n", parse_line("G1 X5"))
+        interp.handler_for(line.commands[0])(line.commands[0], line)
+        assert interp.state.position.snapshot()["X"] == 5.0
+        gc.disable()
+        try:
+            freed = weakref.ref(interp)
+            del interp
+            assert freed() is None, name
+        finally:
+            gc.enable()

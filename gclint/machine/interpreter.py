@@ -8,7 +8,7 @@ job but deletes a file on Marlin; G90 resets the E mode on Marlin only).  Facts 
 from __future__ import annotations
 
 from collections.abc import Callable
-from functools import partial, reduce
+from functools import cache, partial, reduce
 from operator import add
 
 from gclint.dialects.addressing import GROUP_MEMBERS, Address, resolve_v5
@@ -55,7 +55,9 @@ class Interpreter:
         self.resolve_command: Callable[[int], Address] = dialect.extras.get("resolve_command", resolve_v5)  # type: ignore[assignment]
         self.is_hyrel = self.family == "hyrel"
         self.g0_feed_one_shot = self.family in ("hyrel", "smoothie")  # Hyrel/Carvera: G0 F is one-shot
-        self.handlers: dict[str, Handler] = self._handlers()
+        # (functions of the class, not bound methods: a table of bound methods would hold the interpreter in
+        # a reference cycle, and each file's state and findings until the garbage collector's next full pass)
+        self.handlers = _handlers(type(self), self.family, dialect.name == "reprap")
 
     # -- addressing ----------------------------------------------------------------------------------
 
@@ -85,12 +87,20 @@ class Interpreter:
     def handler_for(self, cmd: Command) -> Handler:
         """The function that applies commands with ``cmd``'s code (the engine caches it per code)."""
         handler = self.handlers.get(cmd.code)  # type: ignore[arg-type]
-        return handler if handler is not None else self.apply
+        return partial(handler, self) if handler is not None else self.apply
+
+    def moves_plainly(self, code: str) -> bool:
+        """Whether ``code`` (G0, G1, G2 or G3) is applied as ``plain_move`` and ``plain_run`` apply it."""
+        handler = self.handlers.get(code)
+        if code in ("G2", "G3"):
+            return handler is type(self)._arc
+        motion = type(self)._motion
+        return isinstance(handler, partial) and handler.func is motion and handler.keywords == {"mode": code}
 
     def apply(self, cmd: Command, line: Line) -> None:
         handler = self.handlers.get(cmd.code)  # type: ignore[arg-type]
         if handler is not None:
-            handler(cmd, line)
+            handler(self, cmd, line)
         elif cmd.kind == IMPLICIT:
             mode = self.state.motion_mode
             if mode is not None and any(a in cmd.params for a in _AXES):
@@ -103,82 +113,6 @@ class Interpreter:
                     self.state.feed = None
         elif cmd.kind == GCODE and cmd.code and cmd.code[0] == "T":
             self._tool(cmd, line)
-
-    def _handlers(self) -> dict[str, Handler]:
-        h: dict[str, Handler] = {
-            "G0": partial(self._motion, mode="G0"),
-            "G1": partial(self._motion, mode="G1"),
-            "G2": self._arc,
-            "G3": self._arc,
-            "G4": _ignore,
-            "G17": lambda c, l: self._plane(17),
-            "G18": lambda c, l: self._plane(18),
-            "G19": lambda c, l: self._plane(19),
-            "G20": lambda c, l: setattr(self.state, "units", "inch"),
-            "G21": lambda c, l: setattr(self.state, "units", "mm"),
-            "G90": self._g90,
-            "G91": self._g91,
-            "G92": self._g92,
-            "G28": self._g28,
-            "M82": lambda c, l: setattr(self.state, "e_absolute", True),
-            "M83": lambda c, l: setattr(self.state, "e_absolute", False),
-            "M104": self._set_temp,
-            "M109": self._set_temp,
-            "M140": self._set_temp,
-            "M141": self._set_temp,
-            "M190": self._set_temp,
-            "M191": self._set_temp,
-            "M18": self._motors_off,
-            "M84": self._motors_off,
-        }
-        if self.family == "hyrel":
-            h.update(
-                {
-                    "G16": lambda c, l: self._plane(16),
-                    "G2.1": self._spiral_in_place,
-                    "G3.1": self._spiral_in_place,
-                    "G2.2": self._arc,
-                    "G3.2": self._arc,
-                    "G2.3": self._arc,
-                    "G3.3": self._arc,
-                    "G53": self._g53,
-                    "G93": self._g93,
-                    "M3": self._spindle_on,
-                    "M4": self._spindle_on,
-                    "M5": self._spindle_off,
-                    "M6": self._declare_head,
-                    "M30": self._end_of_job_hyrel,
-                    "M106": self._fan_range,
-                    "M116": lambda c, l: self.state.pending_w0.clear(),
-                    "M229": self._m229,
-                    "M620": self._m620,
-                    "M660": self._m660,
-                    "M702": self._m702,
-                    "M703": self._m703,
-                    "M704": self._m704,
-                    "M756": self._m756,
-                    "G81": self._g81,
-                }
-            )
-            for n in range(54, 60):
-                h[f"G{n}"] = self._fixture
-        elif self.family == "reprap":
-            h.update({"M3": self._spindle_on, "M4": self._spindle_on, "M5": self._spindle_off})
-            if self.dialect.name == "reprap":
-                h.update({"M0": self._end_of_program, "M2": self._end_of_program})
-        else:  # linuxcnc, smoothie (CNC families)
-            h.update(
-                {
-                    "M2": self._end_of_program,
-                    "M30": self._end_of_program,
-                    "M3": self._spindle_on,
-                    "M4": self._spindle_on,
-                    "M5": self._spindle_off,
-                    "M6": self._tool_change,
-                    "G53": _ignore,
-                }
-            )
-        return h
 
     # -- motion --------------------------------------------------------------------------------------
 
@@ -607,5 +541,115 @@ class Interpreter:
         self.state.m30_line = line.number
 
 
-def _ignore(cmd: Command, line: Line) -> None:
+# -- the handler tables ----------------------------------------------------------------------------------
+
+Method = Callable[[Interpreter, Command, Line], None]
+Entry = str | tuple[str, str] | Method
+
+
+def _ignore(self: Interpreter, cmd: Command, line: Line) -> None:
     return None
+
+
+def _plane(plane: int) -> Method:
+    return lambda self, cmd, line: self._plane(plane)
+
+
+def _sets(field: str, value: object) -> Method:
+    return lambda self, cmd, line: setattr(self.state, field, value)
+
+
+def _m116(self: Interpreter, cmd: Command, line: Line) -> None:
+    self.state.pending_w0.clear()
+
+
+@cache
+def _table(family: str, reprap: bool) -> dict[str, Entry]:
+    """The handlers of a dialect family (``reprap``: the RepRap dialect itself, whose M0 and M2 end it): the
+    names of the methods (looked up on the interpreter's class, so that a subclass or a test may replace
+    one), a motion method's name and mode, or functions."""
+    h: dict[str, Entry] = {
+        "G0": ("_motion", "G0"),
+        "G1": ("_motion", "G1"),
+        "G2": "_arc",
+        "G3": "_arc",
+        "G4": _ignore,
+        "G17": _plane(17),
+        "G18": _plane(18),
+        "G19": _plane(19),
+        "G20": _sets("units", "inch"),
+        "G21": _sets("units", "mm"),
+        "G90": "_g90",
+        "G91": "_g91",
+        "G92": "_g92",
+        "G28": "_g28",
+        "M82": _sets("e_absolute", True),
+        "M83": _sets("e_absolute", False),
+        "M104": "_set_temp",
+        "M109": "_set_temp",
+        "M140": "_set_temp",
+        "M141": "_set_temp",
+        "M190": "_set_temp",
+        "M191": "_set_temp",
+        "M18": "_motors_off",
+        "M84": "_motors_off",
+    }
+    if family == "hyrel":
+        h.update(
+            {
+                "G16": _plane(16),
+                "G2.1": "_spiral_in_place",
+                "G3.1": "_spiral_in_place",
+                "G2.2": "_arc",
+                "G3.2": "_arc",
+                "G2.3": "_arc",
+                "G3.3": "_arc",
+                "G53": "_g53",
+                "G93": "_g93",
+                "M3": "_spindle_on",
+                "M4": "_spindle_on",
+                "M5": "_spindle_off",
+                "M6": "_declare_head",
+                "M30": "_end_of_job_hyrel",
+                "M106": "_fan_range",
+                "M116": _m116,
+                "M229": "_m229",
+                "M620": "_m620",
+                "M660": "_m660",
+                "M702": "_m702",
+                "M703": "_m703",
+                "M704": "_m704",
+                "M756": "_m756",
+                "G81": "_g81",
+            }
+        )
+        for n in range(54, 60):
+            h[f"G{n}"] = "_fixture"
+    elif family == "reprap":
+        h.update({"M3": "_spindle_on", "M4": "_spindle_on", "M5": "_spindle_off"})
+        if reprap:
+            h.update({"M0": "_end_of_program", "M2": "_end_of_program"})
+    else:  # linuxcnc, smoothie (CNC families)
+        h.update(
+            {
+                "M2": "_end_of_program",
+                "M30": "_end_of_program",
+                "M3": "_spindle_on",
+                "M4": "_spindle_on",
+                "M5": "_spindle_off",
+                "M6": "_tool_change",
+                "G53": _ignore,
+            }
+        )
+    return h
+
+
+def _handlers(cls: type[Interpreter], family: str, reprap: bool) -> dict[str, Method]:
+    def resolve(entry: Entry) -> Method:
+        if isinstance(entry, str):
+            return getattr(cls, entry)
+        if isinstance(entry, tuple):
+            return partial(getattr(cls, entry[0]), mode=entry[1])
+        return entry
+
+    return {code: resolve(entry) for code, entry in _table(family, reprap).items()}

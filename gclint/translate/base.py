@@ -354,8 +354,7 @@ class HyrelTranslator(LineWriter, Heads, Program, Motion, ArcMoves, Modal, Spind
         ):
             return None
         for code in ("G0", "G1"):
-            apply = self.interp.handler_for(Command(code, GCODE, 1, {}))
-            if self.handlers.get(code) != self.move or getattr(apply, "func", None) != self.interp._motion:
+            if self.handlers.get(code) != self.move or not self.interp.moves_plainly(code):
                 return None
         return self.plain_move
 

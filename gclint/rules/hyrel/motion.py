@@ -99,6 +99,16 @@ class MoveChecks:
             rule.plain_filter = checks.wants_plain  # type: ignore[attr-defined]
         return checks
 
+    def release(self) -> None:
+        """Drop the members (``FileContext.release``, once the file is done): they hold this object and the
+        file's context, and the leader holds its own ``check``."""
+        leader = self.leader
+        if leader is not None:
+            vars(leader).pop("check", None)
+        for slot in vars(self):
+            if slot not in ("state", "direct"):
+                setattr(self, slot, None)
+
     def wants_plain(self, mode: str, x: str | None, y: str | None, z: str | None, e: str | None, f: str | None) -> bool:
         """Whether ``_listen`` would call a member for a plain move (a G0/G1 with only X Y Z E F words,
         given as source texts or None): the engine builds the line's tree only then.  Mirrors
