@@ -116,7 +116,10 @@ def test_a_file_is_freed_when_its_check_is_done(monkeypatch, dialect) -> None:
     made = []
     prepare = Linter.prepare
     monkeypatch.setattr(Linter, "prepare", lambda self, source: made.append(prepare(self, source)) or made[-1])
-    job = "M83\nG1 X1 Y1 Z.2 E1 F600\nG1 E-1\nG0 X5 E1\nM104 S200\nT1\nG2 X9 Y9 I1 J1\n; gclint: disable=SC006\nG1 X2 ; noqa: SC006\n" * 50
+    job = (
+        "M83\nG1 X1 Y1 Z.2 E1 F600\nG1 E-1\nG0 X5 E1\nM104 S200\nT1\nG2 X9 Y9 I1 J1\n; gclint: disable=SC006\nG1 X2 ; noqa: SC006\n"
+        * 50
+    )
     linter = Linter(Options(dialect=dialect, select=["ALL"]))
     gc.collect()
     gc.disable()
