@@ -110,10 +110,11 @@ class HyrelTranslator(LineWriter, Heads, Program, Motion, ArcMoves, Modal, Spind
         self.extra_always = False  # call move_extra on every move (Carvera laser mode)
         self.annotate = self.opts.annotate
         self.positions = frozenset(self.opts.printer.positions)
-        self.handlers: dict[str, Callable[[Command], None]] = {}
+        # (the class's functions, called with the translator: bound methods here would make a reference cycle)
+        self.handlers: dict[str, Callable[[HyrelTranslator, Command], None]] = {}
         for klass in reversed(type(self).__mro__):
             for code, name in getattr(klass, "HANDLERS", {}).items():
-                self.handlers[code] = getattr(self, name)
+                self.handlers[code] = getattr(type(self), name)
         self.hy = HyrelSide()  # what the Hyrel printer will believe
         self.rpm: float | None = None  # the source's modal spindle speed (S words)
         self.spindle_percent: str | None = None  # the last spindle speed written (S percent; spindle.py)
@@ -257,7 +258,7 @@ class HyrelTranslator(LineWriter, Heads, Program, Motion, ArcMoves, Modal, Spind
             if handler is None:
                 self.fallback(cmd)
             else:
-                handler(cmd)
+                handler(self, cmd)
             self.interp.apply(cmd, line)
         else:
             handlers = self.handlers
@@ -293,7 +294,7 @@ class HyrelTranslator(LineWriter, Heads, Program, Motion, ArcMoves, Modal, Spind
                     if handler is None:
                         self.fallback(cmd)
                     else:
-                        handler(cmd)
+                        handler(self, cmd)
                 apply(cmd, line)
         edit = self.edit
         if edit is None and len(commands) > 1 and not self.hy.ended:
@@ -354,7 +355,7 @@ class HyrelTranslator(LineWriter, Heads, Program, Motion, ArcMoves, Modal, Spind
         ):
             return None
         for code in ("G0", "G1"):
-            if self.handlers.get(code) != self.move or not self.interp.moves_plainly(code):
+            if self.handlers.get(code) is not type(self).move or not self.interp.moves_plainly(code):
                 return None
         return self.plain_move
 

@@ -40,7 +40,7 @@ class Motion:
         if handler is None:
             self.remove(cmd, TR_LOST, "modal motion with no Hyrel counterpart; dropped", key="implicit")
             return
-        handler(_with_code(cmd, mode))
+        handler(self, _with_code(cmd, mode))
         edit = self.edit
         if edit is None or self.index not in edit.replaced:
             self.replace(cmd, rewrite(cmd, code=mode))
