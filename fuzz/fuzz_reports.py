@@ -33,7 +33,8 @@ from gclint.reports import ReportContext, formats
 HUMAN = ("text", "concise", "full", "grouped", "github")
 RAW = ("\x1b", "\x07", "\x00", "\x9b", "\u202e")
 DIALECTS = ("auto", "hyrel", "marlin", "reprap", "machinekit", "carvera")
-_WORK = tempfile.mkdtemp(prefix="gclint-fuzz-reports-")
+_WORK_DIR = tempfile.TemporaryDirectory(prefix="gclint-fuzz-reports-")  # (removed at exit)
+_WORK = _WORK_DIR.name
 JOB = os.path.join(_WORK, "fuzz.gcode")
 CACHE = ResultCache(os.path.join(_WORK, "cache"), root=os.path.join(_WORK, "user"))
 STATS = _common.Stats("reports")

@@ -2,9 +2,11 @@
 
 from __future__ import annotations
 
+import functools
 import os
 import subprocess
 import sys
+import tempfile
 from pathlib import Path
 
 import pytest
@@ -51,6 +53,12 @@ def sample_bytes(data: bytes) -> bytes:
     return b"".join(lines[:SAMPLE_HEAD] + lines[-SAMPLE_TAIL:])
 
 
+@functools.cache
+def _samples_folder() -> tempfile.TemporaryDirectory:
+    """One temporary folder for this process's samples, removed when it exits."""
+    return tempfile.TemporaryDirectory(prefix="gclint-samples-")
+
+
 def corpus_job(path: Path) -> str:
     """The path of ``path`` as a test reads it: the file itself, or a sample of it (``sample_bytes``) in a
     temporary copy with the same name (a regular file, as the original: its tail is read as a file's)."""
@@ -58,9 +66,8 @@ def corpus_job(path: Path) -> str:
         return str(path)
     sample = _SAMPLES.get(path)
     if sample is None:
-        import tempfile
-
-        folder = Path(tempfile.mkdtemp(prefix="gclint-sample-"))
+        folder = Path(_samples_folder().name, str(len(_SAMPLES)))
+        folder.mkdir()
         target = folder / path.name
         target.write_bytes(sample_bytes(path.read_bytes()))
         sample = _SAMPLES[path] = str(target)

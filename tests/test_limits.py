@@ -8,7 +8,6 @@
 from __future__ import annotations
 
 import json
-import os
 from pathlib import Path
 
 import pytest
@@ -95,12 +94,14 @@ def test_the_same_linter_checks_the_next_file_with_the_rule_again() -> None:
     assert [f.code for f in second.findings] == ["XX901"]
 
 
-def test_an_internal_error_outside_the_rules_names_the_file(monkeypatch) -> None:
+def test_an_internal_error_outside_the_rules_names_the_file(monkeypatch, tmp_path) -> None:
     def broken(self, cmd, line):  # the interpreter's handler for M104
         raise AssertionError("interpreter bug")
 
     monkeypatch.setattr(Interpreter, "_set_temp", broken)
-    result = runner.check_one(_write("G28\nM104 S200\n"), Options(dialect="marlin"))
+    job = tmp_path / "limits.gcode"
+    job.write_text("G28\nM104 S200\n")
+    result = runner.check_one(str(job), Options(dialect="marlin"))
     assert result.error is not None and "internal error" in result.error and "AssertionError" in result.error
     assert "\n" not in result.error and result.path.endswith("limits.gcode")
 
@@ -133,16 +134,6 @@ def test_a_file_is_freed_when_its_check_is_done(monkeypatch, dialect) -> None:
         assert [ref() is None for ref in freed] == [True, True]
     finally:
         gc.enable()
-
-
-def _write(text: str) -> str:
-    import tempfile
-
-    folder = tempfile.mkdtemp()
-    path = os.path.join(folder, "limits.gcode")
-    with open(path, "w") as fh:
-        fh.write(text)
-    return path
 
 
 def _folder(tmp_path: Path) -> Path:
