@@ -18,7 +18,7 @@ from operator import itemgetter
 from gclint.machine.interpreter import Interpreter
 from gclint.noqa import may_direct
 from gclint.rules.base import RunFinding
-from gclint.syntax.fastpath import RUN_CODE_LINE, run_lines
+from gclint.syntax.fastpath import RUN_CODE_LINE, forget_arcs, run_lines
 from gclint.syntax.nodes import GCODE, Command
 from gclint.syntax.source import Source, line_slices, split_lines
 
@@ -76,25 +76,28 @@ class Runs:
         """The lines of ``source`` to read one by one, as (number of the line before, lines); the runs in
         between are applied (while ``may_apply()``: no rule would look at their moves)."""
         search = self.search
-        for block in source.blocks():
-            if block.__class__ is list:
-                yield self.total, block
-                self.total += len(block)
-                continue
-            at = 0
-            while True:
-                run = search(block, at) if search is not None else None
-                start, end = run.span() if run is not None else (len(block), len(block))
-                if start > at:
-                    yield from self._one_by_one(block, at, start)
-                if run is None:
-                    break
-                at = end
-                for a, b, alone in self.parts(block, start, end):
-                    if alone:
-                        yield from self._one_by_one(block, a, b)
-                    else:
-                        yield from self._apply(block, a, b, may_apply)
+        try:
+            for block in source.blocks():
+                if block.__class__ is list:
+                    yield self.total, block
+                    self.total += len(block)
+                    continue
+                at = 0
+                while True:
+                    run = search(block, at) if search is not None else None
+                    start, end = run.span() if run is not None else (len(block), len(block))
+                    if start > at:
+                        yield from self._one_by_one(block, at, start)
+                    if run is None:
+                        break
+                    at = end
+                    for a, b, alone in self.parts(block, start, end):
+                        if alone:
+                            yield from self._one_by_one(block, a, b)
+                        else:
+                            yield from self._apply(block, a, b, may_apply)
+        finally:
+            forget_arcs()
 
     def _apply(
         self, block: str, a: int, b: int, may_apply: Callable[[], bool]

@@ -153,6 +153,11 @@ def has_arcs(text: str, start: int, end: int) -> bool:
     return 0 <= at < end
 
 
+def forget_arcs() -> None:
+    """Let go of the text ``has_arcs`` asked about last (gclint.runs, when a file is done: a chunk of it)."""
+    _next_arc[:] = None, 0, -1
+
+
 def run_amounts(text: str, start: int, end: int) -> tuple[re.Pattern[str], int]:
     """How to find the E amounts of the moves and arcs of the run ``text[start:end]`` (group 1 of each match,
     in order): the pattern, and where to search from (up to ``end``)."""
