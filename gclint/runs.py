@@ -31,6 +31,12 @@ _CLEAN_LIMIT = 8192  # comment lines remembered as needing no reading (they repe
 _QUIET_LONGEST = 1024  # (the longest comment line of a run remembered as needing no reading)
 
 
+# A run shorter than this (in characters, a few lines) is read with the lines around it: applying a run costs
+# more than reading several plain moves on their own (the engine's plain-move route), so a job that
+# alternates a move and a G92 E0 or a commented move read 2-3x slower before this limit.
+_SHORTEST_RUN = 256
+
+
 class Runs:
     """How one file's runs are read.
 
@@ -82,15 +88,22 @@ class Runs:
                     yield self.total, block
                     self.total += len(block)
                     continue
-                at = 0
+                at = look = skip = 0
                 while True:
-                    run = search(block, at) if search is not None else None
+                    run = search(block, look) if search is not None else None
                     start, end = run.span() if run is not None else (len(block), len(block))
+                    if end - start < _SHORTEST_RUN and run is not None:
+                        # (read with the lines around it: cheaper than applying it whole; and where short runs
+                        # follow each other, the next ones are looked for further on, twice as far each time)
+                        look = block.find("\n", end + skip - 1) + 1 or len(block) if skip else end
+                        skip = skip * 2 or _SHORTEST_RUN
+                        continue
+                    skip = 0
                     if start > at:
                         yield from self._one_by_one(block, at, start)
                     if run is None:
                         break
-                    at = end
+                    at = look = end
                     for a, b, alone in self.parts(block, start, end):
                         if alone:
                             yield from self._one_by_one(block, a, b)
@@ -128,7 +141,8 @@ class Runs:
                 code_line = window < limit
                 cuts = None
             if cuts is None:
-                found = self.alone(block, a, window) if self.alone is not None and window > a else ()
+                # (a few lines, to the next M-code line read on its own: read on their own below, unasked)
+                found = self.alone(block, a, window) if self.alone is not None and window - a >= _SHORTEST_RUN else ()
                 if found is None:  # (any move: the lines before the first move go at once, then some)
                     move = a if block[a] == "G" else block.find("\nG", a, window) + 1 or window
                     before = self.total
@@ -146,6 +160,10 @@ class Runs:
             while j < len(reports) and reports[j].at < a:  # (lines read one by one since: they reported)
                 j += 1
             stop = cuts[i] if i < len(cuts) else window
+            if 0 < stop - a < _SHORTEST_RUN:  # (a few lines: read on their own, as a short run, and more after)
+                a = yield from self._some(block, a, b, max(again, stop - a))
+                again *= 2
+                continue
             if stop > a:
                 before = self.total
                 if not self._bulk(block, a, stop, may_apply):

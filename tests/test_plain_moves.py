@@ -13,6 +13,8 @@ import pytest
 from hypothesis import given
 from hypothesis import strategies as st
 
+import gclint.machine.interpreter
+import gclint.runs
 from gclint.engine import Linter, Options
 from gclint.rules.base import Rule
 from gclint.syntax.fastpath import PLAIN_MOVE
@@ -53,7 +55,8 @@ def test_the_pattern_takes_only_plain_moves():
     assert PLAIN_MOVE.fullmatch("G1 X1 F200").groups() == ("1", None, "1", None, None, None, "200")
 
 
-def test_the_route_is_taken_where_no_rule_looks():
+def test_the_route_is_taken_where_no_rule_looks(monkeypatch):
+    monkeypatch.setattr(gclint.runs, "_SHORTEST_RUN", 0)  # (the runs of a few lines here are applied whole)
     linter = Linter(Options(dialect="marlin"))
     source = Source.from_text("G1 X1 Y2\nM104 S200\nG1 X3 E1\n", "<t>")  # (M104: a temperature to keep)
     ctx, result = linter.prepare(source)
@@ -65,7 +68,8 @@ def test_the_route_is_taken_where_no_rule_looks():
     assert calls == [(0, 9), ("G1", 1, "1", "2", None, None, None), (19, 28), ("G1", 3, "3", None, None, "1", None)]
 
 
-def test_runs_of_plain_moves_are_applied_whole():
+def test_runs_of_plain_moves_are_applied_whole(monkeypatch):
+    monkeypatch.setattr(gclint.runs, "_SHORTEST_RUN", 0)  # (the runs of a few lines here are applied whole)
     linter = Linter(Options(dialect="marlin"))
     first = "G28\nG1 Z.3 F600\nG1 X1 Y1 E1\n"  # the first feed and print: one line after the other
     second = "G1 X2 E2\r\nG0 X3 F9000\nG1 Y4 E2.5\nG1 E2\n"  # applied whole
@@ -89,7 +93,8 @@ def test_runs_of_plain_moves_are_applied_whole():
     assert result.lines == 9
 
 
-def test_comment_lines_a_rule_may_read_are_read_one_by_one():
+def test_comment_lines_a_rule_may_read_are_read_one_by_one(monkeypatch):
+    monkeypatch.setattr(gclint.runs, "_SHORTEST_RUN", 0)  # (the runs of a few lines here are applied whole)
     linter = Linter(Options(dialect="marlin"))
     lines = [
         "G28",
@@ -112,6 +117,38 @@ def test_comment_lines_a_rule_may_read_are_read_one_by_one():
     assert runs == [4, 2, 1, 2] and read == [4, 6, 9, 11]
     assert [f.code for f in result.findings or ctx.findings] == ["SC006"]
     assert ctx.state.position.snapshot() == {"X": 6.0, "Y": 0.0, "Z": 0.2} and ctx.state.e_position == 5.0
+
+
+def test_short_runs_are_read_with_the_lines_around_them(monkeypatch):
+    # (stranger review: a Hyrel job alternating one move and a G92 E0 was 1.2x slower than before runs of one
+    # line were applied whole, and 3x slower than reading every line: a run costs more than a few lines)
+    job = "G28\nG1 X1 Y1 Z.2 E1 F600\n" + _SLICED + "G1 X2 Y2 E.5\nG92 E0\nG1 X1\nG92 E0\n" * 300
+    job += "G1 X3 Y3 E.1\n" * 3000 + "G92 E0\n" + "G1 X4 Y4 E-1\nG92 E0\n" * 20
+    offered = []
+    plain_run = gclint.machine.interpreter.Interpreter.plain_run
+    monkeypatch.setattr(
+        gclint.machine.interpreter.Interpreter,
+        "plain_run",
+        lambda self, text, a, b: offered.append(text[a:b].count("\n")) or plain_run(self, text, a, b),
+    )
+    for dialect in ("hyrel", "marlin"):
+        offered.clear()
+        Linter(Options(dialect=dialect)).check_text(job)
+        # (the 3,000 moves, from where the rules' first look ends: the others are 1-line runs, read with the
+        # lines around them, and the next runs are looked for twice as far each time)
+        assert offered and min(offered) >= 1000, dialect
+        _same(job, dialect)
+    # M-code lines read on their own every line or two within a run (M83, M106 T0: the interpreter's), with
+    # retractions HY031 finds without reading, then a long stretch applied whole again
+    dense = "".join(f"G1 X{i % 7}.5 Y{i % 5} E{'-' if i % 3 == 0 else ''}0.{i % 9 + 1}\nM83\n" for i in range(400))
+    dense += "".join(f"G1 X{i}.5 Y{i % 3}\nM106 T0 S{i % 200}\nG1 E-.5\n" for i in range(300))
+    job = "G28\nM83\nG1 X1 Y1 Z.2 E1 F600\n" + _SLICED + dense + "G1 X5 Y5 E.2\n" * 3000 + dense
+    for dialect in ("hyrel", "marlin"):
+        offered.clear()
+        found = Linter(Options(dialect=dialect)).check_text(job).findings
+        assert max(offered) >= 1000 and len(offered) < 50, dialect
+        assert dialect == "marlin" or sum(f.code == "HY031" for f in found) > 700
+        _same(job, dialect)
 
 
 def _how_read(dialect: str, text: str, monkeypatch, *more_rules: type[Rule]) -> tuple[list[int], int]:
@@ -462,7 +499,8 @@ class _MultiLineWidth(_WidthLines):
 
 
 @pytest.mark.parametrize("rule", [_LongLines, _CommentsWithX, _HintedComments, _WidthLines, _MultiLineWidth])
-def test_rules_see_the_comment_lines_of_runs_they_ask_for(rule):
+def test_rules_see_the_comment_lines_of_runs_they_ask_for(rule, monkeypatch):
+    monkeypatch.setattr(gclint.runs, "_SHORTEST_RUN", 0)  # (the runs of a few lines here are applied whole)
     lines = ["G28", "G1 X0 Y0 Z.2 F600", "G1 X1 E1", "M400", ";a", "G1 X2 E2", ";" + "y" * 1000, ";WIDTH:0.4"]
     lines += ["G1 X3 E3", ";x", "G2 X1 Y1 I1 J1 E4", ";" + "z" * 999, ";WIDTH:0.5", "G1 X4 E5", ";b x"]
     runs_applied = []
@@ -507,6 +545,7 @@ class _BrokenRunFilter(_AtX7):
 
 @pytest.mark.parametrize("rule", [_AtX7, _BrokenRunFilter])
 def test_a_rule_with_a_run_filter_sees_the_moves_it_wants(rule, monkeypatch):
+    monkeypatch.setattr(gclint.runs, "_SHORTEST_RUN", 0)  # (9 moves between two it wants: applied whole here)
     job = "G28\nG1 X0 Y0 Z.2 F600\nG1 X1 E1\n" + "".join(f"G1 X{i % 10} Y{i} E{i + 2}\n" for i in range(300))
     found = {}
     for plain in (True, False):
