@@ -22,7 +22,7 @@ from gclint.cli import main
 from gclint.engine import Linter, Options
 from gclint.rules.base import Severity
 
-from .conftest import CORPUS, needs_corpus, run_cli
+from .conftest import CORPUS, corpus_job, needs_corpus, run_cli
 
 pytestmark = needs_corpus
 
@@ -132,12 +132,13 @@ def test_identity_translation_is_byte_for_byte(tmp_path):
         dialect = FOLDER_DIALECT[path.relative_to(CORPUS).parts[0]]
         dialect = "marlin" if dialect == "auto" else dialect
         out = tmp_path / "out.gcode"
-        result = runner.invoke(main, ["translate", "--from", dialect, "--to", dialect, str(path), "-o", str(out)])
+        job = corpus_job(path)  # (a long job's first and last lines, unless GCLINT_SLOW)
+        result = runner.invoke(main, ["translate", "--from", dialect, "--to", dialect, job, "-o", str(out)])
         if _is_not_gcode(path):  # refused as ``check`` refuses it
             assert result.exit_code == 2 and "not G-code" in result.output, (path, result.output)
             continue
         assert result.exit_code == 0, (path, result.output)
-        assert out.read_bytes() == path.read_bytes(), path
+        assert out.read_bytes() == Path(job).read_bytes(), path
         count += 1
     assert count > 500
 
