@@ -113,3 +113,15 @@ def _private_user_cache(tmp_path_factory):
         os.environ.pop("XDG_CACHE_HOME", None)
     else:
         os.environ["XDG_CACHE_HOME"] = old
+
+
+def pytest_configure(config: pytest.Config) -> None:
+    """Compile gclint's modules once, before the workers start: the CLI tests run ``python -m gclint`` in
+    hundreds of subprocesses, and where PYTHONDONTWRITEBYTECODE is set (CI sandboxes) each would compile
+    every module again (as installed for a user, Python keeps the bytecode)."""
+    if not hasattr(config, "workerinput"):  # (the controller, or a run without xdist)
+        import compileall
+
+        import gclint
+
+        compileall.compile_dir(os.path.dirname(gclint.__file__), quiet=1)
