@@ -62,7 +62,8 @@ class FileContext:
         """Let go of what the file's rules share once they are done (calling their ``release``, if any): those
         objects hold the rules, which hold this context, a reference cycle that would keep the file's
         findings until the garbage collector's next full pass (the next file would be read with them still
-        in memory)."""
+        in memory); and of what only the rules' run needed (the comment lines remembered as plain, the latest
+        finding of each code)."""
         for shared in self.shared.values():
             release = getattr(shared, "release", None)
             if release is not None:
