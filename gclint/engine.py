@@ -257,7 +257,7 @@ class Linter:
 
     def _run(self, source: Source, ctx: FileContext, result: FileResult) -> None:
         dialect = ctx.dialect
-        classes = [cls for cls in self.rule_classes if cls.applies_to(dialect.name, dialect.family)]
+        classes = [cls for cls in self.rule_classes if cls.applies_to(dialect)]
         ctx.enabled_codes = frozenset(cls.code for cls in classes)
         rules: list[Rule] = []
         for cls in classes:
@@ -280,6 +280,7 @@ class Linter:
         first_chars = frozenset().union(*(chars for chars, _ in start_hooks))
         numbered_hooks = tuple(r.check_line for r in rules if r.on_numbered)
         issue_hooks = tuple(r.check_issues for r in rules if r.on_issue)
+        ignored_hooks = tuple(r.check_ignored for r in rules if r.on_ignored_command)
         comment_hooks = tuple(r.check_comment for r in rules if r.on_comment)
         # (security rules: lines a firmware edits before it reads them, read again as it does; rules/security/views.py)
         views: dict = {}  # (one search per line for the rules that share a pattern)
@@ -307,7 +308,7 @@ class Linter:
             # rest of this file and go on.  The loops below iterate over tuples, so replacing them here
             # does not skip the other rules' hooks on the current line.
             nonlocal line_hooks, numbered_hooks, issue_hooks, comment_hooks, long_hooks, after_end_hooks, plain
-            nonlocal start_hooks, view_hooks
+            nonlocal start_hooks, view_hooks, ignored_hooks
             rule = getattr(hook, "__self__", None)
             if rule is None or rule not in rules:  # pragma: no cover - hooks are bound rule methods
                 raise exc
@@ -319,7 +320,7 @@ class Linter:
 
             line_hooks, numbered_hooks = keep(line_hooks), keep(numbered_hooks)
             issue_hooks, comment_hooks = keep(issue_hooks), keep(comment_hooks)
-            after_end_hooks = keep(after_end_hooks)
+            after_end_hooks, ignored_hooks = keep(after_end_hooks), keep(ignored_hooks)
             long_hooks = tuple((n, h) for n, h in long_hooks if getattr(h, "__self__", None) is not rule)
             start_hooks = tuple((c, h) for c, h in start_hooks if getattr(h, "__self__", None) is not rule)
             view_hooks = tuple((wants, keep(hooks)) for wants, hooks in view_hooks)
@@ -358,6 +359,7 @@ class Linter:
         long_limit = shortest_long if shortest_long is not None else 1 << 62
         plain_match = PLAIN_MOVE.fullmatch
         plain_move = interpreter.plain_move
+        running, ignored = ctx.dialect.semantics.running, ctx.dialect.semantics.ignored
         state = ctx.state
         read_directives = ctx.read_directives
         parse = parse_line
@@ -482,7 +484,18 @@ class Linter:
                                 hook(line)
                             except Exception as exc:
                                 disable(hook, exc, number)
-                for cmd in parsed.commands:
+                commands = parsed.commands
+                if len(commands) > 1:  # the dialect says which of them run, and in what order
+                    ran = running(commands)
+                    if len(ran) < len(commands):
+                        for cmd in ignored(commands):
+                            for hook in ignored_hooks:
+                                try:
+                                    hook(line, cmd)
+                                except Exception as exc:
+                                    disable(hook, exc, number)
+                    commands = ran
+                for cmd in commands:
                     entry = get(cmd.code)
                     if entry is None:
                         entry = build(cmd)

@@ -1,4 +1,5 @@
-"""``gclint summary``: what a job does, in numbers, read with the same machine state the check uses.
+"""``gclint summary``: what a job does, in numbers, read by the reader of meaning the ``diff`` uses
+(``gclint.simulate``: its events, with the dialect's facts from ``gclint.dialects.semantics``).
 
 Per file: the heads it uses, each with its set-points, whether it waits for them and how much it
 extrudes; the flow mode; the layers and the Z range of the printing moves; the XY extent, against the
@@ -7,8 +8,9 @@ and an estimated time.
 
 The time model is deliberately simple (and the same for every dialect), so that two jobs compare: each
 move takes its length divided by the feed in force (arcs by their arc length; a G0 with no feed of its own
-at the last feed), plus G4 dwells; heating, acceleration and tool changes are not counted.  It is a lower
-bound, not a promise.
+at the last feed), plus G4 dwells as the dialect counts them; heating, acceleration and tool changes are not
+counted.  It is a lower bound, not a promise.  Lengths are in mm and in the job's own coordinates (inches
+converted; head offsets left out: where the tool tip goes on the work).
 """
 
 from __future__ import annotations
@@ -20,16 +22,12 @@ from dataclasses import asdict, dataclass, field
 from gclint.context import Context
 from gclint.dialects import get as get_dialect
 from gclint.engine import Linter, Options
-from gclint.machine.interpreter import Interpreter
-from gclint.machine.state import EVALUES, NATIVE
-from gclint.syntax.nodes import Command, Line
-from gclint.syntax.parse import parse_line
+from gclint.simulate import simulator_for
+from gclint.simulate.events import Dwell, Flow, Heat, Move
+from gclint.simulate.trace import NATIVE
 from gclint.syntax.source import Source
 
-_WAITS = {"M109": "head", "M190": "bed", "M191": "chamber"}
-_SETS = {"M104": "head", "M109": "head", "M140": "bed", "M190": "bed", "M141": "chamber", "M191": "chamber"}
 _BED = re.compile(r"(?im)^;\s*(?:bed_shape|printable_area)\s*=\s*([-\d.x, ]+)$")
-_AXES = "XYZ"
 MAX_VALUES = 64  # distinct set-points listed per head or device (a job that sweeps them is not a list)
 
 
@@ -87,79 +85,71 @@ def summarize_path(path: str, options: Options | None = None) -> JobSummary:
 
 
 def summarize(source: Source, context: Context) -> JobSummary:
-    """Run the job through the machine state (``context`` says as what) and count."""
+    """Read the job as ``context`` says (the same reader of meaning the ``diff`` uses: gclint.simulate) and
+    count its events."""
     summary = JobSummary(source.display, context.label())
     dialect = get_dialect(context.dialect)
     summary.bed = _bed(source.head_text(), source.tail_text())
-    interpreter = Interpreter(dialect)
-    st = interpreter.state
+    reader = simulator_for(dialect)
     heads: dict[str, HeadUse] = {}
     layers = 0  # printing heights above every one before (the layers), counted, with the lowest and top
     z_low = z_top = None
     last_z: float | None = None
-    flows: list[str] = []
+    hyrel_flow = dialect.semantics.e_values == "hyrel"
+    flows: list[str] = ["native"] if hyrel_flow else []
     feed_low, feed_high = math.inf, -math.inf
     box = [math.inf, -math.inf, math.inf, -math.inf, math.inf, -math.inf]
-    number = 0
-    for chunk in source.chunks():
-        for raw, ending in chunk:
-            number += 1
-            parsed = parse_line(raw)
-            line = Line(number, raw, ending, parsed)
-            for cmd in parsed.commands:
-                before = _where(st)
-                e_before = st.e_position
-                code = cmd.code
-                interpreter.apply(cmd, line)
-                if code in _SETS:
-                    _temperature(summary, heads, cmd, st, interpreter)
-                elif code == "G4":
-                    summary.time_s += _dwell(cmd, dialect.family)
-                if code not in ("G0", "G1", "G2", "G3", None) or cmd.kind not in ("gcode", "implicit"):
-                    continue
-                after = _where(st)
-                # None: the move starts (or ends) where the state does not know; it is still a move, and
-                # still prints, with its known end in the extent; only its length (and time) is unknown
-                length = _length(before, after, cmd)
-                if length is None:
-                    summary.unmeasured_moves += 1
-                feed = st.feed
-                # Marlin and RRF: G0 is G1 ("E allowed (extrudes)", research/dialects.md), so a G0 that
-                # extrudes prints (slicers' purge lines); elsewhere G0 is a rapid, non-working move
-                working = code != "G0" or dialect.family == "reprap"
-                printing = working and _printed(e_before, st.e_position, cmd, interpreter)
-                name = _head_name(st.tool, dialect.family)
-                # filament: the net E of every move (a retraction takes back what the unretraction gives)
-                metered = st.flow_mode != NATIVE or not interpreter.is_hyrel  # (native flow: not metered)
-                if metered and e_before is not None and st.e_position is not None and st.e_position != e_before:
-                    heads.setdefault(name, HeadUse(name)).extruded_mm += st.e_position - e_before
-                if printing:
-                    heads.setdefault(name, HeadUse(name)).printing_moves += 1
-                    if length is not None:
-                        summary.printing_mm += length
-                    z = after[2]
-                    if z is not None and (last_z is None or abs(z - last_z) > 1e-6):
-                        if z_top is None or z > z_top + 1e-6:
-                            layers += 1
-                            z_top = z
-                            z_low = z if z_low is None else min(z_low, z)
-                        last_z = z
-                    for i, value in enumerate(after):
-                        if value is not None:
-                            box[2 * i] = min(box[2 * i], value)
-                            box[2 * i + 1] = max(box[2 * i + 1], value)
-                    if feed:
-                        feed_low, feed_high = min(feed_low, feed), max(feed_high, feed)
-                elif length is not None:
-                    summary.travel_mm += length
-                if feed and feed > 0 and length is not None:
-                    summary.time_s += length / feed * 60
-            if interpreter.is_hyrel:
-                mode = "E values (M229 E1)" if st.flow_mode == EVALUES else "native"
-                if not flows or flows[-1] != mode:
-                    flows.append(mode)
-    summary.lines = number
-    summary.heads = list(heads.values()) + [h for h in summary.heads if h.head not in heads]
+    last_feed: float | None = None  # (a rapid with no speed of its own: at the last feed, a lower bound)
+    for event in reader.events(source):
+        kind = type(event)
+        if kind is Move:
+            e = event.e
+            name = event.tool or ""
+            if e is not None and e is not NATIVE:  # filament: the net E of every move (retractions included)
+                heads.setdefault(name, HeadUse(name)).extruded_mm += e
+            if not event.point:  # (a move the reader could not place)
+                continue
+            start, end = event.origin, event.point
+            length = _length(start, end, event.arc)
+            if length is None:
+                summary.unmeasured_moves += 1
+            printing = e is not None and (e is NATIVE or e > 0)  # (an unretraction in place too: it feeds)
+            feed = event.feed
+            if printing:
+                heads.setdefault(name, HeadUse(name)).printing_moves += 1
+                if length is not None:
+                    summary.printing_mm += length
+                z = end[2]
+                if z is not None and (last_z is None or abs(z - last_z) > 1e-6):
+                    if z_top is None or z > z_top + 1e-6:
+                        layers += 1
+                        z_top = z
+                        z_low = z if z_low is None else min(z_low, z)
+                    last_z = z
+                for i, value in enumerate(end[:3]):
+                    if value is not None:
+                        box[2 * i] = min(box[2 * i], value)
+                        box[2 * i + 1] = max(box[2 * i + 1], value)
+                if feed:
+                    feed_low, feed_high = min(feed_low, feed), max(feed_high, feed)
+            elif length is not None and start != end:
+                summary.travel_mm += length
+            if feed:
+                last_feed = feed
+            elif event.rapid:
+                feed = last_feed
+            if feed and feed > 0 and length is not None:
+                summary.time_s += length / feed * 60
+        elif kind is Dwell:
+            summary.time_s += event.seconds or 0.0
+        elif kind is Heat:
+            _temperature(summary, heads, event)
+        elif kind is Flow:
+            mode = "E values (M229 E1)" if event.mode == "evalues" else "native"
+            if flows[-1:] != [mode]:
+                flows.append(mode)
+    summary.lines = reader.line_count
+    summary.heads = list(heads.values())
     summary.flow = " then ".join(flows) if flows else "E amounts (extruder position)"
     summary.layers = layers
     if z_low is not None and z_top is not None:
@@ -181,75 +171,33 @@ def summarize(source: Source, context: Context) -> JobSummary:
     return summary
 
 
-def _where(st) -> tuple[float | None, float | None, float | None]:
-    pos = st.position
-    return pos.get("X"), pos.get("Y"), pos.get("Z")
-
-
-def _length(before, after, cmd: Command) -> float | None:
-    if None in before[:2] or None in after[:2]:
+def _length(start: tuple, end: tuple, arc) -> float | None:
+    """A move's path length (mm): an arc's turn and its rise, or the straight line; None when it starts or ends
+    where the reader does not know (it still prints, with its known end in the extent)."""
+    if not start or None in start[:2] or None in end[:2]:
         return None
-    dz = (after[2] - before[2]) if before[2] is not None and after[2] is not None else 0.0
-    chord = math.dist(before[:2], after[:2])
-    if cmd.code in ("G2", "G3") and ("I" in cmd.params or "J" in cmd.params):
-        i, j = cmd.get("I") or 0.0, cmd.get("J") or 0.0
-        radius = math.hypot(i, j)
-        if radius > 0:
-            cx, cy = before[0] + i, before[1] + j
-            a0 = math.atan2(before[1] - cy, before[0] - cx)
-            a1 = math.atan2(after[1] - cy, after[0] - cx)
-            sweep = (a0 - a1) if cmd.code == "G2" else (a1 - a0)
-            sweep %= 2 * math.pi
-            if sweep == 0:
-                sweep = 2 * math.pi  # a full circle
-            return math.hypot(radius * sweep, dz)
-    return math.hypot(chord, dz)
+    dz = (end[2] - start[2]) if start[2] is not None and end[2] is not None else 0.0
+    if arc is not None:
+        plane, _, radius, _, _, turn = arc
+        if plane == 17:
+            return math.hypot(radius * turn, dz)
+        return radius * turn  # (an arc in another plane: its rise is along another axis)
+    return math.hypot(math.dist(start[:2], end[:2]), dz)
 
 
-def _printed(e_before: float | None, e_after: float | None, cmd: Command, interpreter: Interpreter) -> bool:
-    if "E" not in cmd.params:
-        return False
-    if interpreter.is_hyrel and interpreter.state.flow_mode == NATIVE:
-        return True  # "E will trigger a working or printing move" (Hyrel G1)
-    return e_before is not None and e_after is not None and e_after > e_before
-
-
-def _head_name(tool: int | None, family: str) -> str:
-    if tool is None:
-        return "the focused head" if family == "hyrel" else "extruder 0"
-    return f"T{tool}" if family == "hyrel" else f"extruder {tool}"
-
-
-def _temperature(summary: JobSummary, heads: dict[str, HeadUse], cmd: Command, st, interpreter: Interpreter) -> None:
-    value = cmd.get("S") if cmd.get("S") is not None else (cmd.get("R") if not interpreter.is_hyrel else None)
-    if value is None:
-        return
-    kind = _SETS[str(cmd.code)]
-    waits = cmd.code in _WAITS and not (interpreter.is_hyrel and "W" in cmd.params)
-    if kind == "head":
-        # without T the command acts on the active tool: Marlin and RRF ("T = hotend idx (default
-        # active)", research/dialects.md) and Hyrel (Gcode page, "M109 Wait for Temp (Head)", Example 6:
-        # "(no T# - use head with current focus)"; T_v5, Default Mode)
-        address = interpreter.address(cmd) if interpreter.is_hyrel else None
-        if address is not None:
-            tool = address.v5
-        elif not interpreter.is_hyrel and cmd.get("T") is not None:
-            tool = cmd.get("T")
-        else:
-            tool = st.tool
-        name = _head_name(int(tool) if tool is not None else None, interpreter.family)
-        if address is not None and address.kind != "head":
-            name = address.label
-        head = heads.setdefault(name, HeadUse(name))
-        if not _note(head.set_points, value):
+def _temperature(summary: JobSummary, heads: dict[str, HeadUse], heat: Heat) -> None:
+    if heat.kind == "head":
+        head = heads.setdefault(heat.device, HeadUse(heat.device))
+        if not _note(head.set_points, heat.value):
             head.more_set_points += 1
-        if waits:
-            _note(head.waits, value)
+        if heat.wait:
+            _note(head.waits, heat.value)
         return
-    if not _note(summary.devices.setdefault(kind, []), value):
+    kind = heat.kind
+    if not _note(summary.devices.setdefault(kind, []), heat.value):
         summary.more_device_set_points[kind] = summary.more_device_set_points.get(kind, 0) + 1
-    if waits:
-        _note(summary.waited_devices.setdefault(kind, []), value)
+    if heat.wait:
+        _note(summary.waited_devices.setdefault(kind, []), heat.value)
 
 
 def _note(values: list[float], value: float) -> bool:
@@ -260,16 +208,6 @@ def _note(values: list[float], value: float) -> bool:
         return False
     values.append(value)
     return True
-
-
-def _dwell(cmd: Command, family: str) -> float:
-    # G4 P: milliseconds (Marlin, RRF, Hyrel), seconds on LinuxCNC/Carvera; S: seconds
-    p, s = cmd.get("P"), cmd.get("S")
-    if s is not None:
-        return max(0.0, s)
-    if p is not None:
-        return max(0.0, p if family in ("linuxcnc", "smoothie") else p / 1000)
-    return 0.0
 
 
 def _bed(head: str, tail: str | None) -> tuple[float, float, float, float] | None:

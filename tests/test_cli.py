@@ -111,7 +111,7 @@ def test_non_utf8_output_does_not_crash(tmp_path):
 def test_dialects_and_rules_commands():
     proc = run_cli("dialects")
     names = [line.split()[0] for line in proc.stdout.decode().splitlines()]
-    assert names == ["hyrel", "hyrel-v4", "marlin", "reprap", "machinekit", "carvera", "auto"]
+    assert names == ["hyrel", "hyrel-v4", "marlin", "reprap", "machinekit", "carvera", "generic", "auto"]
     rules = json.loads(run_cli("rules", "--format", "json").stdout)
     assert {"SX001", "DL001"} <= {r["code"] for r in rules}
     doc = run_cli("rules", "SX004").stdout.decode()

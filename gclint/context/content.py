@@ -15,7 +15,7 @@ import re
 from dataclasses import dataclass, field
 
 from gclint import secrets
-from gclint.dialects import Dialect, all_dialects, get
+from gclint.dialects import Dialect, get, known_dialects
 from gclint.dialects.base import Clue
 from gclint.firmware import all_firmware
 from gclint.syntax.fastpath import PLAIN_MOVE, PLAIN_MOVE_RUN
@@ -64,7 +64,7 @@ class ContentReading:
 def candidates() -> tuple[Dialect, ...]:
     """The dialects ``auto`` chooses between (Hyrel v4 and v5 are one candidate; the version is decided
     from the addresses afterwards)."""
-    return tuple(d for d in all_dialects() if d.name != "hyrel-v4")
+    return tuple(d for d in known_dialects() if d.variant_of is None)
 
 
 _HYREL = get("hyrel")

@@ -8,14 +8,15 @@ from __future__ import annotations
 
 from gclint.dialects.base import Code, Dialect, Param
 from gclint.dialects.carvera import CARVERA
+from gclint.dialects.generic import GENERIC
 from gclint.dialects.hyrel import HYREL_V4, HYREL_V5
 from gclint.dialects.machinekit import MACHINEKIT
 from gclint.dialects.marlin import MARLIN
 from gclint.dialects.reprap import REPRAP
 
-__all__ = ["Code", "Dialect", "Param", "all_dialects", "get", "names", "UnknownDialect", "DEFAULT"]
+__all__ = ["Code", "Dialect", "Param", "all_dialects", "known_dialects", "get", "names", "UnknownDialect", "DEFAULT", "GENERIC"]
 
-_ALL: tuple[Dialect, ...] = (HYREL_V5, HYREL_V4, MARLIN, REPRAP, MACHINEKIT, CARVERA)
+_ALL: tuple[Dialect, ...] = (HYREL_V5, HYREL_V4, MARLIN, REPRAP, MACHINEKIT, CARVERA, GENERIC)
 _BY_NAME: dict[str, Dialect] = {}
 for _d in _ALL:
     _BY_NAME[_d.name] = _d
@@ -31,6 +32,11 @@ class UnknownDialect(ValueError):
 
 def all_dialects() -> tuple[Dialect, ...]:
     return _ALL
+
+
+def known_dialects() -> tuple[Dialect, ...]:
+    """The dialects whose tables say what a machine has (every one but ``generic``)."""
+    return tuple(d for d in _ALL if d.known)
 
 
 def names() -> list[str]:

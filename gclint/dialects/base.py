@@ -12,6 +12,7 @@ from dataclasses import dataclass, field, replace
 from functools import cache
 from typing import Any
 
+from gclint.dialects.semantics import DWELL_UNKNOWN, Semantics
 from gclint.secrets import mask
 
 
@@ -333,6 +334,9 @@ class Detection:
         return bool(self.extensions) and path.lower().endswith(self.extensions)
 
 
+_GENERIC_SEMANTICS = Semantics(dwell=DWELL_UNKNOWN)
+
+
 @dataclass(frozen=True)
 class Dialect:
     """A G-code dialect: the codes it has and how its files look.
@@ -345,6 +349,11 @@ class Dialect:
     (Machinekit: E, its extruder is the A axis).
     ``open_codes`` is a predicate for codes the dialect accepts without listing them (user M-codes,
     macros).  ``unknown_severity`` is how serious an unknown code is on this firmware.
+
+    ``semantics`` is what the words of a line make its machine do (gclint.dialects.semantics): every reader of
+    meaning asks it, none tests the dialect's name.  ``family`` groups dialects whose rules are shared (the HY
+    rules run on the ``hyrel`` family): ask ``runs_rules_of``.  ``known`` is False for ``generic``, the reading
+    of a file no known dialect explains (parsing, security and dialect-free rules only).
     """
 
     name: str
@@ -360,9 +369,32 @@ class Dialect:
     not_move_words: str = ""
     open_codes: Callable[[str], bool] | None = None
     unknown_severity: str = "warning"
+    # what the firmware does with a code it does not have (explain), ``{code}`` and ``{title}`` filled in
+    unknown_note: str = "{title} does not list {code}: the firmware skips it (or runs a macro of that name)"
     description: str = ""
     sources: tuple[str, ...] = ()
     extras: Mapping[str, object] = field(default_factory=dict)
+    semantics: Semantics = field(default_factory=lambda: _GENERIC_SEMANTICS)
+    known: bool = True
+    variant_of: str | None = None  # another dialect's version (hyrel-v4 of hyrel): detection decides it after
+
+    def runs_rules_of(
+        self, families: tuple[str, ...] | None, code: str = "", names: tuple[str, ...] | None = None
+    ) -> bool:
+        """Whether a rule (``code``) written for ``families`` (None: every dialect) or for the dialects called
+        ``names`` checks this dialect's files.  A ``generic`` file gets no HY or DL rule: nothing says which
+        machine's tables apply."""
+        if not self.known and code[:2] in ("HY", "DL"):
+            return False
+        if names is not None and self.name not in names:
+            return False
+        return families is None or self.family in families
+
+    def related(self) -> tuple[str, ...]:
+        """The names of the dialects whose files this one's checks read alike (its family)."""
+        from gclint import dialects
+
+        return tuple(d.name for d in dialects.all_dialects() if d.family == self.family)
 
     def accepts(self, kind: str, code: str | None) -> bool:
         """Whether the dialect has a command of this kind and code (see syntax.nodes for kinds)."""

@@ -11,6 +11,7 @@ from __future__ import annotations
 
 from gclint.dialects.base import Clue, Detection, Dialect, codes, describe, span, table
 from gclint.dialects.machinekit import NGC_LANGUAGE_CLUES
+from gclint.dialects.semantics import DWELL_SECONDS_SUM, WORKSPACES, Semantics, effects
 from gclint.firmware.smoothieware import SMOOTHIEWARE
 
 _G = (
@@ -111,6 +112,49 @@ def _open(code: str) -> bool:
     return code[0] == "T" or "#" in code
 
 
+# Smoothieware in grbl mode, as the Carvera community docs describe it: G4 P and S in seconds, G0 F for that move
+# only ("F applies to that line only", gcodes/g0-default-rapid-feed.md), G28 to the clearance position, T with M6,
+# F on any line, G54 at the start (research/dialects.md 1.8 [CV]).  M7 is the air, M801/M802 the vacuum, M821/M822
+# the light (seeds: Carvera M-code table).
+CARVERA_SEMANTICS = Semantics(
+    dwell=DWELL_SECONDS_SUM,
+    extruder=None,
+    g0_feed="one-shot",
+    working="feeds",
+    home="clearance",
+    tool_select="prepare",
+    wait_r=None,
+    feed_on_any_command=True,
+    default_workspace="G54",
+    effects=effects(
+        WORKSPACES,
+        {
+            "G53": "machine-coordinates",
+            "G92.1": "clear-g92",
+            "G93": "inverse-time",
+            "G94": "units-per-minute",
+            "M2": "end-program",
+            "M30": "end-program",
+            "M6": "tool-change",
+            "M600": "pause",
+            "M25": "pause",
+            "M1": "optional-stop",
+            "M7": "air",
+            "M9": "air-off",
+            "M104": None,
+            "M109": None,
+            "M140": None,
+            "M190": None,
+            "M141": None,
+            "M191": None,
+            "M106": None,
+            "M107": None,
+            "M82": None,
+            "M83": None,
+        },
+    ),
+)
+
 CARVERA = Dialect(
     name="carvera",
     title="Makera Carvera (Smoothieware community firmware)",
@@ -127,6 +171,7 @@ CARVERA = Dialect(
     open_codes=_open,
     unknown_severity="warning",
     description="Carvera desktop CNC: milling with ATC, laser, 4th axis.",
+    semantics=CARVERA_SEMANTICS,
     sources=(
         "seeds/carvera-mcodes.md",
         "research/dialects.md section 1.8 [CV]",

@@ -16,6 +16,7 @@ from gclint.dialects.addressing import (
     resolve_v5,
 )
 from gclint.dialects.base import Clue, Code, Detection, Dialect, Param, code, has_all, has_any, table, value_at_least
+from gclint.dialects.semantics import DWELL_MS_S_SUM, WORKSPACES, Semantics, effects
 
 P = Param
 PCT = dict(minimum=0, maximum=100)  # "Sn is the percentage (0-100)"
@@ -947,6 +948,52 @@ HYREL_DETECTION = Detection(
         ),
     ),
 )
+# What a Hyrel machine does with a line (Hyrel wiki, Gcode page; the section named at each effect).
+HYREL_SEMANTICS = Semantics(
+    dwell=DWELL_MS_S_SUM,  # "G4 Timed Pause": S seconds, P milliseconds, both add up
+    e_values="hyrel",  # "G1 Working Move": native flow unless "M229 E1 D1"
+    g0_feed="one-shot",  # "G0 Rapid Move": F "non-persistent"
+    home="listed",  # "G28 Send X, Y to Physical Home": "Any axis not homed will have its position remain unchanged"
+    tool_select="address",  # T_v5: T commands and T variables share one address table
+    fan_scale="range",  # "M106 Set Cooling / Etc.": S is a share of the range C (default C100)
+    wait_r="tolerance",  # "M109 Wait for Temp (Head)": R is a tolerance
+    effects=effects(
+        WORKSPACES,  # "G54-59 Set Offsets"
+        {
+            "G16": "plane",
+            "G28": "home-reset-offsets",  # "G28": "also resets current offsets to 0 ... performs a G53"
+            "G2.1": "spiral-in-place",
+            "G3.1": "spiral-in-place",
+            "G2.2": "arc",
+            "G3.2": "arc",
+            "G2.3": "arc",
+            "G3.3": "arc",
+            "G53": "clear-fixture-offsets",  # "G53 Clear Offsets" (modal)
+            "G81": "peck-drill",
+            "G93": "clear-g92",
+            "M0": "pause-with-actions",  # "M0 is a stop until resume command"; its comment lists Repetrel actions
+            "M6": "declare-head-offsets",  # "M6 Declare Head Offsets"
+            "M7": "aux",
+            "M8": "aux",
+            "M9": "aux-off",
+            "M30": "end-of-job",  # "M30 End of Job": resets the job's state
+            "M116": "wait-pending",  # "M116 Wait for W0 temperatures"
+            "M221": "flow",
+            "M229": "flow-mode",
+            "M620": "emitter",
+            "M621": "emitter-power",
+            "M623": "emit",
+            "M721": "unprime",
+            "M722": "prime",
+            "M660": "height-offset",
+            "M702": "squad",
+            "M703": "squad-add",
+            "M704": "squad-remove",
+            "M756": "layer-height",
+        },
+    ),
+)
+
 HYREL_V5 = Dialect(
     name="hyrel",
     title="Hyrel (Repetrel v5, unified T addressing)",
@@ -956,7 +1003,12 @@ HYREL_V5 = Dialect(
     detection=HYREL_DETECTION,
     open_codes=_is_t_command,
     unknown_severity="error",  # Hyrel firmware reuses numbers with other meanings (dialects.md X1)
+    unknown_note=(
+        "Repetrel does not list {code}; Hyrel reuses many numbers for other things, so it is rejected or does "
+        "something else"
+    ),
     description="Hyrel 3D printers (30M, ESR, EHR, 16A) with Repetrel/firmware v5: T commands and T variables share one address table.",
+    semantics=HYREL_SEMANTICS,
     sources=(
         "seeds/hyrel-gcode-reference.wiki.txt",
         "seeds/hyrel-T_v5-addressing.wiki.txt",
@@ -1007,6 +1059,7 @@ HYREL_V4 = HYREL_V5.derive(
         ),
     ],
     aliases=("hyrel4",),
+    variant_of="hyrel",
     detection=HYREL_DETECTION,  # v4 or v5 is decided from the addresses the file uses (gclint.context)
     description="Hyrel firmware/Repetrel v4 and earlier: T commands are tool numbers 0-9, T variables inside M-codes are CAN device addresses.",
     extras={

@@ -8,6 +8,7 @@ language is LinuxCNC's RS274NGC: O-words, #parameters, [expressions], user M-cod
 from __future__ import annotations
 
 from gclint.dialects.base import Clue, Detection, Dialect, Param, code, codes, describe, span, table
+from gclint.dialects.semantics import DWELL_P_SECONDS, LINUXCNC_ORDER, WORKSPACES, Semantics, effects
 from gclint.firmware.linuxcnc import G_CODES, M_CODES
 from gclint.syntax.nodes import ASSIGNMENT, GCODE, IMPLICIT, OWORD
 
@@ -202,6 +203,60 @@ MACHINEKIT_CLUES = (
     Clue("G1 A#: extrusion on the A axis", "G1", test=lambda c: "A" in c.params and "E" not in c.params, weight=1),
 )
 
+# The LinuxCNC interpreter's reading of a line, which Machinekit shares (gclint.dialects.semantics names the
+# sections of the LinuxCNC documentation): the order of execution, G90.1/G91.1, G28/G30 through a point to a stored
+# position, T that the next M6 loads (T0: no tool), G4 P in seconds, F on any line, G54 at the start.  The extruder
+# is the A axis ("A follows G90/G91", research/dialects.md 1.1 G1 [MK]).
+MACHINEKIT_SEMANTICS = Semantics(
+    dwell=DWELL_P_SECONDS,
+    extruder="A",
+    g0_feed="rapid",
+    e_follows_g90=True,
+    working="feeds",
+    arc_centre_modes=True,
+    arc_turns="turns",
+    order=LINUXCNC_ORDER,
+    words_first=("F", "S", "T"),
+    home="predefined",
+    g30="predefined",
+    tool_select="prepare",
+    no_tool=0,
+    wait_r=None,  # the FDM remaps' M109 takes P (value) and T (index): research/dialects.md 1.8 [MK]
+    feed_on_any_command=True,
+    default_workspace="G54",
+    effects=effects(
+        WORKSPACES,
+        {f"G59.{n}": "workspace" for n in (1, 2, 3)},
+        {
+            "G17.1": "plane",
+            "G18.1": "plane",
+            "G19.1": "plane",
+            "G90.1": "arc-absolute",
+            "G91.1": "arc-relative",
+            "G92.1": "clear-g92",
+            "G92.2": "clear-g92",
+            "G30": "predefined-position",
+            "G53": "machine-coordinates",
+            "G93": "inverse-time",
+            "G94": "units-per-minute",
+            "M0": "pause",
+            "M60": "pause",
+            "M1": "optional-stop",
+            "M2": "end-program",
+            "M30": "end-program",
+            "M6": "tool-change",
+            "M61": "set-tool",
+            "M7": "coolant",
+            "M8": "coolant",
+            "M9": "coolant-off",
+            "M226": "pause",  # the FDM remap's pause (research/dialects.md 2.2, M226 -> M0)
+            "M221": "flow",
+            "M18": None,  # (no motors-off code in LinuxCNC)
+            "M84": None,
+        },
+    ),
+)
+
 MACHINEKIT = Dialect(
     name="machinekit",
     title="Machinekit FDM / LinuxCNC (RS274NGC with the FDM remaps)",
@@ -217,7 +272,9 @@ MACHINEKIT = Dialect(
     not_move_words="E",  # research/dialects.md 1.1 (G1, Machinekit: A = extruder) and 1.8 [MK]
     open_codes=_open,
     unknown_severity="error",  # the LinuxCNC interpreter stops on an unknown code
+    unknown_note="the machinekit interpreter stops on an unknown code",
     description="Machinekit's FDM configuration of the LinuxCNC interpreter; also plain LinuxCNC programs.",
+    semantics=MACHINEKIT_SEMANTICS,
     sources=("seeds/machinekit-fdm-mcodes.md", "research/dialects.md section 1.8 [MK, LCNC]"),
     extras={"fan_max": 255},
 )

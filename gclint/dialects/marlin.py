@@ -11,6 +11,7 @@ Marlin and that firmware.
 from __future__ import annotations
 
 from gclint.dialects.base import Clue, Detection, Dialect, codes, describe, span, table
+from gclint.dialects.semantics import DWELL_MS_S_WINS, WORKSPACES, Semantics, effects
 from gclint.syntax.nodes import EXTENDED
 
 _G = (
@@ -187,6 +188,38 @@ def _open(code: str) -> bool:
 # Content that marks Marlin-flavour G-code (the uses Hyrel would never write are Hyrel's "against" clues).
 MARLIN_CLUES = (Clue("a Klipper extended command (NAME KEY=VALUE)", kind=EXTENDED, weight=4),)
 
+# What Marlin's machine does with a line (gclint.dialects.semantics names the sources; research/dialects.md 1.1-1.5
+# for G0, G90 and G28).  Pauses: M0/M1 "wait for user", M25 "pause SD print", M226 "wait for pin state", M600
+# "filament change" (Marlin G-code reference).  M30 deletes a file from the SD card: no effect on the machine.
+MARLIN_EFFECTS = effects(
+    WORKSPACES,
+    {
+        "G53": "machine-coordinates",
+        "G92.1": "clear-g92",
+        "M0": "pause",
+        "M1": "pause",
+        "M25": "pause",
+        "M226": "pause",
+        "M600": "pause",
+        "M7": "coolant",
+        "M8": "coolant",
+        "M9": "coolant-off",
+        "M220": "feed-factor",
+        "M221": "flow",
+    },
+)
+MARLIN_SEMANTICS = Semantics(
+    dwell=DWELL_MS_S_WINS,
+    g0_extrudes=True,  # "on Cartesians [G0] must be a direct alias for G1", E allowed (dialects.md 1.1 G0)
+    g0_feed="modal",
+    e_follows_g90=True,  # "G90/G91 reset E mode" (dialects.md 1.1 G1)
+    arc_turns="extra",  # "P = number of extra full circles" (ARC_P_CIRCLES, dialects.md 1.1 G2/G3)
+    commands_per_line="first",
+    home="all-if-none",
+    tool_select="extruder",
+    effects=MARLIN_EFFECTS,
+)
+
 MARLIN = Dialect(
     name="marlin",
     title="Marlin 2.x (Marlin-flavour slicer output, Prusa, Bambu, Klipper hosts)",
@@ -213,6 +246,7 @@ MARLIN = Dialect(
     open_codes=_open,
     unknown_severity="warning",  # Marlin echoes "Unknown command" and goes on (anchors.md, Marlin)
     description="Marlin firmware and Marlin-flavour output of the common slicers.",
+    semantics=MARLIN_SEMANTICS,
     sources=("research/dialects.md section 1 [MAR]",),
     extras={"fan_max": 255},
 )

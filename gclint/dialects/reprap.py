@@ -9,6 +9,7 @@ a macro file for a code it does not know (sys/M<n>.g, sys/G<n>.g), so no G or M 
 from __future__ import annotations
 
 from gclint.dialects.base import Clue, Detection, Dialect, codes, describe, table
+from gclint.dialects.marlin import MARLIN_SEMANTICS
 from gclint.firmware.reprapfirmware import REPRAPFIRMWARE
 from gclint.syntax.nodes import META, is_number
 
@@ -42,6 +43,7 @@ _MOVE = {
     "E": "extruder position",
     "F": "feed rate, mm/min (modal)",
     "H": "H1: homing move that stops at the endstop, H2: move motors individually",
+    "S": "S1: endstop-checking move (homing; the older form of H1)",
 }
 _DESCRIPTIONS = {
     "G0": ("rapid move", _MOVE),
@@ -180,6 +182,25 @@ REPRAP_CLUES = (
     Clue("T-1: deselects every tool", "T-1"),
 )
 
+# RepRapFirmware reads a line as Marlin does (G0 is G1 in FDM mode, G4 S counts when both are given: GCodes.cpp
+# DoDwell) except: G90/G91 leave the E mode alone ("extrusion is NOT set to absolute using G90"), every command of a
+# line runs (StringParser.cpp), M0/M1/M2 end the job, M116 waits for every set-point, G10/M568 set tool
+# temperatures (research/dialects.md 1.1-1.5 [RRF]).
+REPRAP_SEMANTICS = MARLIN_SEMANTICS.derive(
+    e_follows_g90=False,
+    fan_scale="255-or-fraction",  # M106 S: "0-1, or 0-255 above 1" (research/dialects.md 1.3 M106 [RRF])
+    commands_per_line="all",
+    effects={
+        "M0": "end-program",
+        "M1": "end-program",
+        "M2": "end-program",
+        "M116": "wait-all",
+        "G10": "tool-temperature-or-offset",
+        "M568": "tool-temperature",
+        "M563": "define-tool",
+    },
+)
+
 REPRAP = Dialect(
     name="reprap",
     title="RepRapFirmware 3.x (Duet)",
@@ -200,6 +221,7 @@ REPRAP = Dialect(
     open_codes=_open,
     unknown_severity="warning",
     description="Duet RepRapFirmware 3: meta commands, object-model expressions, macro files.",
+    semantics=REPRAP_SEMANTICS,
     sources=("research/dialects.md section 1 [RRF]",),
     extras={"fan_max": 255},
 )

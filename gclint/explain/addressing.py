@@ -96,16 +96,14 @@ def tool(job: Job, cmd: Command, line: Line) -> Explanation:
     if len(digits.lstrip("-")) > 6:  # no printer has a million tools: do not parse 5000 digits
         return Explanation(line.number, line.raw, code[:12] + "...", "a T number too large for any tool or head")
     n = int(digits)
-    if not job.hyrel:
+    if not job.addressed:
         exp = Explanation(line.number, line.raw, code, f"select tool {n}")
         if n < 0:
             exp = Explanation(line.number, line.raw, code, "deselect the current tool")
-        if job.family in ("linuxcnc", "smoothie"):
-            exp.note(
-                "prepares the tool; M6 changes to it"
-                if job.family == "linuxcnc"
-                else "select the tool (M6 T changes it on the ATC)"
-            )
+        if job.facts.tool_select == "prepare":
+            exp.note("prepares the tool; M6 changes to it")
+            if n == job.facts.no_tool:
+                exp.note(f"T{n} is no tool: the M6 that follows empties the spindle")
         else:
             exp.note(f"extruder/tool {n} becomes active (its offsets and temperature apply)")
         return exp
@@ -198,8 +196,8 @@ def leave_squad(job: Job, exp: Explanation, cmd: Command, spec: Code | None) -> 
     generic(job.dialect, exp, cmd, spec, skip="TS")
 
 
-def decoders(family: str) -> dict[str, Decoder]:
-    if family != "hyrel":
+def decoders(job: Job) -> dict[str, Decoder]:
+    if not job.addressed:  # (the codes below address a device by its T)
         return {}
     return {
         "M702": establish_squad,

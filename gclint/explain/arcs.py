@@ -78,13 +78,18 @@ def arc3(job: Job, exp: Explanation, cmd: Command, spec: Code | None) -> None:
     generic(job.dialect, exp, cmd, spec, skip="S")
 
 
-def decoders(family: str) -> dict[str, Decoder]:
-    if family != "hyrel":
-        return {}
-    return {
-        "G2": arc,
-        "G3": arc,
-        **dict.fromkeys(("G2.1", "G3.1", "G2.2", "G3.2"), spiral),
-        "G2.3": arc3,
-        "G3.3": arc3,
-    }
+def decoders(job: Job) -> dict[str, Decoder]:
+    """The arcs whose words the dialect's table catalogues (Hyrel's G2/G3 S, the spirals, the 3-space arcs):
+    others are read from the table alone."""
+    table: dict[str, Decoder] = {}
+    for code in job.facts.codes_with("arc", "spiral-in-place"):
+        spec = job.dialect.spec(code)
+        if spec is None or spec.params is None:
+            continue
+        if "L" in spec.params or (job.facts.effect(code) == "spiral-in-place"):
+            table[code] = spiral
+        elif "U" in spec.params:
+            table[code] = arc3
+        else:
+            table[code] = arc
+    return table

@@ -17,7 +17,8 @@ from gclint.syntax.nodes import ASSIGNMENT, EXTENDED, GCODE, IMPLICIT, META, OWO
 from gclint.syntax.parse import parse_line
 from gclint.syntax.source import Source
 
-# One module per topic; each says which codes it decodes for a dialect family (``decoders(family)``).
+# One module per topic; each says which codes it decodes for a job's dialect (``decoders(job)``: by the codes'
+# effects and the dialect's facts, never its name).
 TOPICS = (motion, offsets, temperature, fans, arcs, flow, addressing, lasers_spindles, jobflow)
 
 
@@ -28,7 +29,7 @@ class Explainer(Job):
         super().__init__(dialect, state)
         self._decoders: dict[str, Decoder] = {}
         for topic in TOPICS:
-            self._decoders.update(topic.decoders(self.family))
+            self._decoders.update(topic.decoders(self))
 
     def explain_line(self, line: Line) -> list[Explanation]:
         out = []

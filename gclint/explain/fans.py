@@ -12,7 +12,7 @@ from gclint.syntax.nodes import Command
 
 
 def fan(job: Job, exp: Explanation, cmd: Command, spec: Code | None) -> None:
-    if not job.hyrel:
+    if job.facts.fan_scale != "range":
         _fan_reprap(job, exp, cmd, spec)
         return
     c_word = cmd.param("C")
@@ -49,7 +49,7 @@ def fan(job: Job, exp: Explanation, cmd: Command, spec: Code | None) -> None:
 
 
 def _fan_reprap(job: Job, exp: Explanation, cmd: Command, spec: Code | None) -> None:
-    if job.family == "linuxcnc":
+    if spec is not None and spec.params is not None:  # (the table catalogues its words: Machinekit's P and T)
         generic(job.dialect, exp, cmd, spec)
         return
     p = cmd.param("P")
@@ -62,8 +62,7 @@ def _fan_reprap(job: Job, exp: Explanation, cmd: Command, spec: Code | None) -> 
             value is not None
             and value <= 1
             and "." in (s.value or "")
-            and job.family == "reprap"
-            and job.dialect.name == "reprap"
+            and job.facts.fan_scale == "255-or-fraction"
         ):
             exp.add(s.text.strip(), f"fan speed {fmt(value * 100)}% (RepRapFirmware reads 0-1 as a fraction)")
         elif value is not None:
@@ -74,7 +73,7 @@ def _fan_reprap(job: Job, exp: Explanation, cmd: Command, spec: Code | None) -> 
 
 
 def fan_off(job: Job, exp: Explanation, cmd: Command, spec: Code | None) -> None:
-    if job.hyrel:
+    if job.addressed:
         target(job, exp, cmd, spec)
         does(exp, spec)
     else:
@@ -82,5 +81,5 @@ def fan_off(job: Job, exp: Explanation, cmd: Command, spec: Code | None) -> None
         generic(job.dialect, exp, cmd, spec)
 
 
-def decoders(family: str) -> dict[str, Decoder]:
+def decoders(job: Job) -> dict[str, Decoder]:
     return {"M106": fan, "M107": fan_off}

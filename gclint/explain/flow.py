@@ -56,7 +56,9 @@ def prime(job: Job, exp: Explanation, cmd: Command, spec: Code | None) -> None:
     generic(job.dialect, exp, cmd, spec, skip="SEPTI")
 
 
-def decoders(family: str) -> dict[str, Decoder]:
-    if family != "hyrel":
-        return {}
-    return {"M229": use_e_values, "M721": prime, "M722": prime}
+def decoders(job: Job) -> dict[str, Decoder]:
+    facts = job.facts
+    return {
+        **dict.fromkeys(facts.codes_with("flow-mode"), use_e_values),
+        **dict.fromkeys(facts.codes_with("unprime", "prime"), prime),
+    }

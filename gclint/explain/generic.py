@@ -71,16 +71,7 @@ def generic(dialect: Dialect, exp: Explanation, cmd: Command, spec: Code | None,
 
 def unknown(dialect: Dialect, exp: Explanation, cmd: Command) -> None:
     """A code the dialect does not have: what the firmware does with it, and the words as letters."""
-    if dialect.unknown_severity == "error":
-        if dialect.family == "hyrel":
-            exp.warn(
-                f"Repetrel does not list {cmd.code}; Hyrel reuses many numbers for other things, so it is "
-                "rejected or does something else"
-            )
-        else:
-            exp.warn(f"the {dialect.name} interpreter stops on an unknown code")
-    else:
-        exp.warn(f"{dialect.title} does not list {cmd.code}: the firmware skips it (or runs a macro of that name)")
+    exp.warn(dialect.unknown_note.format(code=cmd.code, title=dialect.title))
     for word in cmd.words:
         exp.add(word.text.strip(), GENERIC.get(word.letter, f"{word.letter} value"))
 

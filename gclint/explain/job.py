@@ -17,8 +17,9 @@ class Job:
 
     def __init__(self, dialect: Dialect, state: MachineState | None = None) -> None:
         self.dialect = dialect
-        self.family = dialect.family
-        self.hyrel = dialect.family == "hyrel"
+        self.facts = dialect.semantics  # what the dialect's machine does (gclint.dialects.semantics)
+        # T commands and T variables name devices by address (Hyrel): heads, beds, groups, clone squads
+        self.addressed = self.facts.tool_select == "address"
         self.state = state if state is not None else MachineState()
         self.interpreter = Interpreter(dialect, self.state)
         self.firmware = dialect.extras.get("firmware")

@@ -29,5 +29,5 @@ def stop(job: Job, exp: Explanation, cmd: Command, spec: Code | None) -> None:
         exp.warn("the text holds SHELL: Repetrel may run it as a program (SC001 reports it)")
 
 
-def decoders(family: str) -> dict[str, Decoder]:
-    return {"M0": stop} if family == "hyrel" else {}
+def decoders(job: Job) -> dict[str, Decoder]:
+    return dict.fromkeys(job.facts.codes_with("pause-with-actions"), stop)

@@ -59,7 +59,7 @@ def spindle(job: Job, exp: Explanation, cmd: Command, spec: Code | None) -> None
     direction = "clockwise" if cmd.code == "M3" else "counter-clockwise"
     exp.note(f"start the spindle {direction}")
     s = cmd.param("S")
-    if job.hyrel:
+    if job.addressed:
         target(job, exp, cmd, spec)
         if s is not None:
             exp.add(s.text.strip(), reading(spec, "S", "0" if number(s.value) == 0 else s.value))
@@ -74,7 +74,7 @@ def spindle(job: Job, exp: Explanation, cmd: Command, spec: Code | None) -> None
 
 def spindle_off(job: Job, exp: Explanation, cmd: Command, spec: Code | None) -> None:
     exp.note("stop the spindle")
-    if job.hyrel:
+    if job.addressed:
         target(job, exp, cmd, spec)
         generic(job.dialect, exp, cmd, spec, skip="T")
     else:
@@ -84,10 +84,13 @@ def spindle_off(job: Job, exp: Explanation, cmd: Command, spec: Code | None) -> 
 def tool_change(job: Job, exp: Explanation, cmd: Command, spec: Code | None) -> None:
     """M6 on LinuxCNC and Carvera: change to the tool T names (or the one the last T selected)."""
     t = cmd.param("T")
+    prepared = job.state.prepared_tool
     if t is not None:
         exp.add(t.text.strip(), f"change to tool {t.value}")
-    elif job.state.tool is not None:
-        exp.note(f"change to the tool selected by T (T{job.state.tool})")
+    elif prepared is not None and prepared == job.facts.no_tool:
+        exp.note(f"T{prepared} was selected: no tool, the spindle is emptied")
+    elif prepared is not None:
+        exp.note(f"change to the tool selected by T (T{prepared})")
     else:
         exp.note("change to the tool selected by T")
     generic(job.dialect, exp, cmd, spec, skip="T")
@@ -115,17 +118,18 @@ def peck_drill(job: Job, exp: Explanation, cmd: Command, spec: Code | None) -> N
     generic(job.dialect, exp, cmd, spec, skip="TXYIPQZF")
 
 
-def decoders(family: str) -> dict[str, Decoder]:
-    if family == "hyrel":
-        return {
-            "M620": enable_device,
-            "M621": laser_power,
-            "M623": emit,
-            "M3": spindle,
-            "M4": spindle,
-            "M5": spindle_off,
-            "G81": peck_drill,
-        }
-    if family in ("linuxcnc", "smoothie"):
-        return {"M3": spindle, "M4": spindle, "M5": spindle_off, "M6": tool_change}
-    return {}
+def decoders(job: Job) -> dict[str, Decoder]:
+    facts = job.facts
+    table: dict[str, Decoder] = {}
+    for effects, decoder in (
+        (("emitter",), enable_device),
+        (("emitter-power",), laser_power),
+        (("emit",), emit),
+        (("peck-drill",), peck_drill),
+        (("tool-change",), tool_change),
+    ):
+        table.update(dict.fromkeys(facts.codes_with(*effects), decoder))
+    if job.addressed or facts.working == "feeds":  # (a Marlin M3 is a laser or spindle the job may not have)
+        table.update(dict.fromkeys(facts.codes_with("spindle-cw", "spindle-ccw"), spindle))
+        table.update(dict.fromkeys(facts.codes_with("spindle-off"), spindle_off))
+    return table

@@ -39,15 +39,17 @@ def move(job: Job, exp: Explanation, cmd: Command, spec: Code | None, mode: str)
         word = cmd.param(letter)
         if word is not None:
             exp.add(word.text.strip(), axis_text(job, letter, word.value))
-    if job.hyrel:
-        for letter in "AB":
-            if letter not in p and any(a in p for a in "XYZ"):
-                exp.note(line.params[letter].absent)  # type: ignore[union-attr,index]
+    for letter in "AB":  # (what the table says of a move without A or B: Hyrel's "no change in A")
+        param = line.param(letter) if line is not None else None
+        if param is not None and param.absent and letter not in p and any(a in p for a in "XYZ"):
+            exp.note(param.absent)
     e = cmd.param("E")
     if e is not None:
-        if mode == "G0":
-            exp.items.append(Item(e.text.strip(), "E on a G0 does nothing: G0 never works", job.hyrel))
-        elif job.hyrel and job.state.flow_mode != EVALUES:
+        if mode == "G0" and not job.facts.g0_extrudes:
+            exp.items.append(
+                Item(e.text.strip(), "E on a G0 does nothing: G0 never works", job.facts.e_values == "hyrel")
+            )
+        elif job.facts.e_values == "hyrel" and job.state.flow_mode != EVALUES:
             exp.add(e.text.strip(), reading(line, "E", e.value))
         elif job.state.e_absolute:
             exp.add(e.text.strip(), f"extrude until the E position is {e.value}")
@@ -64,19 +66,18 @@ def move(job: Job, exp: Explanation, cmd: Command, spec: Code | None, mode: str)
             exp.add(f.text.strip(), f"one-time speed of {f.value} mm/min, not persistent")
         else:
             exp.add(f.text.strip(), f"moving at {f.value} mm/min")
-    elif mode == "G0" and job.hyrel:
-        exp.note(line.params["F"].absent)  # type: ignore[union-attr,index]
+    elif mode == "G0" and line is not None and line.param("F") is not None and line.param("F").absent:  # type: ignore[union-attr]
+        exp.note(line.param("F").absent)  # type: ignore[union-attr]
     elif job.state.feed is not None:
         exp.note(f"using the previously set F{fmt(job.state.feed)}")
     h = cmd.param("H")
-    if h is not None and job.hyrel:
+    if h is not None and job.interpreter.height_registers:
         _height_register(job, exp, h.text.strip(), h.value, line)
     s = cmd.param("S")
     if s is not None:
-        if job.hyrel and mode == "G1":
+        s_param = spec.param("S") if spec is not None else None
+        if mode == "G1" and s_param is not None and (s_param.says or s_param.values):
             exp.add(s.text.strip(), reading(spec, "S", s.value))
-        elif job.family == "reprap":
-            exp.add(s.text.strip(), "S1 on G1: endstop-checking move (homing)" if s.value == "1" else f"S{s.value}")
         else:
             exp.add(s.text.strip(), (spec.meaning("S") if spec is not None else None) or f"S{s.value}")
     generic(job.dialect, exp, cmd, spec, skip="XYZABEFHS")
@@ -97,18 +98,29 @@ def _height_register(job: Job, exp: Explanation, word: str, value: str | None, l
 
 
 def dwell(job: Job, exp: Explanation, cmd: Command, spec: Code | None) -> None:
-    s = number(cmd.raw("S"))
-    p = number(cmd.raw("P"))
-    p_seconds = job.family in ("linuxcnc", "smoothie")  # Machinekit/LinuxCNC and Carvera: P is seconds
-    if cmd.has("S"):
-        exp.add(cmd.param("S").text.strip(), f"{cmd.raw('S')} s")  # type: ignore[union-attr]
-    if cmd.has("P"):
-        exp.add(cmd.param("P").text.strip(), f"{cmd.raw('P')} {'s' if p_seconds else 'ms'}")  # type: ignore[union-attr]
-    total = (s or 0) + ((p or 0) if p_seconds else (p or 0) / 1000)
-    if s is not None and p is not None:
-        exp.note(f"pause for {fmt(total)} s in all (S and P add up)")
-    elif s is None and p is None:
-        exp.note("no S or P: no pause")
+    """G4: the words the dialect counts time with (``Semantics.dwell``), and the pause they make, the same
+    number the summary, the diff and the translator use."""
+    rule = job.facts.dwell
+    timed = []
+    for letter in "SP":
+        word = cmd.param(letter)
+        if word is None:
+            continue
+        unit = rule.unit(letter)
+        if unit is None:
+            exp.add(word.text.strip(), f"{(spec.meaning(letter) if spec else None) or letter}: not a dwell time")
+        else:
+            exp.add(word.text.strip(), f"{cmd.raw(letter)} {unit}")
+            timed.append(letter)
+    seconds = rule.seconds(cmd.params)
+    if rule.p_seconds is None and rule.s_seconds is None:
+        exp.note("how long this dialect dwells is not known")
+    elif seconds is None:
+        exp.note("no dwell time given: no pause")
+    elif len(timed) > 1:
+        exp.note(f"pause for {fmt(seconds)} s in all ({rule.describe()})")
+    else:
+        exp.note(f"pause for {fmt(seconds)} s")
 
 
 def _mode(text: str) -> Decoder:
@@ -118,7 +130,7 @@ def _mode(text: str) -> Decoder:
     return decode
 
 
-def decoders(family: str) -> dict[str, Decoder]:
+def decoders(job: Job) -> dict[str, Decoder]:
     return {
         "G0": lambda job, exp, cmd, spec: move(job, exp, cmd, spec, "G0"),
         "G1": lambda job, exp, cmd, spec: move(job, exp, cmd, spec, "G1"),

@@ -18,7 +18,8 @@ def _signed(value: str) -> str:
 
 def home(job: Job, exp: Explanation, cmd: Command, spec: Code | None) -> None:
     listed = [a for a in "XYZAB" if a in cmd.params]
-    if job.hyrel:
+    home_form = job.facts.home
+    if home_form == "listed":
         does(exp, spec)
         for axis in "XYZAB":
             if read(exp, cmd, spec, axis) is None:
@@ -27,7 +28,7 @@ def home(job: Job, exp: Explanation, cmd: Command, spec: Code | None) -> None:
             # "Any axis not homed will have its position remain unchanged" (G28 Send X, Y to Physical Home)
             exp.warn("no axis listed: Hyrel homes only the axes named (G28 X0 Y0)")
         notes(exp, spec)
-    elif job.family == "reprap":
+    elif home_form == "all-if-none":
         if listed:
             for axis in listed:
                 exp.add(cmd.param(axis).text.strip(), f"home {axis}")  # type: ignore[union-attr]
@@ -35,9 +36,11 @@ def home(job: Job, exp: Explanation, cmd: Command, spec: Code | None) -> None:
             exp.note("no axis listed: home all axes")
     else:
         exp.note(
-            "go to the stored G28 position (through the listed axes' intermediate point)"
-            if job.family == "linuxcnc"
-            else "go to the clearance (G28) position"
+            {
+                "predefined": "go through the listed axes' point (in the current distance mode, offsets "
+                "included), then to the stored G28 position (parameters 5161-5169; machine zero if none stored)",
+                "zero-listed": "rapid to zero on the listed axes (all when none is listed)",
+            }.get(home_form, "go to the clearance (G28) position")
         )
         generic(job.dialect, exp, cmd, spec)
 
@@ -87,8 +90,10 @@ def height_offset(job: Job, exp: Explanation, cmd: Command, spec: Code | None) -
     generic(job.dialect, exp, cmd, spec, skip="HZ")
 
 
-def decoders(family: str) -> dict[str, Decoder]:
-    table: dict[str, Decoder] = {"G28": home, "G92": set_position}
-    if family == "hyrel":
-        table.update({"M6": declare_offsets, "M660": height_offset})
+def decoders(job: Job) -> dict[str, Decoder]:
+    facts = job.facts
+    table: dict[str, Decoder] = dict.fromkeys(facts.codes_with("home", "home-reset-offsets"), home)
+    table["G92"] = set_position
+    table.update(dict.fromkeys(facts.codes_with("declare-head-offsets"), declare_offsets))
+    table.update(dict.fromkeys(facts.codes_with("height-offset"), height_offset))
     return table

@@ -20,7 +20,7 @@ def set_point(value: str | None) -> str:
 
 
 def set_temperature(job: Job, exp: Explanation, cmd: Command, spec: Code | None) -> None:
-    if job.hyrel:
+    if job.addressed:
         target(job, exp, cmd, spec)
     elif "T" in cmd.params:
         exp.add(cmd.param("T").text.strip(), f"extruder/tool {cmd.raw('T')}")  # type: ignore[union-attr]
@@ -32,7 +32,7 @@ def set_temperature(job: Job, exp: Explanation, cmd: Command, spec: Code | None)
 
 
 def wait_temperature(job: Job, exp: Explanation, cmd: Command, spec: Code | None) -> None:
-    if not job.hyrel:
+    if job.facts.wait_r != "tolerance":
         _wait_reprap(job, exp, cmd, spec)
         return
     code = cmd.code or ""
@@ -118,7 +118,7 @@ def _wait_reprap(job: Job, exp: Explanation, cmd: Command, spec: Code | None) ->
         exp.add(cmd.param("T").text.strip(), f"extruder/tool {cmd.raw('T')}")  # type: ignore[union-attr]
     s = cmd.param("S")
     r = cmd.param("R")
-    if job.family == "linuxcnc":
+    if job.facts.wait_r is None:  # (its words are the dialect table's: Machinekit's remap takes P and T)
         generic(job.dialect, exp, cmd, spec)
         return
     if s is not None:
@@ -134,13 +134,14 @@ def wait_all(job: Job, exp: Explanation, cmd: Command, spec: Code | None) -> Non
     does(exp, spec)
 
 
-def decoders(family: str) -> dict[str, Decoder]:
+def decoders(job: Job) -> dict[str, Decoder]:
     table: dict[str, Decoder] = {
         "M104": set_temperature,
         "M140": set_temperature,
         "M109": wait_temperature,
         "M190": wait_temperature,
     }
-    if family == "hyrel":
-        table.update({"M141": set_temperature, "M191": wait_temperature, "M116": wait_all})
+    if job.addressed:  # (a chamber is a device with an address)
+        table.update({"M141": set_temperature, "M191": wait_temperature})
+    table.update(dict.fromkeys(job.facts.codes_with("wait-pending"), wait_all))
     return table

@@ -1,8 +1,9 @@
 """Apply commands to a ``MachineState`` with the semantics of a dialect.
 
-One table of handlers per dialect family; the same code can mean different things (M30 ends a Hyrel
-job but deletes a file on Marlin; G90 resets the E mode on Marlin only).  Facts come from
-../shared/research/dialects.md section 1 and the Hyrel seed pages; each handler names its source.
+What a code does is the dialect's fact (``gclint.dialects.semantics``: ``Semantics.effects`` maps each code to
+its effect, and the fields say how G0, G28, T, E and the commands of one line behave); this module carries each
+effect out on the state the rules read.  The same code can mean different things (M30 ends a Hyrel job but
+deletes a file on Marlin; G90 resets the E mode on Marlin only): the dialect's table says which.
 """
 
 from __future__ import annotations
@@ -50,14 +51,21 @@ class Interpreter:
     def __init__(self, dialect: Dialect, state: MachineState | None = None) -> None:
         self.dialect = dialect
         self.state = state if state is not None else MachineState()
-        self.family = dialect.family
+        self.semantics = facts = dialect.semantics
         self.resolve_variable: Callable[[int], Address] = dialect.extras.get("resolve_variable", resolve_v5)  # type: ignore[assignment]
         self.resolve_command: Callable[[int], Address] = dialect.extras.get("resolve_command", resolve_v5)  # type: ignore[assignment]
-        self.is_hyrel = self.family == "hyrel"
-        self.g0_feed_one_shot = self.family in ("hyrel", "smoothie")  # Hyrel/Carvera: G0 F is one-shot
+        # T commands and T variables name devices by their address (Hyrel): groups, clone squads, v4 numbers
+        self.addressed = facts.tool_select == "address"
+        self.native_flow = facts.e_values == "hyrel"  # an E marks a printing move unless M229 E1 D1
+        self.g0_feed_one_shot = facts.g0_feed == "one-shot"
+        present = set(facts.effects.values())
+        self.height_registers = "height-offset" in present  # G1 H<n> applies the register an M660 stored
+        self.w0_waits = "wait-pending" in present  # a wait with W0 waits at M116 (Hyrel)
+        fan = dialect.spec("M106")
+        self.fan_ranges = fan is not None and fan.param("C") is not None  # M106 C sets the range of S (Hyrel)
         # (functions of the class, not bound methods: a table of bound methods would hold the interpreter in
         # a reference cycle, and each file's state and findings until the garbage collector's next full pass)
-        self.handlers = _handlers(type(self), self.family, dialect.name == "reprap")
+        self.handlers = _handlers(type(self), facts)
 
     # -- addressing ----------------------------------------------------------------------------------
 
@@ -105,7 +113,7 @@ class Interpreter:
             mode = self.state.motion_mode
             if mode is not None and any(a in cmd.params for a in _AXES):
                 self._motion(cmd, line, mode)
-            elif "F" in cmd.params and self.family in ("linuxcnc", "smoothie"):
+            elif "F" in cmd.params and self.semantics.feed_on_any_command:
                 # a lone F word sets the modal feed (LinuxCNC, Carvera/grbl): "F1000" on its own line
                 try:
                     self.state.feed = float(cmd.params["F"] or "")
@@ -155,7 +163,7 @@ class Interpreter:
             st.motion_mode = mode
         if "E" in p:
             self._extrude(p["E"], mode, line.number)
-        if self.is_hyrel and "H" in p:
+        if self.height_registers and "H" in p:
             register = _int(p["H"])
             if register != st.applied_height_register or st.applied_height_line is None:
                 st.applied_height_line = line.number
@@ -247,7 +255,7 @@ class Interpreter:
         if mode != "G0":
             # Hyrel native flow: "E will trigger a working or printing move" whatever its value (G1
             # section); elsewhere a move extrudes when E advances.
-            if self.is_hyrel and st.flow_mode == NATIVE:
+            if self.native_flow and st.flow_mode == NATIVE:
                 printing = True
             elif value is None:
                 printing = False
@@ -272,17 +280,19 @@ class Interpreter:
         elif st.e_position is not None:
             st.e_position += value
 
-    def _plane(self, plane: int) -> None:
-        self.state.plane = plane
+    def _plane(self, cmd: Command, line: Line) -> None:
+        plane = _PLANES.get(cmd.code)  # type: ignore[arg-type]
+        if plane is not None:  # (LinuxCNC's UVW planes G17.1-G19.1 have no arcs: the plane stays)
+            self.state.plane = plane
 
     def _g90(self, cmd: Command, line: Line) -> None:
         self.state.absolute = True
-        if self.dialect.name == "marlin":  # Marlin: G90 also sets absolute E (dialects.md 1.1 G90)
+        if self.semantics.e_follows_g90:
             self.state.e_absolute = True
 
     def _g91(self, cmd: Command, line: Line) -> None:
         self.state.absolute = False
-        if self.dialect.name == "marlin":
+        if self.semantics.e_follows_g90:
             self.state.e_absolute = False
 
     def _g92(self, cmd: Command, line: Line) -> None:
@@ -297,26 +307,36 @@ class Interpreter:
                 st.e_position = float(e) if e is not None else 0.0
             except ValueError:
                 st.e_position = None
-        if self.family == "hyrel" and any(a in cmd.params for a in _AXES):
+        if any(a in cmd.params for a in _AXES):
             st.g92_offsets_active = True
+
+    def _clear_g92(self, cmd: Command, line: Line) -> None:
+        self.state.g92_offsets_active = False
+
+    def _home_and_reset(self, cmd: Command, line: Line) -> None:
+        # Hyrel: after homing, "a G28 also resets current offsets to 0 - including any may have been set with
+        # a G92 or an H ..., performs a G53, and applies a head offset of 0 mm (as in an M6 O0)" (Gcode page,
+        # "G28 Send X, Y to Physical Home")
+        st = self.state
+        st.head_reselected_line = None
+        st.g92_offsets_active = False
+        st.fixture_offsets_active = False
+        st.applied_height_register = None
+        st.applied_height_line = None
+        st.first_print_since_home_line = None
+        self._g28(cmd, line)
 
     def _g28(self, cmd: Command, line: Line) -> None:
         st = self.state
         listed = [a for a in _AXES if a in cmd.params]
-        if self.family == "hyrel":
-            # G28 homes only the listed axes; afterwards G92, H and fixture offsets are cleared and a
-            # head offset of 0 is applied (Gcode page, "G28 Send X, Y to Physical Home").
+        home = self.semantics.home
+        if home == "listed":
             homed = listed
-            st.head_reselected_line = None
-            st.g92_offsets_active = False
-            st.fixture_offsets_active = False
-            st.applied_height_register = None
-            st.applied_height_line = None
-            st.first_print_since_home_line = None
-        elif self.family == "reprap":
+        elif home == "all-if-none":
             homed = listed or ["X", "Y", "Z"]  # Marlin/RRF: bare G28 homes all axes
         else:
-            # LinuxCNC G28 goes to a stored position; Carvera G28 goes to the clearance position.
+            # a stored position (LinuxCNC), the clearance position (Carvera), the zero of the axes (the FDM
+            # remap, in the program's frame): none the rules' state can place
             for axis in listed or list(_AXES):
                 st.position.forget(axis)
             st.moved = True
@@ -365,7 +385,11 @@ class Interpreter:
         if address is None:
             return
         st = self.state
-        if self.family == "hyrel":
+        select = self.semantics.tool_select
+        if select == "prepare":  # the tool the next M6 loads (LinuxCNC, Carvera)
+            st.prepared_tool = address.number
+            return
+        if select == "address":
             st.tool = address.v5
             # "T0 (Switch to far left head, and invoke all flow, prime, unprime, and offset parameters)"
             if st.head_reselected_line is None:
@@ -376,12 +400,17 @@ class Interpreter:
         st.first_print_since_tool_line = None
 
     def _tool_change(self, cmd: Command, line: Line) -> None:
-        # CNC M6: change to the tool prepared by T (LinuxCNC; Carvera M6 T<n>)
+        # CNC M6: change to the tool prepared by T, on the line or before it (LinuxCNC; Carvera M6 T<n>); the
+        # dialect's "no tool" number empties the spindle (LinuxCNC T0)
+        st = self.state
         number = _int(cmd.params.get("T"))
-        if number is not None:
-            self.state.tool = number
-            self.state.tool_line = line.number
-            self.state.first_print_since_tool_line = None
+        if number is None:
+            number = st.prepared_tool
+        if number is None:
+            return
+        st.tool = None if number == self.semantics.no_tool else number
+        st.tool_line = line.number
+        st.first_print_since_tool_line = None
 
     def _declare_head(self, cmd: Command, line: Line) -> None:
         # Repetrel sends "M6 T# O..." for every loaded head at job start (T_v5, Default Mode); an M6 T#
@@ -434,10 +463,10 @@ class Interpreter:
         s = cmd.get("S")
         if s is not None:
             st.targets[target] = s
-            if self.is_hyrel and target >= 30:
+            if self.addressed and target >= 30:
                 for member in self._members(target):
                     st.targets[member] = s
-        if self.family == "hyrel" and cmd.code in ("M109", "M190", "M191"):
+        if self.w0_waits and cmd.code in ("M109", "M190", "M191"):
             w = cmd.params.get("W")
             if w is not None and _int(w) == 0:
                 st.pending_w0[target] = line.number
@@ -456,6 +485,8 @@ class Interpreter:
         return members
 
     def _fan_range(self, cmd: Command, line: Line) -> None:
+        if not self.fan_ranges:
+            return
         c = cmd.get("C")
         if c is not None and c > 0:
             self.state.fan_range = c
@@ -496,7 +527,7 @@ class Interpreter:
                 self.state.emitters_enabled.pop(address.v5, None)
 
     def _spindle_on(self, cmd: Command, line: Line) -> None:
-        device = self.target(cmd) if self.family == "hyrel" else 0
+        device = self.target(cmd) if self.addressed else 0
         if device is None:
             device = -1
         s = cmd.get("S")
@@ -506,7 +537,7 @@ class Interpreter:
         self.state.spindles[device] = ("cw" if cmd.code == "M3" else "ccw", line.number)
 
     def _spindle_off(self, cmd: Command, line: Line) -> None:
-        device = self.target(cmd) if self.family == "hyrel" else 0
+        device = self.target(cmd) if self.addressed else 0
         if device is None or "T" not in cmd.params:
             self.state.spindles.clear() if device is None else self.state.spindles.pop(device, None)
         else:
@@ -514,7 +545,7 @@ class Interpreter:
 
     # -- end of job ------------------------------------------------------------------------------------
 
-    def _end_of_job_hyrel(self, cmd: Command, line: Line) -> None:
+    def _end_of_job(self, cmd: Command, line: Line) -> None:
         # M30: "dissolves any cloning setups, changes head index to 0, clears fixture offsets (G53), clears
         # any M229 E-value settings, resets M106 persistent range, ... resets M660 head offsets to 0"
         st = self.state
@@ -546,13 +577,11 @@ class Interpreter:
 Method = Callable[[Interpreter, Command, Line], None]
 Entry = str | tuple[str, str] | Method
 
+_PLANES = {"G16": 16, "G17": 17, "G18": 18, "G19": 19}
+
 
 def _ignore(self: Interpreter, cmd: Command, line: Line) -> None:
     return None
-
-
-def _plane(plane: int) -> Method:
-    return lambda self, cmd, line: self._plane(plane)
 
 
 def _sets(field: str, value: object) -> Method:
@@ -563,88 +592,63 @@ def _m116(self: Interpreter, cmd: Command, line: Line) -> None:
     self.state.pending_w0.clear()
 
 
+# Each effect (gclint.dialects.semantics) and what carries it out on the state: the name of a method (looked up on
+# the interpreter's class, so that a subclass or a test may replace one), a motion method's name and mode, or a
+# function.  An effect not listed changes nothing the rules read (pauses, coolant, feed modes...).
+_BY_EFFECT: dict[str, Entry] = {
+    "rapid": ("_motion", "G0"),
+    "linear": ("_motion", "G1"),
+    "arc": "_arc",
+    "spiral-in-place": "_spiral_in_place",
+    "dwell": _ignore,
+    "plane": "_plane",
+    "inch": _sets("units", "inch"),
+    "mm": _sets("units", "mm"),
+    "absolute": "_g90",
+    "relative": "_g91",
+    "set-position": "_g92",
+    "clear-g92": "_clear_g92",
+    "home": "_g28",
+    "home-reset-offsets": "_home_and_reset",
+    "e-absolute": _sets("e_absolute", True),
+    "e-relative": _sets("e_absolute", False),
+    "set-head-temperature": "_set_temp",
+    "wait-head-temperature": "_set_temp",
+    "set-bed-temperature": "_set_temp",
+    "wait-bed-temperature": "_set_temp",
+    "set-chamber-temperature": "_set_temp",
+    "wait-chamber-temperature": "_set_temp",
+    "fan": "_fan_range",
+    "motors-off": "_motors_off",
+    "clear-fixture-offsets": "_g53",
+    "machine-coordinates": _ignore,
+    "workspace": "_fixture",
+    "peck-drill": "_g81",
+    "spindle-cw": "_spindle_on",
+    "spindle-ccw": "_spindle_on",
+    "spindle-off": "_spindle_off",
+    "declare-head-offsets": "_declare_head",
+    "tool-change": "_tool_change",
+    "end-of-job": "_end_of_job",
+    "end-program": "_end_of_program",
+    "wait-pending": _m116,
+    "flow-mode": "_m229",
+    "emitter": "_m620",
+    "height-offset": "_m660",
+    "squad": "_m702",
+    "squad-add": "_m703",
+    "squad-remove": "_m704",
+    "layer-height": "_m756",
+}
+
+
 @cache
-def _table(family: str, reprap: bool) -> dict[str, Entry]:
-    """The handlers of a dialect family (``reprap``: the RepRap dialect itself, whose M0 and M2 end it): the
-    names of the methods (looked up on the interpreter's class, so that a subclass or a test may replace
-    one), a motion method's name and mode, or functions."""
-    h: dict[str, Entry] = {
-        "G0": ("_motion", "G0"),
-        "G1": ("_motion", "G1"),
-        "G2": "_arc",
-        "G3": "_arc",
-        "G4": _ignore,
-        "G17": _plane(17),
-        "G18": _plane(18),
-        "G19": _plane(19),
-        "G20": _sets("units", "inch"),
-        "G21": _sets("units", "mm"),
-        "G90": "_g90",
-        "G91": "_g91",
-        "G92": "_g92",
-        "G28": "_g28",
-        "M82": _sets("e_absolute", True),
-        "M83": _sets("e_absolute", False),
-        "M104": "_set_temp",
-        "M109": "_set_temp",
-        "M140": "_set_temp",
-        "M141": "_set_temp",
-        "M190": "_set_temp",
-        "M191": "_set_temp",
-        "M18": "_motors_off",
-        "M84": "_motors_off",
-    }
-    if family == "hyrel":
-        h.update(
-            {
-                "G16": _plane(16),
-                "G2.1": "_spiral_in_place",
-                "G3.1": "_spiral_in_place",
-                "G2.2": "_arc",
-                "G3.2": "_arc",
-                "G2.3": "_arc",
-                "G3.3": "_arc",
-                "G53": "_g53",
-                "G93": "_g93",
-                "M3": "_spindle_on",
-                "M4": "_spindle_on",
-                "M5": "_spindle_off",
-                "M6": "_declare_head",
-                "M30": "_end_of_job_hyrel",
-                "M106": "_fan_range",
-                "M116": _m116,
-                "M229": "_m229",
-                "M620": "_m620",
-                "M660": "_m660",
-                "M702": "_m702",
-                "M703": "_m703",
-                "M704": "_m704",
-                "M756": "_m756",
-                "G81": "_g81",
-            }
-        )
-        for n in range(54, 60):
-            h[f"G{n}"] = "_fixture"
-    elif family == "reprap":
-        h.update({"M3": "_spindle_on", "M4": "_spindle_on", "M5": "_spindle_off"})
-        if reprap:
-            h.update({"M0": "_end_of_program", "M2": "_end_of_program"})
-    else:  # linuxcnc, smoothie (CNC families)
-        h.update(
-            {
-                "M2": "_end_of_program",
-                "M30": "_end_of_program",
-                "M3": "_spindle_on",
-                "M4": "_spindle_on",
-                "M5": "_spindle_off",
-                "M6": "_tool_change",
-                "G53": _ignore,
-            }
-        )
-    return h
+def _table(effects: tuple[tuple[str, str], ...]) -> dict[str, Entry]:
+    """The handlers of a dialect whose codes have these ``effects``."""
+    return {code: _BY_EFFECT[effect] for code, effect in effects if effect in _BY_EFFECT}
 
 
-def _handlers(cls: type[Interpreter], family: str, reprap: bool) -> dict[str, Method]:
+def _handlers(cls: type[Interpreter], facts) -> dict[str, Method]:
     def resolve(entry: Entry) -> Method:
         if isinstance(entry, str):
             return getattr(cls, entry)
@@ -652,4 +656,4 @@ def _handlers(cls: type[Interpreter], family: str, reprap: bool) -> dict[str, Me
             return partial(getattr(cls, entry[0]), mode=entry[1])
         return entry
 
-    return {code: resolve(entry) for code, entry in _table(family, reprap).items()}
+    return {code: resolve(entry) for code, entry in _table(tuple(sorted(facts.effects.items()))).items()}

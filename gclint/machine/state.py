@@ -74,6 +74,7 @@ class MachineState:
     # heads and tools
     tool: int | None = None  # focused head/device (v5 address)
     tool_line: int | None = None
+    prepared_tool: int | None = None  # the tool a CNC T selected for the next M6 (LinuxCNC, Carvera)
     declared_heads: dict[int, int] = field(default_factory=dict)  # position -> line of its M6 T# O...
     # position -> axis -> offset its M6 T# O... lines declare (None: not a plain number)
     declared_offsets: dict[int, dict[str, float | None]] = field(default_factory=dict)

@@ -1,8 +1,9 @@
 """The XY toolpath of a job, per head, for the HTML report's plot.
 
-The file is read again, streaming, through gclint's own ``Source``, parser and machine ``Interpreter``,
-so positions follow the dialect's semantics (G90/G91, G92, Hyrel G28 homing only the listed axes, the
-focused head from T commands).  Memory stays bounded on multi-million-line jobs: each head keeps at most
+The file is read again, streaming, by the reader of meaning (``gclint.simulate``: the events the summary and
+the diff read too), so positions follow the dialect's semantics (G90/G91, G92, units, Hyrel G28 homing only
+the listed axes, the focused head from T commands, LinuxCNC's order of execution) and a working move is one
+that prints, or on a CNC machine one that cuts.  Memory stays bounded on multi-million-line jobs: each head keeps at most
 ``2 * budget`` points, sampled at a stride that doubles whenever the budget fills (every move is seen,
 one in ``stride`` is kept).  Arcs are drawn as their chord.
 """
@@ -12,15 +13,10 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 
 from gclint import dialects
-from gclint.dialects.addressing import resolve_v5
-from gclint.machine.interpreter import Interpreter
-from gclint.machine.state import NATIVE, MachineState
-from gclint.syntax.nodes import IMPLICIT, Line
-from gclint.syntax.parse import parse_line
+from gclint.simulate import simulator_for
+from gclint.simulate.events import Move, ToolChange
 from gclint.syntax.source import Source, SourceError
 
-_WORKING = frozenset({"G1", "G2", "G3", "G2.1", "G3.1", "G2.2", "G3.2", "G2.3", "G3.3", "G81"})
-_MOTION = _WORKING | {"G0", "G28", "G92"}
 MAX_MARKERS = 2000
 # Heads drawn each on its own; the moves of any further head (a job may name a million tools) are drawn
 # together as one more path, so that memory and the page stay bounded.
@@ -32,7 +28,7 @@ OTHER_HEADS = "other"
 class HeadPath:
     """The sampled moves of one head: ``(x, y, working)``; ``working`` is the move that ends there."""
 
-    key: int | str | None
+    key: str | None
     label: str
     points: list[tuple[float, float, bool]] = field(default_factory=list)
     moves: int = 0  # moves seen (before sampling)
@@ -69,13 +65,13 @@ class HeadPath:
 class Marker:
     x: float
     y: float
-    head: int | None
+    head: str | None
     line: int
 
 
 @dataclass
 class Toolpath:
-    heads: dict[int | str | None, HeadPath] = field(default_factory=dict)
+    heads: dict[str | None, HeadPath] = field(default_factory=dict)
     markers: list[Marker] = field(default_factory=list)
     lines: int = 0
     error: str | None = None
@@ -92,18 +88,11 @@ class Toolpath:
         return min(xs), min(ys), max(xs), max(ys)
 
 
-def head_label(key: int | None, family: str) -> str:
-    if key is None:
-        return "focused head (no T command)"
-    if family == "hyrel":
-        return resolve_v5(key).label
-    return f"tool T{key}"
-
-
 def read_toolpath(
     path: str, dialect_name: str | None, flagged: set[int] | frozenset[int] = frozenset(), budget: int = 6000
 ) -> Toolpath:
-    """Replay ``path`` and collect its XY moves per head, plus the position of each flagged line."""
+    """Replay ``path`` and collect its XY moves per head, plus the position of each flagged line (where the
+    tool is once that line has run)."""
     toolpath = Toolpath()
     if path == "-":
         toolpath.error = "standard input cannot be read twice: no plot"
@@ -112,81 +101,57 @@ def read_toolpath(
         dialect = dialects.get(dialect_name) if dialect_name else dialects.DEFAULT
     except dialects.UnknownDialect:
         dialect = dialects.DEFAULT
-    state = MachineState()
-    interpreter = Interpreter(dialect, state)
-    apply = interpreter.apply
-    position = state.position
-    fff = dialect.family in ("hyrel", "reprap")  # printers: a working move extrudes; CNC: every G1 cuts
     heads = toolpath.heads
     markers = toolpath.markers
-    number = 0
+    waiting = sorted(flagged)  # flagged lines not marked yet, in order
+    at = 0
     last_xy: tuple[float, float] | None = None
     last_head: object = object()
+    reader = simulator_for(dialect)
+
+    tool: str | None = None  # the working tool (its moves are drawn as its head's)
+
+    def mark(up_to: int) -> None:  # (flagged lines up to ``up_to`` run with the tool where it is now)
+        nonlocal at
+        while at < len(waiting) and waiting[at] <= up_to:
+            if last_xy is not None and len(markers) < MAX_MARKERS:
+                markers.append(Marker(last_xy[0], last_xy[1], tool, waiting[at]))
+            at += 1
+
     try:
         source = Source.open(path)
-        for chunk in source.chunks():
-            for raw, _ending in chunk:
-                number += 1
-                parsed = parse_line(raw)
-                commands = parsed.commands
-                if not commands:
-                    continue
-                line = Line(number, raw, _ending, parsed)
-                moved = False
-                working = False
-                for cmd in commands:
-                    code = cmd.code
-                    if cmd.kind == IMPLICIT:
-                        code = state.motion_mode
-                    if code in _MOTION and ("X" in cmd.params or "Y" in cmd.params or code == "G28"):
-                        moved = True
-                        if code in _WORKING:
-                            if not fff:
-                                working = True
-                            elif "E" in cmd.params:
-                                working = _extrudes(state, cmd.params.get("E"), dialect.family)
-                    state.line_number = number
-                    apply(cmd, line)
-                if moved or number in flagged:
-                    x = position.get("X")
-                    y = position.get("Y")
-                    if x is None or y is None:
-                        continue
-                    head = state.tool
-                    if moved:
-                        path_of = heads.get(head)
-                        if path_of is None and len(heads) >= MAX_HEADS:
-                            head = OTHER_HEADS
-                            path_of = heads.get(head)
-                            if path_of is None:
-                                label = f"other heads (beyond the first {MAX_HEADS}, drawn together)"
-                                path_of = heads[head] = HeadPath(head, label)
-                        if path_of is None:
-                            path_of = heads[head] = HeadPath(head, head_label(head, dialect.family))
-                        if head != last_head and last_xy is not None:
-                            # a new head starts where the last one stopped: a travel, not a stroke
-                            path_of.jump(*last_xy)
-                        path_of.add(x, y, working, budget)
-                        last_xy = (x, y)
-                        last_head = head
-                    if number in flagged and len(markers) < MAX_MARKERS:
-                        markers.append(Marker(x, y, head, number))
+        for event in reader.events(source):
+            kind = type(event)
+            if kind is ToolChange:
+                mark(event.line - 1)
+                tool = event.tool
+                continue
+            if kind is not Move or not event.point:
+                continue
+            mark(event.line - 1)
+            x, y = event.point[0], event.point[1]
+            if x is None or y is None or (event.origin == event.point and event.arc is None):
+                continue
+            head = event.tool
+            path_of = heads.get(head)
+            if path_of is None and len(heads) >= MAX_HEADS:
+                head = OTHER_HEADS
+                path_of = heads.get(head)
+                if path_of is None:
+                    label = f"other heads (beyond the first {MAX_HEADS}, drawn together)"
+                    path_of = heads[head] = HeadPath(head, label)
+            if path_of is None:
+                path_of = heads[head] = HeadPath(head, reader.tool_title(head) if head else "the working tool")
+            if head != last_head and last_xy is not None:
+                # a new head starts where the last one stopped: a travel, not a stroke
+                path_of.jump(*last_xy)
+            path_of.add(x, y, event.working, budget)
+            last_xy = (x, y)
+            last_head = head
+        mark(reader.line_count)
     except SourceError as exc:
         toolpath.error = str(exc)
     except (RecursionError, MemoryError):
         toolpath.error = f"{path}: too complex to plot"
-    toolpath.lines = number
+    toolpath.lines = reader.line_count
     return toolpath
-
-
-def _extrudes(state: MachineState, e: str | None, family: str) -> bool:
-    # Hyrel native flow: "E will trigger a working or printing move" whatever its value (G1 section).
-    if family == "hyrel" and state.flow_mode == NATIVE:
-        return True
-    try:
-        value = float(e) if e is not None else 0.0
-    except ValueError:
-        return False
-    if state.e_absolute:
-        return state.e_position is None or value > state.e_position
-    return value > 0

@@ -203,6 +203,7 @@ class Rule:
     pure: ClassVar[bool] = False
     on_numbered: ClassVar[bool] = False  # call check_line for lines with an N number or a checksum
     on_issue: ClassVar[bool] = False  # call check_issues for lines with syntax issues
+    on_ignored_command: ClassVar[bool] = False  # call check_ignored for commands the dialect's machine never runs
     fixable: ClassVar[bool] = False
     # "safe" (--fix applies it), "unsafe" (--unsafe-fixes), or "sometimes" (depends on the finding)
     fix_applicability: ClassVar[str] = "safe"
@@ -233,6 +234,10 @@ class Rule:
     def check_issues(self, line: Line) -> None:
         """Called for lines with syntax issues (``on_issue``)."""
 
+    def check_ignored(self, line: Line, cmd: Command) -> None:
+        """Called for each command of a line that the dialect's machine does not run (``on_ignored_command``:
+        Marlin runs only a line's first command)."""
+
     def finish(self) -> None:
         """Called once after the last line."""
 
@@ -262,10 +267,10 @@ class Rule:
     # -- documentation ---------------------------------------------------------------------------------
 
     @classmethod
-    def applies_to(cls, dialect_name: str, family: str) -> bool:
-        if cls.dialects is not None and dialect_name not in cls.dialects:
-            return False
-        return cls.families is None or family in cls.families
+    def applies_to(cls, dialect) -> bool:
+        """Whether the rule checks files read as ``dialect`` (its ``dialects``/``families``; a ``generic`` file
+        gets no HY or DL rule: nothing says which machine's tables apply)."""
+        return dialect.runs_rules_of(cls.families, cls.code, cls.dialects)
 
     @classmethod
     def doc(cls) -> dict:

@@ -98,8 +98,7 @@ class UnknownCode(Rule):
     def _documented_elsewhere(self, code: str) -> str:
         """Names the firmware that has ``code`` (" (Prusa Buddy firmware has it)") when its files are read
         like this one's: the file may be for it (what its header would say, or extend-known-codes)."""
-        family = self.ctx.dialect.family
-        related = [d.name for d in dialects.all_dialects() if d.family == family]
+        related = self.ctx.dialect.related()
         others = [f.title for f in firmware.documenting(code, related) if f is not self.flavor]
         if not others:
             return ""
@@ -300,3 +299,32 @@ class WordNotInDialect(Rule):
                 f"{cmd.code} E: E is not a word of {self.ctx.dialect.title}; the extruder is the A axis",
                 node=cmd.param("E") or cmd,
             )
+
+
+@register
+class CommandNeverRuns(Rule):
+    code = "DL006"
+    name = "command-never-runs"
+    severity = Severity.ERROR
+    summary = "A second command on a line of a firmware that runs only the first"
+    explanation = """
+        Marlin reads one command a line: the first G, M or T code is the command and everything after it is
+        read as its parameters (Marlin's `GCodeParser::parse`, `Marlin/src/gcode/parser.cpp`).  In
+        `G91 G1 X10 E1` only `G91` runs; the move never happens, and the lines after it run in relative mode
+        from a place the file did not mean.  Put each command on its own line.  (RepRapFirmware, LinuxCNC and
+        Hyrel run every command of a line; LinuxCNC in its documented order, not as written.)
+    """
+    example_bad = "; gclint: dialect=marlin\nG91 G1 X10 E1"
+    example_good = "; gclint: dialect=marlin\nG91\nG1 X10 E1"
+    source = "Marlin firmware, Marlin/src/gcode/parser.cpp (GCodeParser::parse)"
+    on_ignored_command = True
+
+    def check_ignored(self, line: Line, cmd: Command) -> None:
+        first = line.commands[0].code or "the first command"
+        what = cmd.code or "these words"
+        self.report(
+            line,
+            f"{what} never runs: {self.ctx.dialect.title.split(' (')[0]} runs only the first command of a line "
+            f"({first}) and reads the rest as its parameters; put {what} on a line of its own",
+            node=cmd,
+        )

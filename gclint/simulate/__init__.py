@@ -22,6 +22,7 @@ from gclint.syntax.source import Source
 __all__ = ["DiffResult", "Difference", "Explanations", "Mapping", "diff_sources", "simulator_for", "is_cnc"]
 
 _SIMULATORS: dict[str, type[Simulator]] = {
+    "hyrel": HyrelSimulator,
     "marlin": MarlinSimulator,
     "reprap": RepRapSimulator,
     "machinekit": MachinekitSimulator,
@@ -31,16 +32,15 @@ _SIMULATORS: dict[str, type[Simulator]] = {
 
 def is_cnc(dialect: Dialect) -> bool:
     """CNC jobs synchronise on every feed move; printing jobs on the moves that print."""
-    return dialect.family in ("linuxcnc", "smoothie")
+    return dialect.semantics.working == "feeds"
 
 
-def simulator_for(dialect: Dialect, mapping: Mapping | None = None, *, cnc: bool = False) -> Simulator:
-    if dialect.family == "hyrel":
-        return HyrelSimulator(dialect, mapping, cnc=cnc)
-    factory = _SIMULATORS.get(dialect.name)
-    if factory is None:
-        raise ValueError(f"no simulator for {dialect.name}")
-    return factory(dialect, mapping, cnc=cnc)
+def simulator_for(dialect: Dialect, mapping: Mapping | None = None, *, cnc: bool | None = None) -> Simulator:
+    """The reader of ``dialect``'s jobs: the machine's devices as its documentation says (the registry below,
+    by dialect; a version of another dialect is read as that one, Hyrel v4 through its addresses); ``cnc``
+    (default: the dialect's machine cuts) makes every feed move a working move."""
+    factory = _SIMULATORS.get(dialect.variant_of or dialect.name, Simulator)
+    return factory(dialect, mapping, cnc=is_cnc(dialect) if cnc is None else cnc)
 
 
 @dataclass

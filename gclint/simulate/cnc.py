@@ -38,9 +38,6 @@ def _length(move: Move) -> float | None:
 class CncSimulator(Simulator):
     """What LinuxCNC and Carvera share: workspaces, G53, spindle, tool change, coolant, end of program."""
 
-    DEFAULT_WCS = "G54"
-    FEED_ON_ANY_COMMAND = True
-
     def __init__(self, dialect, mapping=None, *, cnc: bool = True) -> None:
         super().__init__(dialect, mapping, cnc=cnc)
         self.tool: int | None = None  # the tool in the spindle
@@ -164,6 +161,12 @@ class CncSimulator(Simulator):
         self.tool = tool
         self.dirty()
 
+    def tool_label(self, tool: int | None) -> str:
+        return "no tool" if tool is None else f"tool {tool}"
+
+    def tool_name(self) -> str:
+        return self.tool_label(self.tool)
+
     def spindle_percent(self) -> float | None:
         top = self.mapping.spindle_max_rpm
         if self.rpm is None or top is None:
@@ -206,11 +209,6 @@ class CncSimulator(Simulator):
 
 
 class MachinekitSimulator(CncSimulator):
-    EXTRUDER = "A"
-    AXES = "XYZB"  # A is the extruder
-    G0_FEED = "rapid"
-    E_FOLLOWS_G90 = True
-
     def __init__(self, dialect, mapping=None, *, cnc: bool = True) -> None:
         super().__init__(dialect, mapping, cnc=cnc)
         from gclint.simulate.heat import ToolHeat
@@ -251,16 +249,8 @@ class MachinekitSimulator(CncSimulator):
         )
         return h
 
-    def g4_seconds(self, params: dict) -> float | None:
-        p = number(params.get("P"))  # "G4 P seconds" (research/dialects.md G4)
-        return p
-
     def plain_moves(self) -> bool:
         return False  # E is not a word here; plain moves go through motion() with their words checked
-
-    def extra_turns(self, params: dict) -> int:
-        p = number(params.get("P"))  # LinuxCNC: "P - number of turns", P1 the plain arc
-        return int(p) - 1 if p is not None and p >= 1 else 0
 
     def motion(self, mode: str, params: dict, n: int) -> Move | None:
         if "E" in params:
@@ -293,6 +283,15 @@ class MachinekitSimulator(CncSimulator):
             return number(params.get("S")), int(index) if index is not None else None
         index = number(params.get("T"))
         return number(params.get("P")), int(index) if index is not None else None
+
+    def heat_value(self, cmd: Command, wait: bool) -> float | None:
+        return self._flavour(cmd)[0]
+
+    def heat_device(self, cmd: Command, kind: str) -> str:
+        if kind != "head":
+            return kind
+        index = self._flavour(cmd)[1]
+        return f"extruder {index if index is not None else self.heat.tool or 0}"
 
     def m104(self, cmd: Command, n: int) -> None:
         value, index = self._flavour(cmd)
@@ -373,8 +372,6 @@ class MachinekitSimulator(CncSimulator):
 
 
 class CarveraSimulator(CncSimulator):
-    EXTRUDER = None
-    G0_FEED = "one-shot"
     G53_NEXT_LINE = True
 
     def __init__(self, dialect, mapping=None, *, cnc: bool = True) -> None:
@@ -417,13 +414,6 @@ class CarveraSimulator(CncSimulator):
         # "M333 Turn off optional stop mode", "M334 Turn on optional stop mode. See M01" (seeds/carvera-mcodes.md;
         # its M1 row names them the other way round: the rows of the codes themselves are followed here)
         self.stops = cmd.code == "M334"
-
-    def g4_seconds(self, params: dict) -> float | None:
-        # grbl mode: "P is decimal seconds"; S adds seconds (research/dialects.md G4)
-        p, s = number(params.get("P")), number(params.get("S"))
-        if p is None and s is None:
-            return None
-        return (p or 0.0) + (s or 0.0)
 
     def plain_moves(self) -> bool:
         return not self.laser_mode and super().plain_moves()

@@ -24,9 +24,6 @@ def _index(text: str | None) -> int | None:
 
 
 class MarlinSimulator(Simulator):
-    G0_FEED = "modal"
-    G0_EXTRUDES = True
-    E_FOLLOWS_G90 = True
     RRF = False
 
     def __init__(self, dialect, mapping=None, *, cnc: bool = False) -> None:
@@ -90,12 +87,8 @@ class MarlinSimulator(Simulator):
     def plain_moves(self) -> bool:
         return self.feed_factor == 1.0 and super().plain_moves()
 
-    def g4_seconds(self, params: dict) -> float | None:
-        # "S = s, P = ms; if both, S wins; no args = M400" (research/dialects.md G4; RRF: "P = ms, S = s")
-        if "S" in params:
-            return number(params.get("S"))
-        p = number(params.get("P"))
-        return None if p is None else p / 1000
+    def tool_name(self) -> str:
+        return self.tool_label(self.heat.tool)
 
     # -- motion ---------------------------------------------------------------------------------------
 
@@ -295,7 +288,6 @@ class MarlinSimulator(Simulator):
 
 
 class RepRapSimulator(MarlinSimulator):
-    E_FOLLOWS_G90 = False  # "extrusion is NOT set to absolute using G90"
     RRF = True
 
     def __init__(self, dialect, mapping=None, *, cnc: bool = False) -> None:

@@ -24,6 +24,7 @@ from __future__ import annotations
 from dataclasses import replace
 
 from gclint.dialects.addressing import resolve_v5
+from gclint.simulate.events import Flow
 from gclint.simulate.heat import heat_wait
 from gclint.simulate.machine import Simulator, number
 from gclint.simulate.trace import AUX_PORTS, EndState, Look, Move
@@ -51,9 +52,6 @@ class Head:
 
 
 class HyrelSimulator(Simulator):
-    G0_FEED = "one-shot"
-    G0_EXTRUDES = False
-
     def __init__(self, dialect, mapping=None, *, cnc: bool = False) -> None:
         super().__init__(dialect, mapping, cnc=cnc)
         self.resolve_variable = dialect.extras.get("resolve_variable", resolve_v5)
@@ -138,6 +136,32 @@ class HyrelSimulator(Simulator):
         if address in _GROUP_HEADS:
             return [a for a in _GROUP_HEADS[address] if a in self.heads] or []
         return [address]
+
+    def tool_label(self, tool: int | None) -> str:
+        return "the focused head" if tool is None else f"T{tool}"
+
+    def tool_name(self) -> str:
+        return self.tool_label(self.focus)
+
+    def tool_title(self, name: str) -> str:
+        digits = name[1:]
+        return resolve_v5(int(digits)).label if name[:1] == "T" and digits.isdigit() else name
+
+    def heat_device(self, cmd: Command, kind: str) -> str:
+        """A head by its address (a group or a virtual head by its name), else the focused head; beds and
+        chambers by kind (T_v5 Chart of Addresses)."""
+        if kind != "head":
+            return kind
+        value = number(cmd.params.get("T"))
+        if value is None or value != int(value):
+            return self.tool_name()
+        address = self.resolve_variable(int(value))
+        if address.kind == "head" and address.v5 is not None:
+            return self.tool_label(address.v5)
+        return address.label
+
+    def waits(self, cmd: Command) -> bool:
+        return "W" not in cmd.params  # "W0": the wait happens at M116 (M109, M116)
 
     def head(self, address: int) -> Head:
         head = self.heads.get(address)
@@ -228,13 +252,7 @@ class HyrelSimulator(Simulator):
         e = number(cmd.params.get("E"))
         if e is not None:
             self.evalues = e == 1
-
-    def g4_seconds(self, params: dict) -> float | None:
-        # "You may use S or P, or if you use both, the total value will be the pause duration" (G4)
-        s, p = number(params.get("S")), number(params.get("P"))
-        if s is None and p is None:
-            return None
-        return (s or 0.0) + (p or 0.0) / 1000
+            self.emit(Flow(n, "evalues" if self.evalues else "native"))
 
     def home(self, cmd: Command, n: int) -> None:
         listed = "".join(a for a in "XYZAB" if a in cmd.params)
@@ -264,6 +282,7 @@ class HyrelSimulator(Simulator):
         self.trace.end.line = n
         self.trace.end.pauses, self.trace.end.dwell = self.pauses, self.dwell
         self.evalues = False
+        self.emit(Flow(n, "native"))
         self.fan_range = 100.0
         self.wcs = None
         self.focus = 0

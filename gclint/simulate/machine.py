@@ -1,10 +1,15 @@
-"""The part of a simulation every dialect shares: the line loop, positions (units, absolute/relative,
-G92 offsets, workspaces), arcs, the E axis, and the synchronisation points.
+"""The reader of meaning: what a job makes its machine do, line by line, as typed events.
 
-A dialect's simulator (fdm.py, cnc.py, hyrel.py) subclasses ``Simulator`` with a table of handlers
-(code -> method) written from its documentation, and says how its state looks in Hyrel terms
-(``build_look``, ``end_state``).  Nothing here comes from the translator: the simulator is a second,
-independent reading of the same pages, so that where the two disagree the diff shows it.
+The part every dialect shares lives here: the line loop (which commands of a line run, and in what order), positions
+(units, absolute/relative, G92 offsets, workspaces), arcs (their centre modes and turns), the extruder, dwells, and
+the events (``gclint.simulate.events``).  Every fact that differs between dialects is the dialect's
+(``gclint.dialects.semantics``: G4's units, what G0 does with E and F, G28, T...).  A dialect's simulator
+(fdm.py, cnc.py, hyrel.py) subclasses ``Simulator`` for what a machine's devices are (heads, beds, fans,
+spindles, lasers) and says how its state looks in Hyrel terms (``build_look``, ``end_state``).
+
+``events`` yields every event (the summary and the toolpath read those); ``run`` yields the synchronisation points
+the meaning diff compares.  Nothing here comes from the translator: the translator writes, this reads, so that
+where the two disagree the diff shows it.
 """
 
 from __future__ import annotations
@@ -13,6 +18,7 @@ import math
 from collections.abc import Callable, Iterator
 
 from gclint.dialects.base import Dialect
+from gclint.simulate.events import Dwell, Event, Heat, Ignored, Pause, ProgramEnd, ToolChange
 from gclint.simulate.trace import NATIVE, EndState, Look, Mapping, Move, Trace
 from gclint.syntax.fastpath import PLAIN_MOVE
 from gclint.syntax.nodes import ASSIGNMENT, GCODE, IMPLICIT, META, OWORD, Command
@@ -22,6 +28,15 @@ from gclint.syntax.source import Source
 INCH = 25.4
 _AXIS_INDEX = {"X": 0, "Y": 1, "Z": 2, "A": 3, "B": 4}
 _MOTION = frozenset({"G0", "G1", "G2", "G3", None})
+# the effects that set a temperature: (what is heated, whether the machine waits)
+_HEAT = {
+    "set-head-temperature": ("head", False),
+    "wait-head-temperature": ("head", True),
+    "set-bed-temperature": ("bed", False),
+    "wait-bed-temperature": ("bed", True),
+    "set-chamber-temperature": ("chamber", False),
+    "wait-chamber-temperature": ("chamber", True),
+}
 _PLANES = {17: ("X", "Y", "I", "J"), 18: ("Z", "X", "K", "I"), 19: ("Y", "Z", "J", "K")}
 
 
@@ -37,22 +52,31 @@ def number(text: str | None) -> float | None:
 
 
 class Simulator:
-    """Runs one job; ``run`` yields its synchronisation points (``Move``), then ``trace`` holds the rest."""
-
-    EXTRUDER: str | None = "E"  # the word that drives the extruder (Machinekit: A; CNC: None)
-    AXES = "XYZAB"  # the axes that are positions (Machinekit: A is the extruder)
-    G0_FEED = "modal"  # "modal" (Marlin: G0 and G1 share F), "one-shot" (Hyrel, Carvera), "rapid" (LinuxCNC)
-    G0_EXTRUDES = False  # Marlin/RRF: G0 is G1 and extrudes
-    E_FOLLOWS_G90 = False  # Marlin: G90/G91 also set the E mode; Machinekit: A is an axis
-    DEFAULT_WCS: str | None = None  # the workspace in force at the start (LinuxCNC, Carvera: G54)
-    FEED_ON_ANY_COMMAND = False  # LinuxCNC, Carvera: an F word sets the feed whatever the line's G code
+    """Runs one job; ``events`` yields everything it does, ``run`` its synchronisation points (``Move``), then
+    ``trace`` holds the rest."""
 
     def __init__(self, dialect: Dialect, mapping: Mapping | None = None, *, cnc: bool = False) -> None:
         self.dialect = dialect
+        facts = self.facts = dialect.semantics
+        self.extruder = facts.extruder  # the word that drives the extruder (Machinekit: A; CNC: None)
+        self.axes = "".join(a for a in "XYZAB" if a != facts.extruder)  # the axes that are positions
+        self.g0_feed = facts.g0_feed
+        self.g0_extrudes = facts.g0_extrudes
+        self.feed_on_any = facts.feed_on_any_command
         self.mapping = mapping if mapping is not None else Mapping()
         self.cnc = cnc  # synchronise on every feed move (CNC jobs), not only on printing moves
         self.trace = Trace()
+        self.arc_absolute = False  # G90.1: I J K are absolute (LinuxCNC)
+        self.listening = False  # ``events``: every move and event is wanted, not only the synchronisation points
+        self._events: list[Event] = []
+        self.line_count = 0  # lines read (when the file is done)
+        self._point: tuple = (None,) * 5  # (``events``) where the last move ended, in the job's coordinates
+        self._tool: str | None = None  # (``events``) the working tool last announced
         self.handlers: dict[str, Callable[[Command, int], Move | None]] = self.table()
+        shared = {"dwell": self.g4, "arc-absolute": self.arc_mode, "arc-relative": self.arc_mode}
+        for code, effect in facts.effects.items():
+            if effect in shared:  # (what every machine does the same way, wherever its table leaves it out)
+                self.handlers.setdefault(code, shared[effect])
         # positions: machine coordinates (mm, from where the job starts); a program coordinate is the machine
         # coordinate minus the shift that G92 (and homing) set
         self.pos: list[float | None] = [None] * 5
@@ -71,7 +95,7 @@ class Simulator:
         self.feed: float | None = None  # modal feed of working moves, mm/min
         self.plane = 17
         self.motion_mode: str | None = None
-        self.wcs: str | None = self.DEFAULT_WCS
+        self.wcs: str | None = facts.default_workspace
         self.inch_used = False
         self.ended = False  # the end of program ran: nothing after it runs
         self.end_line = 0
@@ -86,9 +110,24 @@ class Simulator:
         return {}
 
     def run(self, source: Source) -> Iterator[Move]:
+        """The synchronisation points of the job (its working moves, with the pauses and dwells before each)."""
+        for event in self._read(source):
+            if type(event) is Move:
+                yield event
+
+    def events(self, source: Source) -> Iterator[Event]:
+        """Every event of the job, in the order the machine runs them: each move (``Move``: working or not,
+        rapid or not), dwell, pause, set-point (``Heat``), command that does not run (``Ignored``) and the end
+        of the program."""
+        self.listening = True
+        yield from self._read(source)
+
+    def _read(self, source: Source) -> Iterator[Event]:
         handlers = self.handlers
         plain_match = PLAIN_MOVE.fullmatch
         plain = self.plain_moves()
+        facts = self.facts
+        pending = self._events
         n = 0
         for chunk in source.chunks():
             for raw, _ending in chunk:
@@ -115,15 +154,24 @@ class Simulator:
                         move = self.motion("G1" if digit == "1" else "G0", params, n)
                         if move is not None:
                             yield move
+                        if pending:
+                            yield from pending
+                            pending.clear()
                         continue
                 if len(raw) > PARSE_LIMIT:  # one trailing comment made it too long: its commands run
                     raw = code_before_long_comment(raw) or raw
-                commands = parse_line(raw).commands
+                written = parse_line(raw).commands
+                commands = facts.running(written)
+                if len(commands) < len(written) and self.listening:
+                    for cmd in facts.ignored(written):
+                        pending.append(Ignored(n, cmd.code, "only the first command of a line runs"))
+                if facts.words_first:
+                    self.line_words(commands, n)
                 last = len(commands) - 1
                 for k, cmd in enumerate(commands):
                     if self.ended:
                         break
-                    if self.FEED_ON_ANY_COMMAND and "F" in cmd.params and cmd.code not in _MOTION:
+                    if self.feed_on_any and "F" in cmd.params and cmd.code not in _MOTION:
                         f = number(cmd.params["F"])
                         if f is not None:
                             self.feed = f * self.scale
@@ -132,15 +180,98 @@ class Simulator:
                         move = handler(cmd, n)
                     else:
                         move = self.other(cmd, n)
+                    if self.listening:
+                        if cmd.code in facts.effects:
+                            heat = _HEAT.get(facts.effects[cmd.code])
+                            if heat is not None:
+                                self.heat_event(cmd, n, *heat)
+                        tool = self.tool_name()
+                        if tool != self._tool:
+                            self._tool = tool
+                            pending.append(ToolChange(n, tool))
                     if move is not None:
                         if k < last:
                             move.tail = True
                         yield move
+                    if pending:
+                        yield from pending
+                        pending.clear()
+        self.line_count = n
         end = self.end_state()
         if end is not self.trace.end:
             end.pauses, end.dwell = self.pauses, self.dwell
         self.trace.end = end
         self.trace.end.line = self.end_line or n
+        if self.listening:
+            yield ProgramEnd(self.trace.end.line, self.ended)
+
+    def line_words(self, commands: tuple, n: int) -> None:
+        """LinuxCNC sets a line's feed, speed and tool before its commands run ("G-code Order of Execution"):
+        the F, S and T words wherever they are on the line (not G4's P, not a motion's S on a laser)."""
+        for cmd in commands:
+            params = cmd.params
+            if "F" in params and cmd.code not in _MOTION:
+                f = number(params["F"])
+                if f is not None:
+                    self.feed = f * self.scale
+
+    def emit(self, event: Event) -> None:
+        """An event for ``events`` (not for ``run``: the diff reads the moves and the trace)."""
+        if self.listening:
+            self._events.append(event)
+
+    # -- set-points, in the dialect's own terms (``events``) ---------------------------------------------------
+
+    def heat_event(self, cmd: Command, n: int, kind: str, wait: bool) -> None:
+        value = self.heat_value(cmd, wait)
+        if value is None:
+            return
+        self.emit(Heat(n, self.heat_device(cmd, kind), kind, value, wait and self.waits(cmd)))
+
+    def heat_value(self, cmd: Command, wait: bool) -> float | None:
+        """The set-point a temperature command gives: S (R too on a wait where R is a target: Marlin)."""
+        params = cmd.params
+        if "S" in params:
+            return number(params["S"])
+        if wait and "R" in params and self.facts.wait_r == "target":
+            return number(params["R"])
+        return None
+
+    def heat_device(self, cmd: Command, kind: str) -> str:
+        """What a temperature command heats: its tool (T, else the active one), the bed or the chamber."""
+        if kind != "head":
+            return kind
+        tool = number(cmd.params.get("T"))
+        if tool is not None and tool == int(tool) and tool >= 0:
+            return self.tool_label(int(tool))
+        return self.tool_name()
+
+    def waits(self, cmd: Command) -> bool:
+        """Whether a wait command waits here (Hyrel's W0 waits at M116 instead)."""
+        return True
+
+    def tool_label(self, tool: int | None) -> str:
+        return "extruder 0" if tool is None else f"extruder {tool}"
+
+    def tool_name(self) -> str:
+        """The working tool in the dialect's own terms."""
+        return self.tool_label(None)
+
+    def tool_title(self, name: str) -> str:
+        """A tool's name (``tool_name``) as a legend says it."""
+        return name
+
+    def located(self, move: Move) -> Move:
+        """(``events``) ``move`` with its tool and where it starts and ends in the job's coordinates."""
+        move.tool = self.tool_name()
+        move.origin = self._point  # (as the job wrote it: a tool change between does not move the point)
+        self._point = move.point = tuple(self.logical(i) for i in range(5))
+        return move
+
+    def placed(self) -> None:
+        """(``events``) Homing or G92 named the current position anew: the next move starts there."""
+        if self.listening:
+            self._point = tuple(self.logical(i) for i in range(5))
 
     def plain_moves(self) -> bool:
         """Whether plain G0/G1 lines (X Y Z E F numbers only) may go straight to ``motion``."""
@@ -200,17 +331,21 @@ class Simulator:
     def pause(self, cmd: Command, n: int) -> None:
         """A pause for the operator (M0, a filament change...): counted until the next working move."""
         self.pauses += 1
+        self.emit(Pause(n, cmd.code))
 
     def add_dwell(self, seconds: float | None) -> None:
         if seconds is not None and seconds > 0:
             self.dwell += seconds
 
-    def g4_seconds(self, params: dict) -> float | None:
-        """A dwell's length in seconds (the dialect says how S and P count)."""
-        return None
-
     def g4(self, cmd: Command, n: int) -> None:
-        self.add_dwell(self.g4_seconds(cmd.params))
+        # the dialect says what P and S count (gclint.dialects.semantics.Dwell)
+        seconds = self.facts.dwell.seconds(cmd.params)
+        self.add_dwell(seconds)
+        self.emit(Dwell(n, seconds))
+
+    def arc_mode(self, cmd: Command, n: int) -> None:
+        """G90.1 / G91.1: I, J and K absolute, or offsets from the start (LinuxCNC, "Arc Distance Mode")."""
+        self.arc_absolute = cmd.code == "G90.1"
 
     def end_program(self, cmd: Command, n: int) -> None:
         self.ended = True
@@ -237,7 +372,7 @@ class Simulator:
         new = list(self.pos)
         scale = self.scale
         absolute = self.absolute
-        for letter in self.AXES:
+        for letter in self.axes:
             if letter in params:
                 if not xy and letter in "XY":
                     continue
@@ -268,7 +403,7 @@ class Simulator:
     def set_position(self, cmd: Command, n: int) -> None:
         """G92: the current point gets these values (the machine does not move)."""
         params = cmd.params
-        for letter in self.AXES:
+        for letter in self.axes:
             if letter in params:
                 i = _AXIS_INDEX[letter]
                 v = number(params[letter])
@@ -280,10 +415,11 @@ class Simulator:
                 self.shift[i] = machine - v * self.scale - self.offset[i]
                 self.anchor[i] = self.line
                 self.set_frame(i, self.frame_label(i))
-        ext = self.EXTRUDER
+        ext = self.extruder
         if ext is not None and ext in params:
             v = number(params[ext])
             self.e_pos = v * self.e_scale() if v is not None else None
+        self.placed()
 
     def e_scale(self) -> float:
         return self.scale
@@ -295,7 +431,7 @@ class Simulator:
 
     def positioning(self, cmd: Command, n: int) -> None:
         self.absolute = cmd.code == "G90"
-        if self.E_FOLLOWS_G90:
+        if self.facts.e_follows_g90:
             self.e_absolute = self.absolute
 
     def e_mode(self, cmd: Command, n: int) -> None:
@@ -316,16 +452,18 @@ class Simulator:
             self.shift[i] = 0.0
             self.anchor[i] = self.line
             self.set_frame(i, None)  # home is a machine position
+        self.placed()
 
     def forget(self, axes: str) -> None:
         for letter in axes:
             self.pos[_AXIS_INDEX[letter]] = None
+        self.placed()
 
     # -- extrusion ---------------------------------------------------------------------------------------
 
     def extrusion(self, params: dict, rapid: bool) -> float | None:
         """The E advance of a move (> 0 deposits; updates the E position); None when the move has no E."""
-        ext = self.EXTRUDER
+        ext = self.extruder
         if ext is None or ext not in params:
             return None
         text = params[ext]
@@ -370,29 +508,41 @@ class Simulator:
         if f is not None:
             value = number(f)
             value = value * self.scale if value is not None else None
-            if not rapid or self.G0_FEED == "modal":
+            if not rapid or self.g0_feed == "modal":
                 self.feed = feed = value
-            elif self.G0_FEED == "one-shot":
+            elif self.g0_feed == "one-shot":
                 feed = value
             else:  # LinuxCNC: F sets the feed of later moves, the rapid itself ignores it
                 self.feed = value
         start = self.machine()
         self.pos = self.target(params)
         delta = self.extrusion(params, rapid)
-        if rapid and not self.G0_EXTRUDES:
+        if rapid and not self.g0_extrudes:
             delta = None if delta is None else min(delta, 0.0)
-        return self.sync(start, None, delta, None if rapid and self.G0_FEED != "modal" else feed, rapid)
+        if rapid and self.g0_feed != "modal":
+            # a one-shot F is this rapid's own speed (Hyrel, Carvera); without one, and on LinuxCNC, the rapid runs
+            # at the machine's rapid speed, which the file does not say
+            feed = value if f is not None and self.g0_feed == "one-shot" else None
+        return self.sync(start, None, delta, feed, rapid)
 
     def sync(self, start: tuple, arc, delta, feed, rapid: bool, native: bool = False) -> Move | None:
         """A move ran: a synchronisation point when it prints (or, in a CNC job, when it is a feed move)."""
         end = self.machine()
+        listening = self.listening
         if end == start and arc is None:
+            if listening and delta:  # an extruder-only move (a retraction, a prime): an event
+                self._events.append(self.located(Move(self.line, start, end, None, delta, feed, self.look(), rapid, working=False)))
             return None  # no motion (an extruder-only move, or a feed word)
         printing = native or (delta is not None and delta > 1e-9)
         if not printing and (rapid or not (self.cnc or self.cutting())):
+            if listening:  # a travel move: an event, not a synchronisation point
+                travel = Move(self.line, start, end, arc, delta, feed, self.look(), rapid, self.frame, tuple(self.anchor), False)
+                self._events.append(self.located(travel))
             return None
         e = NATIVE if native else (delta if printing else None)
         move = Move(self.line, start, end, arc, e, feed, self.look(), rapid, self.frame, tuple(self.anchor))
+        if listening:
+            self.located(move)
         if self.pauses or self.dwell:
             move.pauses, move.dwell = self.pauses, self.dwell
             self.pauses, self.dwell = 0, 0.0
@@ -425,6 +575,11 @@ class Simulator:
                 )
             elif r is None:
                 centre = ((number(params.get(ia)) or 0.0) * self.scale, (number(params.get(ib)) or 0.0) * self.scale)
+                if self.arc_absolute:  # G90.1: I J K are the centre's program coordinates, not offsets
+                    centre = (
+                        centre[0] + self.shift[i_a] + self.offset[i_a] - sa,
+                        centre[1] + self.shift[i_b] + self.offset[i_b] - sb,
+                    )
             else:
                 centre = None
             if centre is not None:
@@ -443,10 +598,17 @@ class Simulator:
         return self.sync(start, arc, delta, self.feed, False, native=native)
 
     def extra_turns(self, params: dict) -> int:
-        """Full circles an arc makes before its end (Marlin, RepRapFirmware: P is the number of extra
-        circles; LinuxCNC counts P turns, P1 being the plain arc)."""
+        """Full circles an arc makes before its end: P extra circles (Marlin, RepRapFirmware), P turns with P1
+        the plain arc (LinuxCNC), none where P is no word of G2/G3 (the dialect's ``arc_turns``)."""
         p = number(params.get("P"))
-        return int(p) if p is not None and p >= 1 else 0
+        if p is None or p < 1:
+            return 0
+        turns = self.facts.arc_turns
+        if turns == "extra":
+            return int(p)
+        if turns == "turns":
+            return int(p) - 1
+        return 0
 
     def arc_native(self, params: dict) -> bool:
         """Whether an arc prints with a flow the machine computes itself (Hyrel: arcs with E)."""

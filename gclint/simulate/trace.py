@@ -122,9 +122,15 @@ class Move:
         "dwell",
         "tail",
         "feed_mode",
+        "working",
+        "tool",
+        "origin",
+        "point",
     )
 
-    def __init__(self, line, start, end, arc, e, feed, look, rapid=False, frames=(None,) * 5, anchors=(0,) * 5) -> None:
+    def __init__(
+        self, line, start, end, arc, e, feed, look, rapid=False, frames=(None,) * 5, anchors=(0,) * 5, working=True
+    ) -> None:
         self.line = line  # 1-based line number in its file
         self.start = start  # (x, y, z, a, b) machine mm, None where unknown
         self.end = end
@@ -139,6 +145,15 @@ class Move:
         self.dwell = 0.0  # seconds of dwell since the previous synchronisation point
         self.tail = False  # commands follow the move on its line (they run after it)
         self.feed_mode = 0  # the line that set the feed mode in force when it is not units per minute (G93)
+        # a working move (it prints, or a CNC feed move cuts): a synchronisation point of the diff; else a travel
+        # move, which only ``Simulator.events`` yields (``e`` is then its E advance, a retraction say, or None)
+        self.working = working
+        # (``Simulator.events`` only) the working tool in the dialect's own terms ("T0", "extruder 1"), and where
+        # the move starts and ends in the job's own coordinates (mm, without the head and G92 offsets: where the
+        # tool tip is on the work, as the file wrote it)
+        self.tool: str | None = None
+        self.origin: tuple = ()
+        self.point: tuple = ()
 
     def __repr__(self) -> str:  # pragma: no cover - debugging aid
         return f"Move(line={self.line}, end={self.end}, e={self.e}, feed={self.feed})"
