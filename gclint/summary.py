@@ -95,7 +95,7 @@ def summarize(source: Source, context: Context) -> JobSummary:
     layers = 0  # printing heights above every one before (the layers), counted, with the lowest and top
     z_low = z_top = None
     last_z: float | None = None
-    hyrel_flow = dialect.semantics.e_values == "hyrel"
+    hyrel_flow = dialect.semantics.e_values == "native"
     flows: list[str] = ["native"] if hyrel_flow else []
     feed_low, feed_high = math.inf, -math.inf
     box = [math.inf, -math.inf, math.inf, -math.inf, math.inf, -math.inf]

@@ -951,7 +951,7 @@ HYREL_DETECTION = Detection(
 # What a Hyrel machine does with a line (Hyrel wiki, Gcode page; the section named at each effect).
 HYREL_SEMANTICS = Semantics(
     dwell=DWELL_MS_S_SUM,  # "G4 Timed Pause": S seconds, P milliseconds, both add up
-    e_values="hyrel",  # "G1 Working Move": native flow unless "M229 E1 D1"
+    e_values="native",  # "G1 Working Move": native flow unless "M229 E1 D1"
     g0_feed="one-shot",  # "G0 Rapid Move": F "non-persistent"
     home="listed",  # "G28 Send X, Y to Physical Home": "Any axis not homed will have its position remain unchanged"
     tool_select="address",  # T_v5: T commands and T variables share one address table

@@ -182,7 +182,7 @@ class Semantics:
     * ``dwell``: how G4 counts time.
     * ``extruder``: the word that drives the extruder (``"E"``; ``"A"`` on Machinekit, where E is not a word;
       None where nothing extrudes).  ``e_values``: what an E amount means: ``"amount"`` (the filament it
-      feeds), ``"hyrel"`` (Hyrel native flow: an E marks a printing move and the machine meters the flow,
+      feeds), ``"native"`` (Hyrel native flow: an E marks a printing move and the machine meters the flow,
       unless ``M229 E1 D1`` asks for the amounts: Hyrel wiki, Gcode page, "G1 Working Move", "M229").
     * ``g0_extrudes``: G0 is G1 and deposits what its E says (Marlin, RepRapFirmware in FDM mode).
       ``g0_feed``: what F on G0 does: ``"modal"`` (shared with G1), ``"one-shot"`` (this move only: Hyrel,
@@ -215,7 +215,7 @@ class Semantics:
 
     dwell: Dwell
     extruder: str | None = "E"
-    e_values: Literal["amount", "hyrel"] = "amount"
+    e_values: Literal["amount", "native"] = "amount"
     g0_extrudes: bool = False
     g0_feed: Literal["modal", "one-shot", "rapid"] = "modal"
     e_follows_g90: bool = False

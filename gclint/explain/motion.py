@@ -47,9 +47,9 @@ def move(job: Job, exp: Explanation, cmd: Command, spec: Code | None, mode: str)
     if e is not None:
         if mode == "G0" and not job.facts.g0_extrudes:
             exp.items.append(
-                Item(e.text.strip(), "E on a G0 does nothing: G0 never works", job.facts.e_values == "hyrel")
+                Item(e.text.strip(), "E on a G0 does nothing: G0 never works", job.facts.e_values == "native")
             )
-        elif job.facts.e_values == "hyrel" and job.state.flow_mode != EVALUES:
+        elif job.facts.e_values == "native" and job.state.flow_mode != EVALUES:
             exp.add(e.text.strip(), reading(line, "E", e.value))
         elif job.state.e_absolute:
             exp.add(e.text.strip(), f"extrude until the E position is {e.value}")

@@ -56,7 +56,7 @@ class Interpreter:
         self.resolve_command: Callable[[int], Address] = dialect.extras.get("resolve_command", resolve_v5)  # type: ignore[assignment]
         # T commands and T variables name devices by their address (Hyrel): groups, clone squads, v4 numbers
         self.addressed = facts.tool_select == "address"
-        self.native_flow = facts.e_values == "hyrel"  # an E marks a printing move unless M229 E1 D1
+        self.native_flow = facts.e_values == "native"  # an E marks a printing move unless M229 E1 D1
         self.g0_feed_one_shot = facts.g0_feed == "one-shot"
         present = set(facts.effects.values())
         self.height_registers = "height-offset" in present  # G1 H<n> applies the register an M660 stored

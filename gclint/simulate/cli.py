@@ -15,6 +15,7 @@ import sys
 from gclint.dialects.base import Dialect
 from gclint.simulate import DiffResult, Explanations, Mapping, diff_sources
 from gclint.syntax.sniff import refuse_non_gcode
+from gclint.translate.pairs import is_target
 from gclint.syntax.source import Source, SourceError
 
 
@@ -47,7 +48,7 @@ def run_diff(
     except ValueError as exc:
         _say(f"gclint: {exc}")
         return 2
-    if target.family != "hyrel" or (source.family == "hyrel" and source.name == target.name):
+    if not is_target(target) or source is target:
         # the same dialect on both sides would compare a job with itself; from Hyrel, only to the other version
         _say(
             f"gclint: diff compares a job with its Hyrel translation; translating {source.name} to {target.name} "

@@ -158,7 +158,8 @@ class CncSimulator(Simulator):
         tool = int(value) if value is not None else self.prepared
         if tool is None:
             return
-        self.tool = tool
+        # the dialect's "no tool" number empties the spindle (LinuxCNC: "T0 gets special handling: no tool")
+        self.tool = None if tool == self.facts.no_tool else tool
         self.dirty()
 
     def tool_label(self, tool: int | None) -> str:
@@ -228,6 +229,7 @@ class MachinekitSimulator(CncSimulator):
         h.update(
             {
                 "G28": self.g28,
+                **({"G30": self.predefined} if self.facts.g30 == "predefined" else {}),
                 "M30": self.m2,
                 "M104": self.m104,
                 "M109": self.m109,
@@ -258,7 +260,22 @@ class MachinekitSimulator(CncSimulator):
             params = {k: v for k, v in params.items() if k != "E"}
         return super().motion(mode, params, n)
 
-    def g28(self, cmd: Command, n: int) -> None:
+    def predefined(self, cmd: Command, n: int) -> Move | None:
+        """LinuxCNC's G28/G30: "a rapid move to the position specified by axes including any offsets, then ... a
+        rapid move to the absolute position of the values in parameters 5161-5166 [G30: 5181-5186] for all axes
+        specified"; no axis: every axis goes there (g-code.adoc, "G28, G28.1", "G30, G30.1").  The stored
+        position is not in the file: those axes are somewhere this reading does not know."""
+        params = cmd.params
+        listed = [a for a in self.axes if a in params]
+        via = self.motion("G0", {a: params[a] for a in listed}, n) if listed else None
+        start = self.machine()
+        self.forget("".join(listed) or self.axes)
+        self.sync(start, None, None, None, True)
+        return via
+
+    def g28(self, cmd: Command, n: int) -> Move | None:
+        if self.facts.home == "predefined":
+            return self.predefined(cmd, n)
         params = cmd.params
         listed = [a for a in "XYZ" if a in params]
         bare = not any(a in params for a in "XYZA")

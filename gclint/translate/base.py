@@ -265,7 +265,24 @@ class HyrelTranslator(LineWriter, Heads, Program, Motion, ArcMoves, Modal, Spind
             apply = self.interp.apply
             check = self.CHECK_EXPRESSIONS
             feed_words = self.FEED_ON_ANY_COMMAND
-            for i, cmd in enumerate(commands):
+            # the commands the source machine runs, in the order it runs them (gclint.dialects.semantics)
+            facts = self.source.semantics
+            running = facts.running(commands)
+            index_of = {id(cmd): i for i, cmd in enumerate(commands)}
+            for cmd in facts.ignored(commands):
+                self.index = index_of[id(cmd)]
+                self.remove(
+                    cmd,
+                    TR_LOST,
+                    f"{self.source.title.split(' (')[0]} runs only the first command of a line: "
+                    f"{cmd.code or 'this'} never runs there; dropped",
+                    key="not-run",
+                )
+            order = tuple(index_of[id(cmd)] for cmd in running)
+            if order != tuple(range(len(order))):
+                self._edit().order = order
+            for cmd in running:
+                i = index_of[id(cmd)]
                 self.index = i
                 if self.hy.ended:
                     self.remove(cmd, TR_AFTER_END, "after the end of the program; dropped", key="after-end")

@@ -293,6 +293,16 @@ class MachinekitToHyrel(CncTranslator):
         if tool is None or tool < 0:
             self.remove(cmd, TR_LOST, "tool change with no tool prepared", key="M6")
             return
+        if tool == self.source.semantics.no_tool:
+            # LinuxCNC: "T0 gets special handling: no tool will be selected" (other-code.adoc, "T: Select Tool")
+            self.remove(
+                cmd,
+                TR_LOST,
+                f"T{tool} M6 empties the spindle (no tool): Hyrel has no such tool change; dropped",
+                key=("M6", tool),
+                aspects=("head", "spindle"),
+            )
+            return
         self.select_tool(cmd, tool)
 
     # -- temperatures and fans: seed (S present: P = index) or final (P = value, T = index) ----------------

@@ -121,7 +121,7 @@ class LineEdit:
     """What the translator does to one source line: replaced or removed commands, lines to insert
     before and after, notes for ``--annotate``."""
 
-    __slots__ = ("line", "replaced", "before", "after", "notes", "changed", "dropped", "strip_comments")
+    __slots__ = ("line", "replaced", "before", "after", "notes", "changed", "dropped", "strip_comments", "order")
 
     def __init__(self, line: Line) -> None:
         self.line = line
@@ -132,6 +132,9 @@ class LineEdit:
         self.changed = False  # the source line itself changes (not only insertions around it)
         self.dropped = False  # the whole line goes (a line that could not be parsed)
         self.strip_comments = False  # the line's comments go (they would be Hyrel host actions)
+        # the order the source machine runs the line's commands in, when not as written (LinuxCNC's order of
+        # execution): the commands are written one a line in that order, as Hyrel runs them as written
+        self.order: tuple[int, ...] | None = None
 
     def render(self, annotate: bool, default_ending: str) -> list[str]:
         """The output lines, endings included."""
@@ -140,7 +143,7 @@ class LineEdit:
         several = len(line.parsed.commands) > 1  # one command a line, as the Hyrel pages show
         if not annotate and not self.before and not self.after and not self.dropped and not self.strip_comments:
             # the common case (one command rewritten in place): no list juggling
-            main = _apply(line, self.replaced, ending or default_ending) if self.replaced or several else line.raw
+            main = _apply(line, self.replaced, ending or default_ending, self.order) if self.replaced or several else line.raw
             if main is None:
                 return []
             return [main, ending]
@@ -150,9 +153,9 @@ class LineEdit:
         if self.dropped:
             main = None
         elif self.strip_comments:
-            main = _commands_only(line, self.replaced)
+            main = _commands_only(line, self.replaced, self.order)
         elif self.replaced or several:
-            main = _apply(line, self.replaced, glue)
+            main = _apply(line, self.replaced, glue, self.order)
         else:
             main = line.raw
         if main == line.raw and not self.before and not self.after:
@@ -177,13 +180,14 @@ class LineEdit:
         return out
 
 
-def _one_per_line(line: Line, replaced: dict[int, str], glue: str) -> str:
-    """A changed line with several commands, one command a line: the first keeps the N number (and a
-    recomputed checksum), the last the comments."""
+def _one_per_line(line: Line, replaced: dict[int, str], glue: str, order: tuple[int, ...] | None = None) -> str:
+    """A changed line with several commands, one command a line (in ``order``, else as written): the first
+    keeps the N number (and a recomputed checksum), the last the comments."""
     parsed = line.parsed
     raw = line.raw
     texts = []
-    for index, cmd in enumerate(parsed.commands):
+    for index in order if order is not None else range(len(parsed.commands)):
+        cmd = parsed.commands[index]
         text = replaced.get(index)
         if text is None:
             start, end = _span(cmd, line)
@@ -205,10 +209,12 @@ def _one_per_line(line: Line, replaced: dict[int, str], glue: str) -> str:
     return glue.join(texts)
 
 
-def _commands_only(line: Line, replaced: dict[int, str]) -> str | None:
+def _commands_only(line: Line, replaced: dict[int, str], order: tuple[int, ...] | None = None) -> str | None:
     """The line's commands (replaced or as written), without its comments, N number and checksum."""
     texts = []
-    for index, cmd in enumerate(line.parsed.commands):
+    commands = line.parsed.commands
+    for index in order if order is not None else range(len(commands)):
+        cmd = commands[index]
         text = replaced.get(index)
         if text is None:
             start, end = _span(cmd, line)
@@ -249,7 +255,7 @@ def _span(cmd: Command, line: Line) -> tuple[int, int]:
     return cmd.column - 1, end - 1
 
 
-def _apply(line: Line, replaced: dict[int, str], glue: str = "\n") -> str | None:
+def _apply(line: Line, replaced: dict[int, str], glue: str = "\n", order: tuple[int, ...] | None = None) -> str | None:
     """The line's text with commands replaced; None when nothing but an N number and whitespace is left.
     When more than one command is left, each gets a line of its own (joined with ``glue``): the Hyrel
     pages show one command per line."""
@@ -258,7 +264,7 @@ def _apply(line: Line, replaced: dict[int, str], glue: str = "\n") -> str | None
     checksum = parsed.checksum
     commands = parsed.commands
     if len(commands) > 1 and sum(1 for i in range(len(commands)) if replaced.get(i, True)) > 1:
-        return _one_per_line(line, replaced, glue)
+        return _one_per_line(line, replaced, glue, order)
     if len(commands) == 1 and checksum is None and not parsed.extra:
         text = replaced.get(0)
         if text and all(c.style == ";" for c in parsed.comments):

@@ -18,6 +18,9 @@ from gclint.translate.options import TranslateOptions
 from gclint.translate.renumber import Chain, Renumber
 from gclint.translate.reprap import RepRapToHyrel
 
+# The dialect the translators write, with its versions (``Dialect.variant_of``): Hyrel v5, and v4 by renumbering.
+TARGET = "hyrel"
+
 # source dialect -> the translator into Hyrel v5
 TO_HYREL: dict[str, type[HyrelTranslator]] = {
     "marlin": MarlinToHyrel,
@@ -37,17 +40,22 @@ def translator_for(source: Dialect, target: Dialect, options: TranslateOptions |
     return translator
 
 
+def is_target(dialect: Dialect) -> bool:
+    """Whether the translators write ``dialect`` (Hyrel, either version)."""
+    return (dialect.variant_of or dialect.name) == TARGET
+
+
 def get(source: Dialect, target: Dialect, options: TranslateOptions | None = None) -> Translator | None:
-    if target.family != "hyrel":
+    if not is_target(target):
         return None
     if options is None:
         options = TranslateOptions()
-    if source.family == "hyrel":
+    if is_target(source):
         return Renumber(source, target, options)
     factory = TO_HYREL.get(source.name)
     if factory is None:
         return None
-    v5 = dialects.get("hyrel")
+    v5 = dialects.get(TARGET)
     first = factory(source, v5, options)
     if target.name == v5.name:
         return first
