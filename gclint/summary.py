@@ -64,6 +64,7 @@ class JobSummary:
     travel_mm: float = 0.0
     unmeasured_moves: int = 0  # moves from (or to) a position the state does not know: not in the metres
     time_s: float = 0.0
+    dwell_s: float = 0.0  # of which G4 dwells, as the dialect counts them
     error: str | None = None
 
     def to_dict(self) -> dict:
@@ -142,6 +143,7 @@ def summarize(source: Source, context: Context) -> JobSummary:
                 summary.time_s += length / feed * 60
         elif kind is Dwell:
             summary.time_s += event.seconds or 0.0
+            summary.dwell_s += event.seconds or 0.0
         elif kind is Heat:
             _temperature(summary, heads, event)
         elif kind is Flow:

@@ -162,9 +162,11 @@ def test_10_a_huge_comment_line_keeps_its_move() -> None:
 
 
 def test_10_several_commands_are_written_one_a_line() -> None:
+    # one a line, in the order LinuxCNC runs them (overview.adoc, "G-code Order of Execution": units, then the
+    # coordinate system, then the distance mode), since Hyrel runs them as written
     out, _ = translate("machinekit", "G90 G21 G54\nG0 X1 Y1\n")
     lines = out.splitlines()
-    assert lines[:3] == ["G90", "G21", "G54"], lines
+    assert lines[:3] == ["G21", "G54", "G90"], lines
 
 
 def test_10_translate_refuses_random_bytes(tmp_path) -> None:

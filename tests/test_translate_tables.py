@@ -387,7 +387,9 @@ REPRAP = [
     Row("2.1 RRF G10 L20 P", "G10 L20 P1 X0", "", "TR005", out="needs a known machine position; not translated"),
     Row("2.1 RRF bare G10 (firmware retract)", "G10", "", "TR004"),
     Row("2.1 RRF M568 P S R", "M568 P0 S210 R150", "M104 T0 S210", "TR003"),
-    Row("2.1 RRF G4 S P unchanged", "G4 S1 P500", "G4 S1 P500"),
+    # RepRapFirmware's DoDwell: "if (gb.Seen('S')) ... else if (gb.Seen('P'))": S counts alone, as on Marlin
+    # (src/GCodes/GCodes.cpp); Hyrel would add them up
+    Row("2.1 RRF G4 S P: S counts", "G4 S1 P500", "G4 S1", "TR004"),
     Row("2.1 RRF G91 leaves E alone", "M82\nG91", "M82\nG91"),
     Row("2.1 RRF G0/G1 R (restore point)", "G1 R1 X0 Y0 Z2", "", "TR005"),
     Row("2.1 RRF G93 (inverse time)", "G93", "", "TR005", out="per-move feed conversion is not implemented"),

@@ -222,6 +222,7 @@ MACHINEKIT_SEMANTICS = Semantics(
     tool_select="prepare",
     no_tool=0,
     wait_r=None,  # the FDM remaps' M109 takes P (value) and T (index): research/dialects.md 1.8 [MK]
+    heat_words="remap",
     feed_on_any_command=True,
     default_workspace="G54",
     effects=effects(

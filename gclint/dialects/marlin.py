@@ -215,6 +215,9 @@ MARLIN_SEMANTICS = Semantics(
     e_follows_g90=True,  # "G90/G91 reset E mode" (dialects.md 1.1 G1)
     arc_turns="extra",  # "P = number of extra full circles" (ARC_P_CIRCLES, dialects.md 1.1 G2/G3)
     commands_per_line="first",
+    # "G53: ... if (parser.chain()) process_parsed_command()": the move after G53 runs, in machine coordinates
+    # (Marlin/src/gcode/geometry/G53-G59.cpp, with CNC_COORDINATE_SYSTEMS)
+    chains=frozenset({"G53"}),
     home="all-if-none",
     tool_select="extruder",
     effects=MARLIN_EFFECTS,

@@ -195,7 +195,8 @@ class Semantics:
       P1 is the plain arc), None (no P).
     * ``order``: the steps in which a line's commands run (None: as written); ``words_first``: the letters
       set before any command of the line (LinuxCNC's F, S and T).  ``commands_per_line``: ``"all"`` or
-      ``"first"`` (the others are the first one's parameters and do nothing).
+      ``"first"`` (the others are the first one's parameters and do nothing), except after a code of
+      ``chains``, which runs the rest of its line as a command (Marlin's G53: ``parser.chain()``).
     * ``home``: what G28 does: ``"listed"`` (homes the listed axes only), ``"all-if-none"`` (no axis: every
       axis), ``"predefined"`` (through the listed point to a stored position: LinuxCNC), ``"clearance"``
       (to a clearance position the file does not state: Carvera), ``"zero-listed"`` (a rapid to the listed
@@ -209,7 +210,9 @@ class Semantics:
       0-1 as a fraction, above 1 of 255), ``"range"`` (a share of the range M106 C set, default 100: Hyrel,
       "M106 Set Cooling / Etc.").  ``wait_r``: what R on M109/M190 is: ``"target"`` (a set-point waited for
       while heating or cooling: Marlin, RepRapFirmware), ``"tolerance"`` (the window the wait accepts: Hyrel,
-      "M109 Wait for Temp (Head)"), None (no R).
+      "M109 Wait for Temp (Head)"), None (no R).  ``heat_words``: which words carry a set-point and the tool it
+      is for: ``"S"`` (S, and T the tool) or ``"remap"`` (Machinekit FDM: the README's ``M104 P<index> S<temp>``,
+      else the remap's ``M104 P<temp> T<index>``: research/dialects.md 1.8 [MK]).
     * ``effects``: code -> effect (``COMMON_EFFECTS`` and the dialect's own).
     """
 
@@ -225,6 +228,7 @@ class Semantics:
     order: tuple[frozenset[str], ...] | None = None
     words_first: tuple[str, ...] = ()
     commands_per_line: Literal["all", "first"] = "all"
+    chains: frozenset[str] = frozenset()  # (``first``) codes that run the rest of their line as the next command
     home: Literal["listed", "all-if-none", "predefined", "clearance", "zero-listed"] = "all-if-none"
     g30: Literal["predefined"] | None = None
     tool_select: Literal["address", "extruder", "prepare"] = "extruder"
@@ -233,7 +237,23 @@ class Semantics:
     default_workspace: str | None = None
     fan_scale: Literal["range", "255", "255-or-fraction"] = "255"
     wait_r: Literal["target", "tolerance"] | None = "target"
+    heat_words: Literal["S", "remap"] = "S"
     effects: Mapping[str, Effect] = field(default_factory=lambda: dict(COMMON_EFFECTS))
+
+    def set_point(self, params: Mapping[str, str | None], wait: bool) -> tuple[float | None, str | None]:
+        """The temperature a set or wait command gives (°C, None: none) and the word that names its tool
+        (None: the active one)."""
+        if self.heat_words == "remap":
+            if "S" in params:
+                return _number(params["S"]), "P" if "P" in params else None
+            return _number(params.get("P")), "T" if "T" in params else None
+        if "S" in params:
+            value = _number(params["S"])
+        elif wait and self.wait_r == "target" and "R" in params:
+            value = _number(params["R"])  # Marlin's M109 R: a target it waits for heating or cooling
+        else:
+            value = None
+        return value, "T" if "T" in params else None
 
     def effect(self, code: str | None) -> Effect | None:
         return self.effects.get(code) if code is not None else None  # type: ignore[arg-type]
@@ -248,14 +268,20 @@ class Semantics:
         if len(commands) < 2:
             return commands
         if self.commands_per_line == "first":
-            return commands[:1]
+            first = commands[:1]
+            if commands[0].code in self.chains:
+                return first + self.running(commands[1:])
+            return first
         if self.order is None:
             return commands
         return tuple(sorted(commands, key=self._step))
 
     def ignored(self, commands: tuple) -> tuple:
-        """The commands of a line that do not run (Marlin: all but the first)."""
-        return commands[1:] if self.commands_per_line == "first" and len(commands) > 1 else ()
+        """The commands of a line that do not run (Marlin: all but the first, and what a chain runs)."""
+        if self.commands_per_line != "first" or len(commands) < 2:
+            return ()
+        ran = {id(cmd) for cmd in self.running(commands)}
+        return tuple(cmd for cmd in commands if id(cmd) not in ran)
 
     def _step(self, cmd) -> int:
         code = cmd.code

@@ -32,11 +32,22 @@ class Explainer(Job):
             self._decoders.update(topic.decoders(self))
 
     def explain_line(self, line: Line) -> list[Explanation]:
+        """The line's commands in the order the machine runs them (LinuxCNC's order of execution), and those
+        it does not run (Marlin runs a line's first command only) said so."""
         out = []
         self.state.line_number = line.number
-        for cmd in line.commands:
+        commands = line.commands
+        facts = self.facts
+        for cmd in facts.running(commands) if len(commands) > 1 else commands:
             out.append(self.explain_command(cmd, line))
             self.interpreter.apply(cmd, line)
+        for cmd in facts.ignored(commands):
+            exp = Explanation(line.number, line.raw, cmd.code, "not run")
+            exp.warn(
+                f"{self.dialect.title.split(' (')[0]} runs only the first command of a line: the rest are its "
+                "parameters"
+            )
+            out.append(exp)
         return out
 
     def explain_command(self, cmd: Command, line: Line) -> Explanation:

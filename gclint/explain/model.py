@@ -26,6 +26,7 @@ class Explanation:
     code: str | None
     title: str
     items: list[Item] = field(default_factory=list)
+    seconds: float | None = None  # the dwell the command makes (G4), as the dialect counts it
 
     def add(self, word: str, text: str) -> None:
         self.items.append(Item(word, text))
@@ -50,7 +51,7 @@ class Explanation:
             return secrets.mask(text)
 
         items = [Item(hide(i.word), hide(i.text), warning=i.warning) for i in self.items]
-        return Explanation(self.line, hide(self.source), self.code, hide(self.title), items)
+        return Explanation(self.line, hide(self.source), self.code, hide(self.title), items, self.seconds)
 
     def to_dict(self) -> dict:
         return {
@@ -59,6 +60,7 @@ class Explanation:
             "code": self.code,
             "title": self.title,
             "items": [{"word": i.word, "text": i.text, "warning": i.warning} for i in self.items],
+            **({"dwell_s": self.seconds} if self.seconds is not None else {}),
         }
 
     def render(self) -> str:

@@ -112,7 +112,7 @@ def dwell(job: Job, exp: Explanation, cmd: Command, spec: Code | None) -> None:
         else:
             exp.add(word.text.strip(), f"{cmd.raw(letter)} {unit}")
             timed.append(letter)
-    seconds = rule.seconds(cmd.params)
+    seconds = exp.seconds = rule.seconds(cmd.params)
     if rule.p_seconds is None and rule.s_seconds is None:
         exp.note("how long this dialect dwells is not known")
     elif seconds is None:

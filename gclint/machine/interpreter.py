@@ -285,6 +285,19 @@ class Interpreter:
         if plane is not None:  # (LinuxCNC's UVW planes G17.1-G19.1 have no arcs: the plane stays)
             self.state.plane = plane
 
+    def _units(self, cmd: Command, line: Line) -> None:
+        """G20/G21: the job's numbers are inches or mm from here on; the current position is the same place,
+        named in the new unit (LinuxCNC's ``convert_length_units`` converts it; Marlin keeps mm inside)."""
+        st = self.state
+        unit = "inch" if cmd.code == "G20" else "mm"
+        if unit != st.units:
+            factor = 1 / 25.4 if unit == "inch" else 25.4
+            for axis in "XYZ":
+                value = st.position.get(axis)
+                if value is not None:
+                    st.position.set(axis, value * factor)
+            st.units = unit
+
     def _g90(self, cmd: Command, line: Line) -> None:
         self.state.absolute = True
         if self.semantics.e_follows_g90:
@@ -460,7 +473,8 @@ class Interpreter:
             target = self.target(cmd)
         if target is None:
             target = -1  # the focused head, unknown
-        s = cmd.get("S")
+        # the set-point as the dialect writes it (Marlin's M109 R, Machinekit's remap P: Semantics.set_point)
+        s = self.semantics.set_point(cmd.params, cmd.code in ("M109", "M190", "M191"))[0]
         if s is not None:
             st.targets[target] = s
             if self.addressed and target >= 30:
@@ -602,8 +616,8 @@ _BY_EFFECT: dict[str, Entry] = {
     "spiral-in-place": "_spiral_in_place",
     "dwell": _ignore,
     "plane": "_plane",
-    "inch": _sets("units", "inch"),
-    "mm": _sets("units", "mm"),
+    "inch": "_units",
+    "mm": "_units",
     "absolute": "_g90",
     "relative": "_g91",
     "set-position": "_g92",

@@ -301,15 +301,6 @@ class MachinekitSimulator(CncSimulator):
         index = number(params.get("T"))
         return number(params.get("P")), int(index) if index is not None else None
 
-    def heat_value(self, cmd: Command, wait: bool) -> float | None:
-        return self._flavour(cmd)[0]
-
-    def heat_device(self, cmd: Command, kind: str) -> str:
-        if kind != "head":
-            return kind
-        index = self._flavour(cmd)[1]
-        return f"extruder {index if index is not None else self.heat.tool or 0}"
-
     def m104(self, cmd: Command, n: int) -> None:
         value, index = self._flavour(cmd)
         if value is not None:

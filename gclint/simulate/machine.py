@@ -229,19 +229,16 @@ class Simulator:
         self.emit(Heat(n, self.heat_device(cmd, kind), kind, value, wait and self.waits(cmd)))
 
     def heat_value(self, cmd: Command, wait: bool) -> float | None:
-        """The set-point a temperature command gives: S (R too on a wait where R is a target: Marlin)."""
-        params = cmd.params
-        if "S" in params:
-            return number(params["S"])
-        if wait and "R" in params and self.facts.wait_r == "target":
-            return number(params["R"])
-        return None
+        """The set-point a temperature command gives (the dialect's words: ``Semantics.set_point``)."""
+        return self.facts.set_point(cmd.params, wait)[0]
 
     def heat_device(self, cmd: Command, kind: str) -> str:
-        """What a temperature command heats: its tool (T, else the active one), the bed or the chamber."""
+        """What a temperature command heats: its tool (the dialect's word for it, else the active one), the bed
+        or the chamber."""
         if kind != "head":
             return kind
-        tool = number(cmd.params.get("T"))
+        word = self.facts.set_point(cmd.params, False)[1]
+        tool = number(cmd.params.get(word)) if word is not None else None
         if tool is not None and tool == int(tool) and tool >= 0:
             return self.tool_label(int(tool))
         return self.tool_name()

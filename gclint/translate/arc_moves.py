@@ -17,15 +17,61 @@ from gclint.translate.words import INCH, num
 
 
 class ArcMoves:
+    def arc_mode(self, cmd: Command) -> None:
+        """G90.1/G91.1 (LinuxCNC, "Arc Distance Mode"): I, J and K are the centre's coordinates, or offsets from
+        the start.  Hyrel's are offsets: each arc under G90.1 is written with the offsets of its centre."""
+        if not self.source.semantics.arc_centre_modes:
+            self.fallback(cmd)
+            return
+        self.arc_absolute = cmd.code == "G90.1"
+        self.remove(
+            cmd,
+            TR_NOTE,
+            "arc centres are absolute in the source; Hyrel's I and J are offsets: each arc is written with its centre "
+            "as offsets from its start"
+            if self.arc_absolute
+            else "arc centres are offsets again, as on Hyrel",
+            key=cmd.code,
+        )
+
+    def absolute_centre(self, cmd: Command, plane: int) -> Command | None:
+        """An arc under G90.1 with its centre as offsets from its start; None (reported) when the start is not
+        known or a centre word is missing ("When G90.1 is in effect I and J both must be specified")."""
+        a, b, oa, ob, _ = arcs.PLANES[plane]
+        params = cmd.params
+        st = self.state
+        sa, sb = st.position.get(a), st.position.get(b)
+        ca, cb = num(params.get(oa)), num(params.get(ob))
+        if ca is None or cb is None:
+            self.untranslatable(
+                cmd, f"G90.1 (absolute centres) needs both {oa} and {ob}: LinuxCNC refuses this arc", key="G90.1-arc"
+            )
+            return None
+        if sa is None or sb is None:
+            self.untranslatable(
+                cmd, "an arc with an absolute centre (G90.1) from a start the file does not give", key="G90.1-start"
+            )
+            return None
+        changed = dict(params)
+        changed[oa], changed[ob] = fmt(ca - sa), fmt(cb - sb)
+        return Command(cmd.code, cmd.kind, cmd.column, changed)
+
     def arc(self, cmd: Command) -> None:
         """G2/G3: R-form -> I/J, other planes, extra turns and E amounts that matter -> G1 segments (X9)."""
         if not self.hy.started_motion:
             self.before_motion()
         if self.hy.motors_off:
             self.rehome()
-        params = cmd.params
         st = self.state
         plane = st.plane if st.plane in arcs.PLANES else 17
+        centre: dict[str, str | None] = {}  # (G90.1: the centre words to write, as offsets)
+        if self.arc_absolute and "R" not in cmd.params:
+            offsets = self.absolute_centre(cmd, plane)
+            if offsets is None:
+                return
+            _, _, oa, ob, _ = arcs.PLANES[plane]
+            cmd, centre = offsets, {oa: offsets.params[oa], ob: offsets.params[ob]}
+        params = cmd.params
         ext = self.EXTRUDER
         mixing = ext in params and self.mixing_e(cmd)
         delta = self.e_delta(cmd) if ext in params and not mixing else None
@@ -47,7 +93,7 @@ class ArcMoves:
             return
         drop = ""
         add: tuple[str, ...] = ()
-        values: dict[str, str | None] = {}
+        values: dict[str, str | None] = dict(centre)
         if "R" in params:
             centre = self._centre(cmd)
             if centre is None:

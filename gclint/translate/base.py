@@ -74,6 +74,9 @@ class HyrelTranslator(LineWriter, Heads, Program, Motion, ArcMoves, Modal, Spind
         "G91": "positioning",
         "G92": "set_position",
         "G92.1": "clear_g92",
+        "G4": "dwell",
+        "G90.1": "arc_mode",
+        "G91.1": "arc_mode",
         **WORKSPACES,
     }
     DROPPED: ClassVar[dict[str, tuple[str, str]]] = {}
@@ -116,6 +119,7 @@ class HyrelTranslator(LineWriter, Heads, Program, Motion, ArcMoves, Modal, Spind
             for code, name in getattr(klass, "HANDLERS", {}).items():
                 self.handlers[code] = getattr(type(self), name)
         self.hy = HyrelSide()  # what the Hyrel printer will believe
+        self.arc_absolute = False  # G90.1 in the source: I J K are the centre's coordinates, not offsets
         self.rpm: float | None = None  # the source's modal spindle speed (S words)
         self.spindle_percent: str | None = None  # the last spindle speed written (S percent; spindle.py)
         # the workspace the job selected (G54-G59), invoked again after a G53 move (modal.py)

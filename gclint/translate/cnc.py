@@ -16,7 +16,6 @@ from gclint.translate.words import fast_float
 _TOOL_NUMBER = re.compile(r"-?[0-9]{1,6}")  # (ASCII digits: str.isdigit() also takes "²")
 # The rows Machinekit and Carvera share (the rows every source shares are HyrelTranslator.HANDLERS).
 CNC_HANDLERS: dict[str, str] = {
-    "G4": "dwell_seconds",  # G4 P is seconds (LinuxCNC, Carvera grbl mode); Hyrel P is milliseconds
     "G53": "machine_coordinates",
     "M0": "stop",
     "M2": "end_program",

@@ -60,7 +60,7 @@ class MachinekitToHyrel(CncTranslator):
         **_codes("M400", TR_DROPPED, "wait for the move queue"),
         **_codes("M420", TR_DROPPED, "RGBW light"),
         **_codes(
-            "G40 G61 G61.1 G64 G80 G94 G17.1 G18.1 G19.1 G90.1 G91.1 G97 G98 G99 M48 M49 M50 M51 M52 M53",
+            "G40 G61 G61.1 G64 G80 G94 G17.1 G18.1 G19.1 G97 G98 G99 M48 M49 M50 M51 M52 M53",
             TR_DROPPED,
             "interpreter mode with no effect on a Hyrel job",
         ),

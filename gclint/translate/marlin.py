@@ -40,7 +40,6 @@ class MarlinToHyrel(HyrelTranslator):
     )
 
     HANDLERS: ClassVar[dict[str, str]] = {  # besides HyrelTranslator.HANDLERS
-        "G4": "dwell",
         "G10": "g10",
         "G11": "g11",
         "G28": "home",
@@ -212,14 +211,6 @@ class MarlinToHyrel(HyrelTranslator):
                 aspects="laser",
             )
         self.consume(cmd)
-
-    def dwell(self, cmd: Command) -> None:
-        params = cmd.params
-        if "S" in params and "P" in params:
-            self.replace(cmd, rewrite(cmd, drop="P"))
-            self.report(
-                TR_NOTE, "G4 with S and P: Marlin uses S alone, Hyrel would add them; P dropped", key="G4SP", cmd=cmd
-            )
 
     def e_mode(self, cmd: Command) -> None:
         absolute = cmd.code == "M82"

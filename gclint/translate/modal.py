@@ -186,14 +186,34 @@ class Modal:
         if drop or values or add:
             self.replace(cmd, rewrite(cmd, drop=drop, values=values, add=add))
 
-    def dwell_seconds(self, cmd: Command) -> None:
-        """G4 P<seconds> (LinuxCNC, Carvera grbl mode) -> G4 S<seconds> (Hyrel P is milliseconds)."""
+    def dwell(self, cmd: Command) -> None:
+        """G4: the pause the source machine makes, as its dialect counts it (``Semantics.dwell``: the number
+        ``explain``, the summary and the diff use), written so that Hyrel pauses as long; kept as written when
+        Hyrel reads the same time from the same words."""
         params = cmd.params
-        if "P" in params:
-            self.replace(cmd, rewrite(cmd, drop="P", first=("S" + (params["P"] or "0"),)))
-            self.report(
-                TR_NOTE, "G4 P is seconds in the source, milliseconds on Hyrel: written as G4 S", key="G4", cmd=cmd
-            )
+        source, hyrel = self.source.semantics.dwell, self.target.semantics.dwell
+        seconds = source.seconds(params)
+        idle = [letter for letter in "PS" if letter in params and source.unit(letter) is None]
+        if not idle and seconds == hyrel.seconds(params):
+            return
+        if "S" in idle and hasattr(self, "rpm"):
+            self.rpm = num(params.get("S"))  # LinuxCNC: the S word of any line is the spindle speed
+        name = self.source.title.split(" (")[0]
+        if seconds is None:
+            self.replace(cmd, rewrite(cmd, drop="PS"))
+            self.report(TR_NOTE, f"G4 gives {name} no time: no pause; its words dropped", key="G4", cmd=cmd)
+            return
+        only_p = "P" in params and "S" not in params and source.p_seconds == 1.0
+        text = "S" + (params["P"] or "0") if only_p else "S" + fmt(seconds)
+        self.replace(cmd, rewrite(cmd, drop="PS", first=(text,)))
+        if source.p_seconds != hyrel.p_seconds and "P" in params:
+            why = "G4 P is seconds in the source, milliseconds on Hyrel"
+        elif source.both != hyrel.both and "P" in params and "S" in params:
+            why = f"G4 with S and P: {name} uses S alone, Hyrel would add them"
+        else:
+            why = f"G4: {name} pauses {fmt(seconds)} s"
+        extra = f"; S is the spindle speed there, not a time" if "S" in idle else ""
+        self.report(TR_NOTE, f"{why}{extra}: written as G4 {text}", key="G4", cmd=cmd)
 
 
 def _as_move(cmd: Command, mode: str) -> Command:

@@ -111,9 +111,6 @@ class RepRapToHyrel(MarlinToHyrel):
             return
         super().fallback(cmd)
 
-    def dwell(self, cmd: Command) -> None:
-        """G4 S and P: RepRapFirmware's units are Hyrel's (S seconds, P milliseconds)."""
-
     def _fan_value(self, cmd: Command) -> float | None:
         s = num(cmd.params.get("S"))
         if s is not None and s <= 1.0:
