@@ -94,7 +94,10 @@ def test_smoothieware_commands_past_the_limit_are_one_finding():
     assert more and len(text) == SEGMENT_LIMIT
     found = Linter(Options(select=["SC"])).check_text(_line_of(SEGMENT_LIMIT + 5) + "\n", "job.gcode").findings
     cut = [f for f in found if "commands after its first" in f.message]
-    assert len(cut) == 1 and cut[0].severity.label == "error", [f.message for f in found]
+    assert cut and all(f.severity.label == "error" for f in cut), [f.message for f in found]
+    assert sorted(f.code for f in cut) == sorted({f.code for f in cut}) and "SC005" in {f.code for f in cut}
+    found = Linter(Options(select=["SC005"])).check_text(_line_of(SEGMENT_LIMIT + 5) + "\n", "job.gcode").findings
+    assert [f.line for f in found if "commands after its first" in f.message] == [1]  # (one per rule selected)
 
 
 def test_repeated_commands_are_read_once_and_count_once():

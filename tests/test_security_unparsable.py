@@ -39,6 +39,7 @@ def test_the_reproducer_fails_the_gate(tmp_path):
         ("!! G4 M6 T1 ; SHELL x.exe", "SC001"),
         ("!! M0 ; PIC C:\\x.png", "SC002"),
         ("!! M792 ; VID C:\\x.mp4", "SC002"),
+        ("!! M0000000000792 ; SHELL x.exe", "SC001"),  # leading zeros
     ],
 )
 def test_an_action_anywhere_in_a_refused_line(dialect, line, code):

@@ -159,7 +159,7 @@ _ACTION_LINE = re.compile(
 )
 # An action or pause code anywhere in a line the grammar refused ("!! M792 ; SHELL C:\\x.exe"): what a
 # reader that skips what it cannot read may run.
-_CODE_ANYWHERE = re.compile(r"[Mm][ \t]*+(\d{1,8}+)(?![\d.])")
+_CODE_ANYWHERE = re.compile(r"[Mm][ \t]*+(\d++)(?!\.)")
 
 
 def _codes_anywhere(raw: str, codes: tuple[str, ...]) -> list[tuple[str, int]]:
@@ -167,7 +167,8 @@ def _codes_anywhere(raw: str, codes: tuple[str, ...]) -> list[tuple[str, int]]:
     after the first one holds the text after every later one."""
     found: dict[str, int] = {}
     for m in _CODE_ANYWHERE.finditer(raw):
-        code = _code("M", m.group(1))
+        digits = m.group(1).lstrip("0")
+        code = _code("M", digits) if len(digits) <= 4 else ""  # ("M000000792": leading zeros are zeros)
         if code in codes and code not in found:
             found[code] = m.end()
             if len(found) == len(codes):

@@ -94,11 +94,11 @@ class _SecurityRule(Rule):
 
     def check_view(self, line: Line) -> None:
         """Read ``line`` as each firmware that edits it first reads it (``firmware_views``), reporting on
-        ``line`` with the reading named.  A line with more than SEGMENT_LIMIT M codes after its first
-        command (Smoothieware runs each) is one finding, for the rest, by the first SC rule that reads it."""
+        ``line`` with the reading named.  A line with more than SEGMENT_LIMIT different M codes after its
+        first command (Smoothieware runs each) is one finding of each SC rule, for the rest: each, since
+        ``per-file-ignores`` may switch some of them off."""
         views, more = _views_of(line)
-        if more and self.ctx.shared.get("SC views cut") != line.number:
-            self.ctx.shared["SC views cut"] = line.number
+        if more:
             self.report(
                 line,
                 f"this line holds more than {SEGMENT_LIMIT:,} commands after its first, and Smoothieware (Carvera)"
