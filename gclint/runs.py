@@ -338,7 +338,7 @@ def _cuts_and_reports(
 def comment_tests(rules, view_patterns) -> tuple[Callable[[str], object], ...]:
     """What makes a comment line of a run one to read on its own: a directive, a rule's comment hint (a
     rule with none reads every comment), a view hook's pattern."""
-    hints = tuple(r.comment_hint or _always for r in rules if r.on_comment)
+    hints = dict.fromkeys(r.comment_hint or _always for r in rules if r.on_comment)  # (rules may share one)
     return (may_direct, *hints, *view_patterns)
 
 

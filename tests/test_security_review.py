@@ -119,7 +119,11 @@ def test_m98_macro_number_runs_a_carvera_file(dialect: str) -> None:
 
 
 def test_m98_number_is_a_linuxcnc_subprogram() -> None:
-    assert "SC004" not in _codes("M98 P1 L3\n", "machinekit")
+    """A subprogram of the same file when it is defined above the call (Fanuc-style "O1" or "o1 sub"); else
+    LinuxCNC looks for the file 1.ngc first (interp_o_word.cc control_back_to)."""
+    assert "SC004" not in _codes("O1\nG0 X1\nM99\nM98 P1 L3\n", "machinekit")
+    assert "SC004" not in _codes("o1 sub\nG0 X1\no1 endsub\nM98 P1 L3\n", "machinekit")
+    assert "SC004" in _codes("M98 P1 L3\nO1\nG0 X1\nM99\n", "machinekit")
 
 
 @pytest.mark.parametrize("code", ["M500", "M502", "M504"])

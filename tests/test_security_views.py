@@ -146,7 +146,8 @@ def test_every_dangerous_command_of_a_line_is_reported():
 
 def test_dialect_exemptions_hold_in_every_view():
     assert _findings("G28\nG0 X0 M500\nM84\n", "marlin") == []  # Marlin's M500 is the EEPROM
-    assert _findings("G0 X0 M98 P1234\nM2\n", "machinekit") == []  # a subprogram of the same file
+    # a subprogram of the same file, defined above the call (else LinuxCNC looks for the file 1234.ngc first)
+    assert _findings("O1234\nG0 X1\nM99\nG0 X0 M98 P1234\nM2\n", "machinekit") == []
 
 
 # -- 4. firmware and logging files ----------------------------------------------------------------------------
@@ -214,7 +215,7 @@ def test_an_invisible_format_character_before_the_code_hides_nothing(tmp_path):
     job.write_text("; gclint: disable=SX001\nG28 X0 Y0\n\ufeffM792 ; SHELL C:\\x.exe\n\u200bM30 /config.gco\nM30\n")
     proc = run_cli("check", "--no-cache", str(job))
     out = proc.stdout.decode()
-    assert proc.returncode == 1 and "3:1: SC001" in out and "4:1: SC005" in out, out
+    assert proc.returncode == 1 and "3:9: SC001" in out and "4:1: SC005" in out, out  # (3:9: the SHELL itself)
     assert "invisible format characters" in out
 
 

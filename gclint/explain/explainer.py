@@ -7,11 +7,12 @@ from __future__ import annotations
 import re
 from collections.abc import Iterable, Iterator
 
+from gclint import secrets
 from gclint.dialects.base import Dialect
 from gclint.explain import addressing, arcs, fans, flow, jobflow, lasers_spindles, motion, offsets, temperature
 from gclint.explain.generic import generic, title, unknown
 from gclint.explain.job import Decoder, Job
-from gclint.explain.model import Explanation
+from gclint.explain.model import Explanation, secret_values
 from gclint.machine.state import MachineState
 from gclint.syntax.nodes import ASSIGNMENT, EXTENDED, GCODE, IMPLICIT, META, OWORD, PERCENT, TEXT, Command, Line
 from gclint.syntax.parse import parse_line
@@ -32,17 +33,20 @@ class Explainer(Job):
             self._decoders.update(topic.decoders(self))
 
     def explain_line(self, line: Line) -> list[Explanation]:
-        """The line's commands in the order the machine runs them (LinuxCNC's order of execution), and those
-        it does not run (Marlin runs a line's first command only) said so."""
+        """The line's commands in the order the machine runs them (LinuxCNC's order of execution), with its
+        secrets masked (the command line and the editor's hover show them as they are); those the machine does
+        not run (Marlin runs a line's first command only) are said so."""
         out = []
         self.state.line_number = line.number
+        values, starts = _secrets_of(line.raw)  # (once for the line: it may hold 30,000 commands)
         commands = line.commands
         facts = self.facts
         for cmd in facts.running(commands) if len(commands) > 1 else commands:
-            out.append(self.explain_command(cmd, line))
+            hidden = _hidden_words(cmd, starts) if starts else ()
+            out.append(self.explain_command(cmd, line).masked(values, hidden))
             self.interpreter.apply(cmd, line)
         for cmd in facts.ignored(commands):
-            exp = Explanation(line.number, line.raw, cmd.code, "not run")
+            exp = Explanation(line.number, line.raw, cmd.code, "not run").masked(values, ())
             exp.warn(
                 f"{self.dialect.title.split(' (')[0]} runs only the first command of a line: the rest are its "
                 "parameters"
@@ -123,6 +127,23 @@ class Explainer(Job):
         if kind == PERCENT:
             return Explanation(line.number, line.raw, "%", "program start/end marker")
         return Explanation(line.number, line.raw, cmd.code, f"{kind} command")
+
+
+def _secrets_of(raw: str) -> tuple[tuple[str, ...], tuple[int, ...]]:
+    """The secret values of a line, longest first, and the columns where its secrets start."""
+    if not secrets.may_hold(raw):
+        return (), ()
+    found = secrets.find(raw)
+    return secret_values(raw) if found else (), tuple(s.start + 1 for s in found)
+
+
+def _hidden_words(cmd: Command, starts: tuple[int, ...]) -> frozenset[str]:
+    """The words of ``cmd`` from its first secret on ("M551 Phunter2" is read as the words P, h, u, n, t, e,
+    r2: each would show a letter of the password, and SX002 would name the repeated ones)."""
+    start = min((column for column in starts if column >= cmd.column), default=None)
+    if start is None:
+        return frozenset()
+    return frozenset(word.text.strip() for word in cmd.words if word.end_column > start)
 
 
 def explain_lines(

@@ -3,6 +3,7 @@ written and what each does, notes and warnings), rendered as the Hyrel page rend
 
 from __future__ import annotations
 
+from collections.abc import Collection
 from dataclasses import dataclass, field
 
 DEG = "°C"
@@ -17,6 +18,10 @@ class Item:
     warning: bool = False
 
 
+# What stands for the words of a command from a secret on (``Explanation.masked``).
+_HIDDEN = Item("***", "the rest of the command: part of a secret value, not shown")
+
+
 @dataclass
 class Explanation:
     """One command, decoded."""
@@ -27,6 +32,7 @@ class Explanation:
     title: str
     items: list[Item] = field(default_factory=list)
     seconds: float | None = None  # the dwell the command makes (G4), as the dialect counts it
+    secrets_masked: bool = field(default=False, repr=False, compare=False)  # (``masked`` has nothing to do)
 
     def add(self, word: str, text: str) -> None:
         self.items.append(Item(word, text))
@@ -37,12 +43,19 @@ class Explanation:
     def warn(self, text: str) -> None:
         self.items.append(Item("", text, warning=True))
 
-    def masked(self) -> Explanation:
-        """A copy with every secret of the source line (a password, a key) masked wherever it is quoted."""
+    def masked(self, values: Collection[str] | None = None, hidden: Collection[str] = ()) -> Explanation:
+        """A copy with every secret of the source line (a password, a key) masked wherever it is quoted, and
+        the words ``hidden`` not shown at all: the words of a command from a password on (an unquoted
+        password is read as words, "Phunter2" as P, h, u, n...: ``Explainer.explain_line``).  ``values``:
+        the line's secret values, longest first (``secret_values``), when the caller has them."""
         from gclint import secrets
 
-        values = sorted({self.source[s.start : s.end] for s in secrets.find(self.source)}, key=len, reverse=True)
-        if not values:
+        if self.secrets_masked:
+            return self
+        if values is None:
+            values = secret_values(self.source)
+        if not values and not hidden:
+            self.secrets_masked = True  # (its source holds none)
             return self
 
         def hide(text: str) -> str:
@@ -50,8 +63,16 @@ class Explanation:
                 text = text.replace(value, secrets.MASK_CHAR * len(value))
             return secrets.mask(text)
 
-        items = [Item(hide(i.word), hide(i.text), warning=i.warning) for i in self.items]
-        return Explanation(self.line, hide(self.source), self.code, hide(self.title), items, self.seconds)
+        items = []
+        for item in self.items:
+            if item.word and item.word in hidden:
+                if not any(i.word == _HIDDEN.word for i in items):  # (one item: not even the words' lengths)
+                    items.append(_HIDDEN)
+            else:
+                items.append(Item(hide(item.word), hide(item.text), warning=item.warning))
+        return Explanation(
+            self.line, hide(self.source), self.code, hide(self.title), items, self.seconds, secrets_masked=True
+        )
 
     def to_dict(self) -> dict:
         return {
@@ -74,6 +95,15 @@ class Explanation:
             else:
                 lines.append(f"** note: {item.text}")
         return "\n".join(lines)
+
+
+def secret_values(text: str) -> tuple[str, ...]:
+    """The secret values in ``text`` (a line), longest first."""
+    from gclint import secrets
+
+    if not secrets.may_hold(text):
+        return ()
+    return tuple(sorted({text[s.start : s.end] for s in secrets.find(text)}, key=len, reverse=True))
 
 
 def number(text: str | None) -> float | None:

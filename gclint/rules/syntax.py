@@ -3,6 +3,7 @@ name them, document them and check what needs more than one line (N numbers, che
 
 from __future__ import annotations
 
+from gclint import secrets
 from gclint.rules.base import Edit, Rule, Severity, register
 from gclint.syntax.nodes import Line
 
@@ -50,6 +51,25 @@ class DuplicateWord(_IssueRule):
     example_bad = "G1 X10 Y5 X20"
     example_good = "G1 X20 Y5"
     source = "LinuxCNC rs274ngc errors (research/anchors.md)"
+
+    def check_issues(self, line: Line) -> None:
+        """As the parser says, except from a password on: an unquoted password is read as words ("M551
+        Ppassword": p, a, s, s...), and naming the repeated letters would spell it out."""
+        starts: list[int] | None = None
+        for issue in line.issues:
+            if issue.code != self.code:
+                continue
+            message = issue.message
+            if starts is None:
+                starts = [s.start + 1 for s in secrets.find(line.raw)] if secrets.may_hold(line.raw) else []
+            if starts:
+                cmd = max((c for c in line.commands if c.column <= issue.column), key=lambda c: c.column, default=None)
+                first = cmd.column if cmd is not None else 1
+                if any(first <= start <= issue.column for start in starts):
+                    message = f"a letter is repeated in {cmd.code if cmd is not None and cmd.code else 'this block'}"
+                    message += " after a password (the letter is not named: it may be one of the password's)"
+            severity = Severity.parse(issue.severity) if issue.severity else None
+            self.report(line, message, column=issue.column, severity=severity)
 
 
 @register

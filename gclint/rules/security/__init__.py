@@ -7,16 +7,18 @@ These rules apply to every dialect: a hostile job can claim any flavour in its h
 trust the dialect.  Messages and ``Finding.source`` go through ``gclint.secrets.mask``.
 
 Lines the grammar cannot parse (``M0 SHELL C:\\x.exe`` without a ``;``, ``M1000 rm -rf /sd``) are still
-read: each rule also looks at the start of lines with a parse error.  Each rule also reads a line as the
+read: each rule also looks at the start of lines with a parse error (SC001 and SC002 at each action code
+anywhere in them, and the LinuxCNC rules at their comments).  Each rule also reads a line as the
 firmwares that edit it before parsing read it (``firmware_views``: Marlin's backspaces, Klipper's
 ``strip()`` and ``upper()``, Smoothieware running every M code of a line), reporting on the line as written.
 
 Where a firmware documents a line as something harmless the rule says so, but the finding stays unless the
 dialect the job is read as documents it otherwise (the SC003 and SC005 explanations list those cases).
 
-One module by topic: ``common`` (shared helpers), ``views`` (the line as each firmware reads it), ``base``
-(the rules' base class), ``actions`` (SC001, SC002), ``console`` (SC003), ``files`` (SC004, SC005),
-``leaks`` (SC006), ``network`` (SC007).
+One module by topic: ``common`` (shared helpers), ``views`` (the line as each firmware reads it),
+``linuxcnc`` (the comments LinuxCNC/Machinekit act on, the subroutines it calls), ``base`` (the rules' base
+class), ``actions`` (SC001, SC002), ``console`` (SC003), ``files`` (SC004, SC005), ``leaks`` (SC006),
+``network`` (SC007).
 """
 
 from __future__ import annotations

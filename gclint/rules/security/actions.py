@@ -6,8 +6,9 @@ import re
 import unicodedata
 
 from gclint.rules.base import Severity, register
+from gclint.rules.security import linuxcnc
 from gclint.rules.security.base import _SecurityRule
-from gclint.rules.security.common import _excerpt, _quote
+from gclint.rules.security.common import _code, _excerpt, _quote
 from gclint.rules.security.views import _VIEW_TRIGGER, firmware_views
 from gclint.syntax.nodes import GCODE, Command, Line
 from gclint.syntax.parse import parse_line
@@ -31,9 +32,11 @@ PAUSE_CODES = ("M6", "M25", "M226", "M291", "M600", "M601")
 # default-ignorable code points (soft hyphen, combining grapheme joiner, zero-width spaces and joiners,
 # bidirectional marks, invisible operators, variation selectors, the BOM, tag characters, the Hangul
 # fillers U+115F, U+1160, U+3164, U+FFA0...), and fillers that print as nothing or as a stretch of the line
-# (Arabic tatweel U+0640, NKo lajanyalan U+07FA, the blank Braille pattern U+2800).
+# (Arabic tatweel U+0640, NKo lajanyalan U+07FA, the blank Braille pattern U+2800); and bytes that are not
+# UTF-8 (lone surrogates: syntax/source.py), which a reader may drop or read as C1 controls (Latin-1):
+# "SH\xadELL", "SH\x8aELL", a CESU-8 surrogate "SH\xed\xa0\x80ELL".
 _IGNORABLE = (
-    "\x00-\x08\x0a-\x1f\x7f-\x9f\u00ad\u034f\u061c\u0640\u07fa\u115f\u1160\u17b4\u17b5\u180b-\u180f"
+    "\x00-\x08\x0a-\x1f\x7f-\x9f\udc80-\udcff\u00ad\u034f\u061c\u0640\u07fa\u115f\u1160\u17b4\u17b5\u180b-\u180f"
     "\u200b-\u200f\u202a-\u202e\u2060-\u206f\u2800\u3164\ufe00-\ufe0f\ufeff\uffa0\ufff0-\ufff8"
     "\U0001bca0-\U0001bca3\U0001d159\U0001d173-\U0001d17a\U000e0000-\U000e0fff"
 )
@@ -154,6 +157,23 @@ def _shell_argument(rest: str, offset: int) -> str:
 _ACTION_LINE = re.compile(
     r"[ \t]*+(?:/[ \t]*+)?(?:[Nn][ \t]*+\d{1,12}+[ \t]*+)?[Mm][ \t]*+(?:0*+(?:1|792)|0++)(?![\d.])"
 )
+# An action or pause code anywhere in a line the grammar refused ("!! M792 ; SHELL C:\\x.exe"): what a
+# reader that skips what it cannot read may run.
+_CODE_ANYWHERE = re.compile(r"[Mm][ \t]*+(\d++)(?!\.)")
+
+
+def _codes_anywhere(raw: str, codes: tuple[str, ...]) -> list[tuple[str, int]]:
+    """The first place each of ``codes`` appears in ``raw``, as ``(code, where its text starts)``: the text
+    after the first one holds the text after every later one."""
+    found: dict[str, int] = {}
+    for m in _CODE_ANYWHERE.finditer(raw):
+        digits = m.group(1).lstrip("0")
+        code = _code("M", digits) if len(digits) <= 4 else ""  # ("M000000792": leading zeros are zeros)
+        if code in codes and code not in found:
+            found[code] = m.end()
+            if len(found) == len(codes):
+                break
+    return list(found.items())
 
 
 def action_shell_column(line: Line) -> int | None:
@@ -194,7 +214,10 @@ class HostRunsProgram(_SecurityRule):
     code = "SC001"
     name = "host-runs-program"
     severity = Severity.ERROR
-    summary = "The job makes the host computer run a program (SHELL in M0/M1/M792 text, Klipper RUN_SHELL_COMMAND)"
+    summary = (
+        "The job makes the host computer run a program (SHELL in M0/M1/M792 text, Klipper RUN_SHELL_COMMAND,"
+        " LinuxCNC (PY,...), (PYRUN,...), (PYRELOAD))"
+    )
     explanation = """
         Repetrel's M0 and M792 take actions after the command; "SHELL C:\\program.exe" makes the PC that
         drives the printer execute that file, with the rights of the user running Repetrel.  Klipper's
@@ -207,26 +230,44 @@ class HostRunsProgram(_SecurityRule):
         reads it, so any SHELL in the text of M0, M1 or M792 is reported: in any case, anywhere in the
         text ("SAY hi SHELL x", "SHELLC:\\x.exe", "-SHELL", "SHELL=x"), with invisible characters or
         fillers inside the word (soft hyphen, zero-width space, Arabic tatweel, the blank Braille pattern,
-        Hangul fillers), and in letters that look like its own: full-width and mathematical forms, small
-        capitals, Cyrillic and Greek lookalikes ("ЅНЕLL").  M1 is not on the Hyrel
+        Hangul fillers, bytes that are not UTF-8), and in letters that look like its own: full-width and
+        mathematical forms, small capitals, Cyrillic and Greek lookalikes ("ЅНЕLL"); also in the line read
+        as Windows-1252, as a Windows program may read it.  A line the grammar refuses ("!! M792 ; SHELL
+        x") is searched whole for these codes.  M1 is not on the Hyrel
         pages; gclint's translator writes it as M0, so it is read the same way.  The same holds for the
         codes gclint's translator turns into Hyrel's pause M0 (M600, M601, M25, M226, M291, M6 on Carvera and
         Machinekit): text on them is text after M0 once the job is translated ("gclint translate" removes
         it, TR009, but another tool may not).  A comment that names a shell mill on a tool change is
         reported too: reword it.
+
+        LinuxCNC and Machinekit run Python from a job's comments when their Python plugin is set up
+        (interp_convert.cc convert_comment; "Executing Python statements from the interpreter" in the
+        remap documentation): "(PY,code)", "(PYRUN,code)", ";py,code" and "(PYRELOAD)", in any case, after
+        leading blanks.  They are reported in every dialect.
     """
     example_bad = "M792 ; SHELL C:\\program.exe"
     example_good = "M792 ; BEEP"
     source = (
         "Gcode page, M0 Stop Until Resume and M792 Execute Action"
         " (SHELL C:\\program.exe - the computer will execute the file); Klipper RUN_SHELL_COMMAND"
-        " (gcode_shell_command); gclint/translate (codes written as M0)"
+        " (gcode_shell_command); gclint/translate (codes written as M0); LinuxCNC"
+        " src/emc/rs274ngc/interp_convert.cc convert_comment, interp_read.cc read_semicolon (;py,),"
+        ' docs/src/remap/remap.adoc "Executing Python statements from the interpreter"'
     )
     codes = (*ACTION_CODES, *PAUSE_CODES, "RUN_SHELL_COMMAND")
+    on_comment = True  # (LinuxCNC's Python comments)
+    comment_hint = staticmethod(linuxcnc.may_be_active)
+    active_comments = linuxcnc.CODE_RUNS
 
     def __init__(self, ctx) -> None:
         super().__init__(ctx)
         self._reported = 0  # the last line reported (one command's text holds the next one's)
+
+    def check_issues(self, line: Line) -> None:
+        super().check_issues(line)
+        if not any(c.code in self.codes for c in line.parsed.commands):
+            for code, end in _codes_anywhere(line.raw, (*ACTION_CODES, *PAUSE_CODES)):
+                self.inspect(line, code, line.raw[end:], end + 1, None)
 
     def inspect(self, line: Line, code: str, rest: str, column: int, cmd: Command | None) -> None:
         if code == "RUN_SHELL_COMMAND":
@@ -278,9 +319,23 @@ class HostOpensFile(_SecurityRule):
     source = "Gcode page, M0 Stop Until Resume and M792 Execute Action (PIC, VID)"
     codes = ("M0", "M792")
 
+    def __init__(self, ctx) -> None:
+        super().__init__(ctx)
+        self._reported: tuple[Line | None, set[int]] = (None, set())  # a line, and the columns reported on it
+
+    def check_issues(self, line: Line) -> None:
+        super().check_issues(line)
+        if not any(c.code in self.codes for c in line.parsed.commands):
+            for code, end in _codes_anywhere(line.raw, self.codes):
+                self.inspect(line, code, line.raw[end:], end + 1, None)
+
     def inspect(self, line: Line, code: str, rest: str, column: int, cmd: Command | None) -> None:
+        if self._reported[0] is not line:
+            self._reported = (line, set())
+        reported = self._reported[1]
         for keyword, argument, offset in host_actions(rest):
-            if keyword in ("PIC", "VID"):
+            if keyword in ("PIC", "VID") and column + offset not in reported:
+                reported.add(column + offset)
                 what = "image" if keyword == "PIC" else "video"
                 target = f" {_quote(argument)}" if argument else ""
                 self.report_masked(

@@ -2,11 +2,21 @@
 
 from __future__ import annotations
 
+from typing import ClassVar
+
 from gclint import secrets
 from gclint.rules.base import Rule, Severity
-from gclint.rules.security.common import _LEADING_CODE, _LEADING_NAME, _code, _mask_machine_password
-from gclint.rules.security.views import _VIEW_TRIGGER, DROPPED_VIEW, ERASED_VIEW, INVISIBLE_VIEW, _views_of
-from gclint.syntax.nodes import Command, Line
+from gclint.rules.security import linuxcnc
+from gclint.rules.security.common import _LEADING_CODE, _LEADING_NAME, _code, _mask_machine_password, _quote
+from gclint.rules.security.views import (
+    _VIEW_TRIGGER,
+    DROPPED_VIEW,
+    ERASED_VIEW,
+    INVISIBLE_VIEW,
+    SEGMENT_LIMIT,
+    _views_of,
+)
+from gclint.syntax.nodes import Command, Comment, Line
 
 
 class _SecurityRule(Rule):
@@ -14,8 +24,16 @@ class _SecurityRule(Rule):
 
     Subclasses implement ``inspect(line, code, rest, column, cmd)``: ``rest`` is the line's text after the
     code word (comments included), ``column`` the 1-based column where ``rest`` starts, ``cmd`` the parsed
-    command or None.
+    command or None.  A command's ``rest`` holds the text of every command after it on the line, so each
+    code a rule listens to is inspected once per line, at its first command (a line of 30,000 "M0" is read
+    once, not 30,000 times: linear time); the rules read only the first command of a line or the whole text
+    after a code, so nothing is missed.
+
+    A rule with ``active_comments`` (keys of ``linuxcnc.FILE_WRITES`` or ``linuxcnc.CODE_RUNS``) reports
+    the LinuxCNC/Machinekit comments among them, in every comment and on lines the grammar refused.
     """
+
+    active_comments: ClassVar[dict[str, str]] = {}
 
     on_issue = True
     # the views whose lines are read whole too (check_line): those where a firmware may drop characters
@@ -27,13 +45,26 @@ class _SecurityRule(Rule):
     def __init__(self, ctx) -> None:
         super().__init__(ctx)
         self._view: tuple[str, Line, int] | None = None  # (how, the line as written, offset) while reading a view
+        self._line: Line | None = None  # the line (or view) whose commands are being inspected
+        self._inspected: set[str] = set()  # the codes inspected on it
 
     def check(self, line: Line, cmd: Command) -> None:
+        code = cmd.code or ""
+        if line is not self._line:
+            self._line = line
+            self._inspected = set()
+        elif code in self._inspected:
+            return  # (its text is part of the text read after the first command of its code)
+        self._inspected.add(code)
         word = cmd.word
         start = word.end_column if word is not None else cmd.column
-        self.inspect(line, cmd.code or "", line.raw[start - 1 :], start, cmd)
+        self.inspect(line, code, line.raw[start - 1 :], start, cmd)
 
     def check_issues(self, line: Line) -> None:
+        if self.active_comments and line.parsed.kind == "error":
+            # (the grammar gave up on the line, so its comments were not read: LinuxCNC may read them)
+            for column, body in linuxcnc.comments_in(line.raw):
+                self._active_comment(line, body, column)
         if line.parsed.commands and any(c.code in self.codes for c in line.parsed.commands):
             return  # already seen by check()
         m = _LEADING_CODE.match(line.raw)
@@ -47,10 +78,36 @@ class _SecurityRule(Rule):
         if code in self.codes:
             self.inspect(line, code, line.raw[m.end() :], m.end() + 1, None)
 
+    def check_comment(self, line: Line, comment: Comment) -> None:
+        if linuxcnc.ACTIVE.match(comment.body) is not None:  # (most comments: one test in C)
+            self._active_comment(line, comment.body, comment.column)
+
+    def _active_comment(self, line: Line, body: str, column: int) -> None:
+        found = linuxcnc.active_comment(body)
+        if found is None or found[0] not in self.active_comments:
+            return
+        keyword, argument = found
+        what = self.active_comments[keyword]
+        if "{target}" in what and not argument:
+            return  # (no file name, no text, no code: nothing is opened, written or run)
+        self.report_masked(line, f"{linuxcnc.shown(keyword)} {what.format(target=_quote(argument))}", column)
+
     def check_view(self, line: Line) -> None:
         """Read ``line`` as each firmware that edits it first reads it (``firmware_views``), reporting on
-        ``line`` with the reading named."""
-        for how, view, offset in _views_of(line):
+        ``line`` with the reading named.  A line with more than SEGMENT_LIMIT different M codes after its
+        first command (Smoothieware runs each) is one finding of each SC rule, for the rest: each, since
+        ``per-file-ignores`` may switch some of them off."""
+        views, more = _views_of(line)
+        if more:
+            self.report(
+                line,
+                f"this line holds more than {SEGMENT_LIMIT:,} commands after its first, and Smoothieware (Carvera)"
+                f" runs each of them: the security rules read the first {SEGMENT_LIMIT:,} and not the rest;"
+                " split the line",
+                column=1,
+                severity=Severity.ERROR,
+            )
+        for how, view, offset in views:
             self._view = (how, line, offset)
             try:
                 parsed = view.parsed

@@ -4,7 +4,9 @@ from __future__ import annotations
 
 import re
 
+from gclint.context.model import CONFIGURATION, OPTION
 from gclint.rules.base import Severity, register
+from gclint.rules.security import linuxcnc
 from gclint.rules.security.base import _SecurityRule
 from gclint.rules.security.common import _NUMBER, _excerpt, _quote, _starts_line, _strip_comment
 from gclint.syntax.nodes import Command, Line
@@ -83,9 +85,15 @@ class RunsFile(_SecurityRule):
         configuration.  A job cannot silence SC findings itself: "; noqa: SC004" and "; gclint:
         disable=SC" are ignored for the security rules.
 
-        M98 P with a number is a subprogram of the same file in LinuxCNC (Fanuc style,
-        research/firmware_codes.md section 7), so it is not reported in a job read as
-        Machinekit/LinuxCNC; elsewhere it is, since a Carvera runs gcodes/macros/<number>.cnc for it.
+        LinuxCNC and Machinekit run "o<name> call" (or "o100 call", or the Fanuc-style "M98 P100") from a
+        subroutine already defined in the job; when none of that name is defined above the call, they
+        look for the file name.ngc (100.ngc) in the folders the machine's INI file names (PROGRAM_PREFIX,
+        SUBROUTINE_PATH) and run it ("Calling Files" in LinuxCNC's O-code documentation; interp_o_word.cc
+        control_back_to).  Such a call, and a call whose name is computed ("o[#1] call"), is reported in
+        every dialect.  Define the subroutine in the job, above the call.  M98 P with a number in a job
+        read as Machinekit/LinuxCNC is reported only then (a subprogram of the same file, research/
+        firmware_codes.md section 7); elsewhere it is always reported, since a Carvera runs
+        gcodes/macros/<number>.cnc for it.
 
         RepRapFirmware's own configuration is macros calling macros: the firmware runs homeall.g for G28,
         tpre0.g for T0, M<n>.g for a code it does not have, and these files call each other with M98
@@ -96,17 +104,61 @@ class RunsFile(_SecurityRule):
     example_bad = 'M98 P"0:/macros/prime.g"'
     example_good = """
         ; gclint-test: dialect=machinekit
-        M98 P100 L2
+        o<prime> sub
+        G0 Z5
+        o<prime> endsub
+        o<prime> call
     """
     source = (
         "RepRap G-code page (M23, M32, M98); Carvera M-code table (M98 P####: gcodes/macros/####.cnc, M98.1, M32,"
-        " M23); Klipper docs/G-Codes.md [virtual_sdcard] (SDCARD_PRINT_FILE: load a file and start SD print)"
+        " M23); Klipper docs/G-Codes.md [virtual_sdcard] (SDCARD_PRINT_FILE: load a file and start SD print);"
+        ' LinuxCNC docs/src/gcode/o-code.adoc "Calling Files" and src/emc/rs274ngc/interp_o_word.cc'
+        " control_back_to (o<name> call of a subroutine not defined before the call: the file name.ngc)"
     )
-    codes = ("M98", "M98.1", "M32", "M23", "SDCARD_PRINT_FILE")
+    codes = ("M98", "M98.1", "M32", "M23", "SDCARD_PRINT_FILE", "O")
+
+    # Subroutine names remembered per file: a job that defines more is read as if it defined none after them
+    # (its later calls are reported), so memory stays bounded.
+    SUBROUTINES_KEPT = 10_000
 
     def __init__(self, ctx) -> None:
         super().__init__(ctx)
         self.configuration = ctx.dialect.name == "reprap" and _reprap_configuration(ctx.path)
+        self._subroutines: set[str] = set()  # the O-word subroutines defined so far (LinuxCNC's offset map)
+
+    def check(self, line: Line, cmd: Command) -> None:
+        if cmd.code == "O":
+            self._oword(line, cmd)  # (every O-word of a line: "sub" and "call" lines are read in order)
+        else:
+            super().check(line, cmd)
+
+    def _oword(self, line: Line, cmd: Command) -> None:
+        # LinuxCNC runs a call from its table of subroutines defined so far, else from the file name.ngc if
+        # there is one, else from further down the job (interp_o_word.cc control_back_to, "#1 already
+        # defined", "#2 open the File"; https://github.com/LinuxCNC/linuxcnc/blob/master/src/emc/rs274ngc/)
+        keyword = (cmd.params.get("keyword") or "").lower()
+        if keyword not in ("sub", "call", ""):
+            return
+        name = linuxcnc.subroutine_name(cmd)
+        if keyword != "call":  # ("O100" alone starts a Fanuc-style subprogram, called by M98 P100)
+            if name is not None and len(self._subroutines) < self.SUBROUTINES_KEPT:
+                self._subroutines.add(name)
+            return
+        if name in self._subroutines:
+            return
+        label = (cmd.params.get("label") or "")[:60]
+        if name is not None:
+            what = (
+                f"runs the file {_quote(name + '.ngc', 60)} from the machine's program or subroutine folders when one"
+                " is there: LinuxCNC/Machinekit look for it first, since no subroutine of that name is defined"
+                " above the call"
+            )
+        else:
+            what = (
+                "names its subroutine by an expression: LinuxCNC/Machinekit run the file of that name from the"
+                " machine's program or subroutine folders unless the job defines it above the call"
+            )
+        self.report_masked(line, f"o{label} call {what}: code outside this job", cmd.column)
 
     def inspect(self, line: Line, code: str, rest: str, column: int, cmd: Command | None) -> None:
         if not _starts_line(line, cmd) or (code == "M98" and self.configuration):
@@ -123,14 +175,23 @@ class RunsFile(_SecurityRule):
             return
         name = _file_argument(code, rest, cmd)
         if name is None:
-            if code == "M98" and self.ctx.dialect.family != "linuxcnc":
-                number = _macro_number(rest, cmd)
-                if number is not None:
-                    self.report_masked(
-                        line,
-                        f"M98 P{number} runs the file gcodes/macros/{number}.cnc on a Carvera: code outside this job",
-                        column,
-                    )
+            number = _macro_number(rest, cmd) if code == "M98" else None
+            if number is None:
+                return
+            if self.ctx.dialect.family != "linuxcnc":
+                self.report_masked(
+                    line,
+                    f"M98 P{number} runs the file gcodes/macros/{number}.cnc on a Carvera: code outside this job",
+                    column,
+                )
+            elif str(number) not in self._subroutines:  # (as "o100 call": interp_o_word.cc execute_call)
+                self.report_masked(
+                    line,
+                    f"M98 P{number} runs the file {_quote(f'{number}.ngc')} from the machine's program or subroutine"
+                    f" folders when one is there: LinuxCNC/Machinekit look for it first, since no subprogram O{number}"
+                    " is defined above the call: code outside this job",
+                    column,
+                )
             return
         verb = {"M23": "selects", "M32": "selects and starts"}.get(code, "runs")
         self.report_masked(line, f"{code} {verb} the file {_quote(name)} on the printer: code outside this job", column)
@@ -172,7 +233,7 @@ class ChangesPrinterFiles(_SecurityRule):
     summary = (
         "The job deletes, writes or renames files on the printer, or replaces its firmware (M30 <file>, M28, M471,"
         " M472, M559, M560, echo >file, M928/M929 into a non-log file, M500/M502/M504, M505, M997, M936, Klipper"
-        " SAVE_CONFIG and SAVE_VARIABLE)"
+        " SAVE_CONFIG and SAVE_VARIABLE, LinuxCNC (LOGOPEN,file), (LOGAPPEND,file), (LOG,text), (PROBEOPEN file))"
     )
     explanation = """
         In Marlin and RepRapFirmware "M30 file" deletes that file from the SD card, M28 writes the
@@ -183,16 +244,26 @@ class ChangesPrinterFiles(_SecurityRule):
         logs into a file, which in a .g file puts log lines into a macro the printer runs (log files
         ending in .txt or .log are not reported).  On Smoothieware (Carvera) M500 writes the
         config-override file, M502 deletes it and M504 writes a named one (RepRapFirmware's M500 writes
-        config-override.g); in a job read as Marlin they are the EEPROM settings and not reported.
+        config-override.g); they are Marlin's EEPROM settings, and not reported, only where the dialect is
+        set to Marlin on the command line or in the configuration: a job that reads as Marlin ("M106
+        S255") may still run on a Carvera, where M502 deletes the config override.
         Klipper's SAVE_CONFIG overwrites the printer's config file and restarts the host, and SAVE_VARIABLE
         writes a variable to disk.  Marlin's M928 logs the commands that follow into a named file on the SD
         card (a .txt or .log file is not reported, as for M929); RepRapFirmware's M505 makes another folder
         the system folder, so the printer reads its config.g from there; M997 (Marlin, Prusa, RepRapFirmware)
         and M936 (Marlin) update the firmware.
 
+        LinuxCNC and Machinekit act on comments (interp_convert.cc convert_comment, in every dialect):
+        "(LOGOPEN,file)" truncates a file on the controller PC and "(LOGAPPEND,file)" appends to one, and
+        each "(LOG,text)" then writes its text there ("(LOGOPEN,/home/cnc/.bashrc)" then "(LOG,curl ...
+        | sh)"); "(PROBEOPEN file)" overwrites a file with probed points.  They are read in any case (but
+        PROBEOPEN, which LinuxCNC compares in upper case), after leading blanks, in parentheses or after
+        ";".
+
         A job that changes the printer's files outlives the print: it can break the next job, the
         machine's limits or its safety settings.  Plain "M30" (end of program) is fine, as are a bare M471
-        or M472 (on the Carvera they pair the wireless probe and switch its laser on).  In a job read as
+        or M472 (on the Carvera they pair the wireless probe and switch its laser on); any text after M30
+        is a file name to Marlin, words included ("M30 X1" deletes the file X1).  In a job read as
         Hyrel, M30 is "End of Program" and takes no file, but the finding stays: the dialect is read from
         the job itself, and a job that names a file after M30 deletes it wherever Marlin or RepRapFirmware
         runs it.  The same holds for RepRapFirmware system and macro files: a macro package that writes
@@ -210,8 +281,14 @@ class ChangesPrinterFiles(_SecurityRule):
         " StringParser.cpp ProcessEchoCommand (echo >file, >>file); Klipper docs/G-Codes.md [configfile]"
         " SAVE_CONFIG and [save_variables] SAVE_VARIABLE; research/firmware_codes.md sections 2 and 5 (M928 SD"
         " logging into a file), 6 (M505 set system folder), 1, 5 and 6 (M997 firmware update), 5 (M936 OTA"
-        " update), 8 (several G/M words on one line are split at each G/M)"
+        " update), 8 (several G/M words on one line are split at each G/M); Marlin src/gcode/parser.cpp"
+        " GCodeParser::parse (M23, M28, M30: the rest of the line is the file name); LinuxCNC"
+        " src/emc/rs274ngc/interp_convert.cc convert_comment, src/emc/task/emccanon.cc COMMENT (PROBEOPEN),"
+        ' docs/src/gcode/overview.adoc "Comments", "Logging", "Probe Logging"'
     )
+    on_comment = True  # (LinuxCNC's logging comments)
+    comment_hint = staticmethod(linuxcnc.may_be_active)
+    active_comments = linuxcnc.FILE_WRITES
     codes = (
         "M30",
         "M28",
@@ -232,6 +309,12 @@ class ChangesPrinterFiles(_SecurityRule):
         "M936",
     )
 
+    def __init__(self, ctx) -> None:
+        super().__init__(ctx)
+        # M500/M502/M504 are the EEPROM settings only where the dialect says Marlin and the user said so:
+        # a job chooses what it is detected as, and on a Carvera M502 deletes the config override.
+        self.settings_in_eeprom = ctx.dialect.name == "marlin" and ctx.context.origin in (OPTION, CONFIGURATION)
+
     def inspect(self, line: Line, code: str, rest: str, column: int, cmd: Command | None) -> None:
         if not _starts_line(line, cmd):
             return
@@ -251,15 +334,16 @@ class ChangesPrinterFiles(_SecurityRule):
             self.report_masked(line, f"{code} {_FIRMWARE_UPDATE[code]}{_excerpt(rest)}", column)
             return
         if code in _CONFIG_OVERRIDE:
-            if self.ctx.dialect.name != "marlin":
+            if not self.settings_in_eeprom:
                 self.report_masked(line, f"{code} {_CONFIG_OVERRIDE[code]}", column)
             return
         argument = re.sub(r"\*\d+\s*$", "", _strip_comment(rest))  # (a "*99" checksum is no file name)
         if code in ("M30", "M28"):
             if not argument.strip():
                 return
-            if code == "M30" and cmd is not None and cmd.words and not any(w.kind == "string" for w in cmd.words):
-                return  # "M30 P1": parameter words, no file name
+            # (Marlin reads everything after M23, M28, M30 as the file name: "M30 X1" deletes the file X1;
+            # https://github.com/MarlinFirmware/Marlin/blob/bugfix-2.1.x/Marlin/src/gcode/parser.cpp
+            # GCodeParser::parse, "Only use string_arg for these M codes")
             action = "deletes" if code == "M30" else "writes the following lines into"
             where = "on the printer"
             if code == "M30" and self.ctx.dialect.family == "hyrel":

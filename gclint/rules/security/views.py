@@ -19,8 +19,16 @@ from gclint.textsafe import FORMAT_CHARACTERS
 # syntax/parse.py), so that a long line costs linear time and bounded memory.
 VIEW_LIMIT = 100_000
 
+# Smoothieware's split gives one view per M code of a line: at most this many different ones are read for
+# one text, and a line with more is one finding (``_SecurityRule.check_view``), so that a line of 30,000 commands costs
+# linear time and says so instead of passing unread.
+SEGMENT_LIMIT = 1_000
+
 # C0 control characters other than tab, and DEL (the line breaks end the line before a rule sees it).
 _CONTROL = re.compile("[\x00-\x08\x0b-\x1f\x7f]")
+# ... and those with the bytes that are not UTF-8, which reach the rules as lone surrogates (syntax/source.py
+# decodes with surrogateescape): what a reader may drop.
+_DROPPABLE = re.compile("[\x00-\x08\x0b-\x1f\x7f\udc80-\udcff]")
 # A line some firmware reads differently from gclint: a character other than printable ASCII and tab, or
 # an M code after the first two characters of its code (Smoothieware splits the line there; no SC rule
 # listens to a G code).
@@ -41,8 +49,29 @@ SMOOTHIE_VIEW = "read as Smoothieware (Carvera) splits the line at each G and M 
 # What other firmwares do with control characters is not in gclint's sources: the two readings a firmware
 # may have are both read (and say so).
 ERASED_VIEW = "read with each backspace or DEL erasing the character before it, comments included (a firmware may)"
-DROPPED_VIEW = "read without its control characters (a firmware may drop them)"
+DROPPED_VIEW = "read without its control characters and undecodable bytes (a firmware may drop them)"
 INVISIBLE_VIEW = "read without its invisible format characters (a BOM or zero-width space a firmware may skip)"
+WINDOWS_1252_VIEW = "read as Windows-1252 (Repetrel is a Windows program; gclint reads the file as UTF-8)"
+
+# Windows-1252 as Windows decodes it: Python's cp1252 codec leaves 0x81, 0x8D, 0x8F, 0x90 and 0x9D undefined,
+# and Windows' table (C_1252.NLS) maps them to the C1 controls U+0081... (shown in
+# https://mail.python.org/pipermail/python-ideas/2018-January/048702.html; the WHATWG Encoding Standard's
+# index-windows-1252, https://encoding.spec.whatwg.org/index-windows-1252.txt, maps them the same way).
+_WINDOWS_1252 = {
+    byte: bytes([byte]).decode("cp1252", "replace").replace("\ufffd", chr(byte)) for byte in range(0x80, 0x100)
+}
+
+
+# Windows-1252 keeps ASCII as it is, so the line keeps its commands and comments: its reading differs only
+# in the text of a command ("M792 ; SH\u02edLL"), so it is read for lines with an M code.
+_M_CODE = re.compile("[Mm][ \t]*+[0-9]")
+
+
+def _as_windows_1252(raw: str) -> str:
+    """``raw`` (UTF-8, undecodable bytes as lone surrogates) as a program reading the bytes as Windows-1252
+    reads it: a UTF-8 character becomes two to four characters ("\u02ed" is "\xcb\xad": Ë and a soft
+    hyphen, so SH\u02edLL shows SHELL), and an undecodable byte its own character (0xAD the soft hyphen)."""
+    return raw.encode("utf-8", "surrogateescape").decode("latin-1").translate(_WINDOWS_1252)
 
 
 def _marlin_reads(raw: str, parens: bool) -> str:
@@ -74,42 +103,53 @@ def _marlin_reads(raw: str, parens: bool) -> str:
     return "".join(out)
 
 
-def _smoothie_segments(text: str) -> list[tuple[str, int]]:
-    """The M commands after the first command that Smoothieware runs for ``text``, with their offsets."""
+def _smoothie_segments(text: str) -> tuple[list[tuple[str, int]], bool]:
+    """The M commands after the first command that Smoothieware runs for ``text``, with their offsets (the
+    first of each text, at most SEGMENT_LIMIT different ones), and whether there are more."""
     cut = _SMOOTHIE_COMMENT.search(text)
     end = cut.start() if cut is not None else len(text)
-    starts = []
-    start = 0
-    while not _SMOOTHIE_WHOLE.match(text, start, end):  # (M117, M1000: the rest of the line is their text)
-        m = _SMOOTHIE_SPLIT.search(text, start + 2, end)
-        if m is None:
-            break
-        start = m.start()
-        starts.append(start)
-    starts.append(end)
-    return [
-        (text[begin:after], begin)
-        for begin, after in zip(starts, starts[1:], strict=False)
-        if _SMOOTHIE_CODE.match(text, begin, after)
-    ]
+    out: list[tuple[str, int]] = []
+    seen: set[str] = set()
+    if _SMOOTHIE_WHOLE.match(text, 0, end):  # (M117, M1000: the rest of the line is their text)
+        return out, False
+    m = _SMOOTHIE_SPLIT.search(text, 2, end)
+    while m is not None:
+        begin = m.start()
+        m = None if _SMOOTHIE_WHOLE.match(text, begin, end) else _SMOOTHIE_SPLIT.search(text, begin + 2, end)
+        after = m.start() if m is not None else end
+        if _SMOOTHIE_CODE.match(text, begin, after) and text[begin:after] not in seen:
+            if len(out) == SEGMENT_LIMIT:
+                return out, True
+            seen.add(text[begin:after])
+            out.append((text[begin:after], begin))
+    return out, False
 
 
 def firmware_views(raw: str) -> list[tuple[str, str, int]]:
     """The texts firmwares may read for the line ``raw`` other than ``raw`` itself: ``(how, text, offset)``,
-    ``offset`` being where ``text`` starts in ``raw`` (0 where the characters do not line up).
+    ``offset`` being where ``text`` starts in ``raw`` (0 where the characters do not line up).  (``_views``
+    also says whether Smoothieware's split was cut at SEGMENT_LIMIT commands.)
 
     * Marlin: backspaces erase the character before them (``_marlin_reads``), with and without
       PAREN_COMMENTS.
+    * Another reader: each backspace or DEL erasing the character before it; the line without its control
+      characters and undecodable bytes; the line without its invisible format characters.
     * A line with spaces or controls at its ends that Python's ``str.strip()`` removes (U+00A0, U+3000,
       U+2000-U+200A, U+0085, \\x1c-\\x1f...): trimmed, as Klipper does before anything else.
     * Klipper: trimmed, cut at ``;`` and upper-cased with Python's ``str.upper()`` (U+017F to S, U+0131
       to I, U+FB01 to FI...), where the command part holds a character that is not ASCII.
+    * Windows-1252, where the line is not ASCII (``_as_windows_1252``).
     * Smoothieware: each G or M after the first command of the line, of ``raw`` and of the views above
       (but Klipper's, which does not split).
     """
+    return _views(raw)[0]
+
+
+def _views(raw: str) -> tuple[list[tuple[str, str, int]], bool]:
     views: list[tuple[str, str, int]] = []
     seen = {raw}
     raw = raw[:VIEW_LIMIT]
+    more = False
 
     def add(how: str, text: str, offset: int) -> None:
         if text not in seen and text.strip(" \t"):
@@ -128,7 +168,8 @@ def firmware_views(raw: str) -> list[tuple[str, str, int]]:
             else:
                 erased.append(char)
         add(ERASED_VIEW, _CONTROL.sub("", "".join(erased)), 0)
-        add(DROPPED_VIEW, _CONTROL.sub("", raw), 0)
+    if _DROPPABLE.search(raw) is not None:
+        add(DROPPED_VIEW, _DROPPABLE.sub("", raw), 0)
     if FORMAT_CHARACTERS.search(raw) is not None:  # (a BOM mid-file, where files were joined with cat)
         add(INVISIBLE_VIEW, FORMAT_CHARACTERS.sub("", _CONTROL.sub("", raw)), 0)
     trimmed = raw.strip()
@@ -139,26 +180,29 @@ def firmware_views(raw: str) -> list[tuple[str, str, int]]:
     command = trimmed if cut < 0 else trimmed[:cut]
     if not command.isascii():
         add(KLIPPER_VIEW, command.upper(), len(raw) - len(raw.lstrip()))
+    if not raw.isascii() and _M_CODE.search(raw) is not None:
+        add(WINDOWS_1252_VIEW, _as_windows_1252(raw), 0)
     for how, text, offset in [(None, raw, 0), *views]:
         if how == KLIPPER_VIEW:
             continue
-        for segment, start in _smoothie_segments(text):
+        segments, cut = _smoothie_segments(text)
+        more = more or cut
+        for segment, start in segments:
             label = SMOOTHIE_VIEW if how is None else f"{how}, then as Smoothieware splits it at each G and M"
             add(label, segment, offset + start if how is None or offset else 0)
-    return views
+    return views, more
 
 
 _local = threading.local()
 
 
-def _views_of(line: Line) -> list[tuple[str, Line, int]]:
-    """``firmware_views`` of ``line``, parsed; computed once for all the SC rules that read the line."""
+def _views_of(line: Line) -> tuple[list[tuple[str, Line, int]], bool]:
+    """``firmware_views`` of ``line``, parsed, and whether Smoothieware's split was cut (SEGMENT_LIMIT);
+    computed once for all the SC rules that read the line."""
     cached = getattr(_local, "views", None)
     if cached is not None and cached[0] is line:
         return cached[1]
-    views = [
-        (how, Line(line.number, text, line.ending, parse_line(text)), offset)
-        for how, text, offset in firmware_views(line.raw)
-    ]
-    _local.views = (line, views)
-    return views
+    texts, more = _views(line.raw)
+    views = [(how, Line(line.number, text, line.ending, parse_line(text)), offset) for how, text, offset in texts]
+    _local.views = (line, (views, more))
+    return views, more

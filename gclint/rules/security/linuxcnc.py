@@ -1,0 +1,101 @@
+"""LinuxCNC/Machinekit: the comments its interpreter runs ("active comments") and subroutine calls that read
+another file.  The rules report them in every dialect (SC001, SC004, SC005): a job that a LinuxCNC or
+Machinekit controller runs can claim any flavour.
+
+LinuxCNC's sources and documentation (paths below) are at https://github.com/LinuxCNC/linuxcnc (master).
+
+How LinuxCNC reads a comment (src/emc/rs274ngc/interp_convert.cc ``convert_comment``, called by
+interp_execute.cc ``execute_block`` with the text between the parentheses): it steps over the leading
+white space (C ``isspace``: space, tab, line feed, vertical tab, form feed, carriage return), lower-cases the
+rest and compares its start with "log,", "logopen,", "logappend,", "py,", "pyrun," and "pyreload" (no blank
+may stand between the word and its comma: "(LOG ,x)" is a plain comment).  What is left after the comma is
+the file name or the text.  The comment then goes to the controller's ``COMMENT`` (src/emc/task/emccanon.cc),
+which opens a probe log for "PROBEOPEN" as written, in upper case, with the file name after the blanks that
+follow it.  LinuxCNC's G-code overview (docs/src/gcode/overview.adoc, "Comments") says that a comment after
+";" is read for these too; its source reads ";py," at the very start of a line (interp_read.cc
+``read_semicolon``).  A gate reads both kinds of comment, and every comment of a line (LinuxCNC acts on the
+last one only).
+"""
+
+from __future__ import annotations
+
+import re
+
+from gclint.syntax.nodes import Command
+
+# https://github.com/LinuxCNC/linuxcnc/blob/master/src/emc/rs274ngc/interp_convert.cc convert_comment and
+# src/emc/task/emccanon.cc COMMENT (PROBEOPEN); docs/src/gcode/overview.adoc "Logging", "Probe Logging";
+# docs/src/remap/remap.adoc "Executing Python statements from the interpreter" (";py,print(2*3)": the Python
+# plugin, [PYTHON] in the INI file).
+ACTIVE = re.compile(r"[ \t\n\v\f\r]*+(?:(?i:(logopen|logappend|log|pyrun|py),|(pyreload))|(PROBEOPEN)[ \t\n\v\f\r]*+)")
+# What each one does, for the messages.
+FILE_WRITES = {
+    "LOGOPEN": "makes LinuxCNC/Machinekit open the file {target} on the controller and truncate it: the LOG"
+    " comments that follow are written into it",
+    "LOGAPPEND": "makes LinuxCNC/Machinekit open the file {target} on the controller to append to it: the LOG"
+    " comments that follow are written into it",
+    "LOG": "makes LinuxCNC/Machinekit write {target} into the log file a LOGOPEN or LOGAPPEND opened",
+    "PROBEOPEN": "makes LinuxCNC/Machinekit open the file {target} on the controller for writing (an existing"
+    " file is overwritten) and write each probed point into it",
+}
+CODE_RUNS = {
+    "PY": "makes LinuxCNC/Machinekit run {target} as Python in its interpreter (the Python plugin)",
+    "PYRUN": "makes LinuxCNC/Machinekit run {target} as Python in its interpreter (the Python plugin)",
+    "PYRELOAD": "makes LinuxCNC/Machinekit reload its Python plugin (its modules run again)",
+}
+# A comment worth matching: "(" or ";" and blanks before one of the words (true of comment lines joined by
+# line breaks when true of one: rules.base.Rule.comment_hint).
+_HINT = re.compile(r"(?i)[;(][ \t\n\v\f\r]*+(?:log|py|probeopen)")
+
+
+def may_be_active(comment: str) -> bool:
+    """Whether the comment (with its ";" or "(") may be an active comment."""
+    return _HINT.search(comment) is not None
+
+
+def shown(keyword: str) -> str:
+    """How the job writes ``keyword``'s comment: "(LOGOPEN,...)", "(PROBEOPEN ...)", "(PYRELOAD)"."""
+    return {"PROBEOPEN": "(PROBEOPEN ...)", "PYRELOAD": "(PYRELOAD)"}.get(keyword, f"({keyword},...)")
+
+
+def active_comment(body: str) -> tuple[str, str] | None:
+    """``(KEYWORD, argument)`` when LinuxCNC acts on the comment ``body`` (the text inside the parentheses,
+    or after ";"), else None.  ``argument`` is the file name, the text or the Python code."""
+    m = ACTIVE.match(body)
+    if m is None:
+        return None
+    keyword = (m.group(1) or m.group(2) or m.group(3)).upper()
+    return keyword, body[m.end() :].rstrip(")").strip()
+
+
+# "(" or ";" on a line the grammar refused: where a comment may start for LinuxCNC.
+_COMMENT_START = re.compile(r"[(;]")
+
+
+def comments_in(raw: str) -> list[tuple[int, str]]:
+    """The comments LinuxCNC may read on a line the grammar refused, as ``(column, body)``: the text after
+    each "(" up to ")" (only those an active comment can start), and after the first ";" to the end."""
+    out = []
+    pos = 0
+    while (m := _COMMENT_START.search(raw, pos)) is not None:
+        start = m.end()
+        if m.group() == ";":
+            out.append((m.start() + 1, raw[start:]))
+            break
+        end = raw.find(")", start)
+        pos = end + 1 if end >= 0 else len(raw)
+        body = raw[start:pos]
+        if ACTIVE.match(body) is not None:
+            out.append((m.start() + 1, body))
+    return out
+
+
+def subroutine_name(cmd: Command) -> str | None:
+    """The subroutine an O-word names as LinuxCNC reads it, or None when an expression or a parameter
+    computes it ("o[#2 * 10] call", "o#<sub> call").  interp_internal.cc ``close_and_downcase`` drops the
+    blanks outside comments and lower-cases the letters; interp_read.cc ``read_o`` reads "o<name>" as
+    "name" and "o0100" as the number 100 (as "M98 P100" is)."""
+    label = "".join((cmd.params.get("label") or "").split()).lower()
+    if label[:1] == "<" and label[-1:] == ">" and len(label) > 2:
+        return label[1:-1]
+    return str(int(label)) if label.isdigit() else None
