@@ -376,6 +376,12 @@ class Dialect:
     extras: Mapping[str, object] = field(default_factory=dict)
     semantics: Semantics = field(default_factory=lambda: _GENERIC_SEMANTICS)
     known: bool = True
+    console: bool = False  # the firmware runs a bare word as a console command (Smoothieware)
+    meta_keywords: frozenset[str] = frozenset()  # the words of its meta commands (RepRapFirmware's if, var...)
+    # the firmware's own files, which configure it and may write files on purpose (RepRapFirmware's sys/ and
+    # macros/): ``macro_file(path)`` any of them, ``system_file(path)`` the system files proper
+    macro_file: Callable[[str], bool] | None = None
+    system_file: Callable[[str], bool] | None = None
     variant_of: str | None = None  # another dialect's version (hyrel-v4 of hyrel): detection decides it after
 
     def runs_rules_of(

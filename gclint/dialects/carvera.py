@@ -136,6 +136,7 @@ CARVERA_SEMANTICS = Semantics(
             "M2": "end-program",
             "M30": "end-program",
             "M6": "tool-change",
+            "M98": "run-macro-file",  # "M98 P<n>: run gcodes/macros/<n>.cnc" (seeds: Carvera M-code table)
             "M600": "pause",
             "M25": "pause",
             "M1": "optional-stop",
@@ -172,6 +173,7 @@ CARVERA = Dialect(
     unknown_severity="warning",
     description="Carvera desktop CNC: milling with ATC, laser, 4th axis.",
     semantics=CARVERA_SEMANTICS,
+    console=True,
     sources=(
         "seeds/carvera-mcodes.md",
         "research/dialects.md section 1.8 [CV]",

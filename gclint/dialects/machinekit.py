@@ -247,6 +247,7 @@ MACHINEKIT_SEMANTICS = Semantics(
             "M30": "end-program",
             "M6": "tool-change",
             "M61": "set-tool",
+            "M98": "call-subroutine",  # Fanuc-style "M98 P<n>": the job's own O<n> (interp_o_word.cc)
             "M7": "coolant",
             "M8": "coolant",
             "M9": "coolant-off",

@@ -206,6 +206,11 @@ MARLIN_EFFECTS = effects(
         "M9": "coolant-off",
         "M220": "feed-factor",
         "M221": "flow",
+        # the settings in EEPROM: save, load, factory reset, validate (Marlin G-code reference, M500-M504)
+        "M500": "save-settings",
+        "M501": "load-settings",
+        "M502": "factory-settings",
+        "M504": "validate-settings",
     },
 )
 MARLIN_SEMANTICS = Semantics(

@@ -32,8 +32,21 @@ _M = (
 )
 
 META_KEYWORDS = frozenset(
-    ["if", "elif", "else", "while", "break", "continue", "var", "global", "set", "echo", "abort", "return"]
+    ["if", "elif", "else", "while", "break", "continue", "var", "global", "set", "echo", "abort", "return", "skip"]
 )
+
+
+def macro_file(path: str) -> bool:
+    """Whether ``path`` is a RepRapFirmware system or macro file: ``.g``, or under ``sys/`` or ``macros/``."""
+    parts = path.replace("\\", "/").lower().split("/")
+    return parts[-1].endswith(".g") or "sys" in parts[:-1] or "macros" in parts[:-1]
+
+
+def system_file(path: str) -> bool:
+    """Whether ``path`` is a RepRapFirmware system file: a ``.g`` file right in a ``sys/`` folder (config.g and
+    the files it runs); a job (``.gcode``) placed there, or deeper, is not."""
+    parts = path.replace("\\", "/").lower().split("/")
+    return len(parts) >= 2 and parts[-2] == "sys" and parts[-1].endswith(".g")
 
 # What the common codes do, for ``gclint explain`` (Duet G-code dictionary; dialects.md 1 [RRF]).
 _MOVE = {
@@ -198,6 +211,11 @@ REPRAP_SEMANTICS = MARLIN_SEMANTICS.derive(
         "G10": "tool-temperature-or-offset",
         "M568": "tool-temperature",
         "M563": "define-tool",
+        # not Marlin's EEPROM: RepRapFirmware's M500 writes sys/config-override.g (research/dialects.md 1.7)
+        "M500": None,
+        "M501": None,
+        "M502": None,
+        "M504": None,
     },
 )
 
@@ -222,6 +240,9 @@ REPRAP = Dialect(
     unknown_severity="warning",
     description="Duet RepRapFirmware 3: meta commands, object-model expressions, macro files.",
     semantics=REPRAP_SEMANTICS,
+    meta_keywords=META_KEYWORDS,
+    macro_file=macro_file,
+    system_file=system_file,
     sources=("research/dialects.md section 1 [RRF]",),
     extras={"fan_max": 255},
 )

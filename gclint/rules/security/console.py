@@ -81,9 +81,6 @@ _CONSOLE_TABLE = (
 )
 # RepRapFirmware's meta commands: lower-case words that RepRapFirmware itself runs (research/
 # firmware_codes.md section 6; StringParser.cpp ProcessConditionalGCode).
-_RRF_META = frozenset(
-    ("if", "elif", "else", "while", "break", "continue", "abort", "var", "global", "set", "echo", "skip")
-)
 _FIRST_TOKEN = re.compile(r"[^ \t;(]*")
 
 
@@ -168,9 +165,9 @@ class ShellPassThrough(_SecurityRule):
         if parsed.issues:
             return False
         dialect = self.ctx.dialect
-        if dialect.name == "reprap":
-            return bool(commands) and commands[0].kind == META and token in _RRF_META
-        if dialect.family == "linuxcnc":
+        if dialect.meta_keywords:  # (RepRapFirmware's meta commands)
+            return bool(commands) and commands[0].kind == META and token in dialect.meta_keywords
+        if dialect.owords and not dialect.console:  # (LinuxCNC's language: $ spindles, N-numbered comments)
             if token[:1] == "$" and not token[1:2].isdigit():
                 return False  # ("$1" is LinuxCNC's spindle word)
             if not commands:

@@ -53,17 +53,13 @@ def _macro_number(rest: str, cmd: Command | None) -> int | None:
     return int(m.group(1)) if m is not None else None
 
 
-def _reprap_configuration(path: str) -> bool:
-    """Whether ``path`` is a RepRapFirmware system or macro file: ``.g``, or under ``sys/`` or ``macros/``."""
-    parts = path.replace("\\", "/").lower().split("/")
-    return parts[-1].endswith(".g") or "sys" in parts[:-1] or "macros" in parts[:-1]
+def macro_file(ctx) -> bool:
+    """Whether the file checked is one of its firmware's own macro or system files (RepRapFirmware's sys/)."""
+    return ctx.dialect.macro_file is not None and ctx.dialect.macro_file(ctx.path)
 
 
-def _reprap_system_file(path: str) -> bool:
-    """Whether ``path`` is a RepRapFirmware system file: a ``.g`` file right in a ``sys/`` folder (config.g
-    and the files it runs); a job (``.gcode``) placed there, or deeper, is not."""
-    parts = path.replace("\\", "/").lower().split("/")
-    return len(parts) >= 2 and parts[-2] == "sys" and parts[-1].endswith(".g")
+def system_file(ctx) -> bool:
+    return ctx.dialect.system_file is not None and ctx.dialect.system_file(ctx.path)
 
 
 @register
@@ -123,7 +119,7 @@ class RunsFile(_SecurityRule):
 
     def __init__(self, ctx) -> None:
         super().__init__(ctx)
-        self.configuration = ctx.dialect.name == "reprap" and _reprap_configuration(ctx.path)
+        self.configuration = macro_file(ctx)
         self._subroutines: set[str] = set()  # the O-word subroutines defined so far (LinuxCNC's offset map)
 
     def check(self, line: Line, cmd: Command) -> None:
@@ -178,7 +174,7 @@ class RunsFile(_SecurityRule):
             number = _macro_number(rest, cmd) if code == "M98" else None
             if number is None:
                 return
-            if self.ctx.dialect.family != "linuxcnc":
+            if self.ctx.dialect.semantics.effect("M98") != "call-subroutine":
                 self.report_masked(
                     line,
                     f"M98 P{number} runs the file gcodes/macros/{number}.cnc on a Carvera: code outside this job",
@@ -313,7 +309,9 @@ class ChangesPrinterFiles(_SecurityRule):
         super().__init__(ctx)
         # M500/M502/M504 are the EEPROM settings only where the dialect says Marlin and the user said so:
         # a job chooses what it is detected as, and on a Carvera M502 deletes the config override.
-        self.settings_in_eeprom = ctx.dialect.name == "marlin" and ctx.context.origin in (OPTION, CONFIGURATION)
+        self.settings_in_eeprom = (
+            ctx.dialect.semantics.effect("M502") == "factory-settings" and ctx.context.origin in (OPTION, CONFIGURATION)
+        )
 
     def inspect(self, line: Line, code: str, rest: str, column: int, cmd: Command | None) -> None:
         if not _starts_line(line, cmd):
@@ -346,7 +344,7 @@ class ChangesPrinterFiles(_SecurityRule):
             # GCodeParser::parse, "Only use string_arg for these M codes")
             action = "deletes" if code == "M30" else "writes the following lines into"
             where = "on the printer"
-            if code == "M30" and self.ctx.dialect.family == "hyrel":
+            if code == "M30" and self.ctx.dialect.semantics.effect("M30") == "end-of-job":
                 # the dialect is read from the job, which an attacker writes: the gate does not rest on it
                 where = "on a Marlin or RepRapFirmware printer (on Hyrel, M30 ends the program and takes no file)"
             self.report_masked(line, f"{code} {action} the file {_quote(argument.strip(chr(34)))} {where}", column)

@@ -7,7 +7,7 @@ import re
 from gclint.rules.base import Severity, register
 from gclint.rules.security.base import _SecurityRule
 from gclint.rules.security.common import _NUMBER, _starts_line, _strip_comment
-from gclint.rules.security.files import _reprap_system_file
+from gclint.rules.security.files import system_file
 from gclint.syntax.nodes import Command, Line
 
 # -- network services ----------------------------------------------------------------------------------------
@@ -48,7 +48,7 @@ class OpensNetworkService(_SecurityRule):
 
     def __init__(self, ctx) -> None:
         super().__init__(ctx)
-        self.configuration = ctx.dialect.name == "reprap" and _reprap_system_file(ctx.path)
+        self.configuration = system_file(ctx)
 
     def inspect(self, line: Line, code: str, rest: str, column: int, cmd: Command | None) -> None:
         if self.configuration or not _starts_line(line, cmd):
