@@ -103,7 +103,7 @@ class ShellPassThrough(_SecurityRule):
     code = "SC003"
     name = "shell-pass-through"
     severity = Severity.ERROR
-    summary = "A line Smoothieware/Carvera runs as a console command (a lower-case first word, $, M1000)"
+    summary = "A line Smoothieware/Carvera runs as a console command that acts (rm, play, config-set, $X, M1000...)"
     explanation = """
         The Carvera (Smoothieware) plays a file by handing every line to its console, and the console
         (SimpleShell and the player) runs any line that starts with a lower-case letter or "$" as a
@@ -114,7 +114,9 @@ class ShellPassThrough(_SecurityRule):
         can erase the machine's configuration or other jobs.  Do file and configuration work from the
         controller's console, not from G-code.
 
-        Such a line is never G-code on the Carvera, so it is reported in every dialect (a job that runs
+        Only the commands the community firmware's tables list are reported: a lower-case word the shell has
+        no command for does nothing there (a Klipper macro such as "print_start", a lower-case "n0080" line
+        number).  Such a line is never G-code on the Carvera, so it is reported in every dialect (a job that runs
         on a Carvera can claim any flavour), with these exceptions, where the dialect documents the line
         as something else: RepRapFirmware's meta commands ("if", "while", "var", "set", "abort",
         "break"...) in a job read as RepRapFirmware, and lower-case G-code words, "n" line numbers, O-words
@@ -151,10 +153,13 @@ class ShellPassThrough(_SecurityRule):
         if token == "echo" or self._documented_otherwise(line, token):
             return
         what = console_command(token)
-        does = f": it {what}" if what else " (the community firmware's tables have no such command; others may)"
+        if what is None:
+            # a word the shell has no command for does nothing there ("command not found"): a Klipper macro
+            # (print_start), a lower-case line number (n0080), a word; only what the tables say acts is reported
+            return
         self.report_masked(
             line,
-            f"Smoothieware (Carvera) runs this line as the console command {_quote(token, 40)}{does};"
+            f"Smoothieware (Carvera) runs this line as the console command {_quote(token, 40)}: it {what};"
             " a job must not run console commands",
             1,
         )
