@@ -235,7 +235,7 @@ class Linter:
     def prepare(self, source: Source) -> tuple[FileContext, FileResult]:
         """The per-file world for ``source`` and its (empty) result, in the file's context."""
         context = self.context_of(source)
-        dialect = dialects.get(context.dialect)
+        dialect = dialects.reading(context.dialect, context.flavor)  # (the firmware's own meanings, if any)
         profile = get_profile(context.printer or DEFAULT_PROFILE)
         result = FileResult(source.display, dialect=dialect.name, dialect_reason=context.why(), context=context)
         return FileContext(source.display, dialect, profile, self.options, context), result

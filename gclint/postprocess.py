@@ -101,7 +101,7 @@ def source_dialect(source: Source, path: str, env_flavor: str | None, explicit: 
     if explicit and explicit != "auto":
         return dialects.get(explicit), "--from"
     context = infer_source(source, path, env_flavor=env_flavor or None)
-    return dialects.get(context.dialect), context.why()
+    return dialects.reading(context.dialect, context.flavor), context.why()
 
 
 def run(

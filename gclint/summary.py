@@ -20,7 +20,7 @@ import re
 from dataclasses import asdict, dataclass, field
 
 from gclint.context import Context
-from gclint.dialects import get as get_dialect
+from gclint import dialects
 from gclint.engine import Linter, Options
 from gclint.simulate import simulator_for
 from gclint.simulate.events import Dwell, Flow, Heat, Move
@@ -89,7 +89,7 @@ def summarize(source: Source, context: Context) -> JobSummary:
     """Read the job as ``context`` says (the same reader of meaning the ``diff`` uses: gclint.simulate) and
     count its events."""
     summary = JobSummary(source.display, context.label())
-    dialect = get_dialect(context.dialect)
+    dialect = dialects.reading(context.dialect, context.flavor)
     summary.bed = _bed(source.head_text(), source.tail_text())
     reader = simulator_for(dialect)
     heads: dict[str, HeadUse] = {}

@@ -6,6 +6,8 @@ import pytest
 
 from .test_translate_tables import Row, ids, translate, translate_rows, validate
 
+FDM = {"flavor": "machinekit-fdm"}
+
 MACHINEKIT = [
     Row("2.2 G0 X Y Z [F]: F stripped (LinuxCNC G0 ignores it)", "G0 X10 Y20 F3000", "G0 X10 Y20"),
     Row("2.2 G0 F still sets the feed of the next G1", "G0 X10 F3000\nG1 X20 A2", "G0 X10\nG1 X20 E2 F3000"),
@@ -28,10 +30,19 @@ MACHINEKIT = [
     Row("2.2 G22/G23 (retract)", "G22\nG23", "", "TR004"),
     Row("2.2 G22/G23 retract=explicit", "G22\nG23", "M721 T0 I1\nM722 T0 I1", settings={"retract": "explicit"}),
     # g28.ngc: "G0 X0", then "G0 Y0", then "G0 Z0" (one axis at a time, issue 13 item 9), then "G92 A0"
-    Row("2.2 G28 (no homing: rapid to 0, reset A)", "G28", "G0 X0\nG0 Y0\nG0 Z0\nG92 E0", "TR004"),
-    Row("2.2 G28 X Y", "G28 X Y", "G0 X0\nG0 Y0", "TR004"),
-    Row("2.2 G28 A", "G28 A", "G92 E0", "TR004"),
-    Row("2.2 G29 G29.1 G29.2 G30", "G29\nG29.1 Z1\nG30", "", "TR002"),
+    # (the Machinekit FDM remap, for a job its codes mark: firmware/machinekit_fdm.py)
+    Row("2.2 G28 (no homing: rapid to 0, reset A)", "G28", "G0 X0\nG0 Y0\nG0 Z0\nG92 E0", "TR004", settings=FDM),
+    Row("2.2 G28 X Y", "G28 X Y", "G0 X0\nG0 Y0", "TR004", settings=FDM),
+    Row("2.2 G28 A", "G28 A", "G92 E0", "TR004", settings=FDM),
+    # LinuxCNC: through the point, then to the stored position (the machine origin when none is stored); Hyrel's
+    # G28 homes, then the workspace and the head are set again (g-code.adoc, "G28, G28.1")
+    Row("LinuxCNC G28 Z0 from an unknown Z: through Z0", "G28 Z0", "G0 Z0\nG28 Z0\nG54\nT0", "TR003"),
+    Row("LinuxCNC G28 Z0 at Z0: no point to go through", "G0 Z0\nG28 Z0", "G0 Z0\nG28 Z0\nG54\nT0", "TR003"),
+    Row("LinuxCNC G91 G28 Z0: retract Z home", "G91\nG28 Z0", "G91\nM83\nG28 Z0\nG54\nT0", "TR003"),
+    Row("LinuxCNC G28 Z5: through Z5 first", "G28 Z5", "G0 Z5\nG28 Z0\nG54\nT0", "TR003"),
+    Row("LinuxCNC G30: the second stored position", "G30", "G28 X0 Y0 Z0\nG54\nT0", "TR003"),
+    Row("Machinekit FDM G30 probes", "G30", "", "TR002", settings=FDM),
+    Row("2.2 G29 G29.1 G29.2 G30", "G29\nG29.1 Z1\nG30", "", "TR002", settings=FDM),
     Row("2.2 G38.x (probe)", "G38.2 Z-10 F100", "", "TR005"),
     Row("2.2 G10 L2/L20", "G10 L2 P1 X0 Y0", "", "TR002", out="coordinate systems are Repetrel fixture offsets"),
     Row("2.2 G10 L1/L10/L11 (tool table)", "G10 L1 P1 Z5", "", "TR002"),

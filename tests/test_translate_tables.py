@@ -31,11 +31,13 @@ START, END = "; >>>", "; <<<"
 
 
 def translate(source: str, text: str, target: str = "hyrel", **settings: str) -> tuple[str, TranslationResult]:
-    """Translate ``text`` (the whole file) and return the output and the result with its findings."""
+    """Translate ``text`` (the whole file) and return the output and the result with its findings.  The setting
+    ``flavor`` names the firmware the job is read as written for (``gclint.dialects.reading``)."""
     options = TranslateOptions()
+    flavor = settings.pop("flavor", None)
     for key, value in settings.items():
         options.set(key.replace("_", "-"), value)
-    translator = translator_for(dialects.get(source), dialects.get(target), options)
+    translator = translator_for(dialects.reading(source, flavor), dialects.get(target), options)
     result = TranslationResult("t.gcode", source, target)
     out = "".join(translate_source(Source.from_text(text, "t.gcode"), translator, result))
     return out, result

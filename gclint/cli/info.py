@@ -153,7 +153,7 @@ def explain(file: str | None, expressions: tuple[str, ...], dialect: str | None,
     if expressions:
         text = "\n".join(e.replace("\\n", "\n") for e in expressions)
         context = infer(text, dialect=chosen)
-        items = explain_text(text, dialects.get(context.dialect))
+        items = explain_text(text, dialects.reading(context.dialect, context.flavor))
         source_name = "-e"
     else:
         try:
@@ -162,7 +162,7 @@ def explain(file: str | None, expressions: tuple[str, ...], dialect: str | None,
             _fail(str(exc))
             return
         context = infer_source(src, file or "", dialect=chosen)
-        items = explain_source(src, dialects.get(context.dialect))
+        items = explain_source(src, dialects.reading(context.dialect, context.flavor))
         source_name = file or "-"
     from gclint.textsafe import human, json_safe
 

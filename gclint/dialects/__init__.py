@@ -6,6 +6,9 @@ Adding a dialect is adding one module that builds a ``Dialect`` and listing it i
 
 from __future__ import annotations
 
+import functools
+from dataclasses import replace
+
 from gclint.dialects.base import Code, Dialect, Param
 from gclint.dialects.carvera import CARVERA
 from gclint.dialects.generic import GENERIC
@@ -14,7 +17,19 @@ from gclint.dialects.machinekit import MACHINEKIT
 from gclint.dialects.marlin import MARLIN
 from gclint.dialects.reprap import REPRAP
 
-__all__ = ["Code", "Dialect", "Param", "all_dialects", "known_dialects", "get", "names", "UnknownDialect", "DEFAULT", "GENERIC"]
+__all__ = [
+    "Code",
+    "Dialect",
+    "Param",
+    "all_dialects",
+    "known_dialects",
+    "get",
+    "reading",
+    "names",
+    "UnknownDialect",
+    "DEFAULT",
+    "GENERIC",
+]
 
 _ALL: tuple[Dialect, ...] = (HYREL_V5, HYREL_V4, MARLIN, REPRAP, MACHINEKIT, CARVERA, GENERIC)
 _BY_NAME: dict[str, Dialect] = {}
@@ -42,6 +57,24 @@ def known_dialects() -> tuple[Dialect, ...]:
 def names() -> list[str]:
     """The dialect names accepted on the command line (aliases included)."""
     return sorted(_BY_NAME)
+
+
+@functools.cache
+def reading(name: str, flavor: str | None = None) -> Dialect:
+    """The dialect called ``name`` as a file written for the firmware ``flavor`` is read: the firmware's own
+    meanings (``Firmware.semantics``: Bambu's arc turns, Machinekit FDM's G28) replace the dialect's."""
+    dialect = get(name)
+    if flavor is None:
+        return dialect
+    from gclint import firmware  # (the firmware inventories are built on the dialects' tables)
+
+    try:
+        changes = firmware.get(flavor).semantics
+    except KeyError:
+        return dialect
+    if not changes:
+        return dialect
+    return replace(dialect, semantics=dialect.semantics.derive(**changes))
 
 
 def get(name: str) -> Dialect:

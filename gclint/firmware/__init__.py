@@ -18,6 +18,7 @@ from gclint.firmware.bambu import BAMBU
 from gclint.firmware.base import Firmware, code_set, normal_code
 from gclint.firmware.klipper import KLIPPER
 from gclint.firmware.linuxcnc import LINUXCNC
+from gclint.firmware.machinekit_fdm import MACHINEKIT_FDM
 from gclint.firmware.prusa_buddy import PRUSA_BUDDY
 from gclint.firmware.prusa_mk3 import PRUSA_MK3
 from gclint.firmware.reprap_2015 import REPRAP_2015
@@ -34,6 +35,7 @@ _ALL: tuple[Firmware, ...] = (
     REPRAP_2015,
     REPRAPFIRMWARE,
     LINUXCNC,
+    MACHINEKIT_FDM,
     SMOOTHIEWARE,
 )
 _BY_NAME = {f.name: f for f in _ALL}

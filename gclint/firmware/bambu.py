@@ -37,6 +37,11 @@ BAMBU = Firmware(
     words=_WORDS,
     dialect="marlin",
     flavor=True,
+    # P on G2/G3 counts the turns (P1: one circle), not Marlin's extra circles: BambuStudio's spiral lift writes
+    # "G2/G3 Z.. I.. J.. P1" with a radius for one turn at the travel slope (src/libslic3r/GCodeWriter.cpp,
+    # GCodeWriter::travel_to_xyz and _spiral_travel_to_z: "radius = delta(2) / (2 * PI * atan(slope))").  Bambu's
+    # firmware is not public: this is its vendor's slicer's reading, the best source there is.
+    semantics={"arc_turns": "turns"},
     detection=Detection(
         patterns=(
             # BambuStudio's settings block (in the head): the printer, not the slicer, decides (BambuStudio

@@ -9,8 +9,8 @@ codes (Klipper's ``SET_FAN_SPEED``, Prusa's ``PRUSA``).  Each module cites the s
 from __future__ import annotations
 
 import re
-from collections.abc import Iterable
-from dataclasses import dataclass
+from collections.abc import Iterable, Mapping
+from dataclasses import dataclass, field
 
 from gclint.dialects.base import Detection
 from gclint.syntax.nodes import normalize_code
@@ -37,6 +37,9 @@ class Firmware:
     source: str = ""
     marks_dialect: bool = True  # its codes count as the dialect's when gclint.context weighs a file
     extended_commands: bool = False  # runs Klipper-style NAME KEY=VALUE commands (and macros named so)
+    # what this firmware does otherwise than its dialect says (gclint.dialects.semantics field -> value): a file
+    # read as written for it is read with these (``gclint.dialects.reading``)
+    semantics: Mapping[str, object] = field(default_factory=dict)
 
     def knows(self, code: str) -> bool:
         """Whether the firmware documents ``code`` (a normalised code, or a command word in any case)."""

@@ -492,7 +492,7 @@ def _dialect_for(
         except dialects.UnknownDialect:
             pass
     context = linter_for(options).context_of(Source.from_text(clean_surrogates(snapshot.text[:65536]), name))
-    return dialects.get(context.dialect), context.why()
+    return dialects.reading(context.dialect, context.flavor), context.why()
 
 
 async def _pull_settings(ls: GclintServer) -> None:

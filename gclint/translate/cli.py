@@ -15,6 +15,16 @@ from gclint.translate.engine import TranslationResult, UnsupportedPair, translat
 from gclint.translate.pairs import translator_for
 
 
+def source_reading(src: Source, path: str, source: Dialect) -> Dialect:
+    """``source`` as the job is read: with the firmware the job says it was written for (its flavour: Bambu's
+    arcs, Machinekit FDM's G28), as ``gclint check`` reads it."""
+    from gclint import dialects
+    from gclint.context import infer_source
+
+    flavor = infer_source(src, path, dialect=source.name).flavor
+    return dialects.reading(source.name, flavor)
+
+
 def run_translate(
     input_path: str,
     source: Dialect,
@@ -43,10 +53,6 @@ def run_translate(
             flow=flow,
             settings=settings,
         )
-        translator = translator_for(source, target, options)
-    except UnsupportedPair as exc:
-        _error(exc)
-        return 2
     except ValueError as exc:
         _error(exc)
         return 2
@@ -57,7 +63,14 @@ def run_translate(
         except SourceError:
             src.close()
             raise
+        source = source_reading(src, input_path, source)
     except SourceError as exc:
+        _error(exc)
+        return 2
+    try:
+        translator = translator_for(source, target, options)
+    except (UnsupportedPair, ValueError) as exc:
+        src.close()
         _error(exc)
         return 2
     result = TranslationResult(src.display, source.name, target.name)

@@ -13,10 +13,10 @@ from typing import ClassVar
 
 from gclint.syntax.nodes import Command
 from gclint.translate.cnc import CncTranslator
-from gclint.translate.findings import TR_APPROX, TR_DROPPED, TR_LOST, TR_NOTE, TR_UNTRANSLATABLE
+from gclint.translate.findings import TR_APPROX, TR_DROPPED, TR_LOST, TR_NOTE, TR_UNTRANSLATABLE, dropped_aspects
 from gclint.translate.findings import codes as _codes
 from gclint.translate.output import fmt
-from gclint.translate.words import num
+from gclint.translate.words import INCH, num
 
 
 class MachinekitToHyrel(CncTranslator):
@@ -35,6 +35,7 @@ class MachinekitToHyrel(CncTranslator):
         "G22": "retract",
         "G23": "unretract",
         "G28": "mk_home",
+        "G30": "g30",
         "M7": "keep",
         "M8": "keep",
         "M9": "keep",
@@ -69,7 +70,7 @@ class MachinekitToHyrel(CncTranslator):
         **_codes("M280", TR_LOST, "servo position"),
         **_codes("M710", TR_LOST, "manual filament jog"),
         **_codes("M600 M601 M306", TR_LOST, "Z calibration or probing remap"),
-        **_codes("G29 G29.1 G29.2 G30 G30.1 G28.1", TR_LOST, "probing and bed calibration"),
+        **_codes("G29 G29.1 G29.2 G30.1 G28.1", TR_LOST, "probing and bed calibration"),
         **_codes(
             "G43 G43.1 G43.2 G49",
             TR_LOST,
@@ -261,7 +262,12 @@ class MachinekitToHyrel(CncTranslator):
         self.firmware_retract(cmd, "M722", f"{cmd.code} retraction", "G22")
 
     def mk_home(self, cmd: Command) -> None:
-        """Machinekit's g28.ngc does not home: it rapids the listed axes (all if none) to 0 and resets A."""
+        """G28: LinuxCNC's goes through a point to a stored position; Machinekit FDM's remap (g28.ngc) does not
+        home: it rapids the listed axes (all if none) to 0 and resets A.  The job's firmware says which
+        (gclint.dialects.semantics ``home``; the Machinekit FDM flavour)."""
+        if self.source.semantics.home == "predefined":
+            self.predefined(cmd)
+            return
         if not self.hy.started_motion:
             self.before_motion()
         params = cmd.params
@@ -279,6 +285,53 @@ class MachinekitToHyrel(CncTranslator):
             "extruder; written as the same G0 moves and G92 E0",
             key="G28",
             cmd=cmd,
+        )
+
+    def g30(self, cmd: Command) -> None:
+        """G30: LinuxCNC's second stored position; Machinekit FDM's remap probes (g30.ngc)."""
+        if self.source.semantics.g30 == "predefined":
+            self.predefined(cmd)
+        else:
+            self.remove(cmd, TR_LOST, "probing and bed calibration", key="G30", aspects=dropped_aspects("G30", TR_LOST))
+
+    def predefined(self, cmd: Command) -> None:
+        """LinuxCNC's G28 and G30: "a rapid move to the position specified by axes including any offsets, then
+        ... a rapid move to the absolute position of the values in parameters 5161-5166 [G30: 5181-5186] for
+        all axes specified"; with no axis, every axis goes there; "If no positions are stored with G28.1 then
+        all axes will go to the machine origin" (g-code.adoc, "G28, G28.1", "G30, G30.1").  The stored position
+        is not in the file: the point is written as a rapid, then Hyrel's G28 homes those axes (the machine
+        origin, where a machine with nothing stored goes), and the job's workspace and head are set again."""
+        if not self.hy.started_motion:
+            self.before_motion(focus=False)
+        params = cmd.params
+        st = self.state
+        listed = [a for a in "XYZ" if a in params]
+        via = []
+        for axis in listed:
+            value = num(params[axis])
+            if value is None:
+                self.untranslatable(cmd, f"{cmd.code} {axis} is not a number", key=(cmd.code, "value"))
+                return
+            moves = value != 0 if not st.absolute else st.position.get(axis) != value
+            if moves:
+                via.append(axis + fmt(value * INCH if self.inch else value))
+        axes = listed or ["X", "Y", "Z"]
+        home = "G28 " + " ".join(f"{a}0" for a in axes)
+        if via:
+            self.replace(cmd, "G0 " + " ".join(via))
+            self.after(home, note=f"{cmd.code}: then to its stored position")
+        else:
+            self.replace(cmd, home)
+        self.restore_offsets(cmd, axes)
+        number = "5161-5169" if cmd.code == "G28" else "5181-5189"
+        self.report(
+            TR_APPROX,
+            f"{cmd.code} goes to the position stored in parameters {number} (the machine origin when none is "
+            f"stored), which the file does not give: written as Hyrel's G28 on {' '.join(axes)}, which homes "
+            "them; check the machine's stored position",
+            key=cmd.code,
+            cmd=cmd,
+            aspects="position:" + "".join(axes),
         )
 
     def spindle(self, cmd: Command) -> None:

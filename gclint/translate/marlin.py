@@ -16,8 +16,8 @@ import gclint.translate.marlin_codes as codes
 from gclint.syntax.nodes import Command
 from gclint.translate.base import HyrelTranslator
 from gclint.translate.findings import TR_APPROX, TR_DROPPED, TR_LOST, TR_NOTE, TR_UNTRANSLATABLE
-from gclint.translate.output import fmt, rewrite
-from gclint.translate.words import INCH, num
+from gclint.translate.output import fmt
+from gclint.translate.words import num
 
 # Klipper host settings whose loss the meaning diff can see (the others: acceleration, shaping...)
 _HOST_ASPECTS: dict[str, tuple[str, ...]] = {
@@ -265,44 +265,6 @@ class MarlinToHyrel(HyrelTranslator):
             self.replace(cmd, text)
         # the source homes the listed axes, every one when none is listed (dialects.md 1.1 G28)
         self.restore_offsets(cmd, [a for a in "XYZ" if a in params] or ["X", "Y", "Z"])
-
-    def restore_offsets(self, cmd: Command, homed: list[str]) -> None:
-        """After homing, Hyrel's G28 "resets current offsets to 0 - including any ... set with a G92 ...,
-        performs a G53, and applies a head offset of 0 mm" (Gcode page, G28); the source keeps its workspace
-        and the G92 offsets of the axes it did not home.  Written again: the workspace the job selected
-        ("Re-emit active G5x/H after (Hyrel G28 clears them)", dialects.md 2.1 G28 row), the head focus
-        (its offsets), then a G92 that puts each axis not homed back where the source has it (Hyrel keeps
-        its machine position: "Any axis not homed will have its position remain unchanged")."""
-        if self.wcs_selected:
-            self.after(self.wcs, note="the workspace again after homing (Hyrel's G28 performs a G53)")
-        self.refocus()
-        kept = [a for a in "XYZ" if a in self.g92_axes and a not in homed]
-        words, lost = [], []
-        for axis in kept:
-            value = self.state.position.get(axis)
-            if value is None:
-                lost.append(axis)
-            else:
-                words.append(axis + fmt(value * INCH if self.inch else value))
-        if words:
-            self.after("G92 " + " ".join(words), note="G92 offsets of the axes not homed (Hyrel's G28 clears them)")
-            self.report(
-                TR_NOTE,
-                f"Hyrel's G28 clears the G92 offsets; the offsets of {' '.join(a for a in kept if a not in lost)} "
-                "(not homed) are set again with G92",
-                key="G28-G92",
-                cmd=cmd,
-            )
-        if lost:
-            self.report(
-                TR_APPROX,
-                f"Hyrel's G28 clears the G92 offsets; the offset of {' '.join(lost)} (not homed, position unknown) "
-                "cannot be set again and is lost",
-                key="G28-G92-lost",
-                cmd=cmd,
-                aspects=("position:" + "".join(lost), "offsets"),
-            )
-        self.g92_axes = set(kept) - set(lost)
 
     def workspace_extra(self, cmd: Command) -> None:
         self.untranslatable(cmd, "Hyrel has no G59.1-G59.3 workspaces", aspects=("wcs", "position", "offsets"))

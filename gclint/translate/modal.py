@@ -212,7 +212,7 @@ class Modal:
             why = f"G4 with S and P: {name} uses S alone, Hyrel would add them"
         else:
             why = f"G4: {name} pauses {fmt(seconds)} s"
-        extra = f"; S is the spindle speed there, not a time" if "S" in idle else ""
+        extra = "; S is the spindle speed there, not a time" if "S" in idle else ""
         self.report(TR_NOTE, f"{why}{extra}: written as G4 {text}", key="G4", cmd=cmd)
 
 

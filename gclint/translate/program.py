@@ -10,7 +10,9 @@ from __future__ import annotations
 
 from gclint.rules.security import host_actions, shell_offsets
 from gclint.syntax.nodes import GCODE, Command
-from gclint.translate.findings import TR_ACTION, TR_APPROX
+from gclint.translate.findings import TR_ACTION, TR_APPROX, TR_NOTE
+from gclint.translate.output import fmt
+from gclint.translate.words import INCH
 
 
 class Program:
@@ -61,6 +63,44 @@ class Program:
         if address is not None:
             self.hy.focus = address
             self.after(f"T{address}", note="head focus again after homing (G28 applies a head offset of 0)")
+
+    def restore_offsets(self, cmd: Command, homed: list[str]) -> None:
+        """After homing, Hyrel's G28 "resets current offsets to 0 - including any ... set with a G92 ...,
+        performs a G53, and applies a head offset of 0 mm" (Gcode page, G28); the source keeps its workspace
+        and the G92 offsets of the axes it did not home.  Written again: the workspace the job selected
+        ("Re-emit active G5x/H after (Hyrel G28 clears them)", dialects.md 2.1 G28 row), the head focus
+        (its offsets), then a G92 that puts each axis not homed back where the source has it (Hyrel keeps
+        its machine position: "Any axis not homed will have its position remain unchanged")."""
+        if self.wcs_selected:
+            self.after(self.wcs, note="the workspace again after homing (Hyrel's G28 performs a G53)")
+        self.refocus()
+        kept = [a for a in "XYZ" if a in self.g92_axes and a not in homed]
+        words, lost = [], []
+        for axis in kept:
+            value = self.state.position.get(axis)
+            if value is None:
+                lost.append(axis)
+            else:
+                words.append(axis + fmt(value * INCH if self.inch else value))
+        if words:
+            self.after("G92 " + " ".join(words), note="G92 offsets of the axes not homed (Hyrel's G28 clears them)")
+            self.report(
+                TR_NOTE,
+                f"Hyrel's G28 clears the G92 offsets; the offsets of {' '.join(a for a in kept if a not in lost)} "
+                "(not homed) are set again with G92",
+                key="G28-G92",
+                cmd=cmd,
+            )
+        if lost:
+            self.report(
+                TR_APPROX,
+                f"Hyrel's G28 clears the G92 offsets; the offset of {' '.join(lost)} (not homed, position unknown) "
+                "cannot be set again and is lost",
+                key="G28-G92-lost",
+                cmd=cmd,
+                aspects=("position:" + "".join(lost), "offsets"),
+            )
+        self.g92_axes = set(kept) - set(lost)
 
     def before_extrusion(self) -> None:
         """``M229 E1 D1`` (and the E mode) before the first extrusion when E amounts carry the flow (X4)."""
