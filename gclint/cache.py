@@ -40,6 +40,7 @@ from functools import lru_cache
 from pathlib import Path
 
 from gclint import __version__
+from gclint.checkout import Roots, escapes
 from gclint.context import Context
 from gclint.engine import FileResult
 from gclint.rules.base import Edit, Finding, Fix, Severity
@@ -81,22 +82,23 @@ def user_cache_root() -> Path:
     return Path(base) / "gclint"
 
 
-def project_root(path: str) -> Path:
+def project_root(path: str, roots: Roots | None = None) -> Path:
     """The project a file belongs to: the folder of its nearest configuration file, else the nearest
-    folder holding ``.git``, else the file's own folder."""
-    from gclint.config import find_config
+    folder holding ``.git``, else the file's own folder.  (``roots``: repository roots already found, so
+    that the files of a deep tree are placed in linear time.)"""
+    from gclint.config import find_config, real_folder
 
     where = os.path.abspath(path)
-    folder = Path(where if os.path.isdir(where) else os.path.dirname(where))
-    config = find_config(str(folder))
+    folder = where if os.path.isdir(where) else os.path.dirname(where)
+    config = find_config(folder)
     if config is not None:
         return config.parent.resolve()
-    folder = folder.resolve()
-    for candidate in (folder, *folder.parents):
-        if os.path.lexists(candidate / ".git"):
-            return candidate
+    real = real_folder(folder)
+    root = (roots or Roots()).root_of(real)
+    if root is not None:
+        return Path(root)
     here = Path.cwd().resolve()
-    return here if folder.is_relative_to(here) else folder  # (as ruff: the working folder is the project)
+    return here if Path(real).is_relative_to(here) else Path(real)  # (as ruff: the working folder is the project)
 
 
 _ROOT_NOTE = "project"  # in each project's cache folder: the project's path
@@ -189,6 +191,8 @@ class ResultCache:
         self._key: bytes | None = None
         self._key_loaded = False
         self._trusted: dict[Path, bool] = {}
+        self._roots = Roots()
+        self._projects: dict[str, Path] = {}  # a file's folder -> its project
 
     # -- where --------------------------------------------------------------------------------------------
 
@@ -197,12 +201,16 @@ class ResultCache:
             return self.folder
         return project_folder(self.root, self._project_of(path))
 
-    @staticmethod
-    def _project_of(path: str) -> Path:
-        try:
-            return project_root(path)
-        except Exception:  # a broken configuration on the way up: the file's own folder
-            return Path(os.path.dirname(os.path.abspath(path)))
+    def _project_of(self, path: str) -> Path:
+        folder = os.path.dirname(os.path.abspath(path))
+        found = self._projects.get(folder)
+        if found is None:
+            try:
+                found = project_root(path, self._roots)
+            except Exception:  # a broken configuration on the way up: the file's own folder
+                found = Path(folder)
+            self._projects[folder] = found
+        return found
 
     def _entry(self, path: str) -> Path:
         name = hashlib.sha256(os.fsencode(os.path.abspath(path))).hexdigest()[:32]
@@ -215,6 +223,8 @@ class ResultCache:
         if self.folder is None:  # the per-user folders: gclint's own, private
             problem = _private_dir(self.root, create) or _private_dir(folder.parent, create)
             problem = problem or _private_dir(folder, create)
+        elif (outside := escapes(str(folder))) is not None:  # a link committed where the cache is to go
+            problem = f"is a link out of this checkout (to {outside})"
         else:
             try:
                 real = Path(os.path.realpath(folder))  # the folder the user named may be a link; not below it
@@ -237,14 +247,14 @@ class ResultCache:
             self._key = self._load_key()
         return self._key
 
-    def _load_key(self) -> bytes | None:
-        if _private_dir(self.root, create=True) is not None:
+    def _load_key(self, create: bool = True) -> bytes | None:
+        if _private_dir(self.root, create=create) is not None:
             return None
         path = self.root / "key"
         try:
             fd = os.open(path, os.O_RDONLY | _NOFOLLOW)
         except FileNotFoundError:
-            return self._new_key(path)
+            return self._new_key(path) if create else None
         except OSError:
             return None
         try:
@@ -287,12 +297,7 @@ class ResultCache:
         return hmac.new(key, body, hashlib.sha256).hexdigest().encode() + b"\n" + body
 
     def _unsign(self, data: bytes) -> bytes | None:
-        key = self._signing_key()
-        mac, sep, body = data.partition(b"\n")
-        if key is None or not sep or len(mac) != 64:
-            return None
-        expected = hmac.new(key, body, hashlib.sha256).hexdigest().encode()
-        return body if hmac.compare_digest(mac, expected) else None
+        return data.partition(b"\n")[2] if _verifies(data, self._signing_key()) else None
 
     # -- lookups ------------------------------------------------------------------------------------------
 
@@ -407,52 +412,106 @@ def _write_new(path: Path, data: bytes) -> None:
 # -- removing (gclint clean) -----------------------------------------------------------------------------------
 
 
-def clean(folder: Path) -> int:
-    """Remove gclint's files from a cache folder (entries, temporary files, the marker; the folder itself
-    when nothing else is left) without following links; returns the number of entries removed.  Files that
-    gclint did not write are left alone, so a mistaken ``--cache-dir ~`` removes nothing else."""
-    removed = 0
+class NotACache(Exception):
+    """A folder ``gclint clean`` leaves alone; the message says why (one line)."""
+
+
+_TMP_NAME = re.compile(r"\.tmp-[A-Za-z0-9_]{1,32}\.json")  # (tempfile.mkstemp's names, prefix and suffix)
+_PROJECT_NAME = re.compile(r"[0-9a-f]{16}")
+
+
+def clean(folder: Path, root: Path | None = None) -> int:
+    """Remove the result cache in ``folder`` and return the number of entries removed.
+
+    Only a folder gclint marked as its cache is touched: a ``--cache-dir`` folder holding the
+    ``.gitignore`` gclint writes there, a project's folder in gclint's user cache folder (``root``), or
+    that folder itself (every project's).  In it, only the entries (and temporary files) whose signature
+    verifies with this user's key are removed; the marker and the folder go last, when nothing else is
+    left.  So ``gclint clean --cache-dir notes`` removes nothing of a folder of notes, and entries planted
+    by someone else stay where they are.  Raises ``NotACache`` for a folder that is not marked."""
+    root = root if root is not None else user_cache_root()
     try:
         st = os.lstat(folder)
     except OSError:
-        return 0
+        return 0  # nothing cached there
     if not stat.S_ISDIR(st.st_mode):
+        raise NotACache(f"{folder}: not a folder (or a symbolic link): nothing removed")
+    key = ResultCache(root=root)._load_key(create=False)
+    real, real_root = os.path.realpath(folder), os.path.realpath(root)
+    if real == real_root:
+        removed = 0
+        projects = folder / "projects"
+        try:
+            with os.scandir(projects) as listing:
+                found = [Path(e.path) for e in listing if e.is_dir(follow_symlinks=False)]
+        except OSError:
+            return 0
+        for project in found:
+            if _PROJECT_NAME.fullmatch(project.name):
+                removed += _clean(project, key, (_ROOT_NOTE,))
+        _rmdir(str(projects))
+        return removed
+    if os.path.dirname(real) == os.path.join(real_root, "projects") and _PROJECT_NAME.fullmatch(folder.name):
+        return _clean(folder, key, (_ROOT_NOTE,))
+    if not _marked(folder / ".gitignore"):
+        raise NotACache(
+            f"{folder}: not a result cache folder (gclint marks its own with a .gitignore it writes there):"
+            " nothing removed"
+        )
+    return _clean(folder, key, (".gitignore",))
+
+
+def _marked(marker: Path) -> bool:
+    data = _read_entry(marker)
+    return data is not None and data.decode("utf-8", "replace") == _MARKER
+
+
+def _clean(folder: Path, key: bytes | None, markers: tuple[str, ...]) -> int:
+    """Remove the verified entries of one cache folder; then its markers and itself if nothing else is left."""
+    removed = 0
+    try:
+        with os.scandir(folder) as listing:
+            subs = [Path(e.path) for e in listing if e.is_dir(follow_symlinks=False) and _SUB_NAME.fullmatch(e.name)]
+    except OSError:
         return 0
-    with os.scandir(folder) as entries:
-        subs = list(entries)
     for sub in subs:
-        if sub.is_dir(follow_symlinks=False) and _SUB_NAME.fullmatch(sub.name):
-            with os.scandir(sub.path) as inner:
-                for item in list(inner):
-                    ours = _ENTRY_NAME.fullmatch(item.name) or item.name.startswith(".tmp-")
-                    if ours and (item.is_file(follow_symlinks=False) or item.is_symlink()):
-                        try:
-                            os.unlink(item.path)
-                            removed += _ENTRY_NAME.fullmatch(item.name) is not None
-                        except OSError:
-                            pass
-            _rmdir(sub.path)
-        elif sub.name == _ROOT_NOTE and sub.is_file(follow_symlinks=False):
+        try:
+            with os.scandir(sub) as inner:
+                items = [Path(e.path) for e in inner if e.is_file(follow_symlinks=False)]
+        except OSError:
+            continue
+        for item in items:
+            entry = _ENTRY_NAME.fullmatch(item.name) is not None
+            if not (entry or _TMP_NAME.fullmatch(item.name)):
+                continue
+            data = _read_entry(item)
+            if data is None or not (_verifies(data, key) or (not entry and data == b"")):
+                continue  # not written by this user's gclint (or not whole yet): left alone
             try:
-                os.unlink(sub.path)
+                os.unlink(item)
+                removed += entry
             except OSError:
                 pass
-        elif sub.name == ".gitignore" and sub.is_file(follow_symlinks=False):
+        _rmdir(str(sub))
+    try:
+        left = set(os.listdir(folder))
+    except OSError:
+        return removed
+    if left <= set(markers):
+        for name in left:
             try:
-                with open(sub.path, encoding="utf-8", errors="replace") as fh:
-                    ours = fh.read(200) == _MARKER
-                if ours:
-                    os.unlink(sub.path)
+                os.unlink(folder / name)
             except OSError:
                 pass
-        elif sub.name == "projects" and sub.is_dir(follow_symlinks=False):
-            with os.scandir(sub.path) as projects:
-                for project in list(projects):
-                    if project.is_dir(follow_symlinks=False) and re.fullmatch(r"[0-9a-f]{16}", project.name):
-                        removed += clean(Path(project.path))
-            _rmdir(sub.path)
-    _rmdir(str(folder))
+        _rmdir(str(folder))
     return removed
+
+
+def _verifies(data: bytes, key: bytes | None) -> bool:
+    mac, sep, body = data.partition(b"\n")
+    if key is None or not sep or len(mac) != 64:
+        return False
+    return hmac.compare_digest(mac, hmac.new(key, body, hashlib.sha256).hexdigest().encode())
 
 
 def _rmdir(path: str) -> None:

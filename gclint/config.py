@@ -197,7 +197,32 @@ def _read_file(path: Path) -> dict:
         raise ConfigError(
             f"{path}: unknown option{'s' if len(said) != 1 else ''} {', '.join(said)} (known: {', '.join(sorted(_KEYS))})"
         )
+    _check_patterns(table, path)
     return table
+
+
+def _check_patterns(table: dict, path: Path) -> None:
+    """Path patterns are read when the file is (a walk matches them before anything is checked): one
+    that cannot be read is an error naming the file, the key and the pattern."""
+    for key in ("exclude", "extend-exclude"):
+        if key in table and not (isinstance(table[key], list) and all(isinstance(v, str) for v in table[key])):
+            raise ConfigError(f"{path}: '{key}' must be a list of path patterns such as [\"archive/**\"]")
+        for pattern in table.get(key) or ():
+            check_pattern(pattern, f"{path}: '{key}'")
+    pfi = table.get("per-file-ignores")
+    if isinstance(pfi, dict):
+        for pattern in pfi:
+            check_pattern(str(pattern), f"{path}: 'per-file-ignores'")
+
+
+def check_pattern(pattern: str, where: str) -> None:
+    """A ConfigError naming ``where`` when ``pattern`` cannot be read as a path pattern."""
+    from gclint.globs import GlobError, check
+
+    try:
+        check(pattern)
+    except GlobError as exc:
+        raise ConfigError(f"{where}: {pattern!r} is not a valid path pattern: {exc}") from None
 
 
 def flavor_names() -> list[str]:
@@ -265,10 +290,7 @@ def apply(options: Options, table: dict, path: Path) -> Options:
         changes["tool_map"] = parse_tool_map(table["tool-map"], f"{path}: 'tool-map'")
     if "severity" in table:
         changes["severity"] = parse_severities(table["severity"], path)
-    for key in ("exclude", "extend-exclude"):  # read by gclint.excludes while folders are walked
-        if key in table and not (isinstance(table[key], list) and all(isinstance(v, str) for v in table[key])):
-            raise ConfigError(f"{path}: '{key}' must be a list of path patterns such as [\"archive/**\"]")
-    for key in ("force-exclude", "respect-gitignore"):
+    for key in ("force-exclude", "respect-gitignore"):  # (exclude patterns: checked by load_file)
         if key in table and not isinstance(table[key], bool):
             raise ConfigError(f"{path}: '{key}' must be true or false")
     if "spindle-max-rpm" in table:
@@ -276,7 +298,7 @@ def apply(options: Options, table: dict, path: Path) -> Options:
     return replace(options, **changes)
 
 
-_FOUND: dict[Path, Path | None] = {}  # folder -> its nearest configuration file, for the current run
+_FOUND: dict[str, Path | None] = {}  # real folder -> its nearest configuration file, for the current run
 _BY_NAME: dict[str, Path | None] = {}  # the same, by the folder name as given
 _UNKNOWN = object()
 
@@ -289,12 +311,36 @@ def find_config(directory: str) -> Path | None:
     answer = _BY_NAME.get(directory, _UNKNOWN)
     if answer is not _UNKNOWN:
         return answer  # type: ignore[return-value]
-    answer = _BY_NAME[directory] = _find_config(Path(directory).resolve())
+    answer = _BY_NAME[directory] = _find_config(real_folder(directory))
     return answer
 
 
-def _find_config(folder: Path) -> Path | None:
-    visited: list[Path] = []
+_REAL: dict[str, str] = {}  # folder (absolute) -> its real path, for the current run
+
+
+def real_folder(directory: str) -> str:
+    """The real path of ``directory``: one ``lstat`` per folder not seen before, its parent's answer
+    reused (``Path.resolve`` walks every folder above it again: quadratic in a deep tree)."""
+    folder = os.path.abspath(directory)
+    chain = []
+    at = folder
+    while at not in _REAL:
+        parent = os.path.dirname(at)
+        if parent == at:
+            _REAL[at] = at
+            break
+        chain.append(at)
+        at = parent
+    real = _REAL[at]
+    for at in reversed(chain):
+        real = os.path.realpath(at) if os.path.islink(at) else os.path.join(real, os.path.basename(at))
+        _REAL[at] = real
+    return _REAL[folder]
+
+
+def _find_config(folder: str) -> Path | None:
+    # (folders as strings: a Path of a folder 1,500 deep costs as much to build as its depth)
+    visited: list[str] = []
     found: Path | None = None
     while True:
         if folder in _FOUND:
@@ -302,9 +348,10 @@ def _find_config(folder: Path) -> Path | None:
             break
         visited.append(folder)
         found = _config_in(folder)
-        if found is not None or folder.parent == folder:
+        parent = os.path.dirname(folder)
+        if found is not None or parent == folder:
             break
-        folder = folder.parent
+        folder = parent
     for seen in visited:
         _FOUND[seen] = found
     return found
@@ -314,18 +361,19 @@ def _clear() -> None:
     _FOUND.clear()
     _BY_NAME.clear()
     _LOADED.clear()
+    _REAL.clear()
 
 
 find_config.cache_clear = _clear  # type: ignore[attr-defined]
 
 
-def _config_in(folder: Path) -> Path | None:
+def _config_in(folder: str) -> Path | None:
     for name in CONFIG_NAMES:
-        candidate = folder / name
-        if candidate.is_file():
-            if name == "pyproject.toml" and not load_file(candidate):
+        candidate = os.path.join(folder, name)
+        if os.path.isfile(candidate):
+            if name == "pyproject.toml" and not load_file(Path(candidate)):
                 continue
-            return candidate
+            return Path(candidate)
     return None
 
 

@@ -108,9 +108,11 @@ class Linter:
             return FileResult.unreadable(path, exc)
         return self.check_source(source)
 
-    def check_source(self, source: Source) -> FileResult:
+    def check_source(self, source: Source, *, sniff: bool = True) -> FileResult:
+        """Check ``source``.  ``sniff=False`` reads it even when its head says it is not G-code (the
+        security rules read such files anyway: gclint.notgcode)."""
         path = source.display
-        reason = not_gcode_reason(source.head_text(8192))
+        reason = not_gcode_reason(source.head_text(8192)) if sniff else None
         if reason is not None:
             source.close()
             return FileResult(path, error=f"{path}: {reason}", not_gcode=True)

@@ -1,24 +1,31 @@
 """Which paths a check leaves out, as ruff does: ``exclude`` (replaces the default folders),
 ``extend-exclude`` (adds to them), both globs relative to the configuration file that names them
 (gclint.globs), the files ``.gitignore`` ignores (``respect-gitignore``, on by default; the ``.gitignore``
-files of the folders up to the repository's root and ``.git/info/exclude``), and ``force-exclude`` to
-apply it all to files named on the command line too (what pre-commit and editors pass).
+files of the folders up to the repository's root and ``.git/info/exclude``, gclint.gitignore), and
+``force-exclude`` to apply it all to files named on the command line too (what pre-commit and editors
+pass).
 
 Unlike ruff, a file that git tracks is never left out because of ``.gitignore`` or because it is in a tool
 folder (``node_modules``, ``venv``, ...): a ``.gitignore`` is about untracked files, and a job committed
 there is a job a CI gate must see.  Which files are tracked is asked of git once per repository
-(``git ls-files``), only when something would be left out for those reasons; without git, the rules apply
-to every file and the walk says what they left out.  What the user's own ``exclude``/``extend-exclude``
-patterns name is left out, tracked or not.  ``LeftOut`` records each file left out, for the notes."""
+(``git ls-files``), only when something would be left out for those reasons; when git cannot answer (not
+installed, "dubious ownership"), neither ``.gitignore`` nor the tool folders leave anything out there, and
+one note says why.  What the user's own patterns name is left out, tracked or not: the command line's and
+those of a configuration named by ``--config``.  A configuration found beside the files travels with them
+(a pull request can add one), so its patterns do not leave files out of the security rules: the files they
+name are checked by the SC rules alone (``Excluder.security_only``).  ``LeftOut`` records each file left
+out, for the notes."""
 
 from __future__ import annotations
 
 import os
 import subprocess
 from dataclasses import dataclass, field
+from functools import lru_cache
 from pathlib import Path
 
 from gclint import globs
+from gclint.checkout import Roots
 from gclint.config import ConfigError, config_for
 
 # Folders a walk never enters (like ruff's default excludes): version control and tool folders.
@@ -65,6 +72,7 @@ class Exclusion:
     pattern: str = ""
     source: str = ""  # the configuration file or "command line" the pattern comes from
     quiet: bool = False  # a tool folder where one is expected (.venv beside .git): said only with -v
+    trusted: bool = True  # False: a configuration found beside the files (it cannot leave out jobs)
 
     @property
     def chosen(self) -> bool:
@@ -76,7 +84,10 @@ class Exclusion:
             return "ignored by .gitignore"
         if self.by == TOOL_FOLDER:
             return f"in a tool folder ({self.pattern!r}, a default exclude)"
-        return f"excluded by {self.by} {self.pattern!r}" + (f" ({self.source})" if self.source else "")
+        said = f"excluded by {self.by} {self.pattern!r}" + (f" ({self.source})" if self.source else "")
+        if not self.trusted:
+            said += ", a configuration found beside the files: the security rules check it all the same"
+        return said
 
 
 @dataclass(frozen=True)
@@ -115,6 +126,28 @@ def summary(left_out: list[LeftOut], shown: int = 3) -> str:
     return f"{count} excluded ({'; '.join(parts)})"
 
 
+def security_only_summary(items: list[LeftOut], shown: int = 3) -> str:
+    """What configurations found beside the files tried to leave out, checked by the SC rules alone."""
+    if not items:
+        return ""
+    sources: dict[str, list[LeftOut]] = {}
+    for x in items:
+        sources.setdefault(x.why.source, []).append(x)
+    parts = []
+    for source, group in sources.items():
+        patterns = ", ".join(sorted({f"{x.why.by} {x.why.pattern!r}" for x in group}))
+        names = ", ".join(x.path for x in group[:shown]) + (
+            f" and {len(group) - shown} more" if len(group) > shown else ""
+        )
+        count = f"{len(group)} G-code file{'' if len(group) == 1 else 's'}"
+        parts.append(f"{source} asks to exclude {count} ({patterns}: {names})")
+    return (
+        "; ".join(parts) + ": the security rules check them all the same (only their SC findings are reported),"
+        " a configuration found beside the files cannot exclude jobs from them (the command line or a"
+        " configuration named by --config can)"
+    )
+
+
 @dataclass
 class Excluder:
     """Decides, path by path, whether the check leaves it out, and says why."""
@@ -125,7 +158,10 @@ class Excluder:
     respect_gitignore: bool | None = None  # --[no-]respect-gitignore (None: the configuration's, else on)
     explicit_config: str | None = None
     notes: list[str] = field(default_factory=list)  # what the user should know (git could not answer)
-    _ignores: dict = field(default_factory=dict)  # .gitignore specs and repository roots, per path
+    _roots: Roots = field(default_factory=Roots)  # folder -> the repository root at or above it (or None)
+    _specs: dict = field(default_factory=dict)  # folder -> the .gitignore files that apply in it
+    _ignored_folders: dict = field(default_factory=dict)  # folder -> whether .gitignore ignores it
+    _read: dict = field(default_factory=dict)  # .gitignore file -> its patterns (or None)
     _tracked: dict = field(default_factory=dict)  # repository root -> (tracked files, their folders) or None
 
     def reason(self, path: str, is_dir: bool, named: bool = False) -> str | None:
@@ -142,35 +178,51 @@ class Excluder:
             return None
         return why
 
-    def why(self, path: str, is_dir: bool, named: bool = False) -> Exclusion | None:
-        """Which rule matches ``path``, if any: the user's patterns first, then the default tool folders,
-        then ``.gitignore`` (whether git tracks it is not asked here)."""
+    def _table(self, path: str) -> tuple[str, str, dict]:
+        """(the folder patterns are relative to, the configuration's name, its table) for ``path``."""
         try:
             config_path, table = config_for(path, self.explicit_config)
         except ConfigError:
             config_path, table = None, {}
-        if named and not (self.force if self.force is not None else bool(table.get("force-exclude", False))):
+        if config_path is None:
+            return os.getcwd(), "", table
+        return os.path.dirname(os.path.abspath(config_path)), _display(str(config_path)), table
+
+    def forced(self, path: str) -> bool:
+        """Whether excludes apply to ``path`` named on the command line (``--force-exclude``, or the
+        configuration's ``force-exclude``): what pre-commit passes is then held to what a walk finds."""
+        return self._forced(self._table(path)[2])
+
+    def _forced(self, table: dict) -> bool:
+        return self.force if self.force is not None else bool(table.get("force-exclude", False))
+
+    def why(self, path: str, is_dir: bool, named: bool = False) -> Exclusion | None:
+        """Which rule matches ``path``, if any: the user's patterns first (the command line's, then those
+        of a configuration named by --config), then the default tool folders, then ``.gitignore`` (whether
+        git tracks it is not asked here).  A configuration found beside the files leaves nothing out here
+        (``security_only``)."""
+        base, source, table = self._table(path)
+        if named and not self._forced(table):
             return None
-        base = os.path.dirname(os.path.abspath(config_path)) if config_path is not None else os.getcwd()
-        source = os.path.basename(config_path) if config_path is not None else ""
+        trusted = self.explicit_config is not None
         chosen: list[tuple[str, str, str, str]] = []  # (pattern, relative to, by, source)
-        defaults: list[str] = []
+        here = os.getcwd()
         if self.exclude is not None:
-            chosen += [(p, os.getcwd(), "exclude", "command line") for p in self.exclude]
-        elif isinstance(table.get("exclude"), list):
+            chosen += [(p, here, "exclude", "command line") for p in self.exclude]
+        elif trusted and isinstance(table.get("exclude"), list):
             chosen += [(p, base, "exclude", source) for p in table["exclude"]]
-        else:
-            defaults = list(DEFAULT_EXCLUDE)
-        chosen += [(p, base, "extend-exclude", source) for p in table.get("extend-exclude") or []]
-        chosen += [(p, base, "extend-exclude", "command line") for p in self.extend_exclude]
+        if trusted:
+            chosen += [(p, base, "extend-exclude", source) for p in table.get("extend-exclude") or []]
+        chosen += [(p, here, "extend-exclude", "command line") for p in self.extend_exclude]
         # a walk never enters an excluded folder; a named file is excluded when it or a folder it is in is
         candidates = _self_and_parents(path) if named else [path]
         for pattern, where, by, origin in chosen:
-            if any(globs.matches(pattern, globs.relative(c, where)) for c in candidates):
+            if _any_match(pattern, candidates, where):
                 return Exclusion(by, pattern, origin)
-        for pattern in defaults:
-            if any(globs.matches(pattern, globs.relative(c, base)) for c in candidates):
-                return Exclusion(TOOL_FOLDER, pattern)
+        if self.exclude is None and not isinstance(table.get("exclude"), list):
+            for pattern in DEFAULT_EXCLUDE:
+                if _any_match(pattern, candidates, base):
+                    return Exclusion(TOOL_FOLDER, pattern)
         respect = self.respect_gitignore
         if respect is None:
             respect = bool(table.get("respect-gitignore", True))
@@ -178,42 +230,68 @@ class Excluder:
             return Exclusion(".gitignore")
         return None
 
+    def security_only(self, path: str, is_dir: bool, named: bool = False) -> Exclusion | None:
+        """The pattern of a configuration found beside the files that names ``path`` (its ``exclude`` or
+        ``extend-exclude``), or None.  Such a file is not left out: the SC rules alone check it."""
+        if self.explicit_config is not None:
+            return None
+        base, source, table = self._table(path)
+        if named and not self._forced(table):
+            return None
+        patterns = [] if self.exclude is not None else [("exclude", p) for p in table.get("exclude") or []]
+        patterns += [("extend-exclude", p) for p in table.get("extend-exclude") or []]
+        candidates = _self_and_parents(path) if named else [path]
+        for by, pattern in patterns:
+            if isinstance(pattern, str) and _any_match(pattern, candidates, base):
+                return Exclusion(by, pattern, source, trusted=False)
+        return None
+
     # -- what git tracks ------------------------------------------------------------------------------------------
 
     def tracked(self, path: str) -> bool:
-        """Whether git tracks the file ``path`` (in its index: committed or added)."""
+        """Whether git tracks the file ``path`` (in its index: committed or added).  True too when git
+        cannot say (not installed, "dubious ownership"): nothing is left out on a guess."""
         found = self._tracked_at(path)
-        return found is not None and found[1] in found[0][0]
+        if found is None:
+            return False
+        listing, rel = found
+        return listing is None or rel in listing[0]
 
     def holds_tracked(self, folder: str) -> bool:
-        """Whether the folder ``folder`` holds files git tracks (at any depth)."""
+        """Whether the folder ``folder`` holds files git tracks (at any depth; True when git cannot say)."""
         if os.path.basename(folder) == ".git":
             return False  # git never tracks its own folder: no need to ask
         found = self._tracked_at(folder)
-        return found is not None and found[1] in found[0][1]
+        if found is None:
+            return False
+        listing, rel = found
+        return listing is None or rel in listing[1]
 
     def repository_root(self, folder: str) -> Path | None:
         """The root of the git repository ``folder`` is in (the folder holding ``.git``), or None."""
-        return self._root_of(Path(os.path.abspath(folder)))
+        root = self._root_of(os.path.abspath(folder))
+        return Path(root) if root is not None else None
 
-    def _tracked_at(self, path: str) -> tuple[tuple[frozenset[str], frozenset[str]], str] | None:
-        target = Path(os.path.abspath(path))
-        root = self._root_of(target.parent)
+    def _tracked_at(self, path: str) -> tuple[tuple[frozenset[str], frozenset[str]] | None, str] | None:
+        """(what git tracks in the repository of ``path``, or None when git cannot say; ``path`` relative to
+        its root), or None outside a repository."""
+        target = os.path.abspath(path)
+        root = self._root_of(os.path.dirname(target))
         if root is None:
             return None
         if root not in self._tracked:
             self._tracked[root] = self._ls_files(root)
-        listing = self._tracked[root]
-        return None if listing is None else (listing, target.relative_to(root).as_posix())
+        rel = target[len(root) :].lstrip(os.sep).replace(os.sep, "/") or "."
+        return self._tracked[root], rel
 
-    def _ls_files(self, root: Path) -> tuple[frozenset[str], frozenset[str]] | None:
+    def _ls_files(self, root: str) -> tuple[frozenset[str], frozenset[str]] | None:
         """The files git tracks under ``root`` and the folders holding them (``/``-separated, relative),
         or None, with a note, when git cannot say."""
         env = {k: v for k, v in os.environ.items() if k not in _GIT_LOCATION_VARIABLES}
         env.update(GIT_OPTIONAL_LOCKS="0", GIT_TERMINAL_PROMPT="0")
         # core.fsmonitor names a program git runs when it reads the index: never one from the repository's
         # configuration (a folder from elsewhere may carry a .git of its own)
-        command = ["git", "-c", "core.fsmonitor=false", "-C", str(root), "ls-files", "-z"]
+        command = ["git", "-c", "core.fsmonitor=false", "-C", root, "ls-files", "-z"]
         try:
             done = subprocess.run(
                 command, capture_output=True, env=env, timeout=GIT_TIMEOUT, stdin=subprocess.DEVNULL, check=False
@@ -236,59 +314,102 @@ class Excluder:
             detail = done.stderr.decode("utf-8", "replace").strip().splitlines()
             why = f"git ls-files failed: {detail[-1] if detail else f'exit {done.returncode}'}"
         self.notes.append(
-            f"{root}: cannot tell which files git tracks ({why}): .gitignore and the default tool folders"
-            " leave out tracked files too"
+            f"{root}: cannot tell which files git tracks ({why}): neither .gitignore nor the default tool folders"
+            " leave anything out there, every G-code file in it is checked"
         )
         return None
 
     # -- .gitignore ---------------------------------------------------------------------------------------------
 
     def _gitignored(self, path: str, is_dir: bool) -> bool:
-        target = Path(os.path.abspath(path))
-        root = self._root_of(target.parent)
+        """Whether a ``.gitignore`` (or ``.git/info/exclude``) ignores ``path`` or a folder it is in."""
+        target = os.path.abspath(path)
+        folder = os.path.dirname(target)
+        root = self._root_of(folder)
         if root is None:
             return False  # not in a git repository: .gitignore files mean nothing here
-        folders = [target.parent, *(f for f in target.parent.parents if f.is_relative_to(root))]
+        if target == root:
+            return False
+        return self._folder_ignored(folder, root) or self._decide(target, is_dir, folder, root)
+
+    def _decide(self, target: str, is_dir: bool, folder: str, root: str) -> bool:
+        """The deepest decisive pattern of the files that apply in ``folder`` (as git does)."""
         decision: bool | None = None
-        root = folders[-1]
-        checks = [(root, root / ".git" / "info" / "exclude")] + [(f, f / ".gitignore") for f in reversed(folders)]
-        for folder, file in checks:  # the deepest decisive match wins, as in git
-            spec = self._spec(file)
-            if spec is None:
-                continue
-            rel = target.relative_to(folder).as_posix() + ("/" if is_dir else "")
-            result = spec.check_file(rel)  # type: ignore[attr-defined]
-            if result.include is not None:
-                decision = result.include
+        for base, spec in self._specs_in(folder, root):
+            rel = target[len(base) :].lstrip(os.sep).replace(os.sep, "/")
+            said = spec.decide(rel, is_dir)
+            if said is not None:
+                decision = said
         return bool(decision)
 
-    def _root_of(self, folder: Path) -> Path | None:
-        """The repository root (the folder holding ``.git``) at or above ``folder``, or None."""
-        key = ("root", folder)
-        if key not in self._ignores:
-            parent = folder.parent
-            if (folder / ".git").exists():
-                found: Path | None = folder
-            elif parent == folder:
-                found = None
-            else:
-                found = self._root_of(parent)
-            self._ignores[key] = found  # type: ignore[index]
-        return self._ignores[key]  # type: ignore[index,return-value]
+    def _folder_ignored(self, folder: str, root: str) -> bool:
+        """Whether ``folder`` or a folder above it (below ``root``) is ignored: git never looks inside an
+        ignored folder, so nothing in it can be taken back by a ``!`` pattern.  Cached, folder by folder."""
+        chain = []
+        at = folder
+        while at not in self._ignored_folders and at != root and os.path.dirname(at) != at:
+            chain.append(at)
+            at = os.path.dirname(at)
+        known = self._ignored_folders.get(at, False)
+        for at in reversed(chain):
+            known = known or self._decide(at, True, os.path.dirname(at), root)
+            self._ignored_folders[at] = known
+        return known
 
-    def _spec(self, file: Path):
-        if file not in self._ignores:
+    def _specs_in(self, folder: str, root: str) -> tuple:
+        """(folder, patterns) of every ignore file that applies in ``folder``, the shallowest first."""
+        chain = []
+        at = folder
+        while at not in self._specs and at != root and os.path.dirname(at) != at:
+            chain.append(at)
+            at = os.path.dirname(at)
+        if at not in self._specs:  # the repository's root: .git/info/exclude, then its .gitignore
+            found = [(at, self._spec(os.path.join(at, ".git", "info", "exclude")))]
+            found.append((at, self._spec(os.path.join(at, ".gitignore"))))
+            self._specs[at] = tuple((base, spec) for base, spec in found if spec is not None)
+        specs = self._specs[at]
+        for at in reversed(chain):
+            spec = self._spec(os.path.join(at, ".gitignore"))
+            specs = specs + ((at, spec),) if spec is not None else specs
+            self._specs[at] = specs
+        return specs
+
+    def _root_of(self, folder: str) -> str | None:
+        """The repository root (the folder holding ``.git``) at or above ``folder``, or None."""
+        return self._roots.root_of(folder)
+
+    def _spec(self, file: str):
+        if file not in self._read:
             spec = None
             try:
-                lines = file.read_text(encoding="utf-8", errors="replace").splitlines()
+                with open(file, encoding="utf-8", errors="replace") as fh:
+                    lines = fh.read().splitlines()
             except OSError:
                 lines = None
             if lines:
-                import pathspec
+                from gclint.gitignore import GitIgnore
 
-                spec = pathspec.GitIgnoreSpec.from_lines(lines)
-            self._ignores[file] = spec
-        return self._ignores[file]
+                spec = GitIgnore.from_lines(lines)
+            self._read[file] = spec
+        return self._read[file]
+
+
+def _display(path: str) -> str:
+    """A configuration file's name as the user reads it: relative to the working folder when inside it."""
+    absolute, here = os.path.abspath(path), os.getcwd()
+    return os.path.relpath(absolute, here) if absolute.startswith(here.rstrip(os.sep) + os.sep) else absolute
+
+
+def _any_match(pattern: str, candidates: list[str], base: str) -> bool:
+    here = os.getcwd()
+    return any(globs.matches(pattern, _relative(c, base, here)) for c in candidates)
+
+
+@lru_cache(maxsize=64)
+def _relative(path: str, base: str, here: str) -> str:
+    """``globs.relative`` (``path`` read from the folder ``here``), once per path and folder: a path is
+    matched against every pattern."""
+    return globs.relative(os.path.join(here, path), base)
 
 
 def _self_and_parents(path: str) -> list[str]:

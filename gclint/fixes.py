@@ -15,6 +15,7 @@ a file worse.
 
 from __future__ import annotations
 
+import os
 import tempfile
 from collections import Counter
 from collections.abc import Callable, Iterator
@@ -23,9 +24,8 @@ from typing import BinaryIO
 
 from gclint.engine import FileResult, Linter
 from gclint.io import AtomicWriter, OutputError
-from gclint.noqa import INLINE_UNSUPPRESSIBLE, with_noqa
+from gclint.noqa import INLINE_UNSUPPRESSIBLE, text_code, with_noqa
 from gclint.rules.base import Edit, Finding, Fix
-from gclint.syntax.parse import parse_line
 from gclint.syntax.source import Source, SourceError
 from gclint.textsafe import human, human_path
 
@@ -94,6 +94,9 @@ def fix_file(result: FileResult, linter: Linter, *, unsafe: bool = False, write:
     outcome = FixOutcome(result)
     if not any(f.fix is not None and (f.fix.safe or unsafe) for f in result.findings):
         return outcome
+    if write and (why := read_only(result.path)) is not None:
+        outcome.reverted.append(why)
+        return outcome
     if result.digest is None:
         outcome.error = f"{result.path}: not fixed: the file was not read to the end"
         return outcome
@@ -128,16 +131,16 @@ def add_noqa(result: FileResult) -> FixOutcome:
     silenced by the job and are left out, and so are lines whose comment a pause or action code reads as its
     text (M0, M1, M792 and the codes translated to M0: a noqa there would change what the printer says or
     does); ``reverted`` says which."""
-    from gclint.rules.security import ACTION_CODES, PAUSE_CODES
-
     outcome = FixOutcome(result)
-    texts = frozenset((*ACTION_CODES, *PAUSE_CODES))  # codes whose comment is their text
     by_line: dict[int, list[str]] = {}
     for f in result.findings:
         if not f.code.startswith(INLINE_UNSUPPRESSIBLE) and f.code not in by_line.setdefault(f.line, []):
             by_line[f.line].append(f.code)
     by_line = {line: codes for line, codes in by_line.items() if codes}
     if not by_line or result.error is not None:
+        return outcome
+    if (why := read_only(result.path)) is not None:
+        outcome.reverted.append(why)
         return outcome
     if result.digest is None:
         outcome.error = f"{result.path}: no noqa added: the file was not read to the end"
@@ -151,7 +154,7 @@ def add_noqa(result: FileResult) -> FixOutcome:
                 for raw, ending in chunk:
                     number += 1
                     codes = by_line.get(number)
-                    action = codes and next((c.code for c in parse_line(raw).commands if c.code in texts), None)
+                    action = codes and text_code(raw)
                     if action:
                         outcome.reverted.append(
                             f"{result.path}:{number}: no noqa added: the comment is the text of {action} (a noqa "
@@ -167,6 +170,19 @@ def add_noqa(result: FileResult) -> FixOutcome:
         return outcome
     outcome.fixed = len(by_line) - len(outcome.reverted)
     return outcome
+
+
+def read_only(path: str) -> str | None:
+    """Why ``path`` must not be rewritten when it is read-only (its mode has no write bit, or this user
+    may not write it), else None.  A rewrite renames a new file over the old one, which the folder's
+    permission allows whatever the file's: a job someone made read-only is reported and left as it is."""
+    try:
+        st = os.stat(path)
+    except OSError:
+        return None  # (the write itself says what is wrong)
+    if not st.st_mode & 0o222 or not os.access(path, os.W_OK):
+        return f"{path}: read-only: not rewritten (make it writable to fix it)"
+    return None
 
 
 def fix_stream(

@@ -82,6 +82,23 @@ def noqa_insertion(text: str, codes: list[str]) -> tuple[int, int, str]:
     return len(stripped), len(text), f" ; noqa: {listed}"
 
 
+def text_code(text: str) -> str | None:
+    """The code of a line whose comment is what a command says or does (M0, M1, M792 and the codes the
+    translator writes as M0: ``M0 ; SAY hello``), or None.  No noqa goes on such a line, whoever writes it
+    (``check --add-noqa``, the language server's quick fix): it would change what the printer says or does."""
+    from gclint.syntax.parse import parse_line
+
+    texts = _text_codes()
+    return next((c.code for c in parse_line(text).commands if c.code in texts), None)
+
+
+@cache
+def _text_codes() -> frozenset[str]:
+    from gclint.rules.security import ACTION_CODES, PAUSE_CODES
+
+    return frozenset((*ACTION_CODES, *PAUSE_CODES))
+
+
 def with_noqa(text: str, codes: list[str]) -> str:
     """``text`` with ``codes`` suppressed (``noqa_insertion`` applied)."""
     start, end, new = noqa_insertion(text, codes)

@@ -4,69 +4,64 @@ to each file, spread the work over processes, and return results in a stable ord
 from __future__ import annotations
 
 import os
-import re
 import stat
 from collections import deque
-from collections.abc import Callable, Iterable, Iterator
+from collections.abc import Callable, Collection, Iterable, Iterator
 from concurrent.futures import ProcessPoolExecutor
 from dataclasses import dataclass, replace
 from pathlib import Path
 from typing import TYPE_CHECKING
 
+from gclint.checkout import inside as _inside
 from gclint.config import ConfigError, apply, config_for, find_config
 from gclint.engine import FileResult, Linter, Options
 from gclint.excludes import TOOL_FOLDER, Excluder, Exclusion, LeftOut
-from gclint.syntax.source import Source, SourceError
+from gclint.syntax.source import NotGcode, Source, SourceError
+from gclint.trust import Refusal, guard, security_only
 
 if TYPE_CHECKING:
     from gclint.cache import ResultCache
 
-GCODE_EXTENSIONS = (".gcode", ".gco", ".g", ".nc", ".ngc", ".cnc", ".tap")
-# Extensions only G-code uses: such a file that is not G-code is broken (exit 2), not something else.  The
-# others are shared (a NetCDF .nc, an ANTLR .g, TAP output .tap): a walk skips those with a note.
-OWN_EXTENSIONS = (".gcode", ".gco")
+GCODE_EXTENSIONS = (".gcode", ".gco", ".gc", ".g", ".nc", ".ngc", ".cnc", ".tap")
+# Packages that carry a job (an Ultimaker Format Package is a ZIP archive with the G-code inside): found by
+# a walk so that the check says it cannot read them (exit 2), never passed in silence.
+PACKAGE_EXTENSIONS = (".ufp",)
 
 
-# A G or M code starting a line: what a firmware would run, whatever the first line of the file claims.
-_GCODE_LINE = re.compile(rb"(?m)^[ \t]*+(?:[Nn][0-9]{1,9}+[ \t]*+)?[GgMm][ \t]*+[0-9]")
-
-
-def skippable(result: FileResult, walked: set[str]) -> bool:
-    """Whether ``result`` is a file found in a folder (or named under --force-exclude) that is another
-    format with a shared extension: skipped with a note rather than an error.  A text file (no NUL byte in
-    its head) with G-code lines is not skipped, whatever its first line claims (``#!``, a NetCDF magic
-    number): a job's author writes its first line, and a firmware runs the rest."""
-    if not (result.not_gcode and result.path in walked and not result.path.lower().endswith(OWN_EXTENSIONS)):
-        return False
-    try:
-        with open(result.path, "rb") as fh:
-            head = fh.read(1 << 16)
-    except OSError:
-        return True
-    return b"\0" in head or _GCODE_LINE.search(head) is None
+def is_job_name(name: str) -> bool:
+    """Whether a walk takes the file ``name`` for a job: a G-code extension in any case, also before
+    trailing spaces and dots (Windows and FAT drop them: ``job.gcode `` reaches the printer as
+    ``job.gcode``)."""
+    return name.lower().rstrip(" .").endswith(GCODE_EXTENSIONS + PACKAGE_EXTENSIONS)
 
 
 def collect(
     paths: Iterable[str],
     notes: list[str] | None = None,
     excluder: Excluder | None = None,
-    walked: set[str] | None = None,
     left_out: list[LeftOut] | None = None,
     roots: dict[str, str] | None = None,
+    security_only: list[LeftOut] | None = None,
+    links: dict[str, str] | None = None,
 ) -> tuple[list[str], list[FileResult]]:
     """Expand folders into their G-code files (sorted; hidden folders included, excluded and .gitignored
     paths left out, symbolic links to folders not followed: as ruff does; files git tracks are never left
-    out by .gitignore or the default tool folders, and links to files outside the folder are not read).
+    out by .gitignore or the default tool folders).
 
     Returns the files to check and results for the paths that cannot be checked (missing, empty or
-    unreadable folder, a pipe or device found in a folder).  ``notes`` receives what was left out on purpose
-    (links), for the user; ``left_out`` the G-code files excluded, and why; ``walked`` the files found in
-    folders (not named); ``roots`` each of those with the real path of the folder it was found in.
+    unreadable folder, a pipe or device found in a folder, a link to a file outside the repository).
+    ``notes`` receives what was left out on purpose (links to folders), for the user; ``left_out`` the
+    G-code files excluded, and why; ``security_only`` the files a configuration found beside them would
+    exclude (checked by the SC rules alone); ``links`` the links to files inside the repository that are
+    checked, with the file each points to (their text is never shown); ``roots`` each file found in a folder
+    with the real path of the folder it was found in.
     """
     excluder = excluder if excluder is not None else Excluder()
     notes = notes if notes is not None else []
     left_out = left_out if left_out is not None else []
     roots = roots if roots is not None else {}
+    security_only = security_only if security_only is not None else []
+    links = links if links is not None else {}
     files: list[str] = []
     problems: list[FileResult] = []
     seen: set[str] = set()
@@ -75,10 +70,8 @@ def collect(
             files.append(path)
             continue
         if os.path.isdir(path):
-            walk = _Walk(path, excluder, problems, notes, left_out, roots)
+            walk = _Walk(path, excluder, problems, notes, left_out, roots, security_only, links)
             walk.run()
-            if walked is not None:
-                walked.update(walk.found)
             if not walk.found and not walk.skipped and len(problems) == walk.problems_before:
                 problems.append(
                     FileResult(path, error=f"{path}: no G-code files in this folder ({' '.join(GCODE_EXTENSIONS)})")
@@ -92,14 +85,79 @@ def collect(
             if why is not None:  # --force-exclude: named, but excluded (as pre-commit passes every staged file)
                 left_out.append(LeftOut(path, why))
                 continue
+            if excluder.forced(path):  # what pre-commit names is held to what a walk would find
+                found = excluder.security_only(path, False, named=True)
+                if found is not None:
+                    security_only.append(LeftOut(path, found))
+                problem = _link(path, excluder, links, None)
+                if problem is not None:
+                    problems.append(problem)
+                    continue
             if path not in seen:
                 seen.add(path)
                 files.append(path)
         else:
             problems.append(FileResult(path, error=f"{path}: no such file or folder"))
+    files = _once(files, links, notes)
     notes.extend(excluder.notes)
     excluder.notes.clear()
     return files, problems
+
+
+def _link(path: str, excluder: Excluder, links: dict[str, str], top: str | None) -> FileResult | None:
+    """For a symbolic link to a file: recorded in ``links`` when it points inside the repository it is in
+    (the folder holding ``.git``; else ``top``, the folder walked, or the working folder), else the error
+    that it is not read.  None for anything that is not a link."""
+    try:
+        if not os.path.islink(path):
+            return None
+    except OSError:
+        return None
+    folder = os.path.dirname(os.path.abspath(path))
+    repository = excluder.repository_root(folder)
+    checkout = os.path.realpath(repository if repository is not None else top if top is not None else os.getcwd())
+    target = os.path.realpath(path)
+    if not _inside(target, checkout):
+        return FileResult(
+            path,
+            error=f"{path}: a symbolic link to a file outside this checkout ({target}): not read; check that"
+            " file by its own name, or exclude the link on the command line or with --config",
+        )
+    links[path] = target
+    return None
+
+
+def _once(files: list[str], links: dict[str, str], notes: list[str]) -> list[str]:
+    """``files`` without the links to a file that is checked already (by its own name or through an
+    earlier link): a file is checked once, and ``--fix`` writes it once."""
+    if not links:
+        return files
+    seen: dict[tuple[int, int], str] = {}
+    for path in files:
+        if path != "-" and path not in links:
+            key = _identity(path)
+            if key is not None:
+                seen.setdefault(key, path)
+    out = []
+    for path in files:
+        if path in links:
+            key = _identity(path)
+            if key is not None and key in seen:
+                notes.append(f"{path}: a link to {seen[key]}, which is checked: not checked twice")
+                del links[path]
+                continue
+            if key is not None:
+                seen[key] = path
+        out.append(path)
+    return out
+
+
+def _identity(path: str) -> tuple[int, int] | None:
+    try:
+        st = os.stat(path)
+    except OSError:
+        return None
+    return st.st_dev, st.st_ino
 
 
 # Entries listed, in all, to count the G-code files of excluded folders (a gitignored output folder, a
@@ -111,11 +169,13 @@ class _Walk:
     """One folder walk: depth first, files of a folder before its sub-folders, each sorted by name.
 
     A folder that cannot be read is a problem (exit 2), never skipped in silence; links to folders are not
-    followed (no loops), links to files outside the folder are not read (a committed link must not pull
-    ~/.ssh/id_ed25519 into a report, nor let a fix write outside the tree), both with a note.  Excluded
-    folders are entered only to find the files git tracks in them (checked unless the user's own patterns
-    exclude them) and to count the G-code files left out; a tool folder where one is expected (.venv,
-    node_modules beside .git, or at the top of a folder outside any repository) is not counted at all."""
+    followed (no loops), with a note; a link to a file outside the repository is not read (a committed link
+    must not pull ~/.ssh/id_ed25519 into a report, nor let a fix write outside the tree) and is a problem;
+    one inside it is checked under its own name.  Excluded folders are entered only to find the files git
+    tracks in them (checked unless the user's own patterns exclude them), the files a configuration found
+    beside them would exclude (checked by the SC rules alone) and to count the G-code files left out; a
+    tool folder where one is expected (.venv, node_modules beside .git, or at the top of a folder outside
+    any repository) is not counted at all."""
 
     def __init__(
         self,
@@ -125,29 +185,35 @@ class _Walk:
         notes: list[str],
         left_out: list[LeftOut],
         roots: dict[str, str],
+        security_only: list[LeftOut],
+        links: dict[str, str],
     ) -> None:
         self.top = top
         self.top_real = os.path.realpath(top)
-        self.outside_repository = excluder.repository_root(top) is None
+        repository = excluder.repository_root(top)
+        self.outside_repository = repository is None
         self.excluder = excluder
         self.problems = problems
         self.problems_before = len(problems)
         self.notes = notes
         self.left_out = left_out
         self.roots = roots
+        self.security_only = security_only
+        self.links = links
         self.found: list[str] = []
-        self.skipped = 0  # G-code files found but not checked (excluded, links out): the folder is not empty
+        self.skipped = 0  # G-code files found but not checked (excluded): the folder is not empty
         self.budget = COUNT_BUDGET
 
     def run(self) -> None:
-        stack: list[tuple[str, Exclusion | None]] = [(self.top, None)]
+        # (folder, why it is excluded, the found configuration's pattern that names it)
+        stack: list[tuple[str, Exclusion | None, Exclusion | None]] = [(self.top, None, None)]
         while stack:
-            folder, inherited = stack.pop()
+            folder, inherited, downgraded = stack.pop()
             try:
                 with os.scandir(folder) as listing:
                     entries = sorted(listing, key=lambda e: e.name)
             except OSError as exc:
-                if inherited is None:
+                if inherited is None or downgraded is not None:
                     error = f"{folder}: cannot read this folder: {exc.strerror or exc}"
                     self.problems.append(FileResult(folder, error=error))
                 elif not inherited.quiet:
@@ -161,7 +227,8 @@ class _Walk:
                     if entry.is_dir(follow_symlinks=False):
                         enter, why = self._subfolder(entry.path, folder, inherited)
                         if enter:
-                            subfolders.append((entry.path, why))
+                            down = downgraded or self.excluder.security_only(entry.path, True)
+                            subfolders.append((entry.path, why, down))
                         continue
                     if entry.is_symlink() and entry.is_dir():
                         if inherited is None:
@@ -171,8 +238,8 @@ class _Walk:
                         continue
                 except OSError:
                     pass
-                if entry.name.lower().endswith(GCODE_EXTENSIONS):
-                    self._file(entry, inherited)
+                if is_job_name(entry.name):
+                    self._file(entry, inherited, downgraded)
             stack.extend(reversed(subfolders))
 
     def _subfolder(self, path: str, parent: str, inherited: Exclusion | None) -> tuple[bool, Exclusion | None]:
@@ -208,7 +275,7 @@ class _Walk:
         a walk outside any repository (``jobs/node_modules`` in a repository is not)."""
         return os.path.lexists(os.path.join(parent, ".git")) or (self.outside_repository and parent == self.top)
 
-    def _file(self, entry: os.DirEntry, inherited: Exclusion | None) -> None:
+    def _file(self, entry: os.DirEntry, inherited: Exclusion | None, downgraded: Exclusion | None) -> None:
         path = entry.path
         own = None if inherited is not None and inherited.chosen else self.excluder.why(path, False)
         why = own if inherited is None or (own is not None and own.chosen) else inherited
@@ -216,23 +283,23 @@ class _Walk:
             if not why.quiet:
                 self._leave_out(LeftOut(_shown(path), why))
             return
+        down = downgraded or self.excluder.security_only(path, False)
+        shown = _shown(path)
         try:
             link = entry.is_symlink()
         except OSError:
             link = False
-        if link and not _inside(os.path.realpath(path), self.top_real):
-            self.skipped += 1
-            self.notes.append(
-                f"{_shown(path)}: a symbolic link to a file outside {self.top} ({os.path.realpath(path)}), not read"
-                " (name it to check it)"
-            )
+        if link and (problem := _link(shown, self.excluder, self.links, self.top)) is not None:
+            self.problems.append(problem)
             return
         kind = _not_regular(path)
         if kind is not None:
             self.problems.append(FileResult(path, error=f"{path}: not a regular file ({kind}): not read"))
             return
-        self.found.append(_shown(path))
-        self.roots[_shown(path)] = self.top_real
+        if down is not None:
+            self.security_only.append(LeftOut(shown, down))
+        self.found.append(shown)
+        self.roots[shown] = self.top_real
 
     def _leave_out(self, item: LeftOut) -> None:
         self.skipped += 1
@@ -242,11 +309,6 @@ class _Walk:
 def _shown(path: str) -> str:
     """A path as the user sees it: "a.gcode", not "./a.gcode" (as ruff)."""
     return path[2:] if path.startswith("./") else path
-
-
-def _inside(path: str, folder: str) -> bool:
-    """Whether the real path ``path`` is ``folder`` or in it."""
-    return path == folder or path.startswith(folder.rstrip(os.sep) + os.sep)
 
 
 def outside_walk(path: str, roots: dict[str, str]) -> str | None:
@@ -278,14 +340,23 @@ def _not_regular(path: str) -> str | None:
 
 
 def options_for(path: str, base: Options, overrides: dict, explicit_config: str | None) -> Options:
-    """Defaults, then the configuration file that applies to ``path``, then the command line."""
+    """Defaults, then the configuration file that applies to ``path``, then the command line.  A
+    configuration found beside the files cannot switch security rules off (gclint.trust)."""
+    return configured(path, base, overrides, explicit_config)[0]
+
+
+def configured(path: str, base: Options, overrides: dict, explicit_config: str | None) -> tuple[Options, list[Refusal]]:
+    """``options_for`` and what a found configuration asked of the security rules in vain."""
     config_path, table = config_for(path, explicit_config)
     options = base
     if config_path is not None:
         options = apply(options, table, config_path)
     if overrides and overrides.get("extend_known_codes"):  # adds to the configuration's codes
         overrides = {**overrides, "extend_known_codes": options.extend_known_codes + overrides["extend_known_codes"]}
-    return replace(options, **overrides) if overrides else options
+    options = replace(options, **overrides) if overrides else options
+    if config_path is None or explicit_config is not None:
+        return options, []
+    return guard(options, replace(base, **overrides) if overrides else base)
 
 
 _LINTERS: dict[str, Linter] = {}
@@ -316,10 +387,15 @@ def check_file(path: str, options: Options) -> tuple[FileResult, str | None]:
     A line too long to hold is reported (SX001), not read whole: checking never needs the whole line."""
     try:
         source = Source.open(path, digest=True, cut_long_lines=True)
+    except NotGcode as exc:  # (binary: a magic number, NUL bytes)
+        return _not_gcode(path, options, str(exc)), None
     except SourceError as exc:
         return FileResult.unreadable(path, exc), None
     try:
-        return _linter(options).check_source(source), source.sha256
+        result = _linter(options).check_source(source)
+        if result.not_gcode:  # (text that says it is something else: a script, an INI file)
+            return _not_gcode(path, options, result.error or path), None
+        return result, source.sha256
     except SourceError as exc:
         return FileResult.unreadable(path, exc), None
     except RecursionError:
@@ -333,6 +409,19 @@ def check_file(path: str, options: Options) -> tuple[FileResult, str | None]:
         source.close()
 
 
+def _not_gcode(path: str, options: Options, reason: str) -> FileResult:
+    """A file refused as not G-code: its SC findings as a firmware would read it, and an error (exit 2)."""
+    from gclint.notgcode import scan
+
+    try:
+        return scan(path, _linter(security_only(options)), reason)
+    except RecursionError:
+        return FileResult(path, error=f"{reason}; nesting too deep to read")
+    except Exception as exc:  # a bug in gclint itself: the file is still not passed
+        detail = f"{type(exc).__name__}: {exc}".splitlines()[0][:200]
+        return FileResult(path, error=f"{reason}; internal error while reading it ({detail}); please report this")
+
+
 def run(
     files: list[str],
     base: Options,
@@ -342,13 +431,19 @@ def run(
     stdin_name: str = "-",
     progress: Callable[[FileResult], None] | None = None,
     cache: ResultCache | None = None,
+    security_only: Collection[str] = (),
+    links: dict[str, str] | None = None,
 ) -> list[FileResult]:
     """Check ``files``; results come back in the order of ``files``.
 
     With a ``cache``, files whose content, configuration and rule set are unchanged since the last run
-    are not checked again.  (All results at once: ``results`` gives them one by one, in bounded memory.)
+    are not checked again.  ``security_only``: files checked by the SC rules alone (a configuration found
+    beside them excludes them); ``links``: links checked under their own name, each with the file it points
+    to (``through_link``).  (All results at once: ``results`` gives them one by one, in bounded memory.)
     """
-    return list(results(files, base, overrides, explicit_config, jobs, stdin_name, progress, cache))
+    return list(
+        results(files, base, overrides, explicit_config, jobs, stdin_name, progress, cache, security_only, links)
+    )
 
 
 @dataclass
@@ -363,6 +458,7 @@ class _Item:
     key: str | None = None  # the cache key the result is stored under
     stdin: Linter | None = None  # standard input, checked in this process when its turn comes
     cached: bool = False
+    target: str | None = None  # a link: the file it points to (its text is not shown)
 
 
 def results(
@@ -374,12 +470,15 @@ def results(
     stdin_name: str = "-",
     progress: Callable[[FileResult], None] | None = None,
     cache: ResultCache | None = None,
+    security_only: Collection[str] = (),
+    links: dict[str, str] | None = None,
 ) -> Iterator[FileResult]:
     """Check ``files``, giving each result as soon as it and those before it are known, in the order of
     ``files``.  Memory does not grow with the number of files: a few batches of files are checked ahead
     (read from the cache, or sent to the worker processes), not the whole run."""
     find_config.cache_clear()
-    items = _items(files, base, overrides, explicit_config, stdin_name, cache)
+    links = links or {}
+    items = _items(files, base, overrides, explicit_config, stdin_name, cache, frozenset(security_only), links)
     workers = min(jobs, len(files))
     if workers <= 1:
         for item in items:
@@ -416,9 +515,11 @@ def _items(
     explicit_config: str | None,
     stdin_name: str,
     cache: ResultCache | None,
+    security: frozenset[str],
+    links: dict[str, str],
 ) -> Iterator[_Item]:
     for index, path in enumerate(files):
-        item = _Item(index, path)
+        item = _Item(index, path, target=links.get(path))
         try:
             # standard input is configured as the file it names (--stdin-filename), as ruff does
             named = stdin_name if path == "-" and stdin_name != "-" else path
@@ -427,9 +528,11 @@ def _items(
             item.result = FileResult(path, error=str(exc))
             yield item
             continue
+        if path in security:
+            options = security_only(options)
         if path == "-":
             item.stdin = _linter(options)
-        elif cache is not None:
+        elif cache is not None and item.target is None:  # (a link's result is not the file's: not cached)
             key = cache.settings_key(options.cache_key(), [r.code for r in _linter(options).rule_classes])
             item.result = cache.get(path, key)
             item.cached = item.result is not None
@@ -484,11 +587,40 @@ def _finish(
             progress(item.result)
         return item.result
     result, digest = checked
+    if item.target is not None:
+        result = through_link(result, item.target)
     if cache is not None and item.key is not None and digest is not None:
         cache.put(item.path, item.key, result, digest)
     if progress is not None:
         progress(result)
     return result
+
+
+def through_link(result: FileResult, target: str) -> FileResult:
+    """The result of checking a link inside the repository, as reported under the link's name: each
+    finding with its rule's summary instead of its message, no line text, no fix (nothing is written
+    through a link found in a folder), and nothing of how the file was read.  What the file it points
+    to holds is never shown (a link to a checkout's .env must not put it in a SARIF report)."""
+    from gclint.rules.base import all_rules
+
+    where = _near(target)
+    rules = all_rules()
+    findings = []
+    for f in result.findings:
+        summary = rules[f.code].summary if f.code in rules else f.name
+        message = f"{summary} (in {where}, which this link points to; its text is not shown)"
+        findings.append(replace(f, message=message, source=None, fix=None))
+    error = None
+    if result.error is not None:
+        what = "is not G-code" if result.not_gcode else "could not be checked"
+        error = f"{result.path}: the file this link points to ({where}) {what}; check it by its own name to see why"
+    return FileResult(result.path, findings, result.dialect, "", result.lines, error, None, None, result.not_gcode)
+
+
+def _near(path: str) -> str:
+    """``path`` relative to the working folder when it is inside it."""
+    here = os.getcwd()
+    return os.path.relpath(path, here) if _inside(path, os.path.realpath(here)) else path
 
 
 def _check_stdin(linter: Linter, stdin_name: str) -> FileResult:
@@ -518,6 +650,8 @@ def default_jobs() -> int:
 
 __all__ = [
     "collect",
+    "configured",
+    "is_job_name",
     "run",
     "results",
     "check_one",

@@ -1,10 +1,10 @@
-"""What the settings of a run switch off, said out loud: ``--show-settings``, the ``--statistics`` lines and
-the stderr note when a configuration file turns security rules off.
+"""What the settings of a run switch off, said out loud: ``--show-settings`` and the configuration notes
+every report format carries (``configuration_notes``: SARIF, GitHub, JUnit, HTML, the text summary, stderr).
 
-A job can never silence its own SC findings (``noqa.INLINE_UNSUPPRESSIBLE``); the configuration and the
-command line can.  A configuration file travels with the jobs (a pull request can add one), so whenever
-it switches security rules off, gclint says which, where and how: a suppression that is not shown would
-be a way around the gate.
+A job can never silence its own SC findings (``noqa.INLINE_UNSUPPRESSIBLE``), nor can a configuration found
+beside the files (``gclint.trust``); the command line and a configuration named by ``--config`` can.  Whenever
+they switch security rules off, or a configuration switches a rule family off or asks in vain, gclint says
+which, where and how: a suppression that is not shown would be a way around the gate.
 """
 
 from __future__ import annotations
@@ -13,9 +13,10 @@ from collections.abc import Iterable
 from dataclasses import dataclass, replace
 from pathlib import Path
 
+from gclint import trust
 from gclint.config import ConfigError, apply, config_for, find_config, load_file
 from gclint.engine import Linter, Options
-from gclint.rules.base import Severity, all_rules
+from gclint.rules.base import Severity, all_rules, matches
 from gclint.textsafe import human
 
 SECURITY = "SC"
@@ -44,7 +45,7 @@ def _security_codes() -> list[str]:
 
 
 def _selected(options: Options) -> set[str]:
-    return {rule.code for rule in Linter(options).rule_classes}
+    return set(trust.selected(options))
 
 
 def _how(options: Options) -> str:
@@ -58,12 +59,20 @@ def _how(options: Options) -> str:
     return "/".join(parts) or "select"
 
 
-def security_suppressions(
-    files: Iterable[str], overrides: dict, explicit_config: str | None = None
-) -> list[Suppression]:
-    """Every way the configuration files and the command line switch security rules off for ``files``."""
-    security = _security_codes()
-    groups: dict[str | None, tuple[Options, list[str]]] = {}
+@dataclass
+class _Group:
+    """The files one configuration (or none) applies to, and what it makes of the options."""
+
+    config: Path | None
+    trusted: bool  # named by --config (or no configuration): the user's own
+    raw: Options  # the configuration alone, as written
+    options: Options  # the configuration, then the command line, held to gclint.trust for a found one
+    refusals: list[trust.Refusal]
+    paths: list[str]
+
+
+def _groups(files: Iterable[str], overrides: dict, explicit_config: str | None) -> dict[str | None, _Group]:
+    groups: dict[str | None, _Group] = {}
     for path in files:
         try:
             config_path, table = config_for(path, explicit_config)
@@ -72,17 +81,31 @@ def security_suppressions(
         key = str(config_path) if config_path is not None else None
         if key not in groups:
             try:
-                options = apply(Options(), table, config_path) if config_path is not None else Options()
+                raw = apply(Options(), table, config_path) if config_path is not None else Options()
             except ConfigError:
                 continue
-            groups[key] = (options, [])
-        groups[key][1].append(path)
+            options = replace(raw, **overrides) if overrides else raw
+            refusals: list[trust.Refusal] = []
+            trusted = config_path is None or explicit_config is not None
+            if not trusted:
+                options, refusals = trust.guard(options, replace(Options(), **overrides))
+            groups[key] = _Group(config_path, trusted, raw, options, refusals, [])
+        groups[key].paths.append(path)
+    return groups
+
+
+def security_suppressions(
+    files: Iterable[str], overrides: dict, explicit_config: str | None = None
+) -> list[Suppression]:
+    """Every way the configuration files and the command line switch security rules off for ``files``.
+    (A configuration found beside the files cannot: ``refusals`` says what one asked for in vain.)"""
+    security = _security_codes()
     out: list[Suppression] = []
-    for key, (config_options, paths) in groups.items():
+    for key, group in _groups(files, overrides, explicit_config).items():
+        options, config_options, paths = group.options, group.raw, group.paths
         origin = _display(key) if key is not None else "the command line"
-        options = replace(config_options, **overrides) if overrides else config_options
         off = set(security) - _selected(options)
-        by_config = sorted(off - _selected(config_options)) if key is not None else []
+        by_config = sorted(off - _selected(config_options)) if key is not None and group.trusted else []
         if by_config:
             out.append(Suppression(tuple(by_config), origin, _how(config_options), len(paths), True))
         by_cli = sorted(off - set(by_config))
@@ -105,6 +128,43 @@ def security_suppressions(
             if matched:
                 out.append(Suppression(tuple(off), origin, f"per-file-ignores {pattern!r}", matched, key is not None))
     return out
+
+
+def configuration_notes(files: list[str], overrides: dict, explicit_config: str | None = None) -> list[str]:
+    """What the configuration does that a report must say (every format carries these lines): security
+    rules switched off or lowered (``security_suppressions``), what a found configuration asked of them in
+    vain, and rule families a configuration switches off."""
+    notes = [s.describe() for s in security_suppressions(files, overrides, explicit_config)]
+    groups = _groups(files, overrides, explicit_config)
+    cli = replace(Options(), **overrides) if overrides else Options()
+    kept_by_cli = {code[:2] for code in trust.selected(cli)}
+    for key, group in groups.items():
+        count = f"{len(group.paths)} file{'s' if len(group.paths) != 1 else ''}"
+        for refusal in group.refusals:
+            notes.append(replace(refusal, config=_display(refusal.config)).describe(len(group.paths)))
+        if key is None:
+            continue
+        on = {code[:2] for code in trust.selected(group.options)}
+        off = sorted(kept_by_cli - on - {SECURITY})  # (security rules: said above, code by code)
+        if off:
+            families = f"rule famil{'ies' if len(off) != 1 else 'y'} {', '.join(off)}"
+            notes.append(f"{_display(key)} switches off {families} ({_how(group.raw)}) for {count}")
+        for pattern, selectors in group.options.per_file_ignores.items():
+            single = Linter(replace(group.options, per_file_ignores={pattern: selectors}))
+            whole = sorted(
+                family
+                for family in on - {SECURITY}
+                if all(
+                    matches(c, [s.upper() for s in selectors]) for c in trust.selected(group.options) if c[:2] == family
+                )
+            )
+            hit = sum(1 for p in group.paths if single.per_file_ignores(p)) if whole else 0
+            if hit:
+                families = f"rule famil{'ies' if len(whole) != 1 else 'y'} {', '.join(whole)}"
+                notes.append(
+                    f"{_display(key)} switches off {families} (per-file-ignores {pattern!r}) for {hit} file{'s' if hit != 1 else ''}"
+                )
+    return notes
 
 
 def _shadowed_hardening(config: Path, options: Options, security: list[str]) -> tuple | None:
@@ -174,7 +234,7 @@ def show_settings(files: list[str], overrides: dict, explicit_config: str | None
     for path in files:
         options = options_for(path, Options(), overrides, explicit_config)
         blocks.setdefault(options.cache_key() + repr(options.config_path), (options, []))[1].append(path)
-    suppressions = security_suppressions(files, overrides, explicit_config)
+    notes = configuration_notes(files, overrides, explicit_config)
     lines: list[str] = []
     for options, paths in blocks.values():
         linter = Linter(options)
@@ -204,11 +264,11 @@ def show_settings(files: list[str], overrides: dict, explicit_config: str | None
     for path in files:
         lines.append(f"  {path}: {_checked_as(path, overrides, explicit_config)}")
     lines.append("")
-    if suppressions:
-        lines.append("Security rules switched off:")
-        lines.extend(f"  {s.describe()}" for s in suppressions)
+    if notes:
+        lines.append("What the configuration switches off:")
+        lines.extend(f"  {note}" for note in notes)
     else:
-        lines.append("Security rules switched off: none")
+        lines.append("What the configuration switches off: nothing")
     lines.append(f"Result cache: {cache_folder}")
     return "\n".join(human(line) for line in lines) + "\n"  # file names are file text: escaped
 

@@ -4,7 +4,8 @@ One place for what every output does to file text (it may hold credentials, term
 bidirectional overrides, characters XML cannot carry, undecodable bytes kept as lone surrogates):
 
 * ``clean``: undecodable bytes as ``\\xNN`` (any encoder can write the text);
-* ``printable``: also control characters except tab and line feed (XML, multi-line fields);
+* ``printable``: also control characters except tab and line feed, and the invisible format characters
+  (XML, multi-line fields: a JUnit viewer shows them as a browser does, U+202E reversing what follows);
 * ``human``: secrets masked and every control, line break and invisible format character (Unicode
   category Cf: bidirectional overrides, soft hyphen, zero-width spaces) escaped, for a line a person reads
   (text, full, grouped, github, html, explain, the --diff, error lines and notes, reports);
@@ -32,18 +33,6 @@ def clean(text: str) -> str:
     )
 
 
-# C0 controls except tab, DEL, C1 controls: they would drive a terminal (ESC sequences) or break XML.
-_CONTROLS = re.compile("[\x00-\x08\x0b-\x1f\x7f-\x9f\ufffe\uffff]")
-
-
-def printable(text: str) -> str:
-    """``clean(text)`` with control characters shown as ``\\xNN`` (safe on a terminal and in XML 1.0)."""
-    text = clean(text)
-    if _CONTROLS.search(text):
-        text = _CONTROLS.sub(lambda m: f"\\x{ord(m.group()):02x}", text)
-    return text
-
-
 # The invisible format characters (Unicode category Cf, as of Unicode 15.1): bidirectional overrides and
 # isolates (they reorder what a terminal or a browser shows), the soft hyphen, zero-width spaces and joiners,
 # the BOM, tag characters (they hide text).  Escaped in every human output, as the parser's messages
@@ -54,6 +43,20 @@ _FORMAT_CHARACTERS = (
     "\U0001d173-\U0001d17a\U000e0001\U000e0020-\U000e007f"
 )
 FORMAT_CHARACTERS = re.compile(f"[{_FORMAT_CHARACTERS}]")  # (also read by the SC rules' firmware views)
+# C0 controls except tab and line feed, DEL, C1 controls (they would drive a terminal or break XML), and the
+# format characters, line and paragraph separators (they reorder or split what a viewer shows).
+_CONTROLS = re.compile(f"[\x00-\x08\x0b-\x1f\x7f-\x9f\u2028\u2029{_FORMAT_CHARACTERS}\ufffe\uffff]")
+
+
+def printable(text: str) -> str:
+    """``clean(text)`` with control and invisible format characters shown as ``\\xNN``/``\\uNNNN`` (safe on
+    a terminal, in XML 1.0 and in a viewer that applies bidirectional overrides); line feeds stay."""
+    text = clean(text)
+    if _CONTROLS.search(text):
+        text = _CONTROLS.sub(_escape, text)
+    return text
+
+
 # For text shown on a terminal as one line: the controls above plus line breaks (a file name with a newline
 # would forge a line of its own), the line and paragraph separators (they split what a terminal or a browser
 # shows) and the format characters.  Tabs stay.
@@ -98,3 +101,18 @@ def json_safe(text: str) -> str:
 def human_path(path: str) -> str:
     """A file name for human output: ``human``, and its tabs written as ``\\x09`` too."""
     return human(path).replace("\t", "\\x09")
+
+
+class HumanStream:
+    """A text stream that writes what it is given through ``human`` (line breaks kept): for a stream of
+    error lines written by code that does not escape them itself (``gclint diff``)."""
+
+    def __init__(self, stream) -> None:
+        self._stream = stream
+
+    def write(self, text: str) -> int:
+        self._stream.write(human(text, keep_line_breaks=True))
+        return len(text)
+
+    def flush(self) -> None:
+        self._stream.flush()

@@ -337,3 +337,60 @@ def test_clean_removes_the_result_cache(tmp_path):
     proc = run_cli("clean", env={**env, "GCLINT_CACHE_DIR": str(folder)}, cwd=project)
     assert proc.returncode == 0, proc.stderr
     assert not list(folder.rglob("*.json")) and (folder / "notes.txt").read_text() == "keep me"
+
+
+def test_clean_leaves_a_folder_gclint_did_not_mark_alone(tmp_path):
+    """Issue 25: ``gclint clean --cache-dir notes`` deleted notes/project, notes/ab/.tmp-draft and the folder,
+    then said "no cached results".  Only a folder gclint marked as its cache is cleaned."""
+    env = _user_env(tmp_path)
+    notes = tmp_path / "notes"
+    (notes / "ab").mkdir(parents=True)
+    (notes / "project").write_text("my project notes\n")
+    (notes / "ab" / ".tmp-draft").write_text("draft\n")
+    (notes / "ab" / ("a" * 32 + ".json")).write_text("{}\n")
+    proc = run_cli("clean", "--cache-dir", str(notes), env=env)
+    [line] = proc.stderr.decode().splitlines()
+    assert proc.returncode == 2 and "notes: not a result cache folder" in line and "nothing removed" in line
+    assert sorted(p.relative_to(notes).as_posix() for p in notes.rglob("*")) == [
+        "ab", "ab/.tmp-draft", "ab/" + "a" * 32 + ".json", "project",
+    ]  # fmt: skip
+
+
+def test_clean_removes_only_entries_that_verify(tmp_path):
+    env = _user_env(tmp_path)
+    (tmp_path / "job.gcode").write_bytes(CLEAN)
+    folder = tmp_path / "cache"
+    assert run_cli("check", "--cache-dir", str(folder), str(tmp_path / "job.gcode"), env=env).returncode == 0
+    [entry] = folder.rglob("*.json")
+    planted = entry.parent / ("b" * 32 + ".json")  # an entry someone else wrote (a forged or foreign one)
+    planted.write_bytes(b"0" * 64 + b"\n{}")
+    (entry.parent / ".tmp-draft").write_text("not gclint's\n")
+    proc = run_cli("clean", "--cache-dir", str(folder), env=env)
+    assert proc.returncode == 0 and b"removed 1 cached result" in proc.stdout, proc.stderr
+    assert not entry.exists() and planted.exists() and (entry.parent / ".tmp-draft").exists()
+    assert (folder / ".gitignore").exists()  # the marker and the folder stay while anything else does
+    planted.unlink()
+    (entry.parent / ".tmp-draft").unlink()
+    assert run_cli("clean", "--cache-dir", str(folder), env=env).returncode == 0
+    assert not folder.exists()
+
+
+def test_a_committed_cache_folder_link_never_takes_writes_out_of_the_checkout(tmp_path):
+    """Issue 25: a committed ``.gclint_cache -> somewhere`` with ``--cache-dir .gclint_cache`` (as CI caches
+    it) made gclint write its entries outside the checkout."""
+    env = _user_env(tmp_path)
+    repo = tmp_path / "repo"
+    repo.mkdir()
+    (repo / ".git").mkdir()
+    (repo / "job.gcode").write_bytes(CLEAN)
+    outside = tmp_path / "outside"
+    outside.mkdir()
+    (repo / ".gclint_cache").symlink_to(outside, target_is_directory=True)
+    for args in (["--cache-dir", ".gclint_cache"], []):
+        extra = {} if args else {"GCLINT_CACHE_DIR": ".gclint_cache"}
+        proc = run_cli("check", *args, "job.gcode", env={**env, **extra}, cwd=repo)
+        assert proc.returncode == 0 and list(outside.iterdir()) == [], proc.stderr
+        assert b"is a link out of this checkout" in proc.stderr
+    # a cache folder the user names outside the checkout is the user's choice
+    assert run_cli("check", "--cache-dir", str(outside), "job.gcode", env=env, cwd=repo).returncode == 0
+    assert list(outside.rglob("*.json"))

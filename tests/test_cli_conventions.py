@@ -141,23 +141,30 @@ def test_exclude_gitignore_and_files_that_are_not_gcode(tmp_path: Path) -> None:
     (tmp_path / "jobs" / "data.nc").write_bytes(b"CDF\x01\x00\x00\x00\x00")  # NetCDF
     (tmp_path / "jobs" / "test.tap").write_text("TAP version 13\n1..2\nok 1 - a\nok 2 - b\n")
     (tmp_path / "gclint.toml").write_text('extend-exclude = ["archive/**"]\n')
-    proc = run_cli("check", "-f", "json", ".", cwd=tmp_path)
-    assert proc.returncode == 1, proc.stderr
-    assert {Path(f["path"]).as_posix() for f in json.loads(proc.stdout)} == {"jobs/a.gcode"}
+    config = ("--config", "gclint.toml")  # (found beside the files, it could not exclude them: issue 25)
+    proc = run_cli("check", "-f", "json", *config, ".", cwd=tmp_path)
+    assert proc.returncode == 2, proc.stderr  # files that are not G-code are never passed
+    found = {(Path(f["path"]).as_posix(), f["code"]) for f in json.loads(proc.stdout)}
+    assert {path for path, code in found if not code.startswith("SC")} == {"jobs/a.gcode"}
+    # (the security rules read them as a firmware would: a Carvera runs "grammar Foo;" as a console command)
+    assert {("jobs/Foo.g", "SC003"), ("jobs/test.tap", "SC003")} <= found
     err = proc.stderr.decode()
     assert "Foo.g: an ANTLR grammar" in err and "data.nc: NetCDF data" in err and "test.tap: Test Anything" in err
+    others = ("--extend-exclude", "jobs/Foo.g,jobs/data.nc,jobs/test.tap")
+    assert run_cli("check", "-f", "json", *config, *others, ".", cwd=tmp_path).returncode == 1
     # named on the command line: what is not G-code is an error, an excluded file is checked ...
     assert run_cli("check", "jobs/Foo.g", cwd=tmp_path).returncode == 2
-    assert run_cli("check", "archive/old.gcode", cwd=tmp_path).returncode == 1
+    assert run_cli("check", *config, "archive/old.gcode", cwd=tmp_path).returncode == 1
     # ... unless --force-exclude (pre-commit passes every staged file by name)
-    proc = run_cli("check", "--force-exclude", "archive/old.gcode", "build/b.gcode", cwd=tmp_path)
+    proc = run_cli("check", "--force-exclude", *config, "archive/old.gcode", "build/b.gcode", cwd=tmp_path)
     assert proc.returncode == 0 and b"no files left to check" in proc.stderr
     # .gitignore respected by default, not with --no-respect-gitignore; --exclude replaces the list
-    out = json.loads(run_cli("check", "-f", "json", "--no-respect-gitignore", ".", cwd=tmp_path).stdout)
+    args = ("check", "-f", "json", *config, *others, "--no-respect-gitignore", ".")
+    out = json.loads(run_cli(*args, cwd=tmp_path).stdout)
     assert {Path(f["path"]).as_posix() for f in out} == {"jobs/a.gcode", "build/b.gcode", "jobs/x.tmp.gcode"}
     # (the configuration's extend-exclude still applies, as in ruff)
     out = json.loads(
-        run_cli("check", "-f", "json", "--exclude", "jobs", "--no-respect-gitignore", ".", cwd=tmp_path).stdout
+        run_cli("check", "-f", "json", *config, "--exclude", "jobs", "--no-respect-gitignore", ".", cwd=tmp_path).stdout
     )
     assert {Path(f["path"]).as_posix() for f in out} == {"build/b.gcode"}
 
@@ -228,10 +235,10 @@ def test_a_nested_configuration_that_hides_raised_security_levels_is_said(tmp_pa
     assert run_cli("check", "--no-cache", "--fail-on", "error", str(job)).returncode == 1
     (jobs / ".gclint.toml").write_text("")  # nearest wins: SC004 is a warning again
     proc = run_cli("check", "--no-cache", "--fail-on", "error", str(job))
-    err = proc.stderr.decode()
-    assert proc.returncode == 0 and "weakens security rule SC004" in err and "do not inherit" in err, err
+    said = proc.stdout.decode()  # (the text report ends with what the configuration does, even under -q)
+    assert proc.returncode == 0 and "weakens security rule SC004" in said and "do not inherit" in said, said
     (jobs / ".gclint.toml").write_text('severity = { SC = "error" }\n')  # raised here too: nothing to say
-    assert "weakens" not in run_cli("check", "--no-cache", str(job)).stderr.decode()
+    assert "weakens" not in run_cli("check", "--no-cache", str(job)).stdout.decode()
 
 
 def test_add_noqa_leaves_the_text_of_pauses_and_actions_alone(tmp_path: Path) -> None:

@@ -362,3 +362,11 @@ def test_alignment_consumes_both_sides(source, output) -> None:
             seen_src.append(s.line)
         seen_out.extend(m.line for m in run)
     assert seen_src == [m.line for m in src] and seen_out == [m.line for m in out]
+
+
+def test_cli_diff_error_lines_escape_file_names(tmp_path: Path) -> None:
+    """Issue 25: a file name's escape sequences reached the terminal raw in diff's error lines."""
+    source = tmp_path / "x\x1b[31mred.gcode"
+    source.write_text("G28\nG1 X1 F600\n")
+    proc = run_cli("diff", str(source), str(tmp_path / "gone\x1b[2J.gcode"), "--from", "marlin", "--to", "hyrel")
+    assert proc.returncode == 2 and b"\x1b" not in proc.stderr and b"gone\\x1b[2J.gcode" in proc.stderr, proc.stderr

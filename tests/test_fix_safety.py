@@ -147,3 +147,18 @@ def test_diff_shows_the_fixes_and_writes_nothing(tmp_path: Path) -> None:
     clean.write_text("; gclint: dialect=marlin\nG1 X1 F100\n")
     proc = run_cli("check", "--diff", str(clean))
     assert proc.returncode == 0 and proc.stdout == b""
+
+
+def test_a_read_only_job_is_reported_and_left_as_it_is(tmp_path: Path) -> None:
+    """Issue 25: --fix renamed a fixed copy over a read-only job (the folder allowed it): now it says so and
+    leaves the file, its mode and its findings as they are; --add-noqa too."""
+    job = tmp_path / "a.gcode"
+    text = "; gclint: dialect=hyrel\nM109 T12 S200\nG1 X1 F600\nM30\n"  # HY008, a safe fix
+    job.write_text(text)
+    job.chmod(0o444)
+    inode = job.stat().st_ino
+    for how in ("--fix", "--add-noqa"):
+        proc = run_cli("check", "--no-cache", how, str(job))
+        assert job.read_text() == text and job.stat().st_ino == inode and job.stat().st_mode & 0o777 == 0o444
+        assert b"read-only: not rewritten" in proc.stderr, (how, proc.stderr)
+    assert run_cli("check", "--no-cache", "--fix", str(job)).returncode == 1  # the finding is still there

@@ -180,6 +180,40 @@ def test_junit_is_read_by_junitparser(jobs, tmp_path):
     assert list(suites[1])[0].is_passed
 
 
+def test_junit_writes_no_bidirectional_control_raw(tmp_path):
+    """Issue 25: a file name with U+202E (RIGHT-TO-LEFT OVERRIDE) reached the JUnit report raw, so a viewer
+    showed the name, and what followed it, reversed."""
+    name = "job\u202egcode.txt.gcode"
+    (tmp_path / name).write_text("; gclint: dialect=marlin\nM9999\n")
+    proc = check(name, "--format", "junit", cwd=tmp_path)
+    text = proc.stdout.decode()
+    assert "\u202e" not in text and "job\\u202egcode" in text, text
+    assert ET.fromstring(proc.stdout).find("testsuite").get("name") == "job\\u202egcode.txt.gcode"
+
+
+def test_configuration_notes_are_valid_sarif_and_junit(tmp_path):
+    """What the configuration switches off goes in every report: as SARIF tool configuration notifications
+    (valid against the schema) and as a JUnit suite's properties (read back by junitparser); a file that is not
+    G-code is a notification and its security findings are results."""
+    junitparser = need("junitparser")
+    (tmp_path / ".gclint.toml").write_text('ignore = ["SC", "HY"]\n')
+    (tmp_path / "a.nc").write_bytes(b"#!/bin/sh\nM792 ; SHELL C:\\x.exe\n")
+    proc = check("a.nc", "--format", "sarif", cwd=tmp_path)
+    log = json.loads(proc.stdout)
+    errors = sorted(sarif_validator().iter_errors(log), key=str)
+    assert not errors, "\n".join(str(e) for e in errors[:3])
+    invocation = log["runs"][0]["invocations"][0]
+    assert len(invocation["toolConfigurationNotifications"]) == 2 and not invocation["executionSuccessful"]
+    assert [r["ruleId"] for r in log["runs"][0]["results"]] == ["SC001"]
+    out = tmp_path / "report.xml"
+    check("a.nc", "--format", "junit", "--output", str(out), cwd=tmp_path)
+    suites = {suite.name: suite for suite in junitparser.JUnitXml.fromfile(str(out))}
+    configuration = suites["gclint configuration"]
+    assert len([p for p in configuration.properties() if p.name == "configuration"]) == 2
+    assert all(case.is_passed for case in configuration)
+    assert any(r.type == "SC001" for case in suites["a.nc"] for r in case.result)
+
+
 # -- text: full and grouped ----------------------------------------------------------------------------
 
 

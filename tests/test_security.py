@@ -145,15 +145,19 @@ def test_security_findings_are_suppressed_from_the_command_line_and_configuratio
     assert proc.returncode == 1 and [f["code"] for f in json.loads(proc.stdout)] == ["SC001"]
     proc = run_cli("check", "--no-cache", "--format", "json", "--ignore", "SC001", str(job))
     assert proc.returncode == 0 and json.loads(proc.stdout) == []
-    (tmp_path / "gclint.toml").write_text('per-file-ignores = { "job.gcode" = ["SC"] }\n')
+    config = tmp_path / "gclint.toml"
+    config.write_text('per-file-ignores = { "job.gcode" = ["SC"] }\n')
+    # found beside the job, the configuration cannot (issue 25): the user names it with --config
     proc = run_cli("check", "--no-cache", "--format", "json", str(job))
+    assert proc.returncode == 1 and [f["code"] for f in json.loads(proc.stdout)] == ["SC001"]
+    proc = run_cli("check", "--no-cache", "--format", "json", "--config", str(config), str(job))
     assert proc.returncode == 0 and json.loads(proc.stdout) == []
     # ... and such a suppression is visible: a note on stderr, in --statistics and in --show-settings
     stderr = proc.stderr.decode()
     assert "SC" in stderr and "gclint.toml" in stderr, stderr
-    proc = run_cli("check", "--no-cache", "--statistics", str(job))
+    proc = run_cli("check", "--no-cache", "--statistics", "--config", str(config), str(job))
     assert "SC001" in proc.stdout.decode() and "gclint.toml" in proc.stdout.decode(), proc.stdout
-    proc = run_cli("check", "--show-settings", str(job))
+    proc = run_cli("check", "--show-settings", "--config", str(config), str(job))
     shown = proc.stdout.decode()
     assert proc.returncode == 0 and "gclint.toml" in shown and "SC001" in shown and "job.gcode" in shown, shown
 

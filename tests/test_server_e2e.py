@@ -174,6 +174,22 @@ def test_configuration_file_and_client_settings(client, tmp_path):
     assert client.shutdown_and_exit() == 0
 
 
+def test_security_rules_switched_off_by_the_settings_are_said_and_not_by_a_found_file(client, tmp_path):
+    """Issue 25: settings that ignore SC dropped SC diagnostics without a word; a .gclint.toml beside the
+    job cannot drop them at all."""
+    (tmp_path / ".gclint.toml").write_text('ignore = ["SC"]\n')
+    uri = (tmp_path / "job.gcode").as_uri()
+    client.initialize()
+    client.open(uri, "M792 ; SHELL C:\\x.exe\n")
+    assert "SC001" in _by_code(client.diagnostics(uri))
+    seen = len(client.notifications)
+    client.notify("workspace/didChangeConfiguration", {"settings": {"gclint": {"ignore": ["SC"]}}})
+    said = client.wait_notification("window/showMessage", lambda p: "SC001" in p["message"], since=seen)
+    assert "not shown" in said["message"] and said["type"] == 2  # a warning
+    assert "SC001" not in _by_code(client.diagnostics(uri, since=seen))
+    assert client.shutdown_and_exit() == 0
+
+
 @pytest.mark.parametrize("bad", [["NOPE"], ["HY999"]])
 def test_an_unknown_rule_code_in_select_is_logged_and_the_setting_left_out(client, tmp_path, bad):
     client.initialize(options={"gclint": {"select": bad}})

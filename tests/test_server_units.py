@@ -205,7 +205,9 @@ def test_code_actions_per_line_and_kind():
     actions = convert.code_actions("file:///job.gcode", result.findings, geo, 0, 0)
     titles = [a.title for a in actions]
     assert any(t.startswith("HY008: ") for t in titles)
-    assert "HY008: suppress on this line (; noqa: HY008)" in titles
+    # (line 1 is M6, whose comment the translator carries into an M0: no noqa there, as --add-noqa)
+    second = [a.title for a in convert.code_actions("file:///job.gcode", result.findings, geo, 1, 1)]
+    assert "HY008: suppress on this line (; noqa: HY008)" in second
     assert sum(1 for a in actions if a.kind == convert.FIX_ALL_KIND) == 1
     assert any(a.kind == "quickfix" and a.title.startswith("Fix all safe") for a in actions)
     fix = next(a for a in actions if a.title.startswith("HY008: ") and a.is_preferred)
@@ -333,3 +335,36 @@ def test_check_text_cancels_and_survives_bad_text():
     assert binary.error and "binary" in binary.error
     surrogates = analysis.check_text("G1 X1 ; \ud83d\udc80 \udcff\n", "job.gcode", Options())
     assert surrogates.error is None
+
+
+def test_no_noqa_is_offered_where_it_would_do_nothing_or_change_the_command():
+    """Issue 25: the server offered "; noqa" for SC findings (a job cannot silence them) and on M0/M792 lines
+    (the comment is what the printer says or runs: a noqa there changes it)."""
+    text = "M792 ; SHELL C:\\x.exe\nM0 T40 ; SAY hello\nM109 T40 S200\nM98 P1234\n"
+    result = Linter(Options(dialect="hyrel")).check_text(text, "job.gcode")
+    geo = convert.Geometry(Snapshot(text))
+    codes = {(f.line, f.code[:2]) for f in result.findings}
+    assert {(1, "SC"), (2, "DL"), (3, "HY"), (4, "DL"), (4, "SC")} <= codes, codes
+
+    def noqa(line: int) -> list[str]:
+        actions = convert.code_actions("file:///job.gcode", result.findings, geo, line - 1, line - 1)
+        return [a.title.split(":")[0] for a in actions if "noqa" in a.title]
+
+    assert noqa(1) == [] and noqa(2) == []  # SC001; and the M0 line whose comment is what it says
+    assert noqa(3) == ["HY003"] and noqa(4) == ["DL001"]  # (M98 P1234: DL001 may be silenced, SC004 not)
+
+
+def test_settings_that_switch_security_rules_off_are_said():
+    assert analysis.security_off(Options()) is None
+    said = analysis.security_off(Options(ignore=["SC001", "SC003"]))
+    assert said is not None and "SC001, SC003" in said and "not shown" in said
+    # a configuration found beside the document cannot switch them off (gclint.trust): nothing to say
+    assert analysis.security_off(analysis.document_options(None, analysis.Settings(ignore=("SC",)))[0]) is not None
+
+
+def test_a_found_configuration_does_not_switch_security_rules_off_in_the_editor(tmp_path):
+    (tmp_path / ".gclint.toml").write_text('ignore = ["SC"]\n')
+    options, problem = analysis.document_options(str(tmp_path / "job.gcode"), analysis.Settings())
+    assert problem is None and analysis.security_off(options) is None
+    result = analysis.check_text("M792 ; SHELL C:\\x.exe\n", str(tmp_path / "job.gcode"), options)
+    assert [f.code for f in result.findings if f.code.startswith("SC")] == ["SC001"]

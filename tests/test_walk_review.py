@@ -98,12 +98,13 @@ def test_exclude_patterns_still_exclude_tracked_jobs_but_say_so(tmp_path: Path) 
     repo = _repo(tmp_path)
     (repo / "gclint.toml").write_text('extend-exclude = ["jobs/evil.gcode"]\n')
     _git(repo, "add", "jobs")
-    proc = run_cli("check", "--no-cache", "--", "jobs", cwd=repo)
+    config = ("--config", "gclint.toml")  # the user's own configuration (a found one cannot exclude: issue 25)
+    proc = run_cli("check", "--no-cache", *config, "--", "jobs", cwd=repo)
     assert proc.returncode == 0 and b"SC001" not in proc.stdout  # the user asked for it
     assert "gclint: note: 1 G-code file excluded (extend-exclude: jobs/evil.gcode); -v lists them" in _notes(proc)
-    proc = run_cli("check", "--no-cache", "-v", "--", "jobs", cwd=repo)
+    proc = run_cli("check", "--no-cache", "-v", *config, "--", "jobs", cwd=repo)
     assert "gclint: note: jobs/evil.gcode: excluded by extend-exclude 'jobs/evil.gcode' (gclint.toml)" in _notes(proc)
-    proc = run_cli("check", "--no-cache", "--force-exclude", "--", "jobs/evil.gcode", cwd=repo)
+    proc = run_cli("check", "--no-cache", "--force-exclude", *config, "--", "jobs/evil.gcode", cwd=repo)
     assert proc.returncode == 0
     err = proc.stderr.decode()
     assert "no files left to check (all excluded): 1 G-code file excluded (extend-exclude: jobs/evil.gcode)" in err
@@ -118,7 +119,7 @@ def test_an_excluded_folder_is_counted_and_its_first_files_named(tmp_path: Path)
     (tmp_path / "archive" / "notes.txt").write_text("not G-code\n")
     (tmp_path / "ok.gcode").write_text(CLEAN)
     (tmp_path / "gclint.toml").write_text('extend-exclude = ["archive"]\n')
-    proc = run_cli("check", "--no-cache", ".", cwd=tmp_path)
+    proc = run_cli("check", "--no-cache", "--config", "gclint.toml", ".", cwd=tmp_path)
     assert proc.returncode == 0
     names = ", ".join(f"archive/old{n}.gcode" for n in range(3))
     assert f"gclint: note: 5 G-code files excluded (extend-exclude: {names} and 2 more); -v lists them" in _notes(
@@ -142,17 +143,38 @@ def test_past_the_counting_budget_an_excluded_folder_is_named(tmp_path: Path, mo
 
 
 @needs_git
-def test_without_git_the_gitignore_applies_and_says_what_it_left_out(tmp_path: Path) -> None:
+def test_without_git_neither_gitignore_nor_tool_folders_leave_anything_out(tmp_path: Path) -> None:
+    """Issue 25: when git cannot say which files it tracks, a .gitignore from the change (or a
+    node_modules folder) must not hide the tracked jobs it names: everything is checked, with one note."""
     repo = _repo(tmp_path)
     (repo / ".gitignore").write_text("evil.gcode\n")
-    _git(repo, "add", "-f", "jobs/evil.gcode")
+    (repo / "jobs" / "node_modules").mkdir()
+    (repo / "jobs" / "node_modules" / "dep.gcode").write_text(HOSTILE)
+    _git(repo, "add", "-f", "jobs/evil.gcode", "jobs/node_modules/dep.gcode")
     no_git = tmp_path / "empty-path"
     no_git.mkdir()
-    proc = run_cli("check", "--no-cache", "--", "jobs", cwd=repo, env={"PATH": str(no_git)})
+    proc = run_cli("check", "--no-cache", "-f", "json", "--", "jobs", cwd=repo, env={"PATH": str(no_git)})
     notes = _notes(proc)
-    assert proc.returncode == 0
-    assert any("cannot tell which files git tracks (git is not installed)" in n for n in notes), notes
-    assert any("1 G-code file excluded (.gitignore: jobs/evil.gcode)" in n for n in notes), notes
+    assert proc.returncode == 1, proc.stderr
+    assert {("jobs/evil.gcode", "SC001"), ("jobs/node_modules/dep.gcode", "SC001")} <= _codes(proc)
+    [note] = [n for n in notes if "git" in n]
+    assert "cannot tell which files git tracks (git is not installed)" in note and "every G-code file" in note
+    assert not any("excluded" in n for n in notes), notes
+
+
+@needs_git
+def test_when_git_refuses_the_repository_nothing_is_left_out(tmp_path: Path) -> None:
+    """ "dubious ownership" (a checkout owned by another user, as in CI containers): git answers nothing."""
+    repo = _repo(tmp_path)
+    (repo / ".gitignore").write_text("evil.gcode\n")
+    fake = tmp_path / "bin"
+    fake.mkdir()
+    git = fake / "git"
+    git.write_text("#!/bin/sh\necho \"fatal: detected dubious ownership in repository at '$PWD'\" >&2\nexit 128\n")
+    git.chmod(0o755)
+    proc = run_cli("check", "--no-cache", "-f", "json", "--", "jobs", cwd=repo, env={"PATH": f"{fake}:/usr/bin:/bin"})
+    assert proc.returncode == 1 and ("jobs/evil.gcode", "SC001") in _codes(proc), proc.stderr
+    assert any("dubious ownership" in n and "every G-code file" in n for n in _notes(proc)), _notes(proc)
 
 
 @needs_git
@@ -240,9 +262,10 @@ def test_a_link_to_a_file_outside_the_folder_is_not_read(tmp_path: Path) -> None
     (jobs / "ok.gcode").write_text(CLEAN)
     (jobs / "k.gcode").symlink_to(secret)
     proc = run_cli("check", "--no-cache", "-f", "sarif", "--", "jobs", cwd=jobs.parent)
-    assert b"PRIVATE-KEY-MATERIAL" not in proc.stdout and b"jobs/k.gcode" not in proc.stdout
-    assert any("jobs/k.gcode: a symbolic link to a file outside jobs" in n and "not read" in n for n in _notes(proc))
-    assert proc.returncode == 0
+    assert b"PRIVATE-KEY-MATERIAL" not in proc.stdout
+    errors = [line for line in proc.stderr.decode().splitlines() if "jobs/k.gcode" in line]
+    assert len(errors) == 1 and "a symbolic link to a file outside this checkout" in errors[0], errors
+    assert "not read" in errors[0] and proc.returncode == 2  # (a job the gate could not read: issue 25)
     # named, it is read: the user asked for it
     proc = run_cli("check", "--no-cache", "-f", "sarif", "--", "jobs/k.gcode", cwd=jobs.parent)
     assert b"jobs/k.gcode" in proc.stdout

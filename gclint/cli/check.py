@@ -208,10 +208,19 @@ def check(
         _fail(f"{config_file}: configuration file not found")
 
     walk_notes: list[str] = []
-    walked: set[str] = set()
+    from gclint.config import check_pattern
     from gclint.excludes import Excluder, LeftOut
 
+    try:
+        for pattern in _split(exclude):
+            check_pattern(pattern, "--exclude")
+        for pattern in _split(extend_exclude):
+            check_pattern(pattern, "--extend-exclude")
+    except ConfigError as exc:
+        _fail(str(exc))
     left_out: list[LeftOut] = []
+    security_only: list[LeftOut] = []  # excluded by a configuration found beside them: SC rules only
+    links: dict[str, str] = {}  # a link checked under its own name -> the file it points to
     walk_roots: dict[str, str] = {}  # file found in a walk -> the real path of the folder walked
 
     excluder = Excluder(
@@ -223,9 +232,9 @@ def check(
     )
     if stdin_filename and not paths:
         paths = ("-",)  # --stdin-filename alone reads standard input (ruff)
-    files, problems = runner.collect(paths or (".",), walk_notes, excluder, walked, left_out, walk_roots)
-    if force_exclude:  # (pre-commit passes every staged .nc and .g by name: one that is not G-code is skipped)
-        walked.update(f for f in files if f != "-")
+    files, problems = runner.collect(
+        paths or (".",), walk_notes, excluder, left_out, walk_roots, security_only=security_only, links=links
+    )
     if "-" in files and stdin_filename and (why := excluder.excluded(stdin_filename, False, named=True)):
         files = [f for f in files if f != "-"]  # --force-exclude: the file it stands for is excluded
         left_out.append(LeftOut(stdin_filename, why))
@@ -267,10 +276,11 @@ def check(
             runner.options_for(stdin_filename or path if path == "-" else path, Options(), overrides, config_file)
         except ConfigError as exc:
             _fail(str(exc))
-    suppressions = settings.security_suppressions(files, overrides, config_file)
-    for note in suppressions:
-        if note.from_config:
-            _note(note.describe(), always=True)
+    configuration = settings.configuration_notes(files, overrides, config_file)
+    configuration += _exclusion_notes(left_out, security_only)
+    if fmt not in TEXT_FORMATS:  # (the text formats end with them, on standard output)
+        for note in configuration:
+            _note(note, always=True)
     from gclint import progress as progress_bar
     from gclint.cache import ResultCache
 
@@ -282,15 +292,15 @@ def check(
         "stdin_name": stdin_filename or "-",
         "progress": bar.advance if bar is not None else None,
         "cache": cache,
+        "security_only": {item.path for item in security_only},
+        "links": links,
     }
     if not (fix or show_diff or add_noqa):  # file by file: memory does not grow with the run
-        ctx = ReportContext(
-            tool_version=__version__, group=not no_group, suppressions=[n.describe() for n in suppressions]
-        )
+        ctx = ReportContext(tool_version=__version__, group=not no_group, configuration=configuration)
         report = reports(statistics)[fmt]
         with _checking(bar):
             checked = runner.results(files, Options(), overrides, **run_options)
-            tally, slim = _report(report, ctx, output, problems, checked, walked, bar)
+            tally, slim = _report(report, ctx, output, problems, checked, bar)
         for note in cache.notes if cache is not None else ():
             _note(note)
         if verbose or fmt not in MACHINE_FORMATS:  # after the report: a report that cannot be written is one line
@@ -307,11 +317,13 @@ def check(
         results = runner.run(files, Options(), overrides, **run_options)
     if fix or show_diff or add_noqa:  # never through a link put in a walked folder since it was walked
         for i, r in enumerate(results):
+            if r.path in links:  # (found as a link: its findings carry no fix, and no noqa is written)
+                continue
             if (target := runner.outside_walk(r.path, walk_roots)) is not None:
                 error = f"{r.path}: now a link to {target}, outside the folder: not fixed"
                 results[i] = FileResult(r.path, error=error)
     if add_noqa:
-        sys.exit(_add_noqa(problems + results))
+        sys.exit(_add_noqa(problems + results, links))
     fixed = None
     if fix or show_diff:
         results, fixed = _apply_fixes(
@@ -321,22 +333,13 @@ def check(
             remaining = sum(len(r.findings) for r in results)
             click.echo(f"Would fix {fixed} finding{'s' if fixed != 1 else ''} ({remaining} remaining).", err=True)
             sys.exit(2 if any(r.error for r in results + problems) else 1 if fixed else 0)
-    # a file found in a folder that is something else (a NetCDF .nc, an ANTLR .g): skipped, with a note
-    for r in results:
-        if runner.skippable(r, walked):
-            _note(f"{r.error}: skipped")
-    results = problems + [r for r in results if not runner.skippable(r, walked)]
+    results = problems + results
     for note in cache.notes if cache is not None else ():
         _note(note)
     for r in results:
         if r.error:
             _error(r.error)
-    ctx = ReportContext(
-        tool_version=__version__,
-        fixed=fixed,
-        group=not no_group,
-        suppressions=[n.describe() for n in suppressions],
-    )
+    ctx = ReportContext(tool_version=__version__, fixed=fixed, group=not no_group, configuration=configuration)
     writer = writers[fmt]
     if statistics:  # the counts instead of the findings, as ruff does (JSON with --format json)
         from gclint.reports import json_report, text
@@ -396,7 +399,7 @@ def _apply_fixes(
     return out, fixed
 
 
-def _add_noqa(results: list[FileResult]) -> int:
+def _add_noqa(results: list[FileResult], links: dict[str, str]) -> int:
     """``--add-noqa``: suppress what each file has now, line by line; says how many lines it marked."""
     from gclint.fixes import add_noqa
     from gclint.textsafe import human
@@ -406,6 +409,10 @@ def _add_noqa(results: list[FileResult]) -> int:
         if r.error is not None:
             _error(r.error)
             failed = True
+            continue
+        if r.path in links:
+            if r.findings:
+                _note(f"{r.path}: a link found in a folder: no noqa added (check the file it points to)")
             continue
         outcome = add_noqa(r)
         added += outcome.fixed
@@ -474,6 +481,23 @@ def _cache_where(files: list[str], cache_dir: str | None, no_cache: bool) -> str
     return ", ".join(folders) if folders else "(nothing to cache)"
 
 
+TEXT_FORMATS = frozenset({"text", "concise", "full", "grouped"})  # (their summary carries the configuration notes)
+
+
+def _exclusion_notes(left_out: list, security_only: list) -> list[str]:
+    """What the user's patterns leave out and what a found configuration tried to, for every report."""
+    from gclint.excludes import security_only_summary, summary
+
+    notes = []
+    chosen = summary([x for x in left_out if x.why.chosen])
+    if chosen:
+        notes.append(chosen)
+    tried = security_only_summary(security_only)
+    if tried:
+        notes.append(tried)
+    return notes
+
+
 MAX_JOBS = 64
 
 
@@ -514,14 +538,13 @@ class _Stdout:
         _abandon_stdout()
 
 
-def _report(report_class, ctx, output: str | None, problems: list[FileResult], checked, walked: set[str], bar):
+def _report(report_class, ctx, output: str | None, problems: list[FileResult], checked, bar):
     """Write the report as results come (``checked``, after ``problems``), keeping only the counts and, of
     each file, what the notes need (not its findings).  Returns the ``Tally`` and those slim results.  A
     report file is written to a temporary file renamed at the end: never half-written."""
     from contextlib import nullcontext
     from dataclasses import replace
 
-    from gclint import runner
     from gclint.io import AtomicWriter, OutputError, TextOutput
 
     slim: list[FileResult] = []
@@ -535,11 +558,6 @@ def _report(report_class, ctx, output: str | None, problems: list[FileResult], c
             report.add(r)
             slim.append(r)
         for r in checked:
-            # a file found in a folder that is something else (a NetCDF .nc, an ANTLR .g): skipped, with a note
-            if runner.skippable(r, walked):
-                with above():
-                    _note(f"{r.error}: skipped")
-                continue
             if r.error:
                 with above():
                     _error(r.error)

@@ -10,6 +10,7 @@ import click
 from gclint.cli.app import (
     _check_dialect,
     _check_printer,
+    _error,
     _fail,
     main,
 )
@@ -27,7 +28,8 @@ from gclint.rules.base import RuleError
     help="Remove this cache folder's results instead (as given to 'check').",
 )
 def clean(paths: tuple[str, ...], everything: bool, cache_dir: str | None) -> None:
-    """Remove the result cache of the project of PATHS (default: the current folder)."""
+    """Remove the result cache of the project of PATHS (default: the current folder): only the entries
+    gclint wrote, in a folder gclint marked as its cache."""
     from pathlib import Path
 
     from gclint import cache
@@ -43,12 +45,20 @@ def clean(paths: tuple[str, ...], everything: bool, cache_dir: str | None) -> No
         for p in paths or (".",):
             if os.path.isdir(p):
                 folders = sorted(set(folders) | set(cache.projects_under(root, Path(p))))
+    refused = False
     for folder in folders:
-        removed = cache.clean(folder)
+        try:
+            removed = cache.clean(folder)
+        except cache.NotACache as exc:
+            _error(str(exc))
+            refused = True
+            continue
         if removed:
             click.echo(f"removed {removed} cached result{'s' if removed != 1 else ''} from {human(str(folder))}")
         else:
             click.echo(f"no cached results in {human(str(folder))}")
+    if refused:
+        sys.exit(2)
 
 
 @main.command()

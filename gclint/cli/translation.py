@@ -170,18 +170,24 @@ def diff(
     except (ConfigError, ValueError) as exc:
         _fail(str(exc))
         return
-    code = run_diff(
-        source_path,
-        output_path,
-        src,
-        dst,
-        fmt=fmt,
-        explain=not no_explain,
-        fail_on=fail_on,
-        printer=_check_printer(printer),
-        tool_map=mapping,
-        config_file=config_file,
-        flow=flow,
-        settings=extra,
-    )
+    from gclint.textsafe import HumanStream
+
+    stderr, sys.stderr = sys.stderr, HumanStream(sys.stderr)  # type: ignore[assignment]
+    try:  # (its error lines name the files: a name's escape sequences must not reach the terminal)
+        code = run_diff(
+            source_path,
+            output_path,
+            src,
+            dst,
+            fmt=fmt,
+            explain=not no_explain,
+            fail_on=fail_on,
+            printer=_check_printer(printer),
+            tool_map=mapping,
+            config_file=config_file,
+            flow=flow,
+            settings=extra,
+        )
+    finally:
+        sys.stderr = stderr
     sys.exit(code)

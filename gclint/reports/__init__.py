@@ -21,7 +21,9 @@ class ReportContext:
     rules: dict = field(default_factory=dict)  # code -> rule class, for formats that describe rules
     fixed: int | None = None  # with --fix: how many findings were fixed
     group: bool = True  # text, full, grouped: one code's findings in a file after the first few as one line
-    suppressions: list[str] = field(default_factory=list)  # security rules switched off, and by what
+    # what the configuration switches off or excludes, and what a found one asked in vain (every format says
+    # it: gclint.settings.configuration_notes)
+    configuration: list[str] = field(default_factory=list)
 
 
 Writer = Callable[[list[FileResult], TextIO, ReportContext], None]

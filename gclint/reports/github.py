@@ -33,13 +33,17 @@ def _command(kind: str, properties: dict[str, object], text: str) -> str:
 
 
 class GithubReport(Report):
+    def __init__(self, out: TextIO, ctx) -> None:
+        super().__init__(out, ctx)
+        for note in ctx.configuration:  # first: what the configuration switches off or excludes
+            out.write(_command("warning", {"title": "gclint configuration"}, human(note)) + "\n")
+
     def write_file(self, r: FileResult) -> None:
         out = self.out
         # (line breaks kept for escape_property to write as %0A, as GitHub reads them back)
         path = human(r.path, keep_line_breaks=True).replace("\t", "\\x09")
         if r.error:
             out.write(_command("error", {"file": path, "title": "gclint"}, human(r.error)) + "\n")
-            return
         for f in r.findings:
             props: dict[str, object] = {"file": path, "line": f.line, "col": f.column}
             if f.end_column is not None and f.end_column > f.column:

@@ -285,6 +285,7 @@ class HtmlReport(Report):
             sections=Markup(marker),
             totals=tally.totals(),
             unreadable=tally.unread,
+            configuration=[human(note) for note in self.ctx.configuration],
             rules=[docs[c] for c in sorted(docs)],
             nonce=nonce,
             severity_colors=SEVERITY_COLORS,

@@ -2,9 +2,10 @@
 
 One ``<testsuite>`` per file; each finding is a ``<testcase>`` with a ``<failure>`` (type = the rule code,
 message = the finding, text = the location and the line with secrets masked); a clean file is one
-passing test case; a file that could not be read is a test case with an ``<error>``.  ElementTree
-escapes ``& < > "``; characters XML 1.0 cannot carry at all (controls, undecodable bytes) are shown as
-``\\xNN`` first.
+passing test case; a file that could not be read is a test case with an ``<error>``.  What the
+configuration switches off or excludes comes first, as the properties of a suite of its own (``gclint
+configuration``).  ElementTree escapes ``& < > "``; characters XML 1.0 cannot carry at all (controls,
+undecodable bytes) and the invisible format characters (U+202E) are shown as ``\\xNN``/``\\uNNNN`` first.
 """
 
 from __future__ import annotations
@@ -72,6 +73,24 @@ def _suite(index: int, r: FileResult, timestamp: str, hostname: str) -> tuple[ET
     return suite, tests, failures, errors
 
 
+def _configuration_suite(notes: list[str], timestamp: str, hostname: str) -> ET.Element:
+    """What the configuration switches off or excludes: a property each, and one passing test case whose
+    output lists them (CI servers that show no properties show that)."""
+    suite = ET.Element(
+        "testsuite", name="gclint configuration", id="configuration", hostname=hostname, timestamp=timestamp
+    )
+    suite.set("time", "0")
+    suite.set("skipped", "0")
+    props = ET.SubElement(suite, "properties")
+    for note in notes:
+        ET.SubElement(props, "property", name="configuration", value=printable(note))
+    case = ET.SubElement(suite, "testcase", name="configuration", classname="gclint", time="0")
+    ET.SubElement(case, "system-out").text = "\n".join(printable(note) for note in notes)
+    for key, value in (("tests", "1"), ("failures", "0"), ("errors", "0")):
+        suite.set(key, value)
+    return suite
+
+
 def _stamp() -> tuple[str, str]:
     timestamp = datetime.now(UTC).replace(microsecond=0).strftime("%Y-%m-%dT%H:%M:%S")
     return timestamp, printable(socket.gethostname() or "localhost")
@@ -82,6 +101,9 @@ def build(results: list[FileResult], ctx) -> ET.Element:
     timestamp, hostname = _stamp()
     suites = ET.Element("testsuites", name="gclint")
     totals = [0, 0, 0]
+    if ctx.configuration:
+        suites.append(_configuration_suite(ctx.configuration, timestamp, hostname))
+        totals[0] += 1
     for index, r in enumerate(results):
         suite, *numbers = _suite(index, r, timestamp, hostname)
         suites.append(suite)
@@ -107,6 +129,11 @@ class JunitReport(Report):
         self._spool = Spool()
         self._index = 0
         self._totals = [0, 0, 0]
+        if ctx.configuration:
+            suite = _configuration_suite(ctx.configuration, *self._stamp)
+            ET.indent(suite, level=1)
+            self._spool.write("\n  " + ET.tostring(suite, encoding="unicode"))
+            self._totals[0] += 1
 
     def write_file(self, r: FileResult) -> None:
         suite, *numbers = _suite(self._index, r, *self._stamp)

@@ -3,7 +3,9 @@
 One run; ``tool.driver.rules`` describes every rule that produced a result (summary, explanation with
 examples as help text, ``helpUri``, default level); each result points at ``path:line:column`` with the
 line (secrets masked) as its snippet.  Files that could not be read become tool execution
-notifications, and the invocation is then marked unsuccessful.
+notifications, and the invocation is then marked unsuccessful (what the security rules still found in a
+file that is not G-code is listed as results too).  What the configuration switches off or excludes is a
+tool configuration notification (``ReportContext.configuration``).
 """
 
 from __future__ import annotations
@@ -118,7 +120,8 @@ class SarifReport(Report):
                     "locations": [{"physicalLocation": {"artifactLocation": _location(uri, base)}}],
                 }
             )
-            return
+            if not r.findings:
+                return
         if r.path not in self._artifact_index:
             self._artifact_index[r.path] = len(self.artifacts)
             artifact: dict = {"location": _location(uri, base), "sourceLanguage": "gcode"}
@@ -160,6 +163,11 @@ class SarifReport(Report):
         invocation: dict = {"executionSuccessful": not notifications}
         if notifications:
             invocation["toolExecutionNotifications"] = notifications
+        if self.ctx.configuration:
+            invocation["toolConfigurationNotifications"] = [
+                {"level": "warning", "message": {"text": clean(note)}, "descriptor": {"id": "gclint/configuration"}}
+                for note in self.ctx.configuration
+            ]
         run: dict = {
             "tool": {
                 "driver": {

@@ -45,8 +45,6 @@ def write_summary(results: list[FileResult] | Tally, out: TextIO, ctx) -> None:
     files_with = tally.files_with
     if ctx.statistics:
         write_statistics(tally, out)
-        for note in ctx.suppressions:
-            out.write(f"{'-':>7}  {human(note)}\n")
     n = tally.total
     parts = [f"{total[k]} {k}{'s' if total[k] != 1 else ''}" for k in ("error", "warning", "info") if total[k]]
     files = f" in {files_with} file{'s' if files_with != 1 else ''}" if n else ""
@@ -72,6 +70,8 @@ def write_summary(results: list[FileResult] | Tally, out: TextIO, ctx) -> None:
     checked_as = read_as_line(tally)
     if checked_as:
         out.write(checked_as + "\n")
+    for note in ctx.configuration:  # (never left out: -q drops notes on stderr, not these)
+        out.write(f"Configuration: {human(note)}\n")
 
 
 def read_as_line(results: list[FileResult] | Tally) -> str:

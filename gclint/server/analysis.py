@@ -148,6 +148,22 @@ def document_options(path: str | None, settings: Settings) -> tuple[Options, str
         return replace(Options(), **overrides), f"{path}: configuration not read: {exc.strerror or exc}"
 
 
+def security_off(options: Options) -> str | None:
+    """One line when the options switch security rules off, or None.  A configuration found beside the
+    document cannot (gclint.trust): the editor's settings did, and the user is told that those findings
+    are not shown rather than left to think the job is clean."""
+    from gclint.rules.base import all_rules
+    from gclint.trust import SECURITY, selected
+
+    on = set(selected(options))
+    off = [code for code, rule in all_rules().items() if code.startswith(SECURITY) and rule.default_enabled]
+    off = [code for code in off if code not in on]
+    if not off:
+        return None
+    what = f"security rule{'s' if len(off) != 1 else ''} {', '.join(off)}"
+    return f"the editor's settings (select/ignore) switch off {what}: their findings are not shown"
+
+
 # -- checking -------------------------------------------------------------------------------------------
 
 

@@ -13,7 +13,7 @@ from collections.abc import Iterable, Sequence
 
 from lsprotocol import types as lsp
 
-from gclint.noqa import noqa_insertion
+from gclint.noqa import INLINE_UNSUPPRESSIBLE, noqa_insertion, text_code
 from gclint.rules.base import Edit, Finding, Fix, Severity, rule_url
 from gclint.server.analysis import HoverTarget
 from gclint.server.text import UTF16, Snapshot, char_to_units
@@ -147,6 +147,15 @@ def fix_all_edits(findings: Sequence[Finding], geo: Geometry) -> list[lsp.TextEd
     return [_text_edit(e, geo) for e in _without_overlaps(edits)]
 
 
+def noqa_offered(finding: Finding, geo: Geometry) -> bool:
+    """Whether "suppress with noqa" is offered for ``finding``: never for a security finding (a job cannot
+    silence those: the comment would do nothing) nor on a pause or action line, whose comment is what the
+    printer says or does (``M792 ; SHELL ...``: a noqa there changes the command)."""
+    if finding.code.startswith(INLINE_UNSUPPRESSIBLE):
+        return False
+    return text_code(geo.snapshot.line(geo.line_index(finding.line))) is None
+
+
 def noqa_edit(geo: Geometry, line: int, code: str) -> lsp.TextEdit:
     """The edit that suppresses ``code`` on ``line`` (1-based), as ``check --add-noqa`` writes it
     (gclint.noqa: first in the line's ``noqa: ...`` list, else `` ; noqa: CODE`` at the end)."""
@@ -210,6 +219,8 @@ def code_actions(
             if key in seen:
                 continue
             seen.add(key)
+            if not noqa_offered(f, geo):
+                continue
             out.append(
                 lsp.CodeAction(
                     title=f"{f.code}: suppress on this line (; noqa: {f.code})",

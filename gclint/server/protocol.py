@@ -202,6 +202,16 @@ class GclintServer(LanguageServer):
             self.logged.add(message)
             self.log(message, kind)
 
+    def warn_once(self, message: str) -> None:
+        """A warning the user should see (window/showMessage) and in the log, once."""
+        if message in self.logged:
+            return
+        self.log_once(message)
+        try:
+            self.window_show_message(lsp.ShowMessageParams(type=lsp.MessageType.Warning, message=f"gclint: {message}"))
+        except Exception:  # the client is gone: nothing more to say
+            pass
+
     def report_server_error(self, error: Exception, source: Any) -> None:
         """pygls' out-of-band errors (a message that is not JSON, a failing notification): a line in the
         client's log, not a pop-up."""
@@ -236,6 +246,8 @@ class GclintServer(LanguageServer):
             options, problem = analysis.document_options(doc.path, self.settings)
             if problem:
                 self.log_once(problem)
+            if (off := analysis.security_off(options)) is not None:
+                self.warn_once(off)
             encoding = self.encoding
             loop = asyncio.get_running_loop()
             work = functools.partial(_analyse, snapshot, doc.name, options, cancel, encoding)
