@@ -19,8 +19,8 @@ import math
 import re
 from dataclasses import asdict, dataclass, field
 
-from gclint.context import Context
 from gclint import dialects
+from gclint.context import Context
 from gclint.engine import Linter, Options
 from gclint.simulate import simulator_for
 from gclint.simulate.events import Dwell, Flow, Heat, Move

@@ -98,7 +98,7 @@ def test_the_consumers_agree(job: Path, tmp_path: Path) -> None:
     for chunk in source.chunks():
         for raw, ending in chunk:
             number += 1
-            if state.after_m30 and not interpreter.semantics.effects.get("M30") == "end-of-job":
+            if state.after_m30 and interpreter.semantics.effects.get("M30") != "end-of-job":
                 break
             parsed = parse_line(raw)
             line = Line(number, raw, ending, parsed)

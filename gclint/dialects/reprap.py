@@ -48,6 +48,7 @@ def system_file(path: str) -> bool:
     parts = path.replace("\\", "/").lower().split("/")
     return len(parts) >= 2 and parts[-2] == "sys" and parts[-1].endswith(".g")
 
+
 # What the common codes do, for ``gclint explain`` (Duet G-code dictionary; dialects.md 1 [RRF]).
 _MOVE = {
     "X": "X",

@@ -528,12 +528,16 @@ class Simulator:
         listening = self.listening
         if end == start and arc is None:
             if listening and delta:  # an extruder-only move (a retraction, a prime): an event
-                self._events.append(self.located(Move(self.line, start, end, None, delta, feed, self.look(), rapid, working=False)))
+                self._events.append(
+                    self.located(Move(self.line, start, end, None, delta, feed, self.look(), rapid, working=False))
+                )
             return None  # no motion (an extruder-only move, or a feed word)
         printing = native or (delta is not None and delta > 1e-9)
         if not printing and (rapid or not (self.cnc or self.cutting())):
             if listening:  # a travel move: an event, not a synchronisation point
-                travel = Move(self.line, start, end, arc, delta, feed, self.look(), rapid, self.frame, tuple(self.anchor), False)
+                travel = Move(
+                    self.line, start, end, arc, delta, feed, self.look(), rapid, self.frame, tuple(self.anchor), False
+                )
                 self._events.append(self.located(travel))
             return None
         e = NATIVE if native else (delta if printing else None)

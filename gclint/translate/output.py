@@ -143,7 +143,11 @@ class LineEdit:
         several = len(line.parsed.commands) > 1  # one command a line, as the Hyrel pages show
         if not annotate and not self.before and not self.after and not self.dropped and not self.strip_comments:
             # the common case (one command rewritten in place): no list juggling
-            main = _apply(line, self.replaced, ending or default_ending, self.order) if self.replaced or several else line.raw
+            main = (
+                _apply(line, self.replaced, ending or default_ending, self.order)
+                if self.replaced or several
+                else line.raw
+            )
             if main is None:
                 return []
             return [main, ending]
