@@ -13,6 +13,9 @@ class Options:
     dialect: str = "auto"
     printer: str | None = None  # a Hyrel model; None = read it from the job (else the default, 30m)
     dialect_origin: str = "option"  # where an explicit dialect/printer came from: option or configuration
+    # the dialect was said by the user (the command line, an editor, --config), not by a configuration found beside
+    # the files, which a change can add (gclint.trust): only the user's word relaxes a security rule
+    dialect_trusted: bool = True
     printer_origin: str = "option"
     flavor: str | None = None  # the firmware of a Marlin/RepRap/CNC file (klipper); None = read it from the file
     flavor_origin: str = "option"
@@ -34,6 +37,7 @@ class Options:
                 self.dialect,
                 self.printer,
                 self.dialect_origin,
+                self.dialect_trusted,
                 self.printer_origin,
                 self.flavor,
                 self.flavor_origin,

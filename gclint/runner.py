@@ -356,6 +356,8 @@ def configured(path: str, base: Options, overrides: dict, explicit_config: str |
     options = replace(options, **overrides) if overrides else options
     if config_path is None or explicit_config is not None:
         return options, []
+    if options.dialect_origin == "configuration" and "dialect" not in (overrides or {}):
+        options = replace(options, dialect_trusted=False)  # (said by the found configuration)
     return guard(options, replace(base, **overrides) if overrides else base)
 
 

@@ -145,3 +145,16 @@ def test_guard_keeps_what_the_command_line_selects() -> None:
     # the command line's own choice stands: --select HY leaves no security rule to keep
     options, refusals = guard(found, Options(select=["HY"]))
     assert refusals == []
+
+
+def test_a_found_configuration_does_not_choose_the_dialect_that_exempts_settings_codes(tmp_path: Path) -> None:
+    """Marlin's M500/M502/M504 are its EEPROM settings only where the user said Marlin: a ``.gclint.toml`` that a
+    change adds beside the job cannot say so (on a Carvera M502 deletes the config override)."""
+    jobs = tmp_path / "jobs"
+    jobs.mkdir()
+    (jobs / ".gclint.toml").write_text('dialect = "marlin"\n')
+    (jobs / "job.gcode").write_text("M106 S255\nM502\n")
+    found = run_cli("check", "--format", "json", str(jobs))
+    assert found.returncode == 1 and "SC005" in {f["code"] for f in json.loads(found.stdout)}
+    said = run_cli("check", "--format", "json", "--dialect", "marlin", str(jobs / "job.gcode"))
+    assert said.returncode == 0, said.stdout

@@ -309,9 +309,10 @@ class ChangesPrinterFiles(_SecurityRule):
         super().__init__(ctx)
         # M500/M502/M504 are the EEPROM settings only where the dialect says Marlin and the user said so:
         # a job chooses what it is detected as, and on a Carvera M502 deletes the config override.
-        self.settings_in_eeprom = ctx.dialect.semantics.effect("M502") == "factory-settings" and ctx.context.origin in (
-            OPTION,
-            CONFIGURATION,
+        self.settings_in_eeprom = (
+            ctx.dialect.semantics.effect("M502") == "factory-settings"
+            and ctx.context.origin in (OPTION, CONFIGURATION)
+            and ctx.options.dialect_trusted  # (not a configuration found beside the job: a change can add one)
         )
 
     def inspect(self, line: Line, code: str, rest: str, column: int, cmd: Command | None) -> None:
