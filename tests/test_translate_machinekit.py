@@ -42,6 +42,26 @@ MACHINEKIT = [
     Row("LinuxCNC G28 Z5: through Z5 first", "G28 Z5", "G0 Z5\nG28 Z0\nG54\nT0", "TR003"),
     Row("LinuxCNC G30: the second stored position", "G30", "G28 X0 Y0 Z0\nG54\nT0", "TR003"),
     Row("Machinekit FDM G30 probes", "G30", "", "TR002", settings=FDM),
+    # LinuxCNC's order of execution (overview.adoc): spindle and coolant before the motion, the dwell before it too
+    Row(
+        "LinuxCNC order: M3 and M8 before the plunge",
+        "G1 Z-1 F100 S1000 M3 M8",
+        "M3 T0 S6.7\nM8\nG1 Z-1 F100",
+        "TR003",
+    ),
+    Row("LinuxCNC order: G4 before the cut", "G1 X10 F100 G4 P0.5", "G4 S0.5\nG1 X10 F100", "TR004"),
+    # G90.1: I J are the centre's coordinates (g-code.adoc, "G90.1, G91.1 Arc Distance Mode")
+    Row(
+        "G90.1: absolute centres become offsets",
+        "G0 X10 Y0\nG90.1\nG2 X-10 Y0 I0 J0 F100\nG91.1\nG2 X10 Y0 I10 J0",
+        "G0 X10 Y0\nG2 X-10 Y0 I-10 J0 F100\nG2 X10 Y0 I10 J0",
+        "TR004",
+    ),
+    Row("G90.1 needs both centre words", "G0 X10 Y0\nG90.1\nG2 X-10 Y0 I0", "G0 X10 Y0", "TR004 TR005"),
+    # "T0 gets special handling: no tool will be selected" (other-code.adoc, "T: Select Tool")
+    Row("T0 M6: no tool", "G21\nT0 M6", "G21", "TR002", prelude=""),
+    # remap.ini "M106 ... argspec=iPt": P is required
+    Row("M106 without P is refused", "M106", "", "TR005"),
     Row("2.2 G29 G29.1 G29.2 G30", "G29\nG29.1 Z1\nG30", "", "TR002", settings=FDM),
     Row("2.2 G38.x (probe)", "G38.2 Z-10 F100", "", "TR005"),
     Row("2.2 G10 L2/L20", "G10 L2 P1 X0 Y0", "", "TR002", out="coordinate systems are Repetrel fixture offsets"),

@@ -91,6 +91,8 @@ def ids(rows: list[Row]) -> list[str]:
 # -- 2.0 cross-dialect rules and 2.1 Marlin / RepRapFirmware -> Hyrel ------------------------------------------
 
 MARLIN = [
+    # Marlin reads one command a line (parser.cpp): the rest never runs there, and is dropped, said
+    Row("Marlin: the second command of a line never runs", "G91 G1 X10", "G91", "TR002"),
     # X1 allow-list output; X2 explicit addressing
     Row("X1 unknown code never passed through", "M3.9 S1", "", "TR002"),
     Row("X1 number collision (M204 = no-ramp speed on Hyrel)", "M204 P1500", "", "TR002"),
@@ -596,6 +598,7 @@ _NOT_RRF = (
     "M420",
     "M593",
     "G30",
+    "Marlin: ",  # (one command a line: RepRapFirmware runs them all, StringParser.cpp)
 )
 RRF_TOO = [r for r in MARLIN if not any(d in r.row for d in _NOT_RRF)]
 

@@ -27,6 +27,7 @@ from typing import ClassVar
 
 from gclint.dialects.base import Dialect
 from gclint.machine.interpreter import Interpreter
+from gclint.machine.job_settings import read_settings
 from gclint.syntax.nodes import ASSIGNMENT, EXTENDED, GCODE, IMPLICIT, META, OWORD, Command, Line
 from gclint.syntax.parse import PARSE_LIMIT, code_before_long_comment, parse_line
 from gclint.translate.arc_moves import ArcMoves
@@ -49,7 +50,7 @@ from gclint.translate.program import Program
 from gclint.translate.spindle import Spindles
 from gclint.translate.state import HyrelSide
 from gclint.translate.tools import SourceTools
-from gclint.translate.words import has_expression
+from gclint.translate.words import has_expression, num
 from gclint.translate.writer import LineWriter
 
 WORKSPACES = {f"G{n}": "workspace" for n in range(54, 60)}  # G54-G59: the same codes on Hyrel
@@ -120,6 +121,7 @@ class HyrelTranslator(LineWriter, Heads, Program, Motion, ArcMoves, Modal, Spind
                 self.handlers[code] = getattr(type(self), name)
         self.hy = HyrelSide()  # what the Hyrel printer will believe
         self.arc_absolute = False  # G90.1 in the source: I J K are the centre's coordinates, not offsets
+        self.single_nozzle = False  # the job's settings: single_extruder_multi_material (read_job)
         self.rpm: float | None = None  # the source's modal spindle speed (S words)
         self.spindle_percent: str | None = None  # the last spindle speed written (S percent; spindle.py)
         # the workspace the job selected (G54-G59), invoked again after a G53 move (modal.py)
@@ -155,13 +157,18 @@ class HyrelTranslator(LineWriter, Heads, Program, Motion, ArcMoves, Modal, Spind
 
     # -- the loop --------------------------------------------------------------------------------------
 
+    def read_job(self, source) -> None:
+        # several materials through one nozzle and heater (an MMU, an AMS): every source tool is the one head
+        self.single_nozzle = read_settings(source.head_text(), source.tail_text()).single_nozzle
+
     def start(self, result: TranslationResult) -> Iterator[str]:
         self.result = result
         return iter(())
 
     def _checked(self, line: Line, out: list[str]) -> list[str]:
         for piece in out:
-            if len(piece) > LINE_LIMIT + 2:  # +2: the line ending
+            # (a piece may hold several lines: a changed line's commands, one a line)
+            if len(piece) > LINE_LIMIT and any(len(text.rstrip("\r\n")) > LINE_LIMIT for text in _lines(piece)):
                 return self._fit(line, out)
         return out
 
@@ -170,6 +177,7 @@ class HyrelTranslator(LineWriter, Heads, Program, Motion, ArcMoves, Modal, Spind
         page, M0): a comment goes onto lines of its own, wrapped; an M0/M792 message is cut; a command
         that is still too long is reported."""
         pieces = [out[0] + out[1]] if type(out) is tuple else list(out)
+        pieces = [text for piece in pieces for text in _lines(piece)]
         fitted: list[str] = []
         self.line, self.edit = line, None
         for piece in pieces:
@@ -285,6 +293,12 @@ class HyrelTranslator(LineWriter, Heads, Program, Motion, ArcMoves, Modal, Spind
             order = tuple(index_of[id(cmd)] for cmd in running)
             if order != tuple(range(len(order))):
                 self._edit().order = order
+            if "S" in facts.words_first and hasattr(self, "rpm"):
+                # LinuxCNC sets the spindle speed of any S word on the line before the line's commands run
+                # ("G-code Order of Execution": "Set spindle speed (S)" comes before "Spindle on or off")
+                speeds = [cmd.params["S"] for cmd in commands if "S" in cmd.params]
+                if speeds and num(speeds[-1]) is not None:
+                    self.rpm = num(speeds[-1])
             for cmd in running:
                 i = index_of[id(cmd)]
                 self.index = i
@@ -410,6 +424,14 @@ class HyrelTranslator(LineWriter, Heads, Program, Motion, ArcMoves, Modal, Spind
 
     def extended(self, cmd: Command) -> None:
         self.untranslatable(cmd, "a host macro or extended command cannot be translated", key=cmd.code)
+
+
+_LINE = re.compile(r"[^\r\n]*(?:\r\n|\r|\n)|[^\r\n]+")  # (only the line breaks gclint reads: syntax/source.py)
+
+
+def _lines(piece: str) -> list[str]:
+    """The lines of a piece of output, each with its line ending."""
+    return _LINE.findall(piece)
 
 
 def _pause_without_text(pattern: re.Pattern[str], raw: str) -> str | None:

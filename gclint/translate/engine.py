@@ -56,6 +56,9 @@ class Translator:
         self.target = target
         self.options = options
 
+    def read_job(self, source: Source) -> None:
+        """Before the first line: what the job's own settings say (its slicer's ``; key = value`` lines)."""
+
     def start(self, result: TranslationResult) -> Iterator[str]:
         return iter(())
 
@@ -94,6 +97,7 @@ def translate_source(source: Source, translator: Translator, result: Translation
 
 
 def _translate(source: Source, translator: Translator, result: TranslationResult) -> Iterator[str]:
+    translator.read_job(source)
     yield from translator.start(result)
     number = 0
     translate = translator.translate_line

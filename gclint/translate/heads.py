@@ -14,7 +14,7 @@ A mixin of ``HyrelTranslator``.
 from __future__ import annotations
 
 from gclint.syntax.nodes import Command
-from gclint.translate.findings import TR_LOST, TR_NO_TOOL, TR_NOTE
+from gclint.translate.findings import TR_APPROX, TR_LOST, TR_NO_TOOL, TR_NOTE
 from gclint.translate.options import ToolMapClash
 from gclint.translate.output import fmt
 from gclint.translate.words import num
@@ -39,6 +39,8 @@ class Heads:
         active = index is None
         if active:
             index = self.current_tool()
+        if self.single_nozzle:  # type: ignore[attr-defined]  (one nozzle and heater for every tool: base.read_job)
+            index = 0
         cache = self._head_cache
         if index in cache:
             address = cache[index]
@@ -138,6 +140,16 @@ class Heads:
                 aspects=(),
             )
             return
+        if self.single_nozzle and number != "0":  # type: ignore[attr-defined]
+            self.report(
+                TR_APPROX,
+                "single-nozzle multi-material (single_extruder_multi_material = 1): the tools are filaments through "
+                "one nozzle and heater, printed by one Hyrel head; the filament changes themselves (unload, load, "
+                "purge) are not Hyrel operations",
+                key="single-nozzle",
+                cmd=cmd,
+                aspects=("head",),
+            )
         dropped = [letter for letter in cmd.params]
         if dropped:
             self.report(

@@ -409,6 +409,11 @@ class MachinekitToHyrel(CncTranslator):
         self._temp(cmd, "M191", self.opts.chamber, temp, True)
 
     def m106(self, cmd: Command) -> None:
+        if "P" not in cmd.params and "S" not in cmd.params:
+            # remap.ini "M106 ... argspec=iPt": P is required (a capital in the argspec), and the README's form
+            # is "M106 P<index> S<value>"; the interpreter refuses the line (research/dialects.md 1.8 [MK])
+            self.untranslatable(cmd, "without P: the Machinekit FDM remap requires P and refuses the line", key="M106")
+            return
         value, index = self._flavour(cmd)
         if "I" in cmd.params:
             self.report(
