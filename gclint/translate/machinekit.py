@@ -126,12 +126,27 @@ class MachinekitToHyrel(CncTranslator):
             return
         if "A" in cmd.params:
             self.extruder_axis(cmd)
+        self.feed_required(cmd)
         super().move(cmd)
 
     def arc(self, cmd: Command) -> None:
         if "A" in cmd.params:
             self.extruder_axis(cmd)
+        self.feed_required(cmd)
         super().arc(cmd)
+
+    def feed_required(self, cmd: Command) -> None:
+        """G1, G2 and G3: "It is an error if: No feed rate has been set" (LinuxCNC g-code.adoc, G1 and G2/G3):
+        the interpreter stops there; Hyrel would move at a feed the job never gave."""
+        code = cmd.code if cmd.code is not None else self.state.motion_mode
+        if code in ("G1", "G2", "G3") and "F" not in cmd.params and self.state.feed is None:
+            self.report(
+                TR_UNTRANSLATABLE,
+                f"{code} before any feed rate: LinuxCNC stops the program here (\"No feed rate has been set\"); "
+                "give the move an F",
+                key="no-feed",
+                cmd=cmd,
+            )
 
     def scaled_e(self, text: str | None) -> str:
         if self.inch:
