@@ -50,7 +50,10 @@ def test_the_user_saying_marlin_exempts_them(tmp_path):
     assert _check(job, "--dialect", "marlin") == (0, set())
     assert _check(job, "--flavor", "prusa-buddy") == (0, set())
     (tmp_path / "gclint.toml").write_text('dialect = "marlin"\n')
-    assert _check(job) == (0, set())
+    # a configuration found beside the job is not the user's word (a change can add one: gclint.trust) ...
+    assert _check(job)[0] == 1
+    # ... one named with --config is
+    assert _check(job, "--config", str(tmp_path / "gclint.toml")) == (0, set())
 
 
 @pytest.mark.parametrize("dialect", ["auto", "hyrel", "marlin", "reprap", "machinekit", "carvera"])
