@@ -46,7 +46,8 @@ from typing import Literal
 # -- dwell --------------------------------------------------------------------------------------------------
 
 
-def _number(text: str | None) -> float | None:
+def number(text: str | None) -> float | None:
+    """A word's value as a float; None for a flag, an expression or a bad number."""
     if text is None:
         return None
     try:
@@ -67,8 +68,8 @@ class Dwell:
 
     def seconds(self, params: Mapping[str, str | None]) -> float | None:
         """The dwell's length in seconds (never negative), or None when the line gives no time."""
-        p = _number(params.get("P")) if self.p_seconds is not None else None
-        s = _number(params.get("S")) if self.s_seconds is not None else None
+        p = number(params.get("P")) if self.p_seconds is not None else None
+        s = number(params.get("S")) if self.s_seconds is not None else None
         if p is None and s is None:
             return None
         if s is not None and self.both == "s":
@@ -245,12 +246,12 @@ class Semantics:
         (None: the active one)."""
         if self.heat_words == "remap":
             if "S" in params:
-                return _number(params["S"]), "P" if "P" in params else None
-            return _number(params.get("P")), "T" if "T" in params else None
+                return number(params["S"]), "P" if "P" in params else None
+            return number(params.get("P")), "T" if "T" in params else None
         if "S" in params:
-            value = _number(params["S"])
+            value = number(params["S"])
         elif wait and self.wait_r == "target" and "R" in params:
-            value = _number(params["R"])  # Marlin's M109 R: a target it waits for heating or cooling
+            value = number(params["R"])  # Marlin's M109 R: a target it waits for heating or cooling
         else:
             value = None
         return value, "T" if "T" in params else None

@@ -18,6 +18,7 @@ import math
 from collections.abc import Callable, Iterator
 
 from gclint.dialects.base import Dialect
+from gclint.dialects.semantics import number
 from gclint.simulate.events import Dwell, Event, Heat, Ignored, Pause, ProgramEnd, ToolChange
 from gclint.simulate.trace import NATIVE, EndState, Look, Mapping, Move, Trace
 from gclint.syntax.fastpath import PLAIN_MOVE
@@ -40,15 +41,6 @@ _HEAT = {
 _PLANES = {17: ("X", "Y", "I", "J"), 18: ("Z", "X", "K", "I"), 19: ("Y", "Z", "J", "K")}
 
 
-def number(text: str | None) -> float | None:
-    """A word's value as a float; None for a flag, an expression or a bad number."""
-    if text is None:
-        return None
-    try:
-        value = float(text)
-    except ValueError:
-        return None
-    return value if value - value == 0 else None
 
 
 class Simulator:
