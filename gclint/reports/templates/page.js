@@ -109,25 +109,42 @@
       ctx.lineCap = "round";
       if (shown.below && current > 0) {
         // the layers below, drawn whole on their own canvas, then laid on faded: one even tint, however
-        // many layers there are
-        if (!under) under = document.createElement("canvas");
-        under.width = canvas.width;
-        under.height = canvas.height;
-        var low = under.getContext("2d");
-        low.setTransform(s * ratio, 0, 0, s * ratio, view.tx * ratio, view.ty * ratio);
-        low.lineJoin = "round";
-        low.lineCap = "round";
-        low.lineWidth = 1 / s;
-        for (var i = 0; i < current; i++) {
-          build(i).forEach(function (p) {
-            if (hidden[p.head]) return;
-            low.strokeStyle = data.heads[p.head].color;
-            low.stroke(p.work);
-          });
+        // many layers there are.  While a drag pans the view they are moved as they are (drawn again at
+        // its end), so a big job pans smoothly.
+        var key = [s, current, canvas.width, canvas.height, Object.keys(hidden).filter(function (h) {
+          return hidden[h];
+        }).join()].join(" ");
+        var dx = 0, dy = 0;
+        if (!under || key !== under.key || (!drag && (view.tx !== under.tx || view.ty !== under.ty))) {
+          if (!under) under = document.createElement("canvas");
+          if (under.width !== canvas.width || under.height !== canvas.height) {
+            under.width = canvas.width;
+            under.height = canvas.height;
+          }
+          var low = under.getContext("2d");
+          low.setTransform(1, 0, 0, 1, 0, 0);
+          low.clearRect(0, 0, under.width, under.height);
+          low.setTransform(s * ratio, 0, 0, s * ratio, view.tx * ratio, view.ty * ratio);
+          low.lineJoin = "round";
+          low.lineCap = "round";
+          low.lineWidth = 1 / s;
+          for (var i = 0; i < current; i++) {
+            build(i).forEach(function (p) {
+              if (hidden[p.head]) return;
+              low.strokeStyle = data.heads[p.head].color;
+              low.stroke(p.work);
+            });
+          }
+          under.key = key;
+          under.tx = view.tx;
+          under.ty = view.ty;
+        } else {
+          dx = (view.tx - under.tx) * ratio;
+          dy = (view.ty - under.ty) * ratio;
         }
         ctx.setTransform(1, 0, 0, 1, 0, 0);
         ctx.globalAlpha = 0.22;
-        ctx.drawImage(under, 0, 0);
+        ctx.drawImage(under, dx, dy);
         ctx.setTransform(s * ratio, 0, 0, s * ratio, view.tx * ratio, view.ty * ratio);
       }
       var top = n ? build(current) : [];
@@ -311,6 +328,7 @@
       var click = drag.moved < 4;
       drag = null;
       canvas.classList.remove("dragging");
+      self.draw();  // (the layers below, moved as they were during the drag, drawn again)
       if (click && e.type === "pointerup") {
         var at = offset(e), m = markerAt(at[0], at[1]);
         if (m) toFinding(m);
