@@ -8,6 +8,7 @@ from __future__ import annotations
 import json
 import os
 import pty
+import re
 import subprocess
 import sys
 import xml.etree.ElementTree as ET
@@ -242,6 +243,15 @@ def test_grouped_format_groups_by_file(jobs):
 # -- HTML (structure; the browser test is test_html_chromium.py) ----------------------------------------
 
 
+def toolpath_data(page: str) -> list[dict]:
+    """The toolpath viewer's data of each figure on a page (an attribute's value, escaped as text)."""
+    import html
+
+    return [
+        json.loads(html.unescape(d)) for d in re.findall(r'<figure class="toolpath"[^>]* data-toolpath="([^"]*)"', page)
+    ]
+
+
 def test_html_escapes_file_text_and_plots_the_toolpath(jobs):
     proc = check("bad job.gcode", "good.gcode", "--format", "html", cwd=jobs["dir"])
     page = proc.stdout.decode()
@@ -249,9 +259,33 @@ def test_html_escapes_file_text_and_plots_the_toolpath(jobs):
     assert "<img src=x" not in page and "&lt;img src=x onerror=alert(1)&gt;" in page
     assert "<b>&amp;amp;" not in page and "&lt;b&gt;&amp;amp;&#34;" in page
     assert SECRET not in page
-    assert page.count('<svg class="plot"') == 2
-    assert 'class="work"' in page and 'class="marker m-error" data-line="6"' in page
+    bad, good = toolpath_data(page)
+    assert [h["name"] for h in bad["heads"]] == ["extruder 0"] and len(bad["layers"]) == 1
+    assert [6, 0] in [[m[3], m[4]] for m in bad["markers"]]  # line 6, an error (SX002)
+    assert '<button type="button" class="goto" data-line="6"' in page  # the finding leads to its marker
+    assert good["markers"] == [] and good["layers"][0]["p"]
     assert page.count("<script") == 1  # only the report's own script, with its nonce
+
+
+def test_html_toolpath_data_decodes_to_the_moves(tmp_path):
+    from gclint.reports.html import build_plot
+
+    job = tmp_path / "square.gcode"
+    job.write_text(
+        "; gclint: dialect=marlin\nG28\nM83\nG1 Z0.2 F600\nG0 X10 Y10\nG1 X20 Y10 E1\nG1 X20 Y20 E1\nG0 X30 Y30\n"
+    )
+    plot = build_plot(read_toolpath(str(job), "marlin"))
+    data = json.loads(plot.data)
+    (layer,) = data["layers"]
+    head, steps, runs = layer["p"][0]
+    points, x, y = [], 0, 0
+    for dx, dy in zip(steps[::2], steps[1::2], strict=True):
+        x, y = x + dx, y + dy
+        points.append((round(data["origin"][0] + x * data["unit"], 3), round(data["origin"][1] + y * data["unit"], 3)))
+    # from home (0, 0): a travel to (10, 10), two working strokes, a travel to (30, 30)
+    assert points == [(0, 0), (10, 10), (20, 10), (20, 20), (30, 30)] and runs == [1, 2, 1]
+    assert plot.fit == (10, 10, 20, 20) and plot.bounds == (0, 0, 30, 30)
+    assert plot.label == "layer 1 of 1, Z 0.2 mm"
 
 
 def test_toolpath_sampling_is_bounded(tmp_path):
@@ -259,18 +293,100 @@ def test_toolpath_sampling_is_bounded(tmp_path):
     with path.open("w") as fh:
         fh.write("; gclint: dialect=marlin\nT0\nG28\n")
         for i in range(60000):
+            if i % 6000 == 0:
+                fh.write(f"G1 Z{0.2 + i // 6000 * 0.2:.1f}\n")
             fh.write(f"G1 X{i % 200} Y{(i // 200) % 200} E{i}\n")
             if i == 30000:
                 fh.write("T1\n")
-    toolpath = read_toolpath(str(path), "marlin", {10, 30005}, budget=500)
+    toolpath = read_toolpath(str(path), "marlin", {10, 30012}, budget=4000, cap=1000)
     assert set(toolpath.heads) == {"extruder 0", "extruder 1"}  # (each head in the dialect's own terms)
-    for head in toolpath.heads.values():
-        assert len(head.points) <= 2 * 500 + 1
-        assert head.stride > 1
-    # (homing is no move the job draws, nor is the first move, from home to X0 Y0)
-    assert sum(h.moves for h in toolpath.heads.values()) == 59999
-    assert [m.line for m in toolpath.markers] == [10, 30005]
-    assert toolpath.markers[1].head == "extruder 1"
+    assert len(toolpath.layers) == 10 and toolpath.points <= 4000 and toolpath.stride > 1
+    for layer in toolpath.layers:
+        assert layer.working == 6000 or layer.working == 5999  # (every move seen; one in a few kept)
+        assert all(len(stroke) <= 1000 for stroke in layer.strokes.values())
+    # (every move in XY is drawn; homing is none, nor are the Z moves)
+    assert sum(h.moves for h in toolpath.heads.values()) == 60000
+    assert [m.line for m in toolpath.markers] == [10, 30012]
+    assert toolpath.markers[1].head == "extruder 1" and toolpath.markers[1].layer == 5
+
+
+def test_toolpath_thinning_never_draws_work_across_a_travel():
+    from gclint.reports.toolpath import Stroke
+
+    stroke = Stroke()
+    stroke.jump(0, 0)
+    for i in range(1, 9):
+        stroke.add(i, 0, working=i not in (3, 6))  # travel into points 3 and 6
+    stroke.halve()
+    assert list(stroke.xs) == [0, 2, 4, 6, 8]
+    # 0-2 works (1 and 2 do); 2-4 does not (3 is a travel); 4-6 does not (6); 6-8 works
+    assert list(stroke.work)[1:] == [1, 0, 0, 1] and stroke.stride == 2
+
+
+LAYERED = (
+    "; gclint: dialect=marlin\nG28\nM83\n"
+    "G1 Z15 F600\nG1 X0 Y-3 E5 F1000\nG1 X60 Y-3 E9\n"  # a purge line printed at Z15, far from the part
+    + "".join(
+        f"{{marker}}G1 Z{0.2 * k:.1f}\nG0 X100 Y100\n"
+        + "".join(f"G1 X{100 + (i % 2) * 10} Y{100 + i / 4} E0.5\n" for i in range(1, 41))
+        for k in range(1, 6)
+    )
+    + "G1 Z30\nG0 X0 Y200\n"  # parking
+)
+
+
+@pytest.mark.parametrize("marker", ["", ";LAYER_CHANGE\n", ";LAYER:{n}\n", "; CHANGE_LAYER\n"])
+def test_toolpath_layers_and_the_box_of_the_part(tmp_path, marker):
+    """Layers are the slicer's where it marks them, else the heights the job prints at; either way a purge line
+    at Z15 and a parking move are no layer of their own, and the part's box leaves them out."""
+    job = tmp_path / "layered.gcode"
+    job.write_text(LAYERED.replace("{marker}", marker).replace("{n}", "3"))
+    toolpath = read_toolpath(str(job), "marlin")
+    assert toolpath.by_markers == bool(marker)
+    assert [(layer.z_low, layer.z_high) for layer in toolpath.layers] == [(round(0.2 * k, 1),) * 2 for k in range(1, 6)]
+    assert toolpath.fit() == (100, 100, 110, 110)
+    assert toolpath.bounds() == (0, -3, 110, 200)
+
+
+def test_toolpath_layer_markers_in_the_settings_are_not_layers(tmp_path):
+    job = tmp_path / "settings.gcode"
+    job.write_text(
+        "; gclint: dialect=marlin\nG28\nM83\nG1 Z0.2\nG1 X1 Y1 E1\nG1 Z0.4\nG1 X2 Y2 E1\n"
+        "; layer_gcode = ;LAYER_CHANGE\\n;Z:[layer_z]\n; before_layer_gcode = ;LAYER:[layer_num]\n"
+    )
+    toolpath = read_toolpath(str(job), "marlin")
+    assert not toolpath.by_markers and len(toolpath.layers) == 2
+
+
+def test_toolpath_of_many_heads_at_many_heights_stays_bounded(tmp_path, monkeypatch):
+    from gclint.reports import toolpath as module
+
+    monkeypatch.setattr(module, "MAX_LAYERS", 64)
+    monkeypatch.setattr(module, "MAX_STROKES", 128)
+    job = tmp_path / "hostile.gcode"
+    with job.open("w") as fh:
+        fh.write("; gclint: dialect=marlin\nG28\nM83\n")
+        for k in range(600):  # 600 heights, a head of ten each
+            fh.write(f"T{k % 10}\nG1 Z{0.01 * (k + 1):.2f}\nG1 X1 Y{k % 50} E1\nG1 X2 Y{k % 50} E1\n")
+    toolpath = read_toolpath(str(job), "marlin", budget=500, cap=50)
+    assert len(toolpath.layers) <= 64 and sum(len(layer.strokes) for layer in toolpath.layers) <= 128
+    assert toolpath.points <= 500 and toolpath.merged > 1
+    assert sum(layer.working for layer in toolpath.layers) == 1200  # (every working move is in a layer)
+
+
+def test_summary_as_a_page(tmp_path):
+    job = tmp_path / "job <1>.gcode"
+    job.write_text(GOOD)
+    out = tmp_path / "summary.html"
+    proc = run_cli("summary", str(job), "--format", "html", "--output", str(out))
+    assert proc.returncode == 0, proc.stderr
+    page = out.read_text(encoding="utf-8")
+    assert page.startswith("<!DOCTYPE html>") and "<title>gclint summary: 1 job</title>" in page
+    assert "job &lt;1&gt;.gcode" in page and "job <1>" not in page
+    assert "Job summary" in page and "Read as" in page and 'class="findings"' not in page
+    (data,) = toolpath_data(page)
+    assert data["layers"] and data["markers"] == []
+    assert page.count("<script") == 1 and "script-src 'nonce-" in page
 
 
 def test_toolpath_of_stdin_is_not_plotted():

@@ -14,6 +14,7 @@ from gclint.cli.app import (
     _fail,
     _left_out_notes,
     _note,
+    _same_file,
     main,
 )
 from gclint.config import ConfigError
@@ -25,12 +26,28 @@ from gclint.rules.base import RuleError
 @click.argument("paths", nargs=-1, type=click.Path(allow_dash=True))
 @click.option("--dialect", "-d", metavar="D", help="Dialect (default: decided from each file, as check does).")
 @click.option("--printer", "-p", metavar="MODEL", help="Hyrel model (default: read from the job, else 30m).")
-@click.option("--format", "-f", "fmt", type=click.Choice(["text", "json"]), default="text", show_default=True)
+@click.option(
+    "--format",
+    "-f",
+    "fmt",
+    type=click.Choice(["text", "json", "html"]),
+    default="text",
+    show_default=True,
+    help="html: one self-contained page, each job's summary beside its toolpath (layers, zoom, pan).",
+)
+@click.option(
+    "--output", "-o", type=click.Path(dir_okay=False, allow_dash=True), help="Write the summary here (default: stdout)."
+)
 @click.option(
     "--config", "config_file", type=click.Path(dir_okay=False), help="Configuration file (else found upward)."
 )
 def summary(
-    paths: tuple[str, ...], dialect: str | None, printer: str | None, fmt: str, config_file: str | None
+    paths: tuple[str, ...],
+    dialect: str | None,
+    printer: str | None,
+    fmt: str,
+    output: str | None,
+    config_file: str | None,
 ) -> None:
     """What each job does, in numbers: heads, temperatures, flow, layers, extent, feeds, time."""
     import json
@@ -51,25 +68,78 @@ def summary(
     _left_out_notes(left_out, False, nothing_left=not files and not problems)
     for r in problems:
         _error(r.error or "")
-    out = []
+    if output not in (None, "-") and (same := _same_file(output, files)) is not None:
+        _fail(f"{output}: is {same}, one of the jobs to summarise: the summary would overwrite it")
+    options_of = {}
     for path in files:
         try:
-            options = runner.options_for(path, Options(), overrides, config_file)
+            options_of[path] = runner.options_for(path, Options(), overrides, config_file)
         except ConfigError as exc:
             _fail(str(exc))
             return
-        out.append(summarize_path(path, options))
     from gclint.textsafe import human
 
-    if fmt == "json":
-        click.echo(json.dumps([s.to_dict() for s in out], indent=2, ensure_ascii=False))
-    else:
+    failed = False
+
+    def write(stream) -> None:
+        nonlocal failed
+        if fmt == "html":
+            failed = _html_summaries(files, options_of, stream)
+            return
+        out = [summarize_path(path, options_of[path]) for path in files]
+        failed = any(s.error for s in out)
+        if fmt == "json":
+            stream.write(json.dumps([s.to_dict() for s in out], indent=2, ensure_ascii=False) + "\n")
+            return
         for s in out:
             if s.error:
                 _error(s.error)
             else:
-                click.echo("".join(human(line) + "\n" for line in render(s).splitlines()), nl=False)
-    sys.exit(2 if problems or any(s.error for s in out) else 0)
+                stream.write("".join(human(line) + "\n" for line in render(s).splitlines()))
+
+    if output in (None, "-"):
+        write(click.get_text_stream("stdout"))
+    else:
+        from gclint.io import OutputError, write_text
+
+        try:
+            write_text(output, write)  # atomically, never through a link
+        except OutputError as exc:
+            _fail(f"{exc} (the summary was not written)")
+    sys.exit(2 if problems or failed else 0)
+
+
+def _html_summaries(files: list[str], options_of: dict, stream) -> bool:
+    """``summary --format html``: each job summarised, then its toolpath read in the dialect it was read in,
+    written as a section of the page as soon as it is done.  Returns whether a job could not be read."""
+    from gclint import __version__
+    from gclint.engine import Linter
+    from gclint.reports.html import SummaryPage
+    from gclint.summary import summarize_path
+    from gclint.syntax.source import Source, SourceError
+
+    page = SummaryPage(stream, __version__, files)
+    failed = False
+    for path in files:
+        options = options_of[path]
+        job = summarize_path(path, options)
+        dialect, reason, weak = None, "", False
+        if job.error:
+            _error(job.error)
+            failed = True
+        elif path != "-":
+            try:
+                source = Source.open(path)
+                try:
+                    context = Linter(options).context_of(source)
+                finally:
+                    source.close()
+                dialect, reason, weak = context.dialect, context.why(), context.weak
+            except SourceError:
+                pass  # (the summary read it a moment ago: the page says there is no toolpath)
+        page.add(job, dialect, reason, weak)
+    page.close()
+    return failed
 
 
 @main.command()
