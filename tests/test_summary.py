@@ -59,8 +59,10 @@ def test_a_prusaslicer_job_against_its_own_counts() -> None:
     text = path.read_text(errors="replace")
     s = summarize_path(str(path))
     layers = len(re.findall(r"^;LAYER_CHANGE", text, re.M))  # the slicer's own layer marks (160)
-    assert s.layers == layers + 1  # + the start purge line at Z 0.2, below the first layer
-    assert s.z_range[1] == float(re.findall(r"^;Z:([\d.]+)", text, re.M)[-1])
+    # (issue 28: the start purge line at Z 0.2, printed before the first mark, was counted as one more layer)
+    assert s.layers == layers and s.layer_marks == "prusaslicer"
+    heights = [float(z) for z in re.findall(r"^;Z:([\d.]+)", text, re.M)]
+    assert s.z_range == (heights[0], heights[-1])
     used = float(re.search(r"^; filament used \[mm\] = ([\d.]+)", text, re.M).group(1))
     [head] = s.heads
     assert head.extruded_mm == pytest.approx(used, rel=0.002)  # net E: retractions taken back

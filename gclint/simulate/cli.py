@@ -15,8 +15,8 @@ import sys
 from gclint.dialects.base import Dialect
 from gclint.simulate import DiffResult, Explanations, Mapping, diff_sources
 from gclint.syntax.sniff import refuse_non_gcode
-from gclint.translate.pairs import is_target
 from gclint.syntax.source import Source, SourceError
+from gclint.translate.pairs import is_target
 
 
 def run_diff(
