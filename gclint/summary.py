@@ -34,7 +34,7 @@ from gclint.simulate.events import Dwell, Flow, Heat, Layer, Limits, Move, Pause
 from gclint.simulate.trace import NATIVE
 from gclint.syntax.source import Source
 from gclint.timing import Planner, limits_for, slicer_estimate, slicer_settings
-from gclint.timing.limits import tool_change_times
+from gclint.timing.limits import defaults_used, tool_change_times
 
 _BED = re.compile(r"(?im)^;\s*(?:bed_shape|printable_area)\s*=\s*([-\d.x, ]+)$")
 MAX_VALUES = 64  # distinct set-points listed per head or device (a job that sweeps them is not a list)
@@ -78,6 +78,7 @@ class JobSummary:
     layer_marks: str = ""  # the kind of slicer mark the layers were counted by ("" : by printing heights)
     tool_change_s: float = 0.0  # of the time, tool changes at the slicer's load and unload times
     time_limits: str = ""  # where the acceleration and junction limits came from ("" : none known, a lower bound)
+    time_junctions: str = ""  # how junctions are limited: "jerk", "junction deviation", "from rest" ("" : none)
     time_leaves_out: str = ""  # what the time does not count, in words
     slicer_time_s: float | None = None  # the slicer's own estimate, when the job states one
     layers_time_s: float | None = None  # of the time, from the first layer mark to the last printing move
@@ -111,9 +112,10 @@ def summarize(source: Source, context: Context) -> JobSummary:
     stated = slicer_estimate(head, tail)
     if stated is not None:
         summary.slicer_time_s = stated[0]
-    limits, limits_origin = limits_for(dialect.variant_of or dialect.name, context.flavor, settings)
+    machine = dialect.variant_of or dialect.name
+    limits, firmware, stated_limits = limits_for(machine, context.flavor, settings)
     planner = Planner(limits)
-    job_limits = False
+    job_limits: set[str] = set()  # the limits the job's own commands set
     loads, unloads = tool_change_times(settings)
     tool: str | None = None
     reader = simulator_for(dialect)
@@ -208,10 +210,11 @@ def summarize(source: Source, context: Context) -> JobSummary:
         elif kind is Layer:
             if layers.mark(event) == 1:
                 planner.watch("layers begin")
+            flat_z = None
         elif kind is Limits:
             limits.update(event.values)
             planner.refresh()
-            job_limits = True
+            job_limits.update(event.values)
         elif kind is Dwell:
             planner.stop(event.seconds or 0.0)
             summary.dwell_s += event.seconds or 0.0
@@ -242,15 +245,22 @@ def summarize(source: Source, context: Context) -> JobSummary:
     summary.heads = list(heads.values())
     summary.flow = " then ".join(flows) if flows else "E amounts (extruder position)"
     summary.layers, summary.z_range, summary.layer_marks = layers.result()
-    if limits.accelerated:
-        origin = [limits_origin] if limits_origin else []
+    if planner.accelerated:
+        origin = []
         if job_limits:
-            origin.append("the job's own settings")
-        summary.time_limits = " and ".join(origin)
+            origin.append("the job's own commands")
+        if stated_limits:
+            origin.append("the slicer's machine limits")
+        if defaults_used(machine, context.flavor, stated_limits | job_limits):
+            origin.append(f"{firmware}'s defaults" + (" for the rest" if origin else ""))
+        summary.time_limits = ", ".join(origin[:-1]) + (" and " if len(origin) > 1 else "") + origin[-1]
+        summary.time_junctions = (
+            "from rest" if planner.from_rest else "jerk" if planner.classic else "junction deviation"
+        )
     summary.time_leaves_out = (
-        "heating waits"
+        "heating waits, pauses for the operator"
         + ("" if summary.tool_change_s else ", tool changes")
-        + " and the firmware's own moves (homing, probing, start macros)"
+        + " and what the firmware does on its own (homing, probing, start macros)"
     )
     if x_low <= x_high:
         summary.x_range = (x_low, x_high)
@@ -477,10 +487,16 @@ def render(summary: JobSummary) -> str:
 
 
 def _time_model(summary: JobSummary) -> str:
-    if summary.time_limits:
-        said = f"moves planned with acceleration and junction limits from {summary.time_limits}"
+    if summary.time_junctions == "from rest":
+        said = (
+            f"moves planned with acceleration from {summary.time_limits}, each from rest (the job states no jerk"
+            " or junction deviation)"
+        )
+    elif summary.time_limits:
+        junctions = "jerk limits" if summary.time_junctions == "jerk" else "junction deviation"
+        said = f"moves planned with acceleration and {junctions} from {summary.time_limits}"
     else:
-        said = "moves at their feed, no acceleration known: a lower bound"
+        said = "moves at their feed: no acceleration known, a lower bound"
     parts = [said, "plus dwells"]
     if summary.tool_change_s:
         parts.append(f"tool changes at the slicer's load and unload times ({_duration(summary.tool_change_s)})")

@@ -338,7 +338,7 @@ class Simulator:
     def plain_event(self, words: tuple, n: int) -> Move | None:
         """``motion`` for a plain G0/G1 line (``syntax.fastpath.PLAIN_MOVE``'s groups), as ``motion``, ``target``
         and ``extrusion`` do it, without a dictionary of words: the same state and the same events, faster
-        (``tests/test_summary_time.py`` compares the two on the corpus)."""
+        (``tests/test_reader_plain_events.py`` compares the two on the corpus)."""
         digit, f_first, x, y, z, e, f = words
         rapid = digit == "0"
         self.motion_mode = "G0" if rapid else "G1"

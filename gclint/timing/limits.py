@@ -83,9 +83,9 @@ MARLIN_DEFAULTS = MachineLimits(
 # the 2015 RepRap firmwares are left out (no defaults of theirs cited here: their jobs' time is a lower bound
 # unless the job states its limits).
 FIRMWARE_DEFAULTS: dict[tuple[str, str | None], tuple[MachineLimits, str]] = {
-    ("marlin", None): (MARLIN_DEFAULTS, "Marlin's defaults"),
-    ("marlin", "prusa-buddy"): (MARLIN_DEFAULTS, "Marlin's defaults"),
-    ("marlin", "prusa-mk3"): (MARLIN_DEFAULTS, "Marlin's defaults"),
+    ("marlin", None): (MARLIN_DEFAULTS, "Marlin"),
+    ("marlin", "prusa-buddy"): (MARLIN_DEFAULTS, "Marlin"),
+    ("marlin", "prusa-mk3"): (MARLIN_DEFAULTS, "Marlin"),
 }
 
 # The slicer's settings -> limits.  PrusaSlicer's names (OrcaSlicer and BambuStudio say machine_max_speed_* for
@@ -137,20 +137,30 @@ def from_settings(settings: dict[str, str]) -> dict[str, float]:
     return values
 
 
-def limits_for(dialect: str, flavor: str | None, settings: dict[str, str]) -> tuple[MachineLimits, str]:
-    """The limits a job starts with, and where they come from in words: the firmware's defaults (Marlin's, for a
-    Marlin job), overridden by the slicer's machine limits."""
+def limits_for(dialect: str, flavor: str | None, settings: dict[str, str]) -> tuple[MachineLimits, str, set[str]]:
+    """The limits a job starts with: the firmware's defaults (``FIRMWARE_DEFAULTS``), overridden by the slicer's
+    machine limits; with the firmware whose defaults they are ("" : none) and the names the settings state."""
     limits = MachineLimits()
-    origin = []
     defaults = FIRMWARE_DEFAULTS.get((dialect, flavor))
+    firmware = ""
     if defaults is not None:
         limits.update({k: v for k, v in vars(defaults[0]).items() if v is not None})
-        origin.append(defaults[1])
+        firmware = defaults[1]
     stated = from_settings(settings)
-    if stated:
-        limits.update(stated)
-        origin.append("the slicer's machine limits")
-    return limits, " and ".join(origin)
+    limits.update(stated)
+    return limits, firmware, set(stated)
+
+
+def defaults_used(dialect: str, flavor: str | None, stated: set[str]) -> bool:
+    """Whether some of the firmware's defaults are still in force when the job and its settings stated ``stated``
+    (jerks stated: the default junction deviation is not)."""
+    defaults = FIRMWARE_DEFAULTS.get((dialect, flavor))
+    if defaults is None:
+        return False
+    left = {k for k, v in vars(defaults[0]).items() if v is not None} - stated
+    if stated & {"jerk_x", "jerk_y"}:
+        left.discard("junction_deviation")
+    return bool(left)
 
 
 # Time a tool change takes that the G-code does not show (the firmware's own moves: the MMU unloads and loads the

@@ -91,11 +91,11 @@ class Planner:
         if deviation is None and lim.square_corner_velocity is not None and print_ > 0:
             deviation = lim.square_corner_velocity**2 * (math.sqrt(2) - 1) / print_
         self._deviation = deviation
-        self._classic = deviation is None and any(j is not None for j in jerks[:3])
+        self.classic = deviation is None and any(j is not None for j in jerks[:3])
         # No jerk and no junction deviation known (a job that states an acceleration and nothing of its junctions,
         # for a firmware whose defaults are not cited here): every move starts and ends at rest, as a jerk of 0
         # asks, and as a firmware without look-ahead runs ("a dead stop every move", Teacup's config.h, LOOKAHEAD)
-        self.from_rest = self.accelerated and deviation is None and not self._classic
+        self.from_rest = self.accelerated and deviation is None and not self.classic
 
     def move(
         self,
@@ -173,7 +173,7 @@ class Planner:
             ie = ue
             out = (*exit_dir, ue) if exit_dir is not None else (ix, iy, iz, ue)
         prev_cruise = self._prev_cruise
-        if self._classic:
+        if self.classic:
             # Marlin's classic jerk (planner.cpp, HAS_CLASSIC_JERK): the speed it may start from, or stop at, at
             # once: no axis changing speed by more than its jerk
             jx, jy, jz, je = self._jerk
