@@ -123,7 +123,6 @@ def summarize(source: Source, context: Context) -> JobSummary:
     layers = _Layers()
     hyrel_flow = dialect.semantics.e_values == "native"
     flows: list[str] = ["native"] if hyrel_flow else []
-    feed_low, feed_high = math.inf, -math.inf
     x_low = y_low = feed_low = math.inf
     x_high = y_high = feed_high = -math.inf
     printing_mm = travel_mm = 0.0
@@ -245,14 +244,15 @@ def summarize(source: Source, context: Context) -> JobSummary:
     summary.heads = list(heads.values())
     summary.flow = " then ".join(flows) if flows else "E amounts (extruder position)"
     summary.layers, summary.z_range, summary.layer_marks = layers.result()
+    origin = []
     if planner.accelerated:
-        origin = []
         if job_limits:
             origin.append("the job's own commands")
         if stated_limits:
             origin.append("the slicer's machine limits")
-        if defaults_used(machine, context.flavor, stated_limits | job_limits):
+        if firmware and defaults_used(machine, context.flavor, stated_limits | job_limits):
             origin.append(f"{firmware}'s defaults" + (" for the rest" if origin else ""))
+    if origin:
         summary.time_limits = ", ".join(origin[:-1]) + (" and " if len(origin) > 1 else "") + origin[-1]
         summary.time_junctions = (
             "from rest" if planner.from_rest else "jerk" if planner.classic else "junction deviation"

@@ -281,7 +281,15 @@ def test_the_jobs_own_acceleration_and_tool_change_times_count(tmp_path: Path) -
     slow = summarize_path(_job(tmp_path, "M204 P200 T200\n" + moves, "slow.gcode"))
     assert fast.time_limits.startswith("the job's own commands") and slow.time_s > 1.3 * fast.time_s
     # the tool changes' load and unload times the slicer's settings state (PrusaSlicer's MMU: per filament)
-    mmu = "T0\n" + moves + "T1\n" + moves + "T0\n" + moves + "; filament_load_time = 10,12\n; filament_unload_time = 5,6\n"
+    mmu = (
+        "T0\n"
+        + moves
+        + "T1\n"
+        + moves
+        + "T0\n"
+        + moves
+        + "; filament_load_time = 10,12\n; filament_unload_time = 5,6\n"
+    )
     s = summarize_path(_job(tmp_path, mmu, "mmu.gcode"))
     assert s.tool_change_s == pytest.approx((5 + 12) + (6 + 10))
     assert "tool changes at the slicer's load and unload times" in render(s)

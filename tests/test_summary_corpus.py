@@ -191,12 +191,10 @@ def test_layers_against_the_slicers_marks(summary_of) -> None:
     problems = []
     for path in _jobs():
         text = path.read_text(errors="replace")
-        for pattern, height in MARKS:
-            marks = list(re.finditer(pattern, text, re.M))
-            if marks:
-                break
-        else:
+        found = next(((p, h, m) for p, h in MARKS if (m := list(re.finditer(p, text, re.M)))), None)
+        if found is None:
             continue
+        pattern, height, marks = found
         heights: list[float] = []
         if height == 1:
             heights = [float(m.group(1)) for m in marks]

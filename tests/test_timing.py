@@ -158,7 +158,7 @@ def test_the_slicers_machine_limits() -> None:
 def test_curas_settings_are_read_from_its_setting_3_lines() -> None:
     tail = (
         ';SETTING_3 {"global_quality": "[general]\\\\nversion = 4\\\\n[values]\\\\nmachine_max_acc\n'
-        ";SETTING_3 eleration_x = 50\\\\nspeed_print = 6\\\\n\\\\n\"}\n"
+        ';SETTING_3 eleration_x = 50\\\\nspeed_print = 6\\\\n\\\\n"}\n'
     )
     settings = slicer_settings(None, tail)
     assert settings["machine_max_acceleration_x"] == "50" and settings["speed_print"] == "6"

@@ -9,7 +9,7 @@ acceleration known means the time is a lower bound, each move at its feed.
 
 from __future__ import annotations
 
-from dataclasses import dataclass, fields
+from dataclasses import dataclass
 
 AXES = "xyze"
 
@@ -48,9 +48,6 @@ class MachineLimits:
                 setattr(self, name, value)
         if ("jerk_x" in values or "jerk_y" in values) and "junction_deviation" not in values:
             self.junction_deviation = None
-
-    def known(self) -> bool:
-        return any(getattr(self, f.name) is not None for f in fields(self))
 
     @property
     def accelerated(self) -> bool:

@@ -32,9 +32,14 @@ DISTANCE, ACCEL, CRUISE, ENTRY, MAX_ENTRY, SAFE, NOMINAL, NUMBER = range(8)
 
 
 def trapezoid_time(distance: float, accel: float, cruise: float, entry: float, exit_: float) -> float:
-    """The time of one block: accelerate from ``entry`` towards ``cruise``, cruise, brake to ``exit_``."""
+    """The time of one block: accelerate from ``entry`` towards ``cruise``, cruise, brake to ``exit_`` (a junction
+    faster than the cruise speed, which classic jerk allows, is a jump: no time)."""
     if accel <= 0:
         return distance / cruise
+    if entry > cruise:
+        entry = cruise
+    if exit_ > cruise:
+        exit_ = cruise
     twice = 2 * accel
     up = (cruise * cruise - entry * entry) / twice
     down = (cruise * cruise - exit_ * exit_) / twice
@@ -350,6 +355,10 @@ class Planner:
             distance, accel, cruise, entry, _, safe, _, number = blocks[i]
             exit_ = blocks[i + 1][ENTRY] if i + 1 < n else safe
             # the trapezoid (``trapezoid_time``, inline: it runs for every move)
+            if entry > cruise:
+                entry = cruise
+            if exit_ > cruise:
+                exit_ = cruise
             if accel <= 0:
                 total += distance / cruise
             else:
