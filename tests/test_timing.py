@@ -245,3 +245,11 @@ def test_the_reader_gives_the_limits_a_job_sets_in_mm_and_seconds() -> None:
 def test_the_slicers_own_estimate(text: str, seconds: float | None) -> None:
     found = slicer_estimate(text)
     assert (found[0] if found else None) == (pytest.approx(seconds) if seconds is not None else None)
+
+
+def test_the_limit_names_are_the_models() -> None:
+    from dataclasses import fields
+
+    from gclint.simulate.events import LIMIT_NAMES
+
+    assert {f.name for f in fields(MachineLimits)} == LIMIT_NAMES

@@ -42,15 +42,15 @@ _PLANES = {17: ("X", "Y", "I", "J"), 18: ("Z", "X", "K", "I"), 19: ("Y", "Z", "J
 _LAYER_MARKS = tuple((kind, re.compile(pattern)) for kind, pattern in LAYER_MARKS)
 
 
-def layer_mark(raw: str) -> Layer | None:
-    """The slicer's layer mark a comment line is (``events.LAYER_MARKS``), as a ``Layer`` with line 0; None
+def layer_mark(raw: str) -> tuple[str, float | None] | None:
+    """The slicer's layer mark a comment line is (``events.LAYER_MARKS``): its kind and the height it states; None
     when it is none."""
     if "LAYER" not in raw and "layer" not in raw:
         return None
     for kind, pattern in _LAYER_MARKS:
         m = pattern.fullmatch(raw)
         if m is not None:
-            return Layer(0, kind, number(m.group(1)) if m.groups() else None)
+            return kind, number(m.group(1)) if m.groups() else None
     return None
 
 
@@ -156,7 +156,7 @@ class Simulator:
                 if marks and raw[:1] == ";":
                     mark = layer_mark(raw)
                     if mark is not None:
-                        yield Layer(n, mark.marks, mark.z)
+                        yield Layer(n, *mark)
                         continue
                 if plain and raw[:1] == "G":
                     m = plain_match(raw)
