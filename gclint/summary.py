@@ -2,15 +2,22 @@
 (``gclint.simulate``: its events, with the dialect's facts from ``gclint.dialects.semantics``).
 
 Per file: the heads it uses, each with its set-points, whether it waits for them and how much it
-extrudes; the flow mode; the layers and the Z range of the printing moves; the XY extent, against the
-printer's bed where the slicer's settings give one (``bed_shape`` / ``printable_area``); the feed range;
-and an estimated time.
+extrudes; the flow mode; the layers and their Z range; the XY extent, against the printer's bed where the
+slicer's settings give one (``bed_shape`` / ``printable_area``); the feed range; and an estimated time.
 
-The time model is deliberately simple (and the same for every dialect), so that two jobs compare: each
-move takes its length divided by the feed in force (arcs by their arc length; a G0 with no feed of its own
-at the last feed), plus G4 dwells as the dialect counts them; heating, acceleration and tool changes are not
-counted.  It is a lower bound, not a promise.  Lengths are in mm and in the job's own coordinates (inches
-converted; head offsets left out: where the tool tip goes on the work).
+Layers are counted as the slicer counts them: its layer marks where the job has them (``simulate.events.Layer``:
+``;LAYER_CHANGE``, ``;LAYER:n``, ``; CHANGE_LAYER``...), the Z range being that of the printing moves after the
+first mark.  Without marks, the heights at which moves print along a path (a prime of the extruder alone, a
+parking move, a travel are no layer), each one above every one before; a spiral (printing while Z rises) counts
+a layer per turn of the path.
+
+The time is planned (``gclint.timing``): every move with acceleration and junction speeds limited as the job's
+machine limits them (the slicer's machine limits, the job's M201/M203/M204/M205, else the firmware's documented
+defaults), plus G4 dwells as the dialect counts them, plus the tool changes' load and unload times where the
+slicer states them.  Heating waits and what the firmware does on its own (homing, probing, start macros) are left
+out; where no acceleration is known, each move takes its length divided by its feed (a G0 with no feed of its
+own at the last feed): a lower bound.  Lengths are in mm and in the job's own coordinates (inches converted;
+head offsets left out: where the tool tip goes on the work).
 """
 
 from __future__ import annotations
@@ -23,9 +30,11 @@ from gclint import dialects
 from gclint.context import Context
 from gclint.engine import Linter, Options
 from gclint.simulate import simulator_for
-from gclint.simulate.events import Dwell, Flow, Heat, Move
+from gclint.simulate.events import Dwell, Flow, Heat, Layer, Limits, Move, Pause, ToolChange
 from gclint.simulate.trace import NATIVE
 from gclint.syntax.source import Source
+from gclint.timing import Planner, limits_for, slicer_estimate, slicer_settings
+from gclint.timing.limits import defaults_used, tool_change_times
 
 _BED = re.compile(r"(?im)^;\s*(?:bed_shape|printable_area)\s*=\s*([-\d.x, ]+)$")
 MAX_VALUES = 64  # distinct set-points listed per head or device (a job that sweeps them is not a list)
@@ -66,6 +75,13 @@ class JobSummary:
     time_s: float = 0.0
     dwell_s: float = 0.0  # of which G4 dwells, as the dialect counts them
     error: str | None = None
+    layer_marks: str = ""  # the kind of slicer mark the layers were counted by ("" : by printing heights)
+    tool_change_s: float = 0.0  # of the time, tool changes at the slicer's load and unload times
+    time_limits: str = ""  # where the acceleration and junction limits came from ("" : none known, a lower bound)
+    time_junctions: str = ""  # how junctions are limited: "jerk", "junction deviation", "from rest" ("" : none)
+    time_leaves_out: str = ""  # what the time does not count, in words
+    slicer_time_s: float | None = None  # the slicer's own estimate, when the job states one
+    layers_time_s: float | None = None  # of the time, from the first layer mark to the last printing move
 
     def to_dict(self) -> dict:
         return asdict(self)
@@ -90,76 +106,166 @@ def summarize(source: Source, context: Context) -> JobSummary:
     count its events."""
     summary = JobSummary(source.display, context.label())
     dialect = dialects.reading(context.dialect, context.flavor)
-    summary.bed = _bed(source.head_text(), source.tail_text())
+    head, tail = source.head_text(), source.tail_text()
+    summary.bed = _bed(head, tail)
+    settings = slicer_settings(head, tail)
+    stated = slicer_estimate(head, tail)
+    if stated is not None:
+        summary.slicer_time_s = stated[0]
+    machine = dialect.variant_of or dialect.name
+    limits, firmware, stated_limits = limits_for(machine, context.flavor, settings)
+    planner = Planner(limits)
+    job_limits: set[str] = set()  # the limits the job's own commands set
+    loads, unloads = tool_change_times(settings)
+    tool: str | None = None
     reader = simulator_for(dialect)
     heads: dict[str, HeadUse] = {}
-    layers = 0  # printing heights above every one before (the layers), counted, with the lowest and top
-    z_low = z_top = None
-    last_z: float | None = None
+    layers = _Layers()
     hyrel_flow = dialect.semantics.e_values == "native"
     flows: list[str] = ["native"] if hyrel_flow else []
-    feed_low, feed_high = math.inf, -math.inf
-    box = [math.inf, -math.inf, math.inf, -math.inf, math.inf, -math.inf]
+    x_low = y_low = feed_low = math.inf
+    x_high = y_high = feed_high = -math.inf
+    printing_mm = travel_mm = 0.0
+    unmeasured = 0
+    head: HeadUse | None = None
+    head_name: str | None = None
+    flat_z: float | None = None  # (the height of the last printing move that kept its height)
     last_feed: float | None = None  # (a rapid with no speed of its own: at the last feed, a lower bound)
+    was_printing = False  # (the time when the last printing move ends: where the last layer ends)
+    sqrt = math.sqrt
+    move = planner.move
     for event in reader.events(source):
         kind = type(event)
         if kind is Move:
             e = event.e
-            name = event.tool or ""
-            if e is not None and e is not NATIVE:  # filament: the net E of every move (retractions included)
-                heads.setdefault(name, HeadUse(name)).extruded_mm += e
-            if not event.point:  # (a move the reader could not place)
+            end = event.point
+            if e is not None:
+                name = event.tool or ""
+                if name != head_name:
+                    head = heads.get(name)
+                    if head is None:
+                        head = heads[name] = HeadUse(name)
+                    head_name = name
+                if e is not NATIVE:  # filament: the net E of every move (retractions included)
+                    head.extruded_mm += e  # type: ignore[union-attr]
+            if not end:  # (a move the reader could not place)
                 continue
-            start, end = event.origin, event.point
-            length = _length(start, end, event.arc)
-            if length is None:
-                summary.unmeasured_moves += 1
-            printing = e is not None and (e is NATIVE or e > 0)  # (an unretraction in place too: it feeds)
+            start = event.origin
+            arc = event.arc
+            x0, y0, z0 = start[0], start[1], start[2]
+            x1, y1, z1 = end[0], end[1], end[2]
+            dz = z1 - z0 if z0 is not None and z1 is not None else 0.0
+            if x0 is None or y0 is None or x1 is None or y1 is None:
+                length = None
+                unmeasured += 1
+            elif arc is None:
+                dx, dy = x1 - x0, y1 - y0
+                length = sqrt(dx * dx + dy * dy + dz * dz)
+            else:
+                dx, dy = x1 - x0, y1 - y0
+                length = _arc_length(arc, dz)
             feed = event.feed
-            if printing:
-                heads.setdefault(name, HeadUse(name)).printing_moves += 1
+            if e is not None and (e is NATIVE or e > 0):  # printing (an unretraction in place too: it feeds)
+                head.printing_moves += 1  # type: ignore[union-attr]
+                was_printing = True
                 if length is not None:
-                    summary.printing_mm += length
-                z = end[2]
-                if z is not None and (last_z is None or abs(z - last_z) > 1e-6):
-                    if z_top is None or z > z_top + 1e-6:
-                        layers += 1
-                        z_top = z
-                        z_low = z if z_low is None else min(z_low, z)
-                    last_z = z
-                for i, value in enumerate(end[:3]):
-                    if value is not None:
-                        box[2 * i] = min(box[2 * i], value)
-                        box[2 * i + 1] = max(box[2 * i + 1], value)
+                    printing_mm += length
+                if z1 is not None and start != end and not (z0 == z1 == flat_z):
+                    # (not the extruder alone: a prime in place is no layer; nor a move on the same height)
+                    layers.printing(start, end)
+                    flat_z = z1 if z0 == z1 else None
+                if x1 is not None:
+                    if x1 < x_low:
+                        x_low = x1
+                    if x1 > x_high:
+                        x_high = x1
+                if y1 is not None:
+                    if y1 < y_low:
+                        y_low = y1
+                    if y1 > y_high:
+                        y_high = y1
                 if feed:
-                    feed_low, feed_high = min(feed_low, feed), max(feed_high, feed)
-            elif length is not None and start != end:
-                summary.travel_mm += length
+                    if feed < feed_low:
+                        feed_low = feed
+                    if feed > feed_high:
+                        feed_high = feed
+            else:
+                if was_printing:
+                    planner.watch("printing ends")
+                    was_printing = False
+                if length is not None and start != end:
+                    travel_mm += length
             if feed:
                 last_feed = feed
             elif event.rapid:
                 feed = last_feed
-            if feed and feed > 0 and length is not None:
-                summary.time_s += length / feed * 60
+            if feed and length is not None:
+                de = e if e is not None and e is not NATIVE else 0.0
+                if arc is None:
+                    move(dx, dy, dz, de, feed)
+                else:
+                    into, out = _tangents(arc, dz, length)
+                    move(dx, dy, dz, de, feed, length, into, out)
+        elif kind is Layer:
+            if layers.mark(event) == 1:
+                planner.watch("layers begin")
+            flat_z = None
+        elif kind is Limits:
+            limits.update(event.values)
+            planner.refresh()
+            job_limits.update(event.values)
         elif kind is Dwell:
-            summary.time_s += event.seconds or 0.0
+            planner.stop(event.seconds or 0.0)
             summary.dwell_s += event.seconds or 0.0
+        elif kind is ToolChange:
+            if tool is not None and (loads or unloads):
+                change = _per_tool(unloads, tool) + _per_tool(loads, event.tool)
+                planner.stop(change)
+                summary.tool_change_s += change
+            tool = event.tool
         elif kind is Heat:
+            if event.wait:
+                planner.stop()
             _temperature(summary, heads, event)
+        elif kind is Pause:
+            planner.stop()
         elif kind is Flow:
             mode = "E values (M229 E1)" if event.mode == "evalues" else "native"
             if flows[-1:] != [mode]:
                 flows.append(mode)
+    if was_printing:
+        planner.watch("printing ends")
+    summary.printing_mm, summary.travel_mm, summary.unmeasured_moves = printing_mm, travel_mm, unmeasured
+    summary.time_s = planner.finish()
+    begin, end = planner.watched.get("layers begin"), planner.watched.get("printing ends")
+    if begin is not None and end is not None and end >= begin:
+        summary.layers_time_s = end - begin
     summary.lines = reader.line_count
     summary.heads = list(heads.values())
     summary.flow = " then ".join(flows) if flows else "E amounts (extruder position)"
-    summary.layers = layers
-    if z_low is not None and z_top is not None:
-        summary.z_range = (z_low, z_top)
-    if box[0] <= box[1]:
-        summary.x_range = (box[0], box[1])
-    if box[2] <= box[3]:
-        summary.y_range = (box[2], box[3])
+    summary.layers, summary.z_range, summary.layer_marks = layers.result()
+    origin = []
+    if planner.accelerated:
+        if job_limits:
+            origin.append("the job's own commands")
+        if stated_limits:
+            origin.append("the slicer's machine limits")
+        if firmware and defaults_used(machine, context.flavor, stated_limits | job_limits):
+            origin.append(f"{firmware}'s defaults" + (" for the rest" if origin else ""))
+    if origin:
+        summary.time_limits = ", ".join(origin[:-1]) + (" and " if len(origin) > 1 else "") + origin[-1]
+        summary.time_junctions = (
+            "from rest" if planner.from_rest else "jerk" if planner.classic else "junction deviation"
+        )
+    summary.time_leaves_out = (
+        "heating waits, pauses for the operator"
+        + ("" if summary.tool_change_s else ", tool changes")
+        + " and what the firmware does on its own (homing, probing, start macros)"
+    )
+    if x_low <= x_high:
+        summary.x_range = (x_low, x_high)
+    if y_low <= y_high:
+        summary.y_range = (y_low, y_high)
     if feed_low <= feed_high:
         summary.feed_range = (feed_low, feed_high)
     if summary.bed and summary.x_range and summary.y_range:
@@ -173,18 +279,117 @@ def summarize(source: Source, context: Context) -> JobSummary:
     return summary
 
 
-def _length(start: tuple, end: tuple, arc) -> float | None:
-    """A move's path length (mm): an arc's turn and its rise, or the straight line; None when it starts or ends
-    where the reader does not know (it still prints, with its known end in the extent)."""
-    if not start or None in start[:2] or None in end[:2]:
-        return None
-    dz = (end[2] - start[2]) if start[2] is not None and end[2] is not None else 0.0
-    if arc is not None:
-        plane, _, radius, _, _, turn = arc
-        if plane == 17:
-            return math.hypot(radius * turn, dz)
-        return radius * turn  # (an arc in another plane: its rise is along another axis)
-    return math.hypot(math.dist(start[:2], end[:2]), dz)
+class _Layers:
+    """The layers: counted by the slicer's marks (one kind: the first seen) when the job has them, else by the
+    heights at which moves print."""
+
+    def __init__(self) -> None:
+        self.kind: str | None = None
+        self.marked = 0
+        self.mark_z: float | None = None
+        self.marked_low = math.inf
+        self.marked_top = -math.inf
+        # by heights: each printing height above every one before; a spiral's turns
+        self.levels = 0
+        self.low = math.inf
+        self.top: float | None = None
+        self.turn = 0.0  # the path's turn (radians) since the spiral's last layer
+        self.heading: float | None = None
+
+    def mark(self, layer: Layer) -> int:
+        """Count a mark; the number of layers marked so far (0: a mark of another kind)."""
+        if self.kind is None:
+            self.kind = layer.marks
+        elif layer.marks != self.kind:
+            return 0
+        if layer.z is not None:
+            if layer.z == self.mark_z:
+                return 0  # (another object's part of the same layer: KISSlicer marks each)
+            self.mark_z = layer.z
+        self.marked += 1
+        return self.marked
+
+    def printing(self, start: tuple, end: tuple) -> None:
+        z = end[2]
+        if z is None:
+            return
+        if self.kind is not None:
+            if z < self.marked_low:
+                self.marked_low = z
+            if z > self.marked_top:
+                self.marked_top = z
+        top = self.top
+        sx, sy, sz = start[0], start[1], start[2]
+        ex, ey = end[0], end[1]
+        if sz is not None and sz != z and sx is not None and sy is not None and (ex != sx or ey != sy):
+            # printing while Z changes along a path: a spiral, a layer per turn of the path
+            heading = math.atan2(ey - sy, ex - sx)
+            if top is None or z > top + 1e-6:
+                if self.heading is None:  # the spiral begins: its first layer
+                    self.levels += 1
+                    self.turn = 0.0
+                else:
+                    step = heading - self.heading
+                    if step > math.pi:
+                        step -= 2 * math.pi
+                    elif step < -math.pi:
+                        step += 2 * math.pi
+                    self.turn += step
+                    if abs(self.turn) >= 2 * math.pi:
+                        self.levels += 1
+                        self.turn -= math.copysign(2 * math.pi, self.turn)
+                self.top = z
+                if z < self.low:
+                    self.low = z
+            self.heading = heading
+            return
+        self.heading = None
+        if top is None or z > top + 1e-6:
+            self.levels += 1
+            self.top = z
+        if z < self.low:
+            self.low = z
+
+    def result(self) -> tuple[int, tuple[float, float] | None, str]:
+        if self.kind is not None and self.marked:
+            z_range = (self.marked_low, self.marked_top) if self.marked_low <= self.marked_top else None
+            return self.marked, z_range, self.kind
+        if self.top is None:
+            return 0, None, ""
+        return self.levels, (self.low, self.top), ""
+
+
+def _per_tool(times: list[float], tool: str | None) -> float:
+    """A tool's load (or unload) time: its own where the settings list one per filament, else the first."""
+    if not times:
+        return 0.0
+    m = re.search(r"(\d+)$", tool or "")
+    index = int(m.group(1)) if m else 0
+    return times[index] if index < len(times) else times[0]
+
+
+def _tangents(arc, dz: float, length: float) -> tuple[tuple | None, tuple | None]:
+    """The directions (unit XYZ) an arc starts and ends in: along the circle, rising ``dz`` over its length (an
+    arc in another plane: None, the planner takes its chord)."""
+    plane, _, radius, clockwise, a0, turn = arc
+    if plane != 17 or length <= 0 or radius <= 0:
+        return None, None
+    a1 = a0 - turn if clockwise else a0 + turn
+    flat = radius * turn / length
+    rise = dz / length
+    sign = -1.0 if clockwise else 1.0
+    into = (-math.sin(a0) * sign * flat, math.cos(a0) * sign * flat, rise)
+    out = (-math.sin(a1) * sign * flat, math.cos(a1) * sign * flat, rise)
+    return into, out
+
+
+def _arc_length(arc, dz: float) -> float:
+    """An arc's path length (mm): its turn and its rise (an arc in another plane: its rise is along another
+    axis)."""
+    plane, _, radius, _, _, turn = arc
+    if plane == 17:
+        return math.hypot(radius * turn, dz)
+    return radius * turn
 
 
 def _temperature(summary: JobSummary, heads: dict[str, HeadUse], heat: Heat) -> None:
@@ -249,7 +454,8 @@ def render(summary: JobSummary) -> str:
         out.append(f"  {kind}: set-points {listed} °C{waited}")
     out.append(f"  flow: {summary.flow}")
     if summary.z_range:
-        out.append(f"  layers: {summary.layers:,}, Z {summary.z_range[0]:g} to {summary.z_range[1]:g} mm")
+        by = " (the slicer's layer marks)" if summary.layer_marks else ""
+        out.append(f"  layers: {summary.layers:,}, Z {summary.z_range[0]:g} to {summary.z_range[1]:g} mm{by}")
     if summary.x_range and summary.y_range:
         extent = (
             f"  XY extent: X {summary.x_range[0]:g} to {summary.x_range[1]:g}, "
@@ -269,8 +475,32 @@ def render(summary: JobSummary) -> str:
         n = summary.unmeasured_moves
         moves += f" (and {n:,} move{'s' if n != 1 else ''} from an unknown position, not measured)"
     out.append(moves)
-    out.append(f"  estimated time: {_duration(summary.time_s)} (moves at their feed plus dwells; no heating)")
+    out.append(f"  estimated time: {_duration(summary.time_s)} ({_time_model(summary)})")
+    if summary.layers_time_s is not None:
+        out.append(
+            f"  of which the layers: {_duration(summary.layers_time_s)} (from the first layer mark to the last"
+            " printing move; the rest is the start and end sequences)"
+        )
+    if summary.slicer_time_s is not None:
+        out.append(f"  the slicer's own estimate: {_duration(summary.slicer_time_s)}")
     return "\n".join(out) + "\n"
+
+
+def _time_model(summary: JobSummary) -> str:
+    if summary.time_junctions == "from rest":
+        said = (
+            f"moves planned with acceleration from {summary.time_limits}, each from rest (the job states no jerk"
+            " or junction deviation)"
+        )
+    elif summary.time_limits:
+        junctions = "jerk limits" if summary.time_junctions == "jerk" else "junction deviation"
+        said = f"moves planned with acceleration and {junctions} from {summary.time_limits}"
+    else:
+        said = "moves at their feed: no acceleration known, a lower bound"
+    parts = [said, "plus dwells"]
+    if summary.tool_change_s:
+        parts.append(f"tool changes at the slicer's load and unload times ({_duration(summary.tool_change_s)})")
+    return "; ".join(parts) + f"; leaves out {summary.time_leaves_out}"
 
 
 def _duration(seconds: float) -> str:

@@ -8,7 +8,7 @@ from pathlib import Path
 
 import pytest
 
-from gclint.summary import summarize_path
+from gclint.summary import render, summarize_path
 from tests.conftest import CORPUS, needs_corpus, run_cli
 
 HAND = """\
@@ -59,8 +59,10 @@ def test_a_prusaslicer_job_against_its_own_counts() -> None:
     text = path.read_text(errors="replace")
     s = summarize_path(str(path))
     layers = len(re.findall(r"^;LAYER_CHANGE", text, re.M))  # the slicer's own layer marks (160)
-    assert s.layers == layers + 1  # + the start purge line at Z 0.2, below the first layer
-    assert s.z_range[1] == float(re.findall(r"^;Z:([\d.]+)", text, re.M)[-1])
+    # (issue 28: the start purge line at Z 0.2, printed before the first mark, was counted as one more layer)
+    assert s.layers == layers and s.layer_marks == "prusaslicer"
+    heights = [float(z) for z in re.findall(r"^;Z:([\d.]+)", text, re.M)]
+    assert s.z_range == (heights[0], heights[-1])
     used = float(re.search(r"^; filament used \[mm\] = ([\d.]+)", text, re.M).group(1))
     [head] = s.heads
     assert head.extruded_mm == pytest.approx(used, rel=0.002)  # net E: retractions taken back
@@ -208,3 +210,99 @@ def test_a_job_that_sweeps_set_points_and_layers_stays_small(tmp_path: Path) -> 
     assert len(s.devices["bed"]) == MAX_VALUES and s.more_device_set_points["bed"] == 300 - MAX_VALUES
     assert s.layers == 300 and s.z_range == (0.1, 30)
     assert f"(and {300 - MAX_VALUES:,} more settings not listed)" in render(s)
+
+
+# -- issue 28: layers as the slicer counts them, a planned time --------------------------------------------------
+
+
+def _job(tmp_path: Path, text: str, name: str = "job.gcode") -> str:
+    job = tmp_path / name
+    job.write_text(text)
+    return str(job)
+
+
+def test_layers_without_marks_leave_out_primes_and_parking(tmp_path: Path) -> None:
+    # issue 28: a prime of the extruder alone at Z15 (the start G-code of a Prusa MINI) made "layers: 1, Z 15 to 15"
+    layers = "".join(
+        f"G1 Z{z} F720\nG1 X10 Y10 F6000\nG1 X30 Y10 E1 F1200\nG1 X30 Y30 E1\nG1 Z{z + 5} X100 Y100 F6000\n"
+        for z in (0.2, 0.4, 0.6)
+    )
+    job = "G28\nM83\nG1 X0 Y-4 Z15 F4800\nG1 E2 F2400 ; prime\n" + layers + "G1 Z40 X0 Y200 F6000 ; park\nM84\n"
+    s = summarize_path(_job(tmp_path, job))
+    assert s.layers == 3 and s.z_range == (0.2, 0.6) and s.layer_marks == ""
+
+
+def test_a_spiral_without_marks_counts_a_layer_per_turn(tmp_path: Path) -> None:
+    square = [(10, 0), (10, 10), (0, 10), (0, 0)]
+    text = "G28\nM83\n"
+    for z in (0.2, 0.4):  # two flat bottom layers
+        text += f"G1 Z{z} F720\n" + "".join(f"G1 X{x} Y{y} E0.5 F1200\n" for x, y in square)
+    z = 0.4
+    for _ in range(5):  # five turns rising 0.2 each
+        for x, y in square:
+            z += 0.05
+            text += f"G1 X{x} Y{y} Z{z:.2f} E0.5\n"
+    s = summarize_path(_job(tmp_path, text))
+    assert s.layers == 2 + 5 and s.z_range == (0.2, 1.4)
+
+
+def test_the_slicers_marks_count_the_layers_one_kind_only(tmp_path: Path) -> None:
+    # PrusaSlicer's own ";LAYER_CHANGE"; a ";LAYER:n" from the user's layer G-code is not a second count.  The
+    # purge line before the first mark, at the first layer's height, is no layer of its own
+    layer = ";LAYER_CHANGE\n;Z:{z}\n;LAYER:{n}\nG1 Z{z} F720\nG1 X{x} Y10 E1 F1200\n"
+    text = "G28\nM83\nG1 Z0.2\nG1 X60 E9 F1000 ; purge\n" + "".join(
+        layer.format(z=round(0.2 * (n + 1), 1), n=n, x=10 + n) for n in range(4)
+    )
+    s = summarize_path(_job(tmp_path, text))
+    assert (s.layers, s.layer_marks, s.z_range) == (4, "prusaslicer", (0.2, 0.8))
+    # KISSlicer marks each object's part of a layer: one layer per height
+    kiss = "G28\nM83\n" + "".join(
+        f"; BEGIN_LAYER_OBJECT z={z}\nG1 Z{z}\nG1 X{i} Y1 E1 F600\n" for z in (0.3, 0.3, 0.6) for i in (1, 2)
+    )
+    s = summarize_path(_job(tmp_path, kiss, "kiss.gcode"))
+    assert (s.layers, s.layer_marks) == (2, "kisslicer")
+
+
+def test_the_time_of_the_layers_leaves_out_the_start_and_end_sequences(tmp_path: Path) -> None:
+    text = (
+        "M82\nG28\nG1 X0 Y0 Z0.2 F3000\nG4 S10\n"
+        + "".join(f";LAYER:{n}\nG1 X{(n + 1) * 20} Y0 E{n + 1} F1200\n" for n in range(3))
+        + "G4 S5\nG1 Z50 F600\n"
+    )
+    s = summarize_path(_job(tmp_path, text))
+    assert s.dwell_s == 15 and s.layers_time_s is not None
+    assert 10 + 5 < s.time_s - s.layers_time_s < 10 + 5 + 15  # the start's dwell, the end's and the moves around
+    assert "of which the layers:" in render(s)
+
+
+def test_the_jobs_own_acceleration_and_tool_change_times_count(tmp_path: Path) -> None:
+    moves = "G28\nM83\n" + "".join(f"G1 X{100 * (i % 2)} Y{i} E1 F6000\n" for i in range(1, 21))
+    fast = summarize_path(_job(tmp_path, "M204 P5000 T5000\n" + moves, "fast.gcode"))
+    slow = summarize_path(_job(tmp_path, "M204 P200 T200\n" + moves, "slow.gcode"))
+    assert fast.time_limits.startswith("the job's own commands") and slow.time_s > 1.3 * fast.time_s
+    # the tool changes' load and unload times the slicer's settings state (PrusaSlicer's MMU: per filament)
+    mmu = (
+        "T0\n"
+        + moves
+        + "T1\n"
+        + moves
+        + "T0\n"
+        + moves
+        + "; filament_load_time = 10,12\n; filament_unload_time = 5,6\n"
+    )
+    s = summarize_path(_job(tmp_path, mmu, "mmu.gcode"))
+    assert s.tool_change_s == pytest.approx((5 + 12) + (6 + 10))
+    assert "tool changes at the slicer's load and unload times" in render(s)
+
+
+def test_a_job_with_no_known_acceleration_says_its_time_is_a_lower_bound(tmp_path: Path) -> None:
+    s = summarize_path(_job(tmp_path, HAND))  # Hyrel: no defaults cited, the job states none
+    assert s.time_limits == "" and "no acceleration known, a lower bound" in render(s)
+    assert "leaves out heating waits" in render(s)
+
+
+@needs_corpus
+def test_issue_28_prusaslicer_mini_cube_layers() -> None:
+    out = run_cli("summary", str(CORPUS / "marlin" / "prusaslicer-2.8.1_mini_cube.gcode")).stdout.decode()
+    assert "layers: 31, Z 0.2 to 6.2 mm (the slicer's layer marks)" in out
+    assert "the slicer's own estimate: 3 min 41 s" in out

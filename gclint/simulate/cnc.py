@@ -166,7 +166,7 @@ class CncSimulator(Simulator):
         return "no tool" if tool is None else f"tool {tool}"
 
     def tool_name(self) -> str:
-        return self.tool_label(self.tool)
+        return self.named(self.tool)
 
     def spindle_percent(self) -> float | None:
         top = self.mapping.spindle_max_rpm

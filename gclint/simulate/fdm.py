@@ -10,6 +10,7 @@ M568 set a tool's temperature, M109 T selects the tool.
 
 from __future__ import annotations
 
+from gclint.simulate.events import Limits
 from gclint.simulate.heat import ToolHeat
 from gclint.simulate.machine import Simulator, number
 from gclint.simulate.trace import AUX_PORTS, EndState, Look, Move
@@ -79,6 +80,12 @@ class MarlinSimulator(Simulator):
             "M25": self.pause,
             "M226": self.pause,
             "M600": self.pause,
+            # motion limits (only ``events`` reads them: the summary's print time)
+            "M201": self.limits,
+            "M203": self.limits,
+            "M204": self.limits,
+            "M205": self.limits,
+            "SET_VELOCITY_LIMIT": self.limits,
         }
         for n in range(54, 60):
             h[f"G{n}"] = self.workspace
@@ -87,8 +94,16 @@ class MarlinSimulator(Simulator):
     def plain_moves(self) -> bool:
         return self.feed_factor == 1.0 and super().plain_moves()
 
+    def fast_plain(self) -> bool:
+        # (``motion`` below does for a plain line what the shared one does while ``plain_now``: no G53 before it,
+        # no M220 factor; a plain line has no S for a cutter)
+        return self.g0_feed == "modal" and self.g0_extrudes and self.extruder == "E"
+
+    def plain_now(self) -> bool:
+        return self.feed_factor == 1.0 and not self._g53_alone
+
     def tool_name(self) -> str:
-        return self.tool_label(self.heat.tool)
+        return self.named(self.heat.tool)
 
     # -- motion ---------------------------------------------------------------------------------------
 
@@ -139,6 +154,59 @@ class MarlinSimulator(Simulator):
     def home(self, cmd: Command, n: int) -> None:
         listed = "".join(a for a in "XYZ" if a in cmd.params)
         self.home_axes(listed or "XYZ")
+
+    # The motion limits, in mm and seconds (``events.LIMIT_NAMES``), from each code's words as the firmware reads them
+    # (Marlin G-code reference: M201 "max acceleration, units/s²", M203 "max feedrate, units/s", M204 "P printing,
+    # R retract, T travel; S legacy: printing and travel", M205 "X Y Z E jerk, units/s; J junction deviation, mm;
+    # S minimum feedrate, T minimum travel feedrate"; Klipper's SET_VELOCITY_LIMIT VELOCITY ACCEL
+    # SQUARE_CORNER_VELOCITY, mm/s and mm/s², Klipper G-Codes reference).  A code's words -> names.
+    LIMIT_WORDS: dict[str, dict[str, tuple[str, ...]]] = {
+        "M201": {"X": ("max_accel_x",), "Y": ("max_accel_y",), "Z": ("max_accel_z",), "E": ("max_accel_e",)},
+        "M203": {"X": ("max_feed_x",), "Y": ("max_feed_y",), "Z": ("max_feed_z",), "E": ("max_feed_e",)},
+        "M204": {
+            "S": ("accel_print", "accel_travel"),
+            "P": ("accel_print",),
+            "R": ("accel_retract",),
+            "T": ("accel_travel",),
+        },
+        "M205": {
+            "X": ("jerk_x",),
+            "Y": ("jerk_y",),
+            "Z": ("jerk_z",),
+            "E": ("jerk_e",),
+            "J": ("junction_deviation",),
+            "S": ("min_feed_print",),
+            "T": ("min_feed_travel",),
+        },
+        "SET_VELOCITY_LIMIT": {
+            "VELOCITY": ("max_feed",),
+            "ACCEL": ("accel_print", "accel_travel"),
+            "SQUARE_CORNER_VELOCITY": ("square_corner_velocity",),
+        },
+    }
+    PER_MINUTE: frozenset[str] = frozenset()  # the codes whose speeds the firmware reads in units/min
+
+    def limits(self, cmd: Command, n: int) -> None:
+        """A code that sets motion limits: a ``Limits`` event (``events`` only; nothing here depends on them)."""
+        if not self.listening:
+            return
+        words = self.LIMIT_WORDS.get(cmd.code or "")
+        if not words:
+            return
+        per_minute = cmd.code in self.PER_MINUTE
+        values: dict[str, float] = {}
+        for letter, names in words.items():
+            value = number(cmd.params.get(letter))
+            if value is None or value < 0:
+                continue
+            if names[0] != "junction_deviation" and per_minute:
+                value /= 60
+            if not names[0].startswith("square"):  # (lengths in the job's units; Klipper speaks mm)
+                value *= self.scale
+            for name in names:
+                values[name] = value
+        if values:
+            self.emit(Limits(n, values))
 
     def m220(self, cmd: Command, n: int) -> None:
         s = number(cmd.params.get("S"))
@@ -305,9 +373,20 @@ class RepRapSimulator(MarlinSimulator):
                 "M0": self.end_program,
                 "M1": self.end_program,
                 "M2": self.end_program,
+                "M566": self.limits,
             }
         )
         return h
+
+    # RepRapFirmware reads M203 and M566 speeds in mm/min; M566 sets the jerk, M205 the same in mm/s; M204 has
+    # P and T only (RepRapFirmware G-code reference, M201-M205, M566)
+    LIMIT_WORDS = {
+        **MarlinSimulator.LIMIT_WORDS,
+        "M204": {"P": ("accel_print",), "T": ("accel_travel",)},
+        "M205": {"X": ("jerk_x",), "Y": ("jerk_y",), "Z": ("jerk_z",), "E": ("jerk_e",)},
+        "M566": {"X": ("jerk_x",), "Y": ("jerk_y",), "Z": ("jerk_z",), "E": ("jerk_e",)},
+    }
+    PER_MINUTE = frozenset({"M203", "M566"})
 
     def home(self, cmd: Command, n: int) -> None:
         listed = "".join(a for a in "XYZ" if a in cmd.params)

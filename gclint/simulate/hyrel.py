@@ -141,7 +141,7 @@ class HyrelSimulator(Simulator):
         return "the focused head" if tool is None else f"T{tool}"
 
     def tool_name(self) -> str:
-        return self.tool_label(self.focus)
+        return self.named(self.focus)
 
     def tool_title(self, name: str) -> str:
         digits = name[1:]

@@ -15,11 +15,12 @@ where the two disagree the diff shows it.
 from __future__ import annotations
 
 import math
+import re
 from collections.abc import Callable, Iterator
 
 from gclint.dialects.base import Dialect
 from gclint.dialects.semantics import number
-from gclint.simulate.events import Dwell, Event, Heat, Ignored, Pause, ProgramEnd, ToolChange
+from gclint.simulate.events import LAYER_MARKS, Dwell, Event, Heat, Ignored, Layer, Pause, ProgramEnd, ToolChange
 from gclint.simulate.trace import NATIVE, EndState, Look, Mapping, Move, Trace
 from gclint.syntax.fastpath import PLAIN_MOVE
 from gclint.syntax.nodes import ASSIGNMENT, GCODE, IMPLICIT, META, OWORD, Command
@@ -39,6 +40,19 @@ _HEAT = {
     "wait-chamber-temperature": ("chamber", True),
 }
 _PLANES = {17: ("X", "Y", "I", "J"), 18: ("Z", "X", "K", "I"), 19: ("Y", "Z", "J", "K")}
+_LAYER_MARKS = tuple((kind, re.compile(pattern)) for kind, pattern in LAYER_MARKS)
+
+
+def layer_mark(raw: str) -> tuple[str, float | None] | None:
+    """The slicer's layer mark a comment line is (``events.LAYER_MARKS``): its kind and the height it states; None
+    when it is none."""
+    if "LAYER" not in raw and "layer" not in raw:
+        return None
+    for kind, pattern in _LAYER_MARKS:
+        m = pattern.fullmatch(raw)
+        if m is not None:
+            return kind, number(m.group(1)) if m.groups() else None
+    return None
 
 
 
@@ -52,6 +66,8 @@ class Simulator:
         facts = self.facts = dialect.semantics
         self.extruder = facts.extruder  # the word that drives the extruder (Machinekit: A; CNC: None)
         self.axes = "".join(a for a in "XYZAB" if a != facts.extruder)  # the axes that are positions
+        self._axis_of = {a: _AXIS_INDEX[a] for a in self.axes}
+        self._names: dict = {}  # tool -> its name (``named``)
         self.g0_feed = facts.g0_feed
         self.g0_extrudes = facts.g0_extrudes
         self.feed_on_any = facts.feed_on_any_command
@@ -120,6 +136,8 @@ class Simulator:
         plain = self.plain_moves()
         facts = self.facts
         pending = self._events
+        marks = self.listening  # (``events``: a slicer's layer marks are events too)
+        fast = self.listening and plain and self.fast_plain()
         n = 0
         for chunk in source.chunks():
             for raw, _ending in chunk:
@@ -127,8 +145,21 @@ class Simulator:
                 if self.ended:
                     continue
                 self.line = n
+                if marks and raw[:1] == ";":
+                    mark = layer_mark(raw)
+                    if mark is not None:
+                        yield Layer(n, *mark)
+                        continue
                 if plain and raw[:1] == "G":
                     m = plain_match(raw)
+                    if m is not None and fast and self.plain_now():
+                        move = self.plain_event(m.groups(), n)
+                        if move is not None:
+                            yield move
+                        if pending:
+                            yield from pending
+                            pending.clear()
+                        continue
                     if m is not None:
                         digit, f_first, x, y, z, e, f = m.groups()
                         params = {}
@@ -244,7 +275,14 @@ class Simulator:
 
     def tool_name(self) -> str:
         """The working tool in the dialect's own terms."""
-        return self.tool_label(None)
+        return self.named(None)
+
+    def named(self, tool) -> str:
+        """``tool_label(tool)``, made once per tool (every move asks)."""
+        name = self._names.get(tool)
+        if name is None:
+            name = self._names[tool] = self.tool_label(tool)
+        return name
 
     def tool_title(self, name: str) -> str:
         """A tool's name (``tool_name``) as a legend says it."""
@@ -254,7 +292,15 @@ class Simulator:
         """(``events``) ``move`` with its tool and where it starts and ends in the job's coordinates."""
         move.tool = self.tool_name()
         move.origin = self._point  # (as the job wrote it: a tool change between does not move the point)
-        self._point = move.point = tuple(self.logical(i) for i in range(5))
+        pos, shift, offset = self.pos, self.shift, self.offset
+        x, y, z, a, b = pos
+        self._point = move.point = (
+            None if x is None else x - shift[0] - offset[0],
+            None if y is None else y - shift[1] - offset[1],
+            None if z is None else z - shift[2] - offset[2],
+            None if a is None else a - shift[3] - offset[3],
+            None if b is None else b - shift[4] - offset[4],
+        )
         return move
 
     def placed(self) -> None:
@@ -265,6 +311,64 @@ class Simulator:
     def plain_moves(self) -> bool:
         """Whether plain G0/G1 lines (X Y Z E F numbers only) may go straight to ``motion``."""
         return self.handlers.get("G1") == self.g1 and self.handlers.get("G0") == self.g0
+
+    def fast_plain(self) -> bool:
+        """Whether ``events`` may read plain G0/G1 lines by ``plain_event`` (while ``plain_now``): a machine whose
+        G0 extrudes and shares G1's modal F, whose extruder is E, and whose ``motion`` is the one here or does the
+        same for such lines (a simulator says so by overriding this and ``plain_now``)."""
+        return (
+            type(self).motion is Simulator.motion
+            and self.g0_feed == "modal"
+            and self.g0_extrudes
+            and self.extruder == "E"
+        )
+
+    def plain_now(self) -> bool:
+        """Whether the state lets ``plain_event`` read the next plain line (``fast_plain``)."""
+        return True
+
+    def plain_event(self, words: tuple, n: int) -> Move | None:
+        """``motion`` for a plain G0/G1 line (``syntax.fastpath.PLAIN_MOVE``'s groups), as ``motion``, ``target``
+        and ``extrusion`` do it, without a dictionary of words: the same state and the same events, faster
+        (``tests/test_reader_plain_events.py`` compares the two on the corpus)."""
+        digit, f_first, x, y, z, e, f = words
+        rapid = digit == "0"
+        self.motion_mode = "G0" if rapid else "G1"
+        if f is None:
+            f = f_first
+        scale = self.scale
+        if f is not None:
+            self.feed = float(f) * scale
+        pos = self.pos
+        start = tuple(pos)
+        if x is not None or y is not None or z is not None:
+            new = list(pos)
+            if self.absolute:
+                shift, offset, anchor = self.shift, self.offset, self.anchor
+                for i, text in ((0, x), (1, y), (2, z)):
+                    if text is not None:
+                        new[i] = float(text) * scale + shift[i] + offset[i]
+                        anchor[i] = n
+                        label = self.frame_label(i)
+                        if self.frame[i] != label:
+                            self.set_frame(i, label)
+            else:
+                for i, text in ((0, x), (1, y), (2, z)):
+                    if text is not None and new[i] is not None:
+                        new[i] = new[i] + float(text) * scale  # type: ignore[operator]
+            self.pos = new
+        delta = None
+        if e is not None:
+            v = float(e) * self.e_scale()
+            if self.e_absolute:
+                e_pos = self.e_pos
+                delta = v - e_pos if e_pos is not None else v
+                self.e_pos = v
+            else:
+                delta = v
+                if self.e_pos is not None:
+                    self.e_pos += v
+        return self.sync(start, None, delta, self.feed, rapid)
 
     def other(self, cmd: Command, n: int) -> Move | None:
         """A command without a handler: implicit motion, tool commands; everything else does nothing
@@ -361,24 +465,24 @@ class Simulator:
         new = list(self.pos)
         scale = self.scale
         absolute = self.absolute
-        for letter in self.axes:
-            if letter in params:
-                if not xy and letter in "XY":
-                    continue
-                i = _AXIS_INDEX[letter]
-                try:
-                    v = float(params[letter])  # type: ignore[arg-type]
-                except (TypeError, ValueError):
-                    new[i] = None
-                    continue
-                if absolute:
-                    new[i] = v * scale + self.shift[i] + self.offset[i]
-                    self.anchor[i] = self.line
-                    label = self.frame_label(i)
-                    if self.frame[i] != label:
-                        self.set_frame(i, label)
-                elif new[i] is not None:
-                    new[i] = new[i] + v * scale  # type: ignore[operator]
+        axis_of = self._axis_of
+        for letter, text in params.items():
+            i = axis_of.get(letter)
+            if i is None or (i < 2 and not xy):
+                continue
+            try:
+                v = float(text)  # type: ignore[arg-type]
+            except (TypeError, ValueError):
+                new[i] = None
+                continue
+            if absolute:
+                new[i] = v * scale + self.shift[i] + self.offset[i]
+                self.anchor[i] = self.line
+                label = self.frame_label(i)
+                if self.frame[i] != label:
+                    self.set_frame(i, label)
+            elif new[i] is not None:
+                new[i] = new[i] + v * scale  # type: ignore[operator]
         return new
 
     def logical(self, i: int) -> float | None:
