@@ -94,14 +94,22 @@ def check_profile(path: str, options: Options, linter: Linter | None = None) -> 
     notes: list[str] = []
     result = FileResult(path, lines=text.count("\n") + 1, profile=True)
     several = len(profiles) > 1  # (a bundle: each finding names the printer presets it is found in)
+    typical: set[str] = set()
+    read_as: dict[str, list[FileResult]] = {}
     for profile in profiles:
-        checked = _check(profile, options, findings, presets if several else {}, notes, several)
-        if checked is not None and result.context is None:
-            result.context, result.dialect, result.dialect_reason = (
-                checked.context,
-                checked.dialect,
-                checked.dialect_reason,
-            )
+        checked = _check(profile, options, findings, presets if several else {}, notes, several, typical)
+        if checked is not None:
+            read_as.setdefault(checked.read_as, []).append(checked)
+    if read_as:  # what most presets were read as ("Checked as ..."), and a note when they differ
+        first = max(read_as.values(), key=len)[0]
+        result.context, result.dialect, result.dialect_reason = first.context, first.dialect, first.dialect_reason
+        if len(read_as) > 1:
+            counts = sorted(read_as.items(), key=lambda item: -len(item[1]))
+            notes.insert(0, "its printer presets are read as " + "; ".join(f"{k} ({len(v)})" for k, v in counts))
+    if typical:
+        names = sorted(typical)
+        shown = ", ".join(f"{k}={_typical_value(k)}" for k in names[:12]) + (" ..." if len(names) > 12 else "")
+        notes.insert(0, f"placeholders with no value in the profile were filled with typical values: {shown}")
     if linter is None:
         linter = Linter(options)
     if any(cls.code == "SC006" for cls in linter.rule_classes):
@@ -121,6 +129,7 @@ def _check(
     presets: dict[tuple, list[str]],
     notes: list[str],
     several: bool,
+    typical: set[str],
 ) -> FileResult | None:
     pieces, text, errors = _job(profile)
     who = f"printer preset {profile.name!r}: " if profile.name and several else ""
@@ -135,14 +144,11 @@ def _check(
     if not pieces:
         notes.append(f"{who}no custom G-code setting to check")
         return None
-    typical = sorted(set().union(*(p.filled.typical for p in pieces)))
-    if typical:
-        shown = ", ".join(f"{k}={_typical_value(k)}" for k in typical[:12]) + (" ..." if len(typical) > 12 else "")
-        notes.append(f"placeholders with no value in the profile were filled with typical values: {shown}")
     for piece in pieces:
+        typical |= piece.filled.typical
         for at, what in piece.filled.unevaluated:
             line, column = piece.setting.text.at(at)
-            notes.append(f"{profile.path}:{line}:{column}: {piece.setting.label}: {what}")
+            notes.append(f"line {line}, column {column}: {piece.setting.label}: {what}")
     flavor = profile.flavor
     run_options = replace(options, env_flavor=flavor) if flavor and profile.slicer != CURA else options
     result = _lint(Linter(run_options), text, profile.path)

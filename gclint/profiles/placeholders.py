@@ -73,6 +73,7 @@ TYPICAL: dict[str, Value] = {
     "print_settings_id": "",
     "print_preset": "",
     "has_wipe_tower": False,
+    "has_single_extruder_multi_material_priming": False,
     "wipe_tower": False,
     "single_extruder_multi_material": False,
     "use_relative_e_distances": False,
