@@ -89,9 +89,12 @@ def kind_of(path: str, head: str) -> str | None:
 _JSON_MARKS = (
     "machine_start_gcode",
     "machine_end_gcode",
+    "machine_extruder_start_code",
+    "machine_extruder_end_code",
     "gcode_flavor",
     "machine_gcode_flavor",
     "change_filament_gcode",
+    "filament_start_gcode",
 )
 
 
