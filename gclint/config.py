@@ -10,6 +10,7 @@ wrong types are errors that name the file and the key.
     ignore = ["HY029"]
     extend-select = []
     per-file-ignores = { "calibration/*.gcode" = ["HY006"] }
+    allow-file-writes = ["sys/*.g"]      # SC005 not reported for these files: only in a --config file
     extend-known-codes = ["M900", "PRINT_START"]
     tool-map = { 0 = "T2", 1 = "T3" }
     spindle-max-rpm = 24000
@@ -143,6 +144,7 @@ _KEYS = {
     "ignore",
     "extend-select",
     "per-file-ignores",
+    "allow-file-writes",
     "extend-known-codes",
     "tool-map",
     "spindle-max-rpm",
@@ -204,7 +206,7 @@ def _read_file(path: Path) -> dict:
 def _check_patterns(table: dict, path: Path) -> None:
     """Path patterns are read when the file is (a walk matches them before anything is checked): one
     that cannot be read is an error naming the file, the key and the pattern."""
-    for key in ("exclude", "extend-exclude"):
+    for key in ("exclude", "extend-exclude", "allow-file-writes"):
         if key in table and not (isinstance(table[key], list) and all(isinstance(v, str) for v in table[key])):
             raise ConfigError(f"{path}: '{key}' must be a list of path patterns such as [\"archive/**\"]")
         for pattern in table.get(key) or ():
@@ -284,6 +286,8 @@ def apply(options: Options, table: dict, path: Path) -> Options:
         if not isinstance(pfi, dict):
             raise ConfigError(f"{path}: 'per-file-ignores' must be a table of pattern = [codes]")
         changes["per_file_ignores"] = {str(k): _codes(v, f"per-file-ignores.{k}", path) for k, v in pfi.items()}
+    if "allow-file-writes" in table:  # (patterns checked by load_file)
+        changes["allow_file_writes"] = tuple(table["allow-file-writes"])
     if "extend-known-codes" in table:
         changes["extend_known_codes"] = parse_known_codes(table["extend-known-codes"], f"{path}: 'extend-known-codes'")
     if "tool-map" in table:

@@ -29,6 +29,8 @@ from gclint.syntax.parse import parse_line
 from gclint.syntax.sniff import not_gcode_reason
 from gclint.syntax.source import NotGcode, Source, SourceError
 
+FILE_WRITES = "SC005"  # the rule ``allow-file-writes`` lets files write the printer's files past
+
 # Options and FileContext live in their own modules (gclint.options, gclint.filecontext), so that the rules
 # can name the context they report into without importing the engine; they are importable from here too.
 
@@ -57,6 +59,8 @@ class FileResult:
     context: Context | None = None  # what the file was read as, and why (gclint.context)
     digest: str | None = None  # SHA-256 of the bytes checked (Source.sha256), for --fix and the cache
     not_gcode: bool = False  # the error says the file is something else (a walk skips it with a note)
+    notes: list[str] = field(default_factory=list)  # what a person should know of how it was checked (a profile's)
+    profile: bool = False  # a slicer profile (gclint.profiles): its findings point into the profile, no fix or noqa
 
     @classmethod
     def unreadable(cls, path: str, exc: SourceError) -> FileResult:
@@ -243,9 +247,10 @@ class Linter:
         return FileContext(source.display, dialect, profile, self.options, context), result
 
     def per_file_ignores(self, path: str) -> tuple[str, ...]:
-        """The codes ``per-file-ignores`` switches off for ``path``: patterns (ruff's globs, gclint.globs)
-        are read relative to the folder of the configuration file that names them."""
-        if not self.options.per_file_ignores:
+        """The codes ``per-file-ignores`` switches off for ``path``, and SC005 where ``allow-file-writes``
+        names it: patterns (ruff's globs, gclint.globs) are read relative to the folder of the configuration
+        file that names them."""
+        if not self.options.per_file_ignores and not self.options.allow_file_writes:
             return ()
         config = self.options.config_path
         rel = globs.relative(path, os.path.dirname(os.path.abspath(config)) if config else os.getcwd())
@@ -253,6 +258,8 @@ class Linter:
         for pattern, codes in self.options.per_file_ignores.items():
             if globs.matches(pattern, rel):
                 out.extend(c.upper() for c in codes)
+        if any(globs.matches(pattern, rel) for pattern in self.options.allow_file_writes):
+            out.append(FILE_WRITES)
         return tuple(out)
 
     # -- the loop --------------------------------------------------------------------------------------

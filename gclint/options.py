@@ -24,7 +24,13 @@ class Options:
     ignore: list[str] = field(default_factory=list)
     extend_select: list[str] = field(default_factory=list)
     per_file_ignores: dict[str, list[str]] = field(default_factory=dict)
+    # path patterns of files allowed to write the printer's files (SC005 not reported: RepRapFirmware system
+    # macros, sys/*.g); only the user's configuration (--config) may say so (gclint.trust)
+    allow_file_writes: tuple[str, ...] = ()
     extend_known_codes: tuple[str, ...] = ()  # codes and command words DL001 accepts (site macros, REMAPs)
+    # the codes the LinuxCNC machine's INI beside the job remaps (gclint.machine.linuxcnc_ini), and that INI
+    machine_codes: tuple[str, ...] = ()
+    machine_config: tuple[str, ...] = ()
     env_flavor: str | None = None  # SLIC3R_GCODE_FLAVOR for postprocess
     spindle_max_rpm: float | None = None
     severity: dict[str, str] = field(default_factory=dict)  # code or prefix -> level (configuration)
@@ -46,7 +52,9 @@ class Options:
                 sorted(self.ignore),
                 sorted(self.extend_select),
                 sorted((k, sorted(v)) for k, v in self.per_file_ignores.items()),
+                sorted(self.allow_file_writes),
                 sorted(self.extend_known_codes),
+                sorted(self.machine_codes),
                 self.env_flavor,
                 self.spindle_max_rpm,
                 sorted(self.severity.items()),

@@ -16,6 +16,8 @@ from gclint.checkout import inside as _inside
 from gclint.config import ConfigError, apply, config_for, find_config
 from gclint.engine import FileResult, Linter, Options
 from gclint.excludes import TOOL_FOLDER, Excluder, Exclusion, LeftOut
+from gclint.machine.linuxcnc_ini import clear as _forget_machine_configs
+from gclint.machine.linuxcnc_ini import machine_codes
 from gclint.syntax.source import NotGcode, Source, SourceError
 from gclint.trust import Refusal, guard, security_only
 
@@ -354,6 +356,9 @@ def configured(path: str, base: Options, overrides: dict, explicit_config: str |
     if overrides and overrides.get("extend_known_codes"):  # adds to the configuration's codes
         overrides = {**overrides, "extend_known_codes": options.extend_known_codes + overrides["extend_known_codes"]}
     options = replace(options, **overrides) if overrides else options
+    codes, inis = machine_codes(path)
+    if codes:  # (the LinuxCNC machine's INI beside the job: its REMAP codes are known codes, DL001 only)
+        options = replace(options, machine_codes=codes, machine_config=inis)
     if config_path is None or explicit_config is not None:
         return options, []
     if options.dialect_origin == "configuration" and "dialect" not in (overrides or {}):
@@ -386,7 +391,19 @@ def check_file(path: str, options: Options) -> tuple[FileResult, str | None]:
     """Check one file; also returns the SHA-256 of exactly the bytes that were checked (None for pipes,
     devices and files not read to the end), which is what the result cache may store the result under.
 
-    A line too long to hold is reported (SX001), not read whole: checking never needs the whole line."""
+    A line too long to hold is reported (SX001), not read whole: checking never needs the whole line.
+    A slicer profile (a PrusaSlicer/OrcaSlicer ``.ini`` or ``.json``, a Cura ``.def.json``: gclint.profiles)
+    is checked as one: the G-code of its custom settings, each finding where it is written in the profile."""
+    if is_profile(path):
+        from gclint.profiles.check import check_profile
+
+        try:
+            return check_profile(path, options, _linter(options)), None
+        except RecursionError:
+            return FileResult(path, error=f"{path}: nesting too deep to check"), None
+        except Exception as exc:  # a bug in gclint itself: name the file, keep going with the others
+            detail = f"{type(exc).__name__}: {exc}".splitlines()[0][:200]
+            return FileResult(path, error=f"{path}: internal error while checking ({detail}); please report this"), None
     try:
         source = Source.open(path, digest=True, cut_long_lines=True)
     except NotGcode as exc:  # (binary: a magic number, NUL bytes)
@@ -409,6 +426,24 @@ def check_file(path: str, options: Options) -> tuple[FileResult, str | None]:
         return FileResult(path, error=f"{path}: internal error while checking ({detail}); please report this"), None
     finally:
         source.close()
+
+
+PROFILE_EXTENSIONS = (".ini", ".json")  # slicer profiles (gclint.profiles), checked when named or --profiles
+
+
+def is_profile(path: str) -> bool:
+    """Whether ``path`` is a slicer profile gclint checks as one: a ``.ini`` or ``.json`` name, and text that
+    a slicer wrote (an INI of LinuxCNC or any other program is not one)."""
+    if path == "-" or not path.lower().rstrip(" .").endswith(PROFILE_EXTENSIONS):
+        return False
+    from gclint.profiles.reader import kind_of
+
+    try:
+        with open(path, "rb") as fh:
+            head = fh.read(64 << 10)
+    except OSError:
+        return False
+    return kind_of(path, head.decode("utf-8", "replace")) is not None
 
 
 def _not_gcode(path: str, options: Options, reason: str) -> FileResult:
@@ -479,6 +514,7 @@ def results(
     ``files``.  Memory does not grow with the number of files: a few batches of files are checked ahead
     (read from the cache, or sent to the worker processes), not the whole run."""
     find_config.cache_clear()
+    _forget_machine_configs()
     links = links or {}
     items = _items(files, base, overrides, explicit_config, stdin_name, cache, frozenset(security_only), links)
     workers = min(jobs, len(files))

@@ -123,10 +123,16 @@ def security_suppressions(
                 out.append(Suppression(codes, origin, how, len(paths), True, "weakens"))
         for pattern, codes in options.per_file_ignores.items():
             off = [c for c in security if any(c.startswith(s.strip().upper()) for s in codes)]
-            single = Linter(replace(options, per_file_ignores={pattern: codes}))
+            single = Linter(replace(options, per_file_ignores={pattern: codes}, allow_file_writes=()))
             matched = sum(1 for p in paths if _hit(single, p, off)) if off else 0
             if matched:
                 out.append(Suppression(tuple(off), origin, f"per-file-ignores {pattern!r}", matched, key is not None))
+        for pattern in options.allow_file_writes:
+            single = Linter(replace(options, per_file_ignores={}, allow_file_writes=(pattern,)))
+            matched = sum(1 for p in paths if _hit(single, p, ["SC005"]))
+            if matched:
+                how = f"allow-file-writes {pattern!r}"
+                out.append(Suppression(("SC005",), origin, how, matched, key is not None))
     return out
 
 
@@ -254,6 +260,12 @@ def show_settings(files: list[str], overrides: dict, explicit_config: str | None
         lines.append(f"  ignore: {', '.join(options.ignore) or '(none)'}")
         pfi = "; ".join(f"{k} = {', '.join(v)}" for k, v in options.per_file_ignores.items()) or "(none)"
         lines.append(f"  per-file-ignores: {pfi}")
+        if options.allow_file_writes:
+            lines.append(f"  allow-file-writes (SC005 not reported): {', '.join(options.allow_file_writes)}")
+        if options.machine_codes:
+            shown = ", ".join(options.machine_codes[:12]) + (" ..." if len(options.machine_codes) > 12 else "")
+            inis = ", ".join(_display(p) for p in options.machine_config)
+            lines.append(f"  machine codes (REMAP in {inis}, LinuxCNC/Machinekit jobs): {shown}")
         if options.spindle_max_rpm is not None:
             lines.append(f"  spindle-max-rpm: {options.spindle_max_rpm:g}")
         if options.tool_map:

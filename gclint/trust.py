@@ -3,7 +3,7 @@
 A configuration file found by walking up from the files (``.gclint.toml``, ``gclint.toml``,
 ``pyproject.toml [tool.gclint]``) travels with them: a pull request can add one next to the jobs it adds.
 It may tune the SX, DL and HY rules, but it cannot switch a security (SC) rule off, lower its severity or
-keep it from a file (``select``, ``ignore``, ``per-file-ignores``, ``severity``; its ``exclude`` patterns
+keep it from a file (``select``, ``ignore``, ``per-file-ignores``, ``allow-file-writes``, ``severity``; its ``exclude`` patterns
 are read by ``gclint.excludes``).  Only the command line, an editor's settings or a configuration named by
 ``--config`` can: they are the user's.  ``guard`` holds the options a found configuration made to that,
 and says what it refused.
@@ -93,6 +93,9 @@ def _guard(options: Options, trusted: Options) -> tuple[Options, tuple[Refusal, 
             severity[code] = level(trusted, code).label  # a full code outranks any prefix
         changes["severity"] = severity
         refused.append(Refusal(config, tuple(lowered), "severity"))
+    if options.allow_file_writes and "SC005" in kept:
+        changes["allow_file_writes"] = ()
+        refused.extend(Refusal(config, ("SC005",), f"allow-file-writes {p!r}") for p in options.allow_file_writes)
     if options.per_file_ignores:
         codes = list(all_rules())
         per_file: dict[str, list[str]] = {}

@@ -414,6 +414,10 @@ def _add_noqa(results: list[FileResult], links: dict[str, str]) -> int:
             if r.findings:
                 _note(f"{r.path}: a link found in a folder: no noqa added (check the file it points to)")
             continue
+        if r.profile:  # (its findings are in the G-code of its settings: a noqa goes there, by hand)
+            if r.findings:
+                _note(f"{r.path}: a slicer profile: no noqa added (write '; noqa: CODE' in the setting's G-code)")
+            continue
         outcome = add_noqa(r)
         added += outcome.fixed
         for why in outcome.reverted:

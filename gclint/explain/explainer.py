@@ -14,7 +14,7 @@ from gclint.explain.generic import generic, title, unknown
 from gclint.explain.job import Decoder, Job
 from gclint.explain.model import Explanation, secret_values
 from gclint.machine.state import MachineState
-from gclint.syntax.nodes import ASSIGNMENT, EXTENDED, GCODE, IMPLICIT, META, OWORD, PERCENT, TEXT, Command, Line
+from gclint.syntax.nodes import ASSIGNMENT, EXTENDED, GCODE, HOST, IMPLICIT, META, OWORD, PERCENT, TEXT, Command, Line
 from gclint.syntax.parse import parse_line
 from gclint.syntax.source import Source
 
@@ -126,6 +126,23 @@ class Explainer(Job):
             )
         if kind == PERCENT:
             return Explanation(line.number, line.raw, "%", "program start/end marker")
+        if kind == HOST:
+            from gclint.rules.dialect import HOST_ACTIONS
+
+            exp = Explanation(
+                line.number,
+                line.raw,
+                cmd.code,
+                "OctoPrint @ command: OctoPrint runs it and never sends it to the printer",
+            )
+            action = HOST_ACTIONS.get(cmd.code or "")
+            if action is not None:
+                exp.add(cmd.code or "", f"OctoPrint {action[0]}")
+            else:
+                exp.add(
+                    cmd.code or "", "a plugin's command, if a plugin handles it: OctoPrint itself does nothing with it"
+                )
+            return exp
         return Explanation(line.number, line.raw, cmd.code, f"{kind} command")
 
 

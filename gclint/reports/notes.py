@@ -17,6 +17,11 @@ def context_notes(results: list[FileResult], verbose: bool = False) -> list[str]
     weak: list[str] = []
     for r in results:
         c = r.context
+        if r.profile and r.error is None:  # (a slicer profile: what its check filled in, and how it read)
+            lines.extend(f"{r.path}: {note}" for note in r.notes)
+            if verbose and c is not None:
+                lines.append(f"{r.path}: its custom G-code was checked as {c.label()}: {r.dialect_reason}")
+            continue
         if r.error is not None or c is None:
             continue
         if verbose:

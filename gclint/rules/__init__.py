@@ -1,3 +1,3 @@
 """The built-in rules.  Importing this package registers them (see base.register)."""
 
-from gclint.rules import dialect, hyrel, security, syntax, translation  # noqa: F401
+from gclint.rules import dialect, hyrel, profiles, security, syntax, translation  # noqa: F401

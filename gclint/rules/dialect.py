@@ -10,7 +10,19 @@ from __future__ import annotations
 from gclint import firmware
 from gclint.dialects.base import Param
 from gclint.rules.base import Rule, Severity, register
-from gclint.syntax.nodes import EXTENDED, GCODE, IMPLICIT, META, OWORD, TEXT, WORD_LETTERS, Command, Line, to_number
+from gclint.syntax.nodes import (
+    EXTENDED,
+    GCODE,
+    HOST,
+    IMPLICIT,
+    META,
+    OWORD,
+    TEXT,
+    WORD_LETTERS,
+    Command,
+    Line,
+    to_number,
+)
 
 _UNSEEN = ("",)  # (a verdict not made yet)
 _ARC_LETTERS = frozenset("XYZIJEF")  # (the words of an arc of a run: fastpath.run_pattern)
@@ -31,8 +43,10 @@ class UnknownCode(Rule):
         A Marlin-flavour file written for Prusa (Buddy or MK3), Bambu Lab or Klipper firmware, as its
         slicer settings say (`; printer_model = MK4S`, `M862.3 P "MK4S"`, `; gcode_flavor = klipper`),
         is checked against Marlin and that firmware's inventory: `M74` is not unknown in a job for an
-        MK4S.  Codes your machine has besides its firmware's (site macros, Klipper `[gcode_macro]`s,
-        LinuxCNC `REMAP=` codes) are declared with `extend-known-codes` in the configuration.
+        MK4S.  Codes your machine has besides its firmware's (site macros, Klipper `[gcode_macro]`s) are
+        declared with `extend-known-codes` in the configuration.  A LinuxCNC or Machinekit job's
+        `REMAP=` codes are read from the machine's INI file (its `[RS274NGC]` section) in the job's folder or
+        a folder above it, up to the repository root; M100-M199 are LinuxCNC's user M-codes.
     """
     example_bad = "; gclint: dialect=hyrel\nM204 S1000"
     example_good = "; gclint: dialect=hyrel\nM203 X6000 Y6000"
@@ -48,6 +62,8 @@ class UnknownCode(Rule):
         flavor = ctx.context.flavor
         self.flavor = firmware.get(flavor) if flavor is not None else None
         self.declared = frozenset(ctx.options.extend_known_codes)
+        if ctx.dialect.family == "linuxcnc":  # (the REMAP codes of the LinuxCNC INI beside the job)
+            self.declared |= frozenset(ctx.options.machine_codes)
         self.verdicts: dict[tuple[str, str | None], tuple[str, Severity] | None] = {}  # (codes repeat: M204)
 
     def check(self, line: Line, cmd: Command) -> None:
@@ -85,7 +101,7 @@ class UnknownCode(Rule):
                 message = f"'{code}': {name} has no RepRapFirmware meta commands"
         elif kind == OWORD:
             message = f"O-word: {name} has no LinuxCNC O-word subroutines or control flow"
-        elif kind == IMPLICIT:
+        elif kind in (IMPLICIT, HOST):  # (an OctoPrint @ command is the host's, never the printer's: DL007)
             return None
         else:
             message = f"'#' parameters: {name} has no LinuxCNC parameters"
@@ -328,3 +344,42 @@ class CommandNeverRuns(Rule):
             f"({first}) and reads the rest as its parameters; put {what} on a line of its own",
             node=cmd,
         )
+
+
+# OctoPrint's built-in @ commands and what each does (docs.octoprint.org, Features, "@ Commands", version 1.3.7 on:
+# "@cancel: OctoPrint will cancel the current print job like if the "Cancel" button had been clicked", "@abort:
+# Same as cancel", "@pause ... just like if the "Pause" button had been clicked", "@resume ... just like if the
+# "Resume" button had been clicked").  OctoPrint looks its handlers up by the name as written (comm.py
+# _process_atcommand_phase: "_atcommand_{name}_{phase}"), so "@PAUSE" is not one of them.
+HOST_ACTIONS = {
+    "@pause": ("pauses the print, as if its Pause button had been clicked", Severity.INFO),
+    "@resume": ("resumes a paused print, as if its Resume button had been clicked", Severity.INFO),
+    "@cancel": ("cancels the print, as if its Cancel button had been clicked: the lines after it never run", None),
+    "@abort": ("cancels the print (as @cancel): the lines after it never run", None),
+}
+
+
+@register
+class HostCommand(Rule):
+    code = "DL007"
+    name = "host-command"
+    severity = Severity.WARNING
+    summary = "An OctoPrint @ command that acts on the print: @pause, @resume (info), @cancel, @abort"
+    explanation = """
+        A line that starts with "@" and a name is an OctoPrint @ command (a "host command"): OctoPrint runs it
+        itself and never sends it to the printer.  Plugins add their own (`@BEDLEVELVISUALIZER` asks the Bed
+        Visualizer plugin to record the mesh that the next G29 reports) and gclint reads them as what they
+        are, not as G-code words.  OctoPrint's own commands act on the print: `@pause` and `@resume` pause
+        and resume it (reported as info, as a pause written on purpose), `@cancel` and `@abort` cancel it,
+        so the rest of the job never runs when it is printed through OctoPrint (a warning).  Printed from
+        the printer's SD card or by another host, the line reaches the firmware, which does not know it.
+        OctoPrint matches the names as written: `@PAUSE` is none of these.
+    """
+    example_bad = "G1 X10 Y10\n@cancel\nG1 X20 Y20"
+    example_good = "G1 X10 Y10\n@BEDLEVELVISUALIZER\nG29"
+    source = "OctoPrint documentation, Features, @ Commands (docs.octoprint.org/en/1.10.1/features/atcommands.html)"
+    codes = tuple(HOST_ACTIONS)
+
+    def check(self, line: Line, cmd: Command) -> None:
+        does, severity = HOST_ACTIONS[cmd.code]  # type: ignore[index]
+        self.report(line, f"{cmd.code}: OctoPrint {does} (an OctoPrint @ command)", node=cmd, severity=severity)

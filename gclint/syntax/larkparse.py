@@ -23,6 +23,7 @@ from gclint.syntax.nodes import (
     EXPRESSION,
     EXTENDED,
     FLAG,
+    HOST,
     LIST,
     META,
     NUMBER,
@@ -177,6 +178,8 @@ class _Builder:
                 elif child.type == "LINENO":
                     letter, value = split_letter(str(child))
                     line_number = Word(letter, value, NUMBER, str(child), child.column)
+            elif str(child.data) == "host":
+                return self.named(child, HOST, None, None)
             else:
                 statement = child
         if statement is None or str(statement.data) == "words":
@@ -278,7 +281,7 @@ class _Builder:
         args = None
         comments = []
         for child in tree.children[1:]:
-            if child.type in ("META_REST", "EXT_ARGS"):
+            if child.type in ("META_REST", "EXT_ARGS", "HOST_ARGS"):
                 args = Text(str(child), child.column)
             else:
                 comments.append(Comment(str(child), child.column, str(child)[0]))

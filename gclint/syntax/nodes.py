@@ -31,6 +31,7 @@ META = "meta"  # RepRapFirmware meta commands (if, var, echo...), Smoothieware e
 OWORD = "oword"  # LinuxCNC O-words: o100 if [#1 GT 2]
 ASSIGNMENT = "assignment"  # LinuxCNC parameter assignment: #1 = 5
 PERCENT = "percent"  # % program delimiter
+HOST = "host"  # OctoPrint's @ commands: @pause, @BEDLEVELVISUALIZER (run by the host, never sent to the printer)
 
 # Every letter a word can have (grammar.lark: A-Z in either case, read as upper case, and LinuxCNC's @ ^ $).
 WORD_LETTERS = frozenset("ABCDEFGHIJKLMNOPQRSTUVWXYZ@^$")
