@@ -55,8 +55,6 @@ def layer_mark(raw: str) -> tuple[str, float | None] | None:
     return None
 
 
-
-
 class Simulator:
     """Runs one job; ``events`` yields everything it does, ``run`` its synchronisation points (``Move``), then
     ``trace`` holds the rest."""

@@ -142,7 +142,7 @@ class MachinekitToHyrel(CncTranslator):
         if code in ("G1", "G2", "G3") and "F" not in cmd.params and self.state.feed is None:
             self.report(
                 TR_UNTRANSLATABLE,
-                f"{code} before any feed rate: LinuxCNC stops the program here (\"No feed rate has been set\"); "
+                f'{code} before any feed rate: LinuxCNC stops the program here ("No feed rate has been set"); '
                 "give the move an F",
                 key="no-feed",
                 cmd=cmd,
