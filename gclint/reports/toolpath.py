@@ -28,14 +28,13 @@ edge or a parking move does not shrink the part on the page.
 from __future__ import annotations
 
 import math
-import re
 from array import array
 from bisect import bisect_right
-from collections import deque
 from dataclasses import dataclass, field
 
 from gclint import dialects
 from gclint.simulate import simulator_for
+from gclint.simulate.events import Layer as LayerMark
 from gclint.simulate.events import Move, ToolChange
 from gclint.syntax.source import Source, SourceError
 
@@ -50,11 +49,6 @@ MIN_CAP = 16  # below this, layers are drawn together rather than thinned furthe
 MAX_LAYERS = 4096  # layers kept apart (the slider's steps); past this, neighbours are drawn as one
 MAX_STROKES = 16_384  # strokes (a head in a layer) kept apart; past this too (64 heads in each of 4096 layers)
 FIT_POINTS = 40_000  # points the box of the part is found from (a sample of a bigger job's)
-
-# A slicer's layer marker: a comment line of its own (the settings block quotes them inside `key = value`).
-LAYER_MARK = re.compile(
-    r";(?:LAYER_CHANGE\s*$|LAYER:\s*-?\d+\s*$| ?CHANGE_LAYER\s*$| layer \d+, ?Z ?=| BEGIN_LAYER_(?:OBJECT|RAFT) z=)"
-)
 
 # A height with fewer working moves than this share of the median height's, and further than ``ISOLATED`` mm (or
 # ``ISOLATED_STEPS`` layer steps) from the heights the job works at, is priming or parking, not a layer.
@@ -273,30 +267,6 @@ def fit_box(xs: list[float], ys: list[float]) -> tuple[float, float, float, floa
     return box[0], box[1], box[2], box[3]
 
 
-class _Marked:
-    """The job as the reader is given it, noting the lines that mark a new layer (``LAYER_MARK``)."""
-
-    def __init__(self, source: Source) -> None:
-        self.source = source
-        self.marks: deque[int] = deque()  # marker lines of the chunk being read that no move has passed yet
-        self.passed = 0  # markers in the chunks read before it that no move has passed yet
-
-    def chunks(self):
-        match = LAYER_MARK.match
-        marks = self.marks
-        n = 0
-        for chunk in self.source.chunks():
-            # (the reader asks for a chunk once it has given every event of the one before: the markers left
-            # there come before whatever comes next, and need no line number)
-            self.passed += len(marks)
-            marks.clear()
-            for raw, _ending in chunk:
-                n += 1
-                if raw[:1] == ";" and match(raw):
-                    marks.append(n)
-            yield chunk
-
-
 class _Builder:
     """Layers and strokes as the moves come (see the module's docstring for the bounds)."""
 
@@ -507,23 +477,21 @@ def read_toolpath(
                 markers.append(Marker(last_xy[0], last_xy[1], tool, waiting[at], where))
             at += 1
 
+    marks: str | None = None  # the kind of layer mark the job counts its layers with (the first one seen)
     try:
-        source = _Marked(Source.open(path))
-        marks = source.marks
         finite = math.isfinite
-        for event in reader.events(source):
+        for event in reader.events(Source.open(path)):
             kind = type(event)
             line = event.line
-            if source.passed or (marks and marks[0] < line):
-                if not by_markers:
-                    by_markers = True
-                    build.prelude()
-                    at_layer = 0
-                at_layer += source.passed  # type: ignore[operator]
-                source.passed = 0
-                while marks and marks[0] < line:
-                    marks.popleft()
+            if kind is LayerMark:  # (the slicer's mark that a layer begins: the reader finds them)
+                marks = marks or event.marks
+                if event.marks == marks:
+                    if not by_markers:
+                        by_markers = True
+                        build.prelude()
+                        at_layer = 0
                     at_layer += 1  # type: ignore[operator]
+                continue
             if at < waits and waiting[at] < line:
                 mark(line - 1)
             if kind is ToolChange:
