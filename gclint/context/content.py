@@ -281,20 +281,24 @@ def _read_command(reading: ContentReading, cmd: Command, number: int, raw: str, 
     for owner, clue in _BY_CODE.get(code, ()) if code is not None else ():  # type: ignore[arg-type]
         seen = _match(reading.clues, owner, clue, cmd, number, raw, seen)
     for owner, clue in _GENERAL_BY_KIND[kind]:
-        seen = _match(reading.clues, owner, clue, cmd, number, raw, seen)
+        needs = clue.contains
+        if not needs or needs[0] in raw or needs[-1] in raw:
+            seen = _match(reading.clues, owner, clue, cmd, number, raw, seen)
     for owner, clue in _FLAVOR_BY_CODE.get(code, ()) if code is not None else ():  # type: ignore[arg-type]
         seen = _match(reading.flavor_clues, owner, clue, cmd, number, raw, seen)
     for owner, clue in _FLAVOR_BY_KIND[kind]:
         seen = _match(reading.flavor_clues, owner, clue, cmd, number, raw, seen)
     habitual = False  # another firmware's habit: its T is that firmware's (an extruder index), no address
-    if code is not None:
-        for owner, habit in _HABITS_BY_CODE.get(code, ()):
-            seen = _match(reading.habits, owner, habit, cmd, number, raw, seen, reading)
-            if not habitual:
-                try:
-                    habitual = habit.matches(cmd, reading)
-                except (TypeError, ValueError, AttributeError):
-                    pass
+    for owner, habit in _HABITS_BY_CODE.get(code, ()) if code is not None else ():  # type: ignore[arg-type]
+        try:
+            hit = habit.matches(cmd, reading)
+        except (TypeError, ValueError, AttributeError):  # a habit never stops the reading
+            hit = False
+        if hit:
+            habitual = True
+            found = reading.habits.setdefault(owner, {})
+            if habit not in found:
+                seen = found[habit] = seen or _seen(cmd, number, raw)
     if kind in _KINDS:
         key = (kind, (code or kind).upper())
         if key not in reading.kinds and len(reading.kinds) < _MAX_KINDS:
@@ -314,7 +318,7 @@ def _read_command(reading: ContentReading, cmd: Command, number: int, raw: str, 
                 reading.tool_commands[n] = _seen(cmd, number, raw)
             added.append(("tool", n))
         return
-    tables = _PARAM_TABLES.get(code)
+    tables = _PARAM_TABLES.get(code) if code not in _MOVES else None  # (moves are read for E and axes only)
     if tables is not None and params:
         _check_params(reading, cmd, tables, number, raw)
     if code in _T_VARIABLE_CODES and not habitual:
@@ -393,15 +397,15 @@ def _check_params(reading: ContentReading, cmd: Command, tables: list, number: i
             found[(code, letter)] = (_seen(cmd, number, raw), problem)
 
 
-def _match(table: dict, owner: str, item, cmd: Command, number: int, raw: str, seen: Seen | None, state=None):
-    """Record ``item`` (a clue, or a habit with ``state``) for ``owner`` when ``cmd`` matches it first."""
+def _match(table: dict, owner: str, item: Clue, cmd: Command, number: int, raw: str, seen: Seen | None):
+    """Record the clue ``item`` for ``owner`` when ``cmd`` matches it first."""
     found = table.get(owner)
     if found is None:
         found = table[owner] = {}
     elif item in found:
         return seen
     try:
-        matched = item.matches(cmd) if state is None else item.matches(cmd, state)
+        matched = item.matches(cmd)
     except (TypeError, ValueError, AttributeError):  # a clue never stops the reading
         matched = False
     if matched:

@@ -276,6 +276,7 @@ class Clue:
     kind: str | None = None
     test: Callable[[Any], bool] | None = None  # called with the Command
     weight: int = 3
+    contains: str = ""  # one or two characters one of which the line must hold to be tried (a quick filter)
 
     def matches(self, cmd: Any) -> bool:
         if self.code is not None and cmd.code != self.code:

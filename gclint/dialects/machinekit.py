@@ -181,7 +181,7 @@ NGC_LANGUAGE_CLUES = (
     # "S10000 M3": a spindle speed written as a word of its own, before the M3 (RS274NGC)
     Clue("an S word on its own (a spindle speed)", kind=IMPLICIT, test=lambda c: "S" in c.params, weight=2),
     Clue("a # parameter assignment", kind=ASSIGNMENT, weight=4),
-    Clue("a [expression] or #parameter value", test=_bracket_expression, weight=2),
+    Clue("a [expression] or #parameter value", test=_bracket_expression, weight=2, contains="[#"),
 )
 MACHINEKIT_CLUES = (
     *NGC_LANGUAGE_CLUES,

@@ -172,10 +172,15 @@ REPRAP_CLUES = (
     Clue("an echo command (RepRapFirmware or Carvera console)", "echo", weight=1),
     # (a CNC M98 calls a numbered subprogram: M98 P100)
     Clue('M98 P"file": calls a macro file by name', "M98", test=lambda c: not is_number(c.params.get("P") or "")),
-    Clue("an object-model expression {...}", test=_object_model),
+    Clue("an object-model expression {...}", test=_object_model, contains="{"),
     # "string parameters ... enclosed in double quotes" (Duet G-code dictionary; research/dialects.md 1 [RRF]):
     # M291 P"message", M4000 S"tool name" (Prusa's M862.3 P "MK4S" is its flavour's own pattern)
-    Clue('a quoted string parameter (P"...")', test=lambda c: any(v and v[0] == '"' for v in c.params.values()), weight=2),
+    Clue(
+        'a quoted string parameter (P"...")',
+        test=lambda c: any(v and v[0] == '"' for v in c.params.values()),
+        weight=2,
+        contains='"',
+    ),
     # LinuxCNC's G10 always has L (G10 L2 P1 R45 rotates a coordinate system)
     Clue(
         "G10 P# R/S: tool temperatures",
