@@ -67,12 +67,15 @@ _KIND_TEXT = {
 @dataclass
 class Item:
     """One piece of evidence: what it is (shown to the user), where, of which kind (``content``, ``header``,
-    ``extension``), and how it moves each candidate's score (by candidate key)."""
+    ``extension``), and how it moves each candidate's score (by candidate key).  ``soft``: a known mistake or
+    an odd use (a habit, a parameter, how E is used), which tells known dialects apart but does not make a
+    file ``generic``: a Hyrel job with five Marlin habits is a Hyrel job with five findings."""
 
     text: str
     line: int
     source: str
     deltas: dict[str, float]
+    soft: bool = False
 
 
 @dataclass
@@ -92,6 +95,7 @@ class Ranking:
     def scores(self, sources: tuple[str, ...] | None = None) -> dict[str, float]:
         return {c.key: self.score(c.key, sources) for c in self.pool}
 
+
     def best(self, scores: dict[str, float], dialect: str | None = None, other: bool = False) -> str | None:
         """The key with the highest score (of ``dialect``'s candidates, or with ``other`` of the others);
         among equals the first in the candidates' order."""
@@ -102,18 +106,27 @@ class Ranking:
         ]
         return max(keys, key=lambda k: scores[k]) if keys else None
 
-    def reasons(self, winner: str, loser: str | None, count: int = 3, sources: tuple[str, ...] | None = None) -> tuple[str, ...]:
+    def reasons(
+        self,
+        winner: str,
+        loser: str | None,
+        count: int = 3,
+        sources: tuple[str, ...] | None = None,
+        field: tuple[str, ...] = (),
+    ) -> tuple[str, ...]:
         """The evidence that puts ``winner`` above ``loser`` most, strongest first (earliest among equals, the
-        file's tail last)."""
+        file's tail last); what puts it above every reading of ``field`` (the other dialects') comes first."""
         ranked = []
         for item in self.items:
             if sources is not None and item.source not in sources:
                 continue
-            lead = item.deltas.get(winner, 0.0) - (item.deltas.get(loser, 0.0) if loser else 0.0)
+            mine = item.deltas.get(winner, 0.0)
+            lead = mine - (item.deltas.get(loser, 0.0) if loser else 0.0)
             if lead > 0:
-                ranked.append((-lead, item.line or 1 << 40, item.text))
+                above_all = min((mine - item.deltas.get(k, 0.0) for k in field), default=0.0)
+                ranked.append((-max(above_all, 0.0), -lead, item.line or 1 << 40, item.text))
         ranked.sort()
-        return tuple(dict.fromkeys(text for _, _, text in ranked))[:count]
+        return tuple(dict.fromkeys(r[-1] for r in ranked))[:count]
 
     def against(self, key: str, count: int = 2) -> tuple[str, ...]:
         """What costs ``key`` most (its misfits), worst first."""
@@ -210,9 +223,9 @@ def _clues(reading: ContentReading, pool: tuple[Candidate, ...], add) -> None:
                 habits[habit] = seen
         for habit, seen in habits.items():
             text = f"{seen}: {habit.says} ({habit.rule} reports it)"
-            add(Item(text, seen.line, CONTENT, {k: -HABIT for k in members}))
+            add(Item(text, seen.line, CONTENT, {k: -HABIT for k in members}, soft=True))
         for (code, letter), (seen, problem) in reading.params.get(dialect.name, {}).items():
-            add(Item(f"{seen}: {problem} on {dialect.name}", seen.line, CONTENT, {k: -PARAM for k in members}))
+            add(Item(f"{seen}: {problem} on {dialect.name}", seen.line, CONTENT, {k: -PARAM for k in members}, soft=True))
         for mark, seen in reading.marks.get(dialect.name, {}).items():
             if dialect.known:
                 add(Item(f"{seen}: {mark.says}", seen.line, CONTENT, {k: float(mark.weight) for k in members}))
@@ -256,7 +269,7 @@ def _e_words(reading: ContentReading, known: tuple[Candidate, ...], add) -> None
         }
         if deltas:
             text = f"E1 on {reading.e_flags} printing moves and no E amount (native flow's marks of a printing move)"
-            add(Item(text, 0, CONTENT, deltas))
+            add(Item(text, 0, CONTENT, deltas, soft=True))
     if reading.e_amount_moves >= E_MARKS_LINES and not reading.e_values and reading.native_flow is None:
         # the other way round: a sliced job's amounts on every printing move, with neither M229 E1 (Hyrel's own
         # slicer header enables it: "M229 E1 D1 ; enable E-values") nor what native flow computes from (M756
@@ -268,7 +281,7 @@ def _e_words(reading: ContentReading, known: tuple[Candidate, ...], add) -> None
                 f"{reading.e_amounts}: E amounts on {reading.e_amount_moves}+ printing moves with neither M229 E1 "
                 "nor native-flow settings (M756, M221 W/Z)"
             )
-            add(Item(text, reading.e_amounts.line if reading.e_amounts else 0, CONTENT, deltas))
+            add(Item(text, reading.e_amounts.line if reading.e_amounts else 0, CONTENT, deltas, soft=True))
 
 
 def _header(scan: HeadScan, tail: HeadScan | None, env_flavor: str | None, pool, known, add) -> None:
@@ -313,53 +326,90 @@ class Decision:
     candidate_reasons: tuple[str, ...]
 
 
+def _pick(ranking: Ranking, sources: tuple[str, ...] | None = None) -> tuple[str, str | None, float, float]:
+    """(winner, rival, margin, lead) counting only the evidence of ``sources`` (None: all): the best known
+    reading, unless none explains the file, when ``generic`` wins: its fixed score beats every known reading's
+    fit (the score with its soft costs forgiven: a large misfit each, not a pile of habits).  The rival is the
+    best known reading of another dialect; ``lead`` what the evidence (priors aside) puts between them."""
+    pool = ranking.pool
+    scores = ranking.scores(sources)
+    known = [c.key for c in pool if c.known]
+    generic = next((c.key for c in pool if not c.known), None)
+
+    def fit(key: str) -> float:
+        prior = ranking.by_key[key].prior
+        return prior + sum(
+            v
+            for i in ranking.items
+            if (sources is None or i.source in sources) and ((v := i.deltas.get(key, 0.0)) > 0 or not i.soft)
+        )
+
+    best_known = max(known, key=lambda k: scores[k]) if known else None  # (the first among equals: Hyrel)
+    best_fit = max((fit(k) for k in known), default=float("-inf"))
+    if best_known is None or (generic is not None and scores[generic] > best_fit):
+        rival = best_known
+        margin = scores[generic] - best_fit  # type: ignore[index]
+        lead = -(best_fit - ranking.by_key[rival].prior) if rival is not None else 1.0
+        return generic, rival, margin, lead  # type: ignore[return-value]
+    dialect = ranking.by_key[best_known].dialect.name
+    others = [k for k in known if ranking.by_key[k].dialect.name != dialect]
+    rival = max(others, key=lambda k: scores[k]) if others else None
+    margin = scores[best_known] - scores[rival] if rival is not None else float("inf")
+    if generic is not None:
+        margin = min(margin, fit(best_known) - scores[generic])
+    lead = (
+        ranking.score(best_known, sources, prior=False) - ranking.score(rival, sources, prior=False)
+        if rival is not None
+        else 1.0
+    )
+    return best_known, rival, margin, lead
+
+
 def decide(ranking: Ranking) -> Decision:
     """The best reading of ``ranking``: its dialect and flavour, where the decision came from, how sure it is,
     why, and what disagreed."""
     scores = ranking.scores()
-    winner = ranking.best(scores)
-    assert winner is not None
+    winner, rival, margin, _ = _pick(ranking)
     dialect = ranking.by_key[winner].dialect.name
-    own = ranking.best(scores, dialect)  # (the winner: the best of its dialect)
-    rival = ranking.best(scores, dialect, other=True)
-    margin = scores[winner] - scores[rival] if rival is not None else float("inf")
-
-    content_keys = (CONTENT,)
+    own = ranking.best(scores, dialect)  # (the best reading of the winner's dialect: a flavour, perhaps)
     if not any(any(v for v in i.deltas.values()) for i in ranking.items):
         origin, strength, reasons = DEFAULT, NONE, ()
     else:
-        content = ranking.scores(content_keys)
-        with_header = ranking.scores((CONTENT, HEADER))
-        content_lead = (
-            ranking.score(winner, content_keys, prior=False) - ranking.score(rival, content_keys, prior=False)
-            if rival is not None
-            else 1.0
-        )
-        by_content = ranking.by_key[ranking.best(content)].dialect.name  # type: ignore[index]
-        by_header = ranking.by_key[ranking.best(with_header)].dialect.name  # type: ignore[index]
-        if by_content == dialect and content_lead > 0:
+        by_content, _, _, content_lead = _pick(ranking, (CONTENT,))
+        by_header = _pick(ranking, (CONTENT, HEADER))[0]
+        if ranking.by_key[by_content].dialect.name == dialect and content_lead > 0:
             origin = CONTENT
-        elif by_header == dialect and any(i.source == HEADER and i.deltas.get(winner, 0) > 0 for i in ranking.items):
+        elif ranking.by_key[by_header].dialect.name == dialect and any(
+            i.source == HEADER and i.deltas.get(winner, 0) > 0 for i in ranking.items
+        ):
             origin = HEADER
         elif any(i.source == EXTENSION and i.deltas.get(winner, 0) > 0 for i in ranking.items):
             origin = EXTENSION
-        elif content_lead > 0 or by_content == dialect:
-            origin = CONTENT
         else:
-            origin = HEADER
+            origin = CONTENT
         strength = STRONG if margin >= CLOSE else WEAK
-        sources = {CONTENT: (CONTENT,), HEADER: (HEADER, CONTENT), EXTENSION: None}[origin]
-        reasons = ranking.reasons(winner, rival, 3, sources)
+        # the other dialects' best readings: what sets the winner above all of them is said first
+        field = tuple(
+            ranking.best(scores, c.dialect.name)  # type: ignore[misc]
+            for c in ranking.pool
+            if c.known and c.flavor is None and c.dialect.name != dialect
+        )
         if origin == EXTENSION:
-            reasons = ranking.reasons(winner, rival, 3, (EXTENSION,)) + ranking.reasons(winner, rival, 2, (CONTENT,))
+            reasons = ranking.reasons(winner, rival, 3, (EXTENSION,)) + ranking.reasons(winner, rival, 2, (CONTENT,), field)
+        else:
+            reasons = ranking.reasons(winner, rival, 3, (CONTENT,) if origin == CONTENT else (HEADER, CONTENT), field)
         if not reasons and rival is not None:
             # the runner-up explains the file as well (the prior decided): say what rules the others out
-            others = sorted((k for k in scores if ranking.by_key[k].dialect.name not in (dialect, ranking.by_key[rival].dialect.name)), key=lambda k: -scores[k])
+            rival_dialect = ranking.by_key[rival].dialect.name
+            others = sorted(
+                (k for k in scores if ranking.by_key[k].dialect.name not in (dialect, rival_dialect)),
+                key=lambda k: -scores[k],
+            )
             for other in others:
                 reasons = ranking.reasons(winner, other, 2)
                 if reasons:
                     break
-            reasons += (f"{ranking.by_key[rival].dialect.name} explains it as well",)
+            reasons += (f"{rival_dialect} explains it as well",)
     conflict = _conflicts(ranking, scores, winner, dialect, origin)
 
     flavor = None
