@@ -93,7 +93,11 @@ class ContentReading:
         return self.e_values
 
     def fact(self, name: str) -> Seen | None:
-        """A fact of the whole reading a habit names (``e_amounts``, ``e_retract``, ``e_on_g0``)."""
+        """A fact of the whole reading a habit names (``e_amounts``, ``e_retract``, ``e_on_g0``, ``e_sliced``:
+        amounts on several printing moves and no native-flow settings)."""
+        if name == "e_sliced":
+            sliced = self.e_amount_moves >= _AMOUNTS and not self.e_values and self.native_flow is None
+            return self.e_amounts if sliced else None
         value = getattr(self, name, None)
         return value if isinstance(value, Seen) else None
 

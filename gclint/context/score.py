@@ -12,7 +12,7 @@ a log-likelihood: a few points is a preference, eight is "nearly impossible".
   Klipper command in a RepRapFirmware one): ``MISFIT``.
 * A dialect's clues (gclint.dialects ``Clue``: ``M6 T# O#``, ``M109 H``...) add their weight to it; a
   flavour's clues to that flavour.
-* A dialect's habits (gclint.dialects.habits: a bare ``G28`` in a Hyrel job) cost it a little (``HABIT``)
+* A dialect's habits (gclint.dialects.habits: a bare ``G28`` in a Hyrel job) cost it a little (``Habit.cost``; the k-th of a file counts 1/k)
   and are no evidence for the firmware the habit comes from: its rule reports the line.
 * A parameter a dialect's catalogued table does not take, or a value outside its range: ``PARAM``.
 * E words: constant E1 marks on printing moves and no amount are Hyrel's native flow, implausible under a
@@ -45,11 +45,9 @@ UNLISTED_NOBODY = 0.3
 LOOSELY = 3.0  # a code only a historic inventory lists (the 2015 RepRap page lists every firmware's numbers)
 UNIQUE = 1.0  # a code only one dialect has (the others' misfits say the rest)
 SHARED = 0.5
-HABIT = 1.5
 PARAM = 0.5
 E_MARKS = 3.0
 E_MARKS_LINES = 3  # printing moves with E1 (or with amounts) before they count as the job's way of using E
-E_SLICED = 4.5
 NO_EXTRUDER = 4.0
 HEADER_SCALE = 0.3  # a ";FLAVOR:Marlin" line (10) is worth 3 points: less than one code a dialect lacks
 EXTENSION_POINTS = 2.0
@@ -89,12 +87,26 @@ class Ranking:
         self.by_key: dict[str, Candidate] = {c.key: c for c in self.pool}
 
     def score(self, key: str, sources: tuple[str, ...] | None = None, prior: bool = True) -> float:
-        base = self.by_key[key].prior if prior else 0.0
-        return base + sum(i.deltas.get(key, 0.0) for i in self.items if sources is None or i.source in sources)
+        """``key``'s score, counting the evidence of ``sources`` (None: all).  Its soft costs count less and
+        less, the largest first (the k-th counts 1/k): one author's habits come together, and each further
+        one says less about which firmware the file is for."""
+        total = self.by_key[key].prior if prior else 0.0
+        soft = []
+        for item in self.items:
+            if sources is not None and item.source not in sources:
+                continue
+            value = item.deltas.get(key)
+            if not value:
+                continue
+            if item.soft and value < 0:
+                soft.append(value)
+            else:
+                total += value
+        soft.sort()
+        return total + sum(value / k for k, value in enumerate(soft, 1))
 
     def scores(self, sources: tuple[str, ...] | None = None) -> dict[str, float]:
         return {c.key: self.score(c.key, sources) for c in self.pool}
-
 
     def best(self, scores: dict[str, float], dialect: str | None = None, other: bool = False) -> str | None:
         """The key with the highest score (of ``dialect``'s candidates, or with ``other`` of the others);
@@ -221,9 +233,13 @@ def _clues(reading: ContentReading, pool: tuple[Candidate, ...], add) -> None:
         for habit in dialect.detection.habits:
             if habit.fact is not None and (seen := reading.fact(habit.fact)) is not None:
                 habits[habit] = seen
+        by_rule: dict[str, tuple] = {}  # (one rule, one finding's worth: the costliest habit it reports)
         for habit, seen in habits.items():
+            if habit.rule not in by_rule or habit.cost > by_rule[habit.rule][0].cost:
+                by_rule[habit.rule] = (habit, seen)
+        for habit, seen in by_rule.values():
             text = f"{seen}: {habit.says} ({habit.rule} reports it)"
-            add(Item(text, seen.line, CONTENT, {k: -HABIT for k in members}, soft=True))
+            add(Item(text, seen.line, CONTENT, {k: -habit.cost for k in members}, soft=True))
         for (code, letter), (seen, problem) in reading.params.get(dialect.name, {}).items():
             add(Item(f"{seen}: {problem} on {dialect.name}", seen.line, CONTENT, {k: -PARAM for k in members}, soft=True))
         for mark, seen in reading.marks.get(dialect.name, {}).items():
@@ -270,18 +286,6 @@ def _e_words(reading: ContentReading, known: tuple[Candidate, ...], add) -> None
         if deltas:
             text = f"E1 on {reading.e_flags} printing moves and no E amount (native flow's marks of a printing move)"
             add(Item(text, 0, CONTENT, deltas, soft=True))
-    if reading.e_amount_moves >= E_MARKS_LINES and not reading.e_values and reading.native_flow is None:
-        # the other way round: a sliced job's amounts on every printing move, with neither M229 E1 (Hyrel's own
-        # slicer header enables it: "M229 E1 D1 ; enable E-values") nor what native flow computes from (M756
-        # layer heights, M221 widths: Gcode page, "M221 Set Flow Rate", "M756 Set Height for Flow"): the job
-        # has no flow at all on a native-flow machine (HY060)
-        deltas = {c.key: -E_SLICED for c in known if c.dialect.semantics.e_values == "hyrel"}
-        if deltas:
-            text = (
-                f"{reading.e_amounts}: E amounts on {reading.e_amount_moves}+ printing moves with neither M229 E1 "
-                "nor native-flow settings (M756, M221 W/Z)"
-            )
-            add(Item(text, reading.e_amounts.line if reading.e_amounts else 0, CONTENT, deltas, soft=True))
 
 
 def _header(scan: HeadScan, tail: HeadScan | None, env_flavor: str | None, pool, known, add) -> None:

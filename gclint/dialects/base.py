@@ -325,6 +325,7 @@ class Habit:
     kind: str | None = None
     test: Callable[[Any, Any], bool] | None = None
     fact: str | None = None
+    cost: float = 1.5  # what it costs the dialect's reading (gclint.context.score: "a little")
 
     def matches(self, cmd: Any, state: Any) -> bool:
         if self.fact is not None:

@@ -880,7 +880,8 @@ HYREL_DETECTION = Detection(
     ),
     clues=(
         # T_v5 Default Mode: "M6 T0 O1 X0 Y0 Z0" declares a head and its offset register; a CNC M6 has no O.
-        Clue("M6 T# O# declares a head and its offset register (Hyrel)", "M6", test=has_all("T", "O"), weight=4),
+        # (Repetrel writes one per loaded head; no other firmware's M6 takes O: as telling as a code only Hyrel has)
+        Clue("M6 T# O# declares a head and its offset register (Hyrel)", "M6", test=has_all("T", "O"), weight=8),
         # M109/M190/M191 "Sn Hn Cn Ln Un Rn [v5+] W0": H C L U W are Hyrel's wait window.
         *(
             Clue(f"{c} H/C/L/U/W: a Hyrel temperature-wait window", c, test=has_any("H", "C", "L", "U", "W"))
