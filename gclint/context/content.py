@@ -132,9 +132,7 @@ _BY_CODE, _GENERAL = _index(_DIALECTS, "clues")
 _HABITS_BY_CODE, _HABITS_GENERAL = _index(_DIALECTS, "habits")
 # the marks of a firmware flavour in the content (Klipper's extended commands), read in the same pass
 _FLAVOR_BY_CODE, _FLAVOR_GENERAL = _index([(f.name, f.detection) for f in all_firmware()], "clues")
-_MARKS = tuple(
-    (name, mark, re.compile(mark.pattern)) for name, detection in _DIALECTS for mark in detection.line_marks
-)
+_MARKS = tuple((name, mark, re.compile(mark.pattern)) for name, detection in _DIALECTS for mark in detection.line_marks)
 # the general clues by the kind of command they may match (filled as kinds are met)
 _GENERAL_BY_KIND: dict[str, tuple] = {}
 _FLAVOR_BY_KIND: dict[str, tuple] = {}

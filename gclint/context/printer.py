@@ -97,7 +97,12 @@ def decide(
         owners = [n for n in MODEL_ORDER if code in specific[n]]
         if not owners:
             continue  # (a port every model has)
-        s.misfit(lambda p, code=code: code not in p.aux_codes, seen, counts.get(("aux", code), 1), f"{code} exists on some models only")
+        s.misfit(
+            lambda p, code=code: code not in p.aux_codes,
+            seen,
+            counts.get(("aux", code), 1),
+            f"{code} exists on some models only",
+        )
         s.favour({n: math.log(1 / len(specific[n])) for n in owners}, seen.line)  # (Occam: fewer ports)
     ehr = reading.m660_after_z_home
     if ehr is not None:
@@ -132,7 +137,9 @@ def decide(
     if s.misfits[best]:
         n = len(s.misfits[best])
         worst = max(s.misfits[best])[2]
-        reasons += (f"{n} use{'s' if n != 1 else ''} no model fits with the rest ({worst}): the HY rules report {'them' if n != 1 else 'it'}",)
+        reasons += (
+            f"{n} use{'s' if n != 1 else ''} no model fits with the rest ({worst}): the HY rules report {'them' if n != 1 else 'it'}",
+        )
     return best, CONTENT, reasons, fitting
 
 

@@ -111,11 +111,7 @@ class Ranking:
     def best(self, scores: dict[str, float], dialect: str | None = None, other: bool = False) -> str | None:
         """The key with the highest score (of ``dialect``'s candidates, or with ``other`` of the others);
         among equals the first in the candidates' order."""
-        keys = [
-            c.key
-            for c in self.pool
-            if dialect is None or (c.dialect.name == dialect) != other
-        ]
+        keys = [c.key for c in self.pool if dialect is None or (c.dialect.name == dialect) != other]
         return max(keys, key=lambda k: scores[k]) if keys else None
 
     def reasons(
@@ -168,7 +164,14 @@ def rank(
     for c in known:
         if tells(c.dialect.detection, path) and c.flavor is None:
             points = EXTENSION_POINTS * c.dialect.detection.extension_weight
-            add(Item(f"the extension {extension(path)}", 0, EXTENSION, {k.key: points for k in known if k.dialect is c.dialect}))
+            add(
+                Item(
+                    f"the extension {extension(path)}",
+                    0,
+                    EXTENSION,
+                    {k.key: points for k in known if k.dialect is c.dialect},
+                )
+            )
     return ranking
 
 
@@ -240,8 +243,12 @@ def _clues(reading: ContentReading, pool: tuple[Candidate, ...], add) -> None:
         for habit, seen in by_rule.values():
             text = f"{seen}: {habit.says} ({habit.rule} reports it)"
             add(Item(text, seen.line, CONTENT, {k: -habit.cost for k in members}, soft=True))
-        for (code, letter), (seen, problem) in reading.params.get(dialect.name, {}).items():
-            add(Item(f"{seen}: {problem} on {dialect.name}", seen.line, CONTENT, {k: -PARAM for k in members}, soft=True))
+        for seen, problem in reading.params.get(dialect.name, {}).values():
+            add(
+                Item(
+                    f"{seen}: {problem} on {dialect.name}", seen.line, CONTENT, {k: -PARAM for k in members}, soft=True
+                )
+            )
         for mark, seen in reading.marks.get(dialect.name, {}).items():
             if dialect.known:
                 add(Item(f"{seen}: {mark.says}", seen.line, CONTENT, {k: float(mark.weight) for k in members}))
@@ -268,10 +275,15 @@ def _e_words(reading: ContentReading, known: tuple[Candidate, ...], add) -> None
         return
     no_e = {c.key: -MISFIT for c in known if "E" in c.dialect.not_move_words}
     if no_e:
-        add(Item(f"{moves}: an E word on a move (not a word of {_owners(sorted({k.split('/')[0] for k in no_e}))} moves)", moves.line, CONTENT, no_e))
-    no_extruder = {
-        c.key: -NO_EXTRUDER for c in known if c.dialect.semantics.extruder is None and c.key not in no_e
-    }
+        add(
+            Item(
+                f"{moves}: an E word on a move (not a word of {_owners(sorted({k.split('/')[0] for k in no_e}))} moves)",
+                moves.line,
+                CONTENT,
+                no_e,
+            )
+        )
+    no_extruder = {c.key: -NO_EXTRUDER for c in known if c.dialect.semantics.extruder is None and c.key not in no_e}
     if no_extruder:
         add(Item(f"{moves}: an E word on a move (a machine with no extruder)", moves.line, CONTENT, no_extruder))
     if reading.e_flags >= E_MARKS_LINES and reading.e_amounts is None and not reading.e_values:
@@ -399,19 +411,22 @@ def decide(ranking: Ranking) -> Decision:
             if c.known and c.flavor is None and c.dialect.name != dialect
         )
         if origin == EXTENSION:
-            reasons = ranking.reasons(winner, rival, 3, (EXTENSION,)) + ranking.reasons(winner, rival, 2, (CONTENT,), field)
+            reasons = ranking.reasons(winner, rival, 3, (EXTENSION,)) + ranking.reasons(
+                winner, rival, 2, (CONTENT,), field
+            )
         else:
             reasons = ranking.reasons(winner, rival, 3, (CONTENT,) if origin == CONTENT else (HEADER, CONTENT), field)
         if not reasons and rival is not None:
-            # the runner-up explains the file as well (the prior decided): say what rules the others out
+            # the runner-up explains the file as well (the prior decided): say what rules the others out, the
+            # default (the highest prior) first
             rival_dialect = ranking.by_key[rival].dialect.name
             others = sorted(
-                (k for k in scores if ranking.by_key[k].dialect.name not in (dialect, rival_dialect)),
-                key=lambda k: -scores[k],
+                (k for k in field if ranking.by_key[k].dialect.name != rival_dialect),
+                key=lambda k: -ranking.by_key[k].prior,
             )
             for other in others:
-                reasons = ranking.reasons(winner, other, 2)
-                if reasons:
+                reasons = tuple(dict.fromkeys(reasons + ranking.reasons(winner, other, 1)))
+                if len(reasons) == 2:
                     break
             reasons += (f"{rival_dialect} explains it as well",)
     conflict = _conflicts(ranking, scores, winner, dialect, origin)
@@ -421,7 +436,9 @@ def decide(ranking: Ranking) -> Decision:
     chosen = ranking.by_key[own]  # type: ignore[index]
     if chosen.flavor is not None:
         plain = next((c.key for c in ranking.pool if c.dialect.name == dialect and c.flavor is None), None)
-        tied = [c.key for c in ranking.pool if c.dialect.name == dialect and c.key != own and scores[c.key] == scores[own]]
+        tied = [
+            c.key for c in ranking.pool if c.dialect.name == dialect and c.key != own and scores[c.key] == scores[own]
+        ]
         if not tied:
             flavor = chosen.flavor.name
             # the slicer's settings first (they name the printer), then the content
@@ -445,7 +462,12 @@ def _conflicts(ranking: Ranking, scores: dict[str, float], winner: str, dialect:
     for item in header_items:
         for key, value in item.deltas.items():
             name = ranking.by_key[key].dialect.name
-            if value > 0 and name != dialect and ranking.by_key[key].known and (best_header is None or value > best_header[0]):
+            if (
+                value > 0
+                and name != dialect
+                and ranking.by_key[key].known
+                and (best_header is None or value > best_header[0])
+            ):
                 best_header = (value, name, item.text.removeprefix("the header: "))
     if best_header is not None and not any(i.deltas.get(winner, 0) > 0 for i in header_items):
         _, name, text = best_header
@@ -456,7 +478,9 @@ def _conflicts(ranking: Ranking, scores: dict[str, float], winner: str, dialect:
         if leader is not None and ranking.by_key[leader].dialect.name != dialect:
             lean = ranking.reasons(leader, winner, 1, (CONTENT,))
             if lean:
-                out.append(f"the content leans to {ranking.by_key[leader].dialect.name} ({lean[0]}), less than the slicer header")
+                out.append(
+                    f"the content leans to {ranking.by_key[leader].dialect.name} ({lean[0]}), less than the slicer header"
+                )
     for item in ranking.items:
         if item.source != EXTENSION or item.deltas.get(winner, 0) > 0:
             continue

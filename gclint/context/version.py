@@ -20,7 +20,7 @@ from __future__ import annotations
 
 import math
 
-from gclint.context.content import ContentReading, Seen
+from gclint.context.content import ContentReading
 from gclint.context.model import CONTENT, DEFAULT
 from gclint.dialects.addressing import (
     AUX,
@@ -98,7 +98,9 @@ def score(reading: ContentReading) -> tuple[dict[int, float], list[tuple[float, 
         lines = counts.get(("tool", number), 1)
         cost4 = _command_cost(resolve_v4_command(number), False)
         cost5 = _command_cost(resolve_v5(number), True)
-        numbers.setdefault(("tool", number), []).append((seen, cost4, cost5, lines, ("a v4 tool number", "a v5 address")))
+        numbers.setdefault(("tool", number), []).append(
+            (seen, cost4, cost5, lines, ("a v4 tool number", "a v5 address"))
+        )
     for seen, what in ((reading.m116, "M116 exists from v5"), (reading.waits_w0, "W0 exists from v5")):
         if seen is not None:
             numbers[(what, 0)] = [(seen, V5_ONLY, 0.0, 1, ("", what))]
@@ -119,9 +121,7 @@ def score(reading: ContentReading) -> tuple[dict[int, float], list[tuple[float, 
     return totals, uses
 
 
-def decide(
-    reading: ContentReading, explicit: int | None, origin: str
-) -> tuple[int, str, tuple[str, ...], int | None]:
+def decide(reading: ContentReading, explicit: int | None, origin: str) -> tuple[int, str, tuple[str, ...], int | None]:
     """(firmware, origin, reasons, what the addresses say) for a Hyrel file.  ``explicit``: the version the
     user named (4 or 5), else None; ``origin``: where an explicit version came from."""
     totals, uses = score(reading)

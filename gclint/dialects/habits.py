@@ -54,26 +54,42 @@ HYREL_HABITS = (
     Habit("G28 with no axis (on Hyrel it homes nothing)", "HY025", "G28", GCODE, lambda c, s: not c.params),
     # "R ... is how close the relative temperature needs to be to the set temp" (M109 Wait for Temp (Head))
     *(
-        Habit(f"{c} R with no S (a Marlin target; on Hyrel R is a tolerance)", "HY035", c, GCODE,
-              lambda c, s: "R" in c.params and "S" not in c.params)
+        Habit(
+            f"{c} R with no S (a Marlin target; on Hyrel R is a tolerance)",
+            "HY035",
+            c,
+            GCODE,
+            lambda c, s: "R" in c.params and "S" not in c.params,
+        )
         for c in ("M109", "M190", "M191")
     ),
     Habit("M106 S above 100 with no C range (a 0-255 fan value)", "HY011", "M106", GCODE, _fan_over_range),
     # "Sn - power (0-100%)" (M3 Turn On Spindle (CW)): an rpm is another firmware's spindle speed
-    *(Habit(f"{c} S above 100 (an rpm; Hyrel's S is a percentage)", "HY023", c, GCODE, _over("S", 100))
-      for c in ("M3", "M4")),
+    *(
+        Habit(f"{c} S above 100 (an rpm; Hyrel's S is a percentage)", "HY023", c, GCODE, _over("S", 100))
+        for c in ("M3", "M4")
+    ),
     # "M6 declares that a particular head holds a set of X, Y, and/or Z offsets" (M6 Declare Head Offsets): an
     # M6 with nothing to declare is a CNC tool change
-    Habit("M6 with no offset (a tool change; Hyrel's M6 declares offsets)", "HY038", "M6", GCODE,
-          lambda c, s: not any(k in c.params for k in "OXYZABDIK")),
+    Habit(
+        "M6 with no offset (a tool change; Hyrel's M6 declares offsets)",
+        "HY038",
+        "M6",
+        GCODE,
+        lambda c, s: not any(k in c.params for k in "OXYZABDIK"),
+    ),
     # "G10 UNUSED", "G11 UNUSED": not recognized by Repetrel
     *(Habit(f"{c}: firmware retraction (not recognized by Repetrel)", "HY015", c, GCODE) for c in ("G10", "G11")),
     # "G20 Set Units to Inches": experimental, unsupported
     Habit("G20 inches (experimental on Hyrel)", "HY026", "G20", GCODE),
-    *(Habit(f"{c} with no M229 E1 (E modes count only with E values)", "HY013", c, GCODE, _e_mode_without_m229)
-      for c in ("M82", "M83")),
-    *(Habit(f"{c} H with no M660 register set (RepRapFirmware's homing move)", "HY034", c, GCODE,
-            _h_without_register) for c in ("G0", "G1")),
+    *(
+        Habit(f"{c} with no M229 E1 (E modes count only with E values)", "HY013", c, GCODE, _e_mode_without_m229)
+        for c in ("M82", "M83")
+    ),
+    *(
+        Habit(f"{c} H with no M660 register set (RepRapFirmware's homing move)", "HY034", c, GCODE, _h_without_register)
+        for c in ("G0", "G1")
+    ),
     # "Sn is a ... flow rate multiplier" (M221 Set Flow Rate): above 2 it is a percentage
     Habit("M221 S above 2 (a flow percentage; Hyrel's S is a multiplier)", "HY033", "M221", GCODE, _over("S", 2)),
     # "In native mode ... the value of Extrusion rate E will be ignored, but E will trigger a working or

@@ -15,7 +15,19 @@ from gclint.dialects.addressing import (
     resolve_v4_variable,
     resolve_v5,
 )
-from gclint.dialects.base import Clue, Code, Detection, Dialect, LineMark, Param, code, has_all, has_any, table, value_at_least
+from gclint.dialects.base import (
+    Clue,
+    Code,
+    Detection,
+    Dialect,
+    LineMark,
+    Param,
+    code,
+    has_all,
+    has_any,
+    table,
+    value_at_least,
+)
 from gclint.dialects.habits import HYREL_HABITS
 from gclint.dialects.semantics import DWELL_MS_S_SUM, WORKSPACES, Semantics, effects
 
