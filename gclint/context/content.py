@@ -333,8 +333,10 @@ def _read_command(reading: ContentReading, cmd: Command, number: int, raw: str, 
             if head not in reading.declarations:
                 reading.declarations[head] = _seen(cmd, number, raw)
             added.append(("decl", head))
-    elif code in ("M109", "M190", "M191") and _whole(params.get("W")) == 0 and reading.waits_w0 is None:
-        reading.waits_w0 = _seen(cmd, number, raw)
+    elif code in ("M109", "M190", "M191") and _whole(params.get("W")) == 0:
+        if reading.waits_w0 is None:
+            reading.waits_w0 = _seen(cmd, number, raw)
+        added.append(("W0",))
     elif code == "M229" and _whole(params.get("E")) == 1:
         reading.e_values = True
     elif (code == "M756" or code == "M221" and ("W" in params or "Z" in params or "P" in params)) or (
@@ -344,8 +346,10 @@ def _read_command(reading: ContentReading, cmd: Command, number: int, raw: str, 
             reading.native_flow = _seen(cmd, number, raw)
     elif code == "M106" and "C" in params:
         reading.fan_range = True
-    elif code == "M116" and reading.m116 is None:
-        reading.m116 = _seen(cmd, number, raw)
+    elif code == "M116":
+        if reading.m116 is None:
+            reading.m116 = _seen(cmd, number, raw)
+        added.append(("M116",))
     elif code in ("M253", "M254"):
         if reading.lathe is None:
             reading.lathe = _seen(cmd, number, raw)

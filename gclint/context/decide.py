@@ -2,12 +2,12 @@
 
 What the user said wins (DESIGN.md, "Dialect names"): ``--dialect``/``--printer``/``--flavor``, the
 configuration, then a ``; gclint: dialect=NAME`` line; an explicit dialect is never second-guessed.
-Otherwise the file is read once (gclint.context.content) and every candidate reading is scored on how well it
-explains it (gclint.context.score: a code a candidate lacks nearly rules it out, a habit costs a little, a
-code only one dialect has is strong evidence, the header and the extension are weak, Hyrel is the prior);
-the best reading wins, and a close second makes the decision weak.  For a Hyrel file the version
-(gclint.context.version) and the model (gclint.context.printer) are decided the same way, by the weight of
-all the lines.
+Otherwise the file is read once (gclint.context.content) and every candidate reading is scored on how well
+it explains it (gclint.context.score: a code a candidate lacks nearly rules it out, a habit costs a little,
+a code only one dialect has is strong evidence, the header and the extension are weak, Hyrel is the
+prior); the best reading wins (gclint.context.choose), and a close second makes the decision weak.  For a
+Hyrel file the version (gclint.context.version) and the model (gclint.context.printer) are decided the same
+way, by the weight of all the lines.
 """
 
 from __future__ import annotations
@@ -18,10 +18,11 @@ from gclint import dialects, firmware
 from gclint.context import printer as printer_model
 from gclint.context import version as hyrel_version
 from gclint.context.candidates import flavor_candidates
+from gclint.context.choose import Decision, decide
 from gclint.context.content import ContentReading, read_content
 from gclint.context.header import SLICER_FLAVORS, slicer_flavor
 from gclint.context.model import CONFIGURATION, DIRECTIVE, EXPLICIT, OPTION, Context
-from gclint.context.score import Decision, decide, rank
+from gclint.context.score import rank
 from gclint.dialects.base import HeadScan
 
 _DIRECTIVE = re.compile(r"(?im)^[^\n]*[;(]\s*gclint:\s*dialect\s*=\s*([^\s;)]+)")

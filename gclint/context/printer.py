@@ -27,7 +27,7 @@ from functools import cache
 
 from gclint.context.content import ContentReading, Seen
 from gclint.context.model import CONTENT, DEFAULT
-from gclint.dialects.addressing import HEAD, resolve_v4_command, resolve_v4_variable, resolve_v5
+from gclint.dialects.addressing import HEAD, fits, resolve_v4_command, resolve_v4_variable, resolve_v5
 from gclint.dialects.base import HeadScan
 from gclint.machine.profiles import PROFILES
 
@@ -159,6 +159,8 @@ def _positions(reading: ContentReading, firmware: int, s: _Scores) -> None:
         if letter != "T" or (code == "M6" and number in reading.declarations):
             continue  # (a declared head is counted as a declaration)
         address = resolve(number)
+        if not fits(code, address):
+            continue  # (a head's number on a bed code is HY046's mistake, no head the job uses)
         lines = counts.get(("T", code, letter, number), 1)
         if address.kind == HEAD and address.position is not None and address.position < 10:
             head(address.position, seen, lines, f"names the head T{address.position}")

@@ -1,27 +1,31 @@
 """Which dialect (and firmware flavour) explains a file best: a score per candidate reading.
 
-Each candidate (gclint.context.candidates) starts from its prior (Hyrel highest: the first target wins
-where the evidence ties) and every piece of evidence moves some candidates' scores.  The scale is roughly
-a log-likelihood: a few points is a preference, eight is "nearly impossible".
+Each candidate (gclint.context.candidates) starts from its prior (``Detection.prior``: Hyrel highest, the first
+target wins where the evidence ties) and every piece of evidence moves some candidates' scores.  The scale is
+roughly a log-likelihood: a few points is a preference, eight is "nearly impossible".
 
-* A G/M code a candidate's tables lack while another candidate's have it: nearly impossible under it
-  (``MISFIT``), less where the firmware runs codes it does not list (RepRapFirmware's macro files, LinuxCNC's
-  user M-codes: ``UNLISTED``).  A code no known table has costs every known candidate (``NOBODY``).
-* A code only one dialect has is strong evidence for it (``UNIQUE``), one two dialects share a little.
+* A G/M code a candidate's tables lack while another candidate's have it: ``Detection.unlisted`` (8, nearly
+  impossible, where the firmware rejects it or stops; less for Marlin, whose forks add codes, and Carvera,
+  whose Smoothieware skips them), ``UNLISTED`` where the firmware runs it anyway (RepRapFirmware's macro
+  files, LinuxCNC's user M-codes).  A code no known table has costs every known candidate (``NOBODY``).
+* A code only one dialect has counts for it (``UNIQUE``: the others' costs say the rest).
 * A kind of line a candidate's language lacks (an O-word in a Marlin file, a meta command in a Hyrel job, a
   Klipper command in a RepRapFirmware one): ``MISFIT``.
-* A dialect's clues (gclint.dialects ``Clue``: ``M6 T# O#``, ``M109 H``...) add their weight to it; a
-  flavour's clues to that flavour.
-* A dialect's habits (gclint.dialects.habits: a bare ``G28`` in a Hyrel job) cost it a little (``Habit.cost``; the k-th of a file counts 1/k)
-  and are no evidence for the firmware the habit comes from: its rule reports the line.
-* A parameter a dialect's catalogued table does not take, or a value outside its range: ``PARAM``.
-* E words: constant E1 marks on printing moves and no amount are Hyrel's native flow, implausible under a
-  firmware whose E is an amount (``E_MARKS``); an E on a move of a machine with no extruder (``NO_EXTRUDER``)
-  or whose moves have no E (Machinekit: ``MISFIT``).
-* The slicer header, ``SLIC3R_GCODE_FLAVOR`` and the extension are weak evidence (``HEADER_SCALE``,
-  ``EXTENSION``).
-* ``generic`` has a fixed score (its prior); a mark of a machine no known dialect describes (GRBL's ``$H``, a
-  GRBL sender or CAM named in a comment, Mach3's torch-height codes) is a large misfit for every known one.
+* A dialect's clues (gclint.dialects ``Clue``: ``M6 T# O#``, ``M109 H``...) and line marks add their weight
+  to it; a flavour's clues to that flavour.
+* *Soft* costs, which tell known dialects apart but never make a file ``generic``: a dialect's habits
+  (gclint.dialects.habits: a bare ``G28`` in a Hyrel job; ``Habit.cost``), which are no evidence for the
+  firmware the habit comes from; a parameter a catalogued table does not take or a value out of its range
+  (``PARAM``); E1 marks on every printing move under a firmware whose E is an amount (``E_MARKS``).  The k-th
+  soft cost of a reading counts 1/k: one author's habits come together.
+* E words on the moves of a machine with no extruder (``NO_EXTRUDER``) or whose moves have no E (Machinekit:
+  ``MISFIT``).
+* The slicer header, ``SLIC3R_GCODE_FLAVOR`` (``HEADER_SCALE``) and the extension (``EXTENSION_POINTS``) are
+  weak evidence.
+* ``generic`` has a fixed score (its prior).  It wins only when it beats every known reading's *fit* (the score
+  with the soft costs forgiven): when each has a large misfit.  A mark of a machine no known dialect describes
+  (GRBL's ``$H``, a GRBL sender or CAM named in a comment, Mach3's torch-height codes) is one for every known
+  reading (``FOREIGN``, ``LineMark.weight``).
 """
 
 from __future__ import annotations
@@ -31,7 +35,7 @@ from dataclasses import dataclass, field
 from gclint.context.candidates import Candidate, candidates, having
 from gclint.context.content import ContentReading
 from gclint.context.header import ENV_WEIGHT, extension, found, slicer_flavor, tells
-from gclint.context.model import CONTENT, DEFAULT, EXTENSION, HEADER, NONE, STRONG, WEAK
+from gclint.context.model import CONTENT, EXTENSION, HEADER
 from gclint.dialects.base import HeadScan
 from gclint.syntax.nodes import ASSIGNMENT, EXTENDED, META, OWORD
 
@@ -312,13 +316,13 @@ def _header(scan: HeadScan, tail: HeadScan | None, env_flavor: str | None, pool,
                 members = {k.key: weight * HEADER_SCALE for k in pool if k.dialect is c.dialect}
             else:  # the header names a machine no known dialect describes: against every known one, once
                 members = {k.key: -FOREIGN for k in known}
-            add(Item(f"the header: {text}", 0, HEADER, members))
+            add(Item(text, 0, HEADER, members))
         else:
             hits = found(c.flavor.detection, scan, tail)
             if hits:
                 weight = max(w for w, _ in hits)
                 text = "; ".join(t for _, t in hits[:2])
-                add(Item(f"the header: {text}", 0, HEADER, {c.key: weight * HEADER_SCALE}))
+                add(Item(text, 0, HEADER, {c.key: weight * HEADER_SCALE}))
     if env_flavor:
         mapped = slicer_flavor(env_flavor)
         members = {k.key: ENV_WEIGHT * HEADER_SCALE for k in pool if k.dialect.name == mapped}
@@ -326,173 +330,4 @@ def _header(scan: HeadScan, tail: HeadScan | None, env_flavor: str | None, pool,
             add(Item(f"SLIC3R_GCODE_FLAVOR={env_flavor.strip()}", 0, HEADER, members))
 
 
-# -- the decision ------------------------------------------------------------------------------------------
-
-
-@dataclass
-class Decision:
-    dialect: str
-    flavor: str | None
-    origin: str
-    strength: str
-    reasons: tuple[str, ...]
-    conflict: str
-    flavor_reasons: tuple[str, ...]
-    candidates: tuple[tuple[str, float], ...]
-    candidate_reasons: tuple[str, ...]
-
-
-def _pick(ranking: Ranking, sources: tuple[str, ...] | None = None) -> tuple[str, str | None, float, float]:
-    """(winner, rival, margin, lead) counting only the evidence of ``sources`` (None: all): the best known
-    reading, unless none explains the file, when ``generic`` wins: its fixed score beats every known reading's
-    fit (the score with its soft costs forgiven: a large misfit each, not a pile of habits).  The rival is the
-    best known reading of another dialect; ``lead`` what the evidence (priors aside) puts between them."""
-    pool = ranking.pool
-    scores = ranking.scores(sources)
-    known = [c.key for c in pool if c.known]
-    generic = next((c.key for c in pool if not c.known), None)
-
-    def fit(key: str) -> float:
-        prior = ranking.by_key[key].prior
-        return prior + sum(
-            v
-            for i in ranking.items
-            if (sources is None or i.source in sources) and ((v := i.deltas.get(key, 0.0)) > 0 or not i.soft)
-        )
-
-    best_known = max(known, key=lambda k: scores[k]) if known else None  # (the first among equals: Hyrel)
-    best_fit = max((fit(k) for k in known), default=float("-inf"))
-    if best_known is None or (generic is not None and scores[generic] > best_fit):
-        rival = best_known
-        margin = scores[generic] - best_fit  # type: ignore[index]
-        lead = -(best_fit - ranking.by_key[rival].prior) if rival is not None else 1.0
-        return generic, rival, margin, lead  # type: ignore[return-value]
-    dialect = ranking.by_key[best_known].dialect.name
-    others = [k for k in known if ranking.by_key[k].dialect.name != dialect]
-    rival = max(others, key=lambda k: scores[k]) if others else None
-    margin = scores[best_known] - scores[rival] if rival is not None else float("inf")
-    if generic is not None:
-        margin = min(margin, fit(best_known) - scores[generic])
-    lead = (
-        ranking.score(best_known, sources, prior=False) - ranking.score(rival, sources, prior=False)
-        if rival is not None
-        else 1.0
-    )
-    return best_known, rival, margin, lead
-
-
-def decide(ranking: Ranking) -> Decision:
-    """The best reading of ``ranking``: its dialect and flavour, where the decision came from, how sure it is,
-    why, and what disagreed."""
-    scores = ranking.scores()
-    winner, rival, margin, _ = _pick(ranking)
-    dialect = ranking.by_key[winner].dialect.name
-    own = ranking.best(scores, dialect)  # (the best reading of the winner's dialect: a flavour, perhaps)
-    if not any(any(v for v in i.deltas.values()) for i in ranking.items):
-        origin, strength, reasons = DEFAULT, NONE, ()
-    else:
-        by_content, _, _, content_lead = _pick(ranking, (CONTENT,))
-        by_header = _pick(ranking, (CONTENT, HEADER))[0]
-        if ranking.by_key[by_content].dialect.name == dialect and content_lead > 0:
-            origin = CONTENT
-        elif ranking.by_key[by_header].dialect.name == dialect and any(
-            i.source == HEADER and i.deltas.get(winner, 0) > 0 for i in ranking.items
-        ):
-            origin = HEADER
-        elif any(i.source == EXTENSION and i.deltas.get(winner, 0) > 0 for i in ranking.items):
-            origin = EXTENSION
-        else:
-            origin = CONTENT
-        strength = STRONG if margin >= CLOSE else WEAK
-        # the other dialects' best readings: what sets the winner above all of them is said first
-        field = tuple(
-            ranking.best(scores, c.dialect.name)  # type: ignore[misc]
-            for c in ranking.pool
-            if c.known and c.flavor is None and c.dialect.name != dialect
-        )
-        if origin == EXTENSION:
-            reasons = ranking.reasons(winner, rival, 3, (EXTENSION,)) + ranking.reasons(
-                winner, rival, 2, (CONTENT,), field
-            )
-        else:
-            reasons = ranking.reasons(winner, rival, 3, (CONTENT,) if origin == CONTENT else (HEADER, CONTENT), field)
-        if not reasons and rival is not None:
-            # the runner-up explains the file as well (the prior decided): say what rules the others out, the
-            # default (the highest prior) first
-            rival_dialect = ranking.by_key[rival].dialect.name
-            others = sorted(
-                (k for k in field if ranking.by_key[k].dialect.name != rival_dialect),
-                key=lambda k: -ranking.by_key[k].prior,
-            )
-            for other in others:
-                reasons = tuple(dict.fromkeys(reasons + ranking.reasons(winner, other, 1)))
-                if len(reasons) == 2:
-                    break
-            reasons += (f"{rival_dialect} explains it as well",)
-    conflict = _conflicts(ranking, scores, winner, dialect, origin)
-
-    flavor = None
-    flavor_reasons: tuple[str, ...] = ()
-    chosen = ranking.by_key[own]  # type: ignore[index]
-    if chosen.flavor is not None:
-        plain = next((c.key for c in ranking.pool if c.dialect.name == dialect and c.flavor is None), None)
-        tied = [
-            c.key for c in ranking.pool if c.dialect.name == dialect and c.key != own and scores[c.key] == scores[own]
-        ]
-        if not tied:
-            flavor = chosen.flavor.name
-            # the slicer's settings first (they name the printer), then the content
-            flavor_reasons = ranking.reasons(own, plain, 2, (HEADER,))  # type: ignore[arg-type]
-            flavor_reasons = (flavor_reasons + ranking.reasons(own, plain, 2, (CONTENT,)))[:2]  # type: ignore[arg-type]
-    ordered = sorted(scores.items(), key=lambda kv: -kv[1])
-    shown = tuple((key, round(value, 2)) for key, value in ordered)
-    why = []
-    for key, _ in ordered[:4]:
-        against = ranking.against(key, 1)
-        if against:
-            why.append(f"{key}: {against[0]}")
-    return Decision(dialect, flavor, origin, strength, reasons, conflict, flavor_reasons, shown, tuple(why))
-
-
-def _conflicts(ranking: Ranking, scores: dict[str, float], winner: str, dialect: str, origin: str) -> str:
-    """What the header or the extension said that the decision overrules."""
-    out = []
-    header_items = [i for i in ranking.items if i.source == HEADER]
-    best_header: tuple[float, str, str] | None = None
-    for item in header_items:
-        for key, value in item.deltas.items():
-            name = ranking.by_key[key].dialect.name
-            if (
-                value > 0
-                and name != dialect
-                and ranking.by_key[key].known
-                and (best_header is None or value > best_header[0])
-            ):
-                best_header = (value, name, item.text.removeprefix("the header: "))
-    if best_header is not None and not any(i.deltas.get(winner, 0) > 0 for i in header_items):
-        _, name, text = best_header
-        out.append(f"the slicer says {name} ({text}), but the content is {dialect}'s: content wins")
-    if origin == HEADER:
-        content = ranking.scores((CONTENT,))
-        leader = ranking.best(content)
-        if leader is not None and ranking.by_key[leader].dialect.name != dialect:
-            lean = ranking.reasons(leader, winner, 1, (CONTENT,))
-            if lean:
-                out.append(
-                    f"the content leans to {ranking.by_key[leader].dialect.name} ({lean[0]}), less than the slicer header"
-                )
-    for item in ranking.items:
-        if item.source != EXTENSION or item.deltas.get(winner, 0) > 0:
-            continue
-        name = ranking.by_key[next(iter(item.deltas))].dialect.name
-        key = next(iter(item.deltas))
-        misfit = ranking.against(key, 1)
-        ext = item.text.removeprefix("the extension ")
-        if misfit:
-            out.append(f"the extension {ext} is {name}'s, but {misfit[0]}: not read as {name}")
-        else:
-            out.append(f"the extension {ext} is {name}'s, but the content is {dialect}'s: not read as {name}")
-    return "; ".join(out)
-
-
-__all__ = ["Item", "Ranking", "Decision", "rank", "decide"]
+__all__ = ["CLOSE", "Item", "Ranking", "rank"]

@@ -36,10 +36,13 @@ from gclint.dialects.addressing import (
     resolve_v5,
 )
 
-IMPOSSIBLE = 2.0  # no address at all in that numbering
-NO_MODEL = 1.5  # an address of T_v5's chart that no model has (a third yoke)
-MISTAKE = 1.5
-V5_ONLY = 1.5  # less than one number read wrong: not decisive alone
+# A number read wrong costs the same whatever the way (no address at all in that numbering, an address of T_v5's
+# chart no model has, a device the command does not address): one misreading each, as the old rule of one vote
+# per number had it; W0 and M116 under v4 weigh as much, so they decide nothing alone against a v4 number
+IMPOSSIBLE = 2.0
+NO_MODEL = 2.0
+MISTAKE = 2.0
+V5_ONLY = 2.0
 _WAITS = frozenset({"M109", "M190", "M191"})
 _YOKES = 10  # v5 heads T0-T9: yokes 1 and 2, the most any model has (T_v5, "Using the T with the 16A (Dual Yoke)")
 
@@ -101,9 +104,12 @@ def score(reading: ContentReading) -> tuple[dict[int, float], list[tuple[float, 
         numbers.setdefault(("tool", number), []).append(
             (seen, cost4, cost5, lines, ("a v4 tool number", "a v5 address"))
         )
-    for seen, what in ((reading.m116, "M116 exists from v5"), (reading.waits_w0, "W0 exists from v5")):
+    for seen, what, key in (
+        (reading.m116, "M116 exists from v5", "M116"),
+        (reading.waits_w0, "W0 exists from v5", "W0"),
+    ):
         if seen is not None:
-            numbers[(what, 0)] = [(seen, V5_ONLY, 0.0, 1, ("", what))]
+            numbers[(what, 0)] = [(seen, V5_ONLY, 0.0, counts.get((key,), 1), ("", what))]
     uses: list[tuple[float, int, str]] = []
     for found in numbers.values():
         lines = sum(use[3] for use in found)

@@ -275,7 +275,7 @@ class Clue:
     code: str | None = None
     kind: str | None = None
     test: Callable[[Any], bool] | None = None  # called with the Command
-    weight: int = 3
+    weight: float = 3
     contains: str = ""  # one or two characters one of which the line must hold to be tried (a quick filter)
 
     def matches(self, cmd: Any) -> bool:

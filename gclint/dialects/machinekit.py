@@ -201,8 +201,8 @@ MACHINEKIT_CLUES = (
     # a C axis: five-axis LinuxCNC machines (Carvera's 4th axis is A, Hyrel's rotary axes A and B; but an
     # E3D tool changer on RepRapFirmware locks tools with C: weak)
     *(Clue(f"{c} C#: a C axis", c, test=lambda c: "C" in c.params, weight=1) for c in ("G0", "G1")),
-    # (weak: Carvera's 4th axis and Hyrel's A/B axes move A too)
-    Clue("G1 A#: extrusion on the A axis", "G1", test=lambda c: "A" in c.params and "E" not in c.params, weight=1),
+    # (weak, less than the first target's prior: Carvera's 4th axis and Hyrel's A/B axes move A too)
+    Clue("G1 A#: extrusion on the A axis", "G1", test=lambda c: "A" in c.params and "E" not in c.params, weight=0.5),
 )
 
 # The LinuxCNC interpreter's reading of a line, which Machinekit shares (gclint.dialects.semantics names the

@@ -251,7 +251,10 @@ class ChangesPrinterFiles(_SecurityRule):
             self.report_masked(line, f"{code} {_FIRMWARE_UPDATE[code]}{_excerpt(rest)}", column)
             return
         if code in _CONFIG_OVERRIDE:
-            if self.ctx.dialect.name != "marlin":
+            # Marlin keeps its settings in EEPROM; a job read as Marlin on weak evidence (a bare "M500": RepRapFirmware
+            # explains it as well, and writes config-override.g) is not trusted to be one
+            context = self.ctx.context
+            if self.ctx.dialect.name != "marlin" or (context is not None and context.weak):
                 self.report_masked(line, f"{code} {_CONFIG_OVERRIDE[code]}", column)
             return
         argument = re.sub(r"\*\d+\s*$", "", _strip_comment(rest))  # (a "*99" checksum is no file name)
