@@ -30,6 +30,7 @@ from __future__ import annotations
 import hashlib
 import hmac
 import json
+import math
 import os
 import re
 import secrets as _random
@@ -570,13 +571,29 @@ def _context(data: object) -> Context | None:
         context = Context.from_dict(data)
     except TypeError:
         raise _Bad from None
-    for value in vars(context).values():
+    for name, value in vars(context).items():
+        if name == "candidates":  # (name, score) pairs
+            if not isinstance(value, tuple) or not all(_candidate(v) for v in value):
+                raise _Bad
+            continue
         if isinstance(value, tuple) and not all(isinstance(v, str) and len(v) < 2000 for v in value):
             raise _Bad
         if value is not None and not isinstance(value, (str, int, tuple)):
             raise _Bad
     _str(context.dialect, 40)
     return context
+
+
+def _candidate(pair: object) -> bool:
+    """A stored candidate score: a short name and a finite number."""
+    return (
+        isinstance(pair, tuple)
+        and len(pair) == 2
+        and isinstance(pair[0], str)
+        and len(pair[0]) < 80
+        and type(pair[1]) in (int, float)
+        and math.isfinite(pair[1])
+    )
 
 
 def _int(value: object, low: int = 0) -> int:

@@ -213,8 +213,12 @@ def test_explicit_printer_is_not_second_guessed_and_assumed_models_are_named() -
     found = check(text, printer="30m").findings
     assert [f.code for f in found if f.code in ("HY007", "HY042")] == ["HY042", "HY007"]
     assert all("printer assumed" not in f.message for f in found)
-    assumed = [f for f in check("M229 E1 D1\nT4\nM30\n").findings if f.code == "HY007"]
-    assert assumed and "printer assumed: 30m, the default; set it with --printer" in assumed[0].message
+    # a fifth slot rules the 30M out (issue 24: "M109 T4 S200 / T4 / a print is not a 30M"): no HY007 on T4
+    fifth = check("M229 E1 D1\nT4\nM30\n")
+    assert fifth.context.printer == "ehr" and not [f for f in fifth.findings if f.code == "HY007"]
+    # a lone line that disagrees with the rest of the job is reported, and says which model it rests on
+    assumed = [f for f in check("M229 E1 D1\nM677 S100\nT0\nT4\nM30\n").findings if f.code == "HY007"]
+    assert assumed and "printer assumed: 30m, from M677 S100 at line 2; set it with --printer" in assumed[0].message
 
 
 # -- the decision is visible ---------------------------------------------------------------------------
@@ -475,8 +479,11 @@ def test_hy039_every_axis_is_homed_again_after_m18(moves: str, reported: bool) -
 
 
 def test_a_declared_flavor_says_the_dialect_and_the_firmware() -> None:
-    head = "G28\nG1 X10 F3000\nM74 W100\n"  # nothing says the firmware: Prusa Buddy's M74 is unknown to Marlin
-    assert infer(head, "a.gcode").flavor is None
+    head = "G28\nG1 X10 F3000\nM74 W100\n"
+    # issue 24: a code only one firmware's inventory has is strong evidence for it (M74 is Prusa Buddy's alone);
+    # codes of two firmwares say none of them
+    assert infer(head, "a.gcode").flavor == "prusa-buddy"
+    assert infer(head + "G29.9\n", "a.gcode").flavor is None  # (G29.9: Bambu's)
     context = infer(head, "a.gcode", flavor="prusa-buddy")
     assert (context.dialect, context.flavor) == ("marlin", "prusa-buddy")
     assert context.why() == "set by --flavor prusa-buddy"

@@ -195,12 +195,13 @@ def test_prusa_job_has_no_dl001_for_buddy_codes(tmp_path):
     assert "DL001" not in _codes(proc), proc.stdout
     text = run_cli("check", str(path), "--no-cache", "-v")
     assert "marlin (prusa-buddy)" in text.stdout.decode()
-    # the same codes in a file that says nothing about its printer: unknown to Marlin, and the message
-    # names the firmware that has them
+    # the same code beside one of another firmware's (Bambu's G29.9): no firmware explains the file, so each is
+    # unknown to Marlin, and the message names the firmware that has it (issue 24: one firmware's code alone
+    # says the firmware)
     bare = tmp_path / "bare.gcode"
-    bare.write_text("G28\nM109 S215\nM74 W20\nG1 X1 E1\n")
+    bare.write_text("G28\nM109 S215\nM74 W20\nG29.9\nG1 X1 E1\n")
     proc = run_cli("check", str(bare), "--no-cache", "-f", "json", "-d", "marlin")
-    (finding,) = [f for f in json.loads(proc.stdout) if f["code"] == "DL001"]
+    (finding,) = [f for f in json.loads(proc.stdout) if f["code"] == "DL001" and "M74" in f["message"]]
     assert "M74" in finding["message"] and "Prusa Buddy firmware has it" in finding["message"]
 
 

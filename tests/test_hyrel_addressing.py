@@ -311,9 +311,12 @@ def test_cli_config_printer_and_loaded_heads(tmp_path):
     def codes(proc):
         return sorted((f["line"], f["code"]) for f in json.loads(proc.stdout) if f["code"] in ("HY006", "HY007"))
 
-    # default printer (30m): T4 does not exist there
+    # a fifth slot tells the model (issue 24: T4 is no 30M's): an EHR's, where T4 exists but no head is loaded
     plain = run_cli("check", "--format", "json", str(path), cwd=tmp_path)
-    assert codes(plain) == [(5, "HY007")]
+    assert codes(plain) == [(5, "HY006")]
+    # a 30M has no T4
+    small = run_cli("check", "--format", "json", "--printer", "30m", str(path), cwd=tmp_path)
+    assert codes(small) == [(5, "HY007")]
     # an EHR has T4; the configuration says only T0 and T1 are loaded
     write(tmp_path, "pyproject.toml", '[tool.gclint]\nprinter = "ehr"\nloaded = ["T0", "T1"]\n')
     configured = run_cli("check", "--format", "json", str(path), cwd=tmp_path)

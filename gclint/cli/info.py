@@ -187,9 +187,10 @@ def list_dialects() -> None:
         aliases = f" (also: {', '.join(d.aliases)})" if d.aliases else ""
         click.echo(f"{d.name:<11} {d.title}{aliases}")
     click.echo(
-        f"{'auto':<11} the default for check: a '; gclint: dialect=' line, else content only one dialect has, else the"
-        f" slicer's flavour (content wins), else the extension as a tie-breaker (.ngc .nc .cnc .tap .g), else"
-        f" {dialects.DEFAULT.name}"
+        f"{'auto':<11} the default for check: a '; gclint: dialect=' line, else the reading that explains the file"
+        f" best (each dialect and firmware scored: a code it lacks nearly rules it out, a known mistake costs a"
+        f" little, the slicer's flavour is weak evidence: content wins; the extension a tie-breaker, .ngc .nc .cnc"
+        f" .tap .g; generic when no known dialect explains it), on a tie {dialects.DEFAULT.name}"
     )
 
 

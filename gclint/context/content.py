@@ -1,8 +1,12 @@
-"""Read what the head of a file says about its dialect: the codes it uses, the dialects' clues, and the
-Hyrel addresses, declared heads, axes and model-specific codes (for the firmware version and model).
+"""Read what the head (and tail) of a file says about its dialect, Hyrel version and printer: the codes it
+uses, the dialects' clues, habits and line marks, the kinds of line, parameters a dialect's table does not
+take, how E is used, and the Hyrel addresses, declared heads, axes and model-specific codes with the number
+of lines that use each.
 
-One pass over the head's lines with the real parser (parses are cached by text, so the check that
-follows gets these lines for free).  Plain moves (``G1 X.. Y.. E..``) carry no clue and are skipped.
+One pass over the lines with the real parser (parses are cached by text, so the check that follows gets
+these lines for free).  Plain moves (``G1 X.. Y.. E..``) are read by a regular expression, for their E word
+only, and runs of them are passed over once they can tell nothing more.  A line repeated word for word is
+parsed once; its counts are replayed.
 
 What was seen is kept as a short text for the user (``M587 S"home" P"***" at line 2``), the evidence every
 output and the cache show: its secrets are masked here, where it is made (``_seen``), with the masking
@@ -12,18 +16,22 @@ the findings use (gclint.secrets), so no output has to remember to.
 from __future__ import annotations
 
 import re
+from collections import Counter
 from dataclasses import dataclass, field
 
 from gclint import secrets
-from gclint.dialects import Dialect, get, known_dialects
-from gclint.dialects.base import Clue
+from gclint.context.candidates import candidates
+from gclint.dialects.base import Clue, Habit, LineMark
 from gclint.firmware import all_firmware
 from gclint.syntax.fastpath import PLAIN_MOVE, PLAIN_MOVE_RUN
-from gclint.syntax.nodes import GCODE, TEXT, Command, Word
+from gclint.syntax.nodes import ASSIGNMENT, EXTENDED, GCODE, META, OWORD, TEXT, Command, Word
 from gclint.syntax.parse import parse_line
 
 _LINE_BREAK = re.compile(r"\r\n?|\n")  # as gclint.syntax.source reads lines
 _LINE_LIMIT = 2000  # longer lines are not read for clues (they are reported by the check itself)
+_KINDS = frozenset({EXTENDED, META, OWORD, ASSIGNMENT})  # kinds of line a dialect's language may lack
+_MAX_KINDS = 64  # distinct (kind, word) pairs kept (a Klipper file may call many macros)
+_AMOUNTS = 3  # printing moves with amounts read before the moves can tell nothing more
 
 
 @dataclass(frozen=True)
@@ -40,35 +48,62 @@ class Seen:
 
 @dataclass
 class ContentReading:
-    """What the head's content says."""
+    """What the content says.  The habits' ``test`` reads ``fan_range``, ``e_values`` and ``height_registers``
+    (the state of the job so far, in file order)."""
 
     codes: dict[str, Seen] = field(default_factory=dict)  # G/M codes -> first use
-    clues: dict[str, dict[Clue, Seen]] = field(default_factory=dict)  # candidate -> clue -> first match
+    clues: dict[str, dict[Clue, Seen]] = field(default_factory=dict)  # dialect -> clue -> first match
     flavor_clues: dict[str, dict[Clue, Seen]] = field(default_factory=dict)  # firmware -> clue -> first match
+    habits: dict[str, dict[Habit, Seen]] = field(default_factory=dict)  # dialect -> habit -> first match
+    marks: dict[str, dict[LineMark, Seen]] = field(default_factory=dict)  # dialect -> line mark -> first line
+    kinds: dict[tuple[str, str], Seen] = field(default_factory=dict)  # (kind, WORD) of extended/meta/O-word lines
+    # dialect -> (code, letter) -> (first use, what is wrong): a letter its table lacks, a value out of range
+    params: dict[str, dict[tuple[str, str], tuple[Seen, str]]] = field(default_factory=dict)
     # Hyrel: (code, letter, number) of each T variable (and M703/M704 S) -> first use
     addresses: dict[tuple[str, str, int], Seen] = field(default_factory=dict)
     tool_commands: dict[int, Seen] = field(default_factory=dict)  # T<n> lines
     declarations: dict[int, Seen] = field(default_factory=dict)  # M6 T<n> O.. (T as written)
+    # lines that use each: ("T", code, letter, n), ("tool", n), ("axis",), ("lathe",), ("aux", code)
+    counts: Counter = field(default_factory=Counter)
     waits_w0: Seen | None = None  # M109/M190/M191 W0
     m116: Seen | None = None
     rotary_axes: Seen | None = None  # an A or B word on a move, G28 or G92
     lathe: Seen | None = None  # M253/M254
     aux_codes: dict[str, Seen] = field(default_factory=dict)  # model-specific aux ports (M670-M689)
-    e_amounts: Seen | None = None  # a working move with a fractional E before any M229 E1
-    e_moves: Seen | None = None  # a move with an E word (Machinekit has none: gclint.dialects Dialect.move_letters)
-    m229_e1: bool = False
+    z_homed: bool = False  # a G28 with Z so far
+    m660_after_z_home: Seen | None = None  # the first M660 after a G28 Z (the EHR header)
+    m660_before_z_home: Seen | None = None  # the first M660 before any
+    # E: a printing move's amount (fractional, or a third whole amount other than 0 and 1) before any M229 E1
+    e_amounts: Seen | None = None
+    e_retract: Seen | None = None  # a G1 with a zero or negative E before any M229 E1
+    e_on_g0: Seen | None = None
+    e_moves: Seen | None = None  # a move with an E word (Machinekit has none: gclint.dialects Dialect.not_move_words)
+    e_flags: int = 0  # printing moves (X or Y) with E1 before any M229 E1: Hyrel's marks of a printing move
+    e_amount_moves: int = 0  # printing moves with an amount before any M229 E1 (counted up to _AMOUNTS)
+    native_flow: Seen | None = None  # what Hyrel's native flow computes from: M756, M221 P/W/Z, or M229 E0
     whole_e: set[str] = field(default_factory=set)  # whole E amounts other than 0 and 1 seen so far
-    lines_read: set[str] = field(default_factory=set)  # the lines parsed (a repeated line is read once)
+    # the state the habits read
+    fan_range: bool = False  # an M106 C range was set
+    e_values: bool = False  # M229 E1: the E amounts carry the flow
+    height_registers: set[float] = field(default_factory=set)  # the registers M660 set
+    lines_read: dict[str, tuple] = field(default_factory=dict)  # each line parsed -> the counts it adds
+
+    @property
+    def m229_e1(self) -> bool:
+        return self.e_values
+
+    def fact(self, name: str) -> Seen | None:
+        """A fact of the whole reading a habit names (``e_amounts``, ``e_retract``, ``e_on_g0``, ``e_sliced``:
+        amounts on several printing moves and no native-flow settings)."""
+        if name == "e_sliced":
+            sliced = self.e_amount_moves >= _AMOUNTS and not self.e_values and self.native_flow is None
+            return self.e_amounts if sliced else None
+        value = getattr(self, name, None)
+        return value if isinstance(value, Seen) else None
 
 
-def candidates() -> tuple[Dialect, ...]:
-    """The dialects ``auto`` chooses between (Hyrel v4 and v5 are one candidate; the version is decided
-    from the addresses afterwards)."""
-    return tuple(d for d in known_dialects() if d.variant_of is None)
-
-
-_HYREL = get("hyrel")
-# Hyrel codes whose T is an address (a T variable): every code whose parameter table lists T.
+_HYREL = next(c.dialect for c in candidates() if c.dialect.extras.get("resolve_variable") is not None)
+# Codes whose T is an address (a T variable) on Hyrel: every code whose parameter table lists T.
 _T_VARIABLE_CODES = frozenset(c for c, spec in _HYREL.codes.items() if spec.params and "T" in spec.params)
 # Codes whose A and B are axes on Hyrel (Gcode page: G0/G1 note on axes; G28, G92, M203, G54-G59, M6; G38)
 _AXIS_CODES = frozenset({"G0", "G1", "G2", "G3", "G28", "G92", "M203", "M6", "G38", *(f"G{n}" for n in range(54, 60))})
@@ -76,25 +111,44 @@ _MOVES = frozenset({"G0", "G1", "G2", "G3"})
 _MODEL_AUX = frozenset(f"M{n}" for n in range(670, 690))
 
 
-def _clue_index(owners) -> tuple[dict[str, list[tuple[str, Clue]]], list[tuple[str, Clue]]]:
-    by_code: dict[str, list[tuple[str, Clue]]] = {}
-    general: list[tuple[str, Clue]] = []
-    for owner in owners:
-        for clue in owner.detection.clues:
-            entry = (owner.name, clue)
-            if clue.code is not None:
-                by_code.setdefault(clue.code, []).append(entry)
+def _index(owners, attribute: str) -> tuple[dict[str, list], list]:
+    """(code -> [(owner, item)], [(owner, item) with no code]) for the clues or habits of ``owners``."""
+    by_code: dict[str, list] = {}
+    general: list = []
+    for name, detection in owners:
+        for item in getattr(detection, attribute):
+            if getattr(item, "fact", None) is not None:
+                continue
+            entry = (name, item)
+            if item.code is not None:
+                by_code.setdefault(item.code, []).append(entry)
             else:
                 general.append(entry)
     return by_code, general
 
 
-_BY_CODE, _GENERAL = _clue_index(candidates())
+_DIALECTS = [(c.dialect.name, c.dialect.detection) for c in candidates() if c.flavor is None]  # (generic too)
+_BY_CODE, _GENERAL = _index(_DIALECTS, "clues")
+_HABITS_BY_CODE, _HABITS_GENERAL = _index(_DIALECTS, "habits")
 # the marks of a firmware flavour in the content (Klipper's extended commands), read in the same pass
-_FLAVOR_BY_CODE, _FLAVOR_GENERAL = _clue_index(all_firmware())
+_FLAVOR_BY_CODE, _FLAVOR_GENERAL = _index([(f.name, f.detection) for f in all_firmware()], "clues")
+_MARKS = tuple((name, mark, re.compile(mark.pattern)) for name, detection in _DIALECTS for mark in detection.line_marks)
 # the general clues by the kind of command they may match (filled as kinds are met)
-_GENERAL_BY_KIND: dict[str, tuple[tuple[str, Clue], ...]] = {}
-_FLAVOR_BY_KIND: dict[str, tuple[tuple[str, Clue], ...]] = {}
+_GENERAL_BY_KIND: dict[str, tuple] = {}
+_FLAVOR_BY_KIND: dict[str, tuple] = {}
+# code -> [(dialect, its Code)] for the tables that catalogue the code's parameters, with the rules its habits
+# report (a parameter a habit covers is counted once, as the habit)
+_PARAM_TABLES: dict[str, list] = {}
+for _c in candidates():
+    if _c.flavor is not None or not _c.known:
+        continue
+    _habit_rules: dict[str, set[str]] = {}
+    for _h in _c.dialect.detection.habits:
+        if _h.code is not None:
+            _habit_rules.setdefault(_h.code, set()).add(_h.rule)
+    for _code, _spec in _c.dialect.codes.items():
+        if _spec.params is not None:
+            _PARAM_TABLES.setdefault(_code, []).append((_c.dialect.name, _spec, frozenset(_habit_rules.get(_code, ()))))
 
 
 def read_content(head: str, complete: bool, tail: str | None = None) -> ContentReading:
@@ -140,63 +194,119 @@ def _read_text(reading: ContentReading, text: str, numbered: bool) -> None:
 
 
 def _moves_read(reading: ContentReading) -> bool:
-    """Whether plain moves can tell ``reading`` nothing more (see ``_read_lines``)."""
-    return reading.e_moves is not None and (reading.e_amounts is not None or reading.m229_e1)
+    """Whether plain moves can tell ``reading`` nothing more: an E word was seen and either the E values
+    carry the flow (M229 E1) or an amount showed they are amounts (the E1 marks of native flow are counted
+    until then)."""
+    return reading.e_moves is not None and (reading.e_amount_moves >= _AMOUNTS or reading.e_values)
 
 
 def _read_lines(reading: ContentReading, lines) -> None:
     plain = PLAIN_MOVE.fullmatch
     done = reading.lines_read
+    counts = reading.counts
     for number, raw in lines:
         stripped = raw.lstrip()
-        if not stripped or stripped[0] in ";(" or len(raw) > _LINE_LIMIT:
+        if not stripped or len(raw) > _LINE_LIMIT:
+            continue
+        for owner, mark, pattern in _MARKS:
+            if mark.contains in raw and pattern.search(raw):
+                found = reading.marks.setdefault(owner, {})
+                if mark not in found:
+                    found[mark] = Seen(number, secrets.mask(raw.strip())[:_SHOWN])
+        if stripped[0] in ";(":
             continue
         move = plain(raw)
         if move is not None:
-            if reading.e_moves is None and move.group(6) is not None:
-                reading.e_moves = Seen(number, secrets.mask(raw.strip())[:_SHOWN])
-            if reading.e_amounts is None and not reading.m229_e1 and move.group(1) == "1":
-                e = move.group(6)
-                # a fractional amount, or the third whole amount other than 0 and 1 (E2, E3, E4: a Hyrel job
-                # writes E1 as a flag, and a hand-written one may count a few moves)
-                if e is not None and abs(float(e)) not in (0.0, 1.0):
-                    if "." in e.rstrip("0").rstrip(".") or len(reading.whole_e) >= 2 and e not in reading.whole_e:
-                        reading.e_amounts = Seen(number, secrets.mask(raw.strip())[:_SHOWN])
-                    else:
-                        reading.whole_e.add(e)
+            e = move.group(6)
+            if e is not None:
+                xy = move.group(3) is not None or move.group(4) is not None
+                _e_word(reading, move.group(1), xy, e, number, raw)
             continue
-        if raw in done:
-            continue  # a line read before says nothing new (only where each clue is first seen is kept)
-        done.add(raw)
+        keys = done.get(raw)
+        if keys is not None:
+            for key in keys:  # a line read before says nothing new but how many lines say it
+                counts[key] += 1
+            continue
+        added: list = []
         for cmd in parse_line(raw).commands:
-            _read_command(reading, cmd, number, raw)
+            _read_command(reading, cmd, number, raw, added)
+        done[raw] = tuple(added)
+        for key in added:
+            counts[key] += 1
 
 
-def _of_kind(kind: str, entries: list[tuple[str, Clue]]) -> tuple[tuple[str, Clue], ...]:
+def _e_word(reading: ContentReading, g: str, xy: bool, e: str, number: int, raw: str) -> None:
+    """What an E word on a G0/G1 says: Hyrel's E1 mark of a printing move, an amount, a retract."""
+    if reading.e_moves is None:
+        reading.e_moves = Seen(number, secrets.mask(raw.strip())[:_SHOWN])
+    if g == "0":
+        if reading.e_on_g0 is None:
+            reading.e_on_g0 = Seen(number, secrets.mask(raw.strip())[:_SHOWN])
+        return
+    if reading.e_values:
+        return
+    try:
+        value = float(e)
+    except ValueError:
+        return
+    if value <= 0:
+        if reading.e_retract is None:
+            reading.e_retract = Seen(number, secrets.mask(raw.strip())[:_SHOWN])
+        return
+    if value == 1:
+        if xy:
+            reading.e_flags += 1
+        return
+    # a fractional amount, or the third whole amount other than 0 and 1 (E2, E3, E4: a Hyrel job writes E1 as
+    # a flag, and a hand-written one may count a few moves)
+    if "." in e.rstrip("0").rstrip(".") or len(reading.whole_e) >= 2 and e not in reading.whole_e:
+        if reading.e_amounts is None:
+            reading.e_amounts = Seen(number, secrets.mask(raw.strip())[:_SHOWN])
+        if xy:
+            reading.e_amount_moves += 1
+    else:
+        reading.whole_e.add(e)
+
+
+def _of_kind(kind: str, entries: list) -> tuple:
     """The clues of ``entries`` a command of ``kind`` may match (in their order)."""
     return tuple((owner, clue) for owner, clue in entries if clue.kind is None or clue.kind == kind)
 
 
-def _read_command(reading: ContentReading, cmd: Command, number: int, raw: str) -> None:
+def _read_command(reading: ContentReading, cmd: Command, number: int, raw: str, added: list) -> None:
     code = cmd.code
+    kind = cmd.kind
     seen = None
-    if reading.clues:  # (the first command tries every clue: each candidate's entry is made in that order)
-        kind = cmd.kind
-        if kind not in _GENERAL_BY_KIND:
-            _GENERAL_BY_KIND[kind] = _of_kind(kind, _GENERAL)
-            _FLAVOR_BY_KIND[kind] = _of_kind(kind, _FLAVOR_GENERAL)
-        general, flavor = _GENERAL_BY_KIND[kind], _FLAVOR_BY_KIND[kind]
-    else:
-        general, flavor = _GENERAL, _FLAVOR_GENERAL
-    for candidate, clue in _BY_CODE.get(code, ()) if code is not None else ():  # type: ignore[arg-type]
-        seen = _match(reading, candidate, clue, cmd, number, raw, seen)
-    for candidate, clue in general:
-        seen = _match(reading, candidate, clue, cmd, number, raw, seen)
-    for firmware, clue in _FLAVOR_BY_CODE.get(code, ()) if code is not None else ():  # type: ignore[arg-type]
-        seen = _match(reading, firmware, clue, cmd, number, raw, seen, reading.flavor_clues)
-    for firmware, clue in flavor:
-        seen = _match(reading, firmware, clue, cmd, number, raw, seen, reading.flavor_clues)
-    if code is None or cmd.kind not in (GCODE, TEXT):
+    if kind not in _GENERAL_BY_KIND:
+        _GENERAL_BY_KIND[kind] = _of_kind(kind, _GENERAL)
+        _FLAVOR_BY_KIND[kind] = _of_kind(kind, _FLAVOR_GENERAL)
+    for owner, clue in _BY_CODE.get(code, ()) if code is not None else ():  # type: ignore[arg-type]
+        seen = _match(reading.clues, owner, clue, cmd, number, raw, seen)
+    for owner, clue in _GENERAL_BY_KIND[kind]:
+        needs = clue.contains
+        if not needs or needs[0] in raw or needs[-1] in raw:
+            seen = _match(reading.clues, owner, clue, cmd, number, raw, seen)
+    for owner, clue in _FLAVOR_BY_CODE.get(code, ()) if code is not None else ():  # type: ignore[arg-type]
+        seen = _match(reading.flavor_clues, owner, clue, cmd, number, raw, seen)
+    for owner, clue in _FLAVOR_BY_KIND[kind]:
+        seen = _match(reading.flavor_clues, owner, clue, cmd, number, raw, seen)
+    habitual = False  # another firmware's habit: its T is that firmware's (an extruder index), no address
+    for owner, habit in _HABITS_BY_CODE.get(code, ()) if code is not None else ():  # type: ignore[arg-type]
+        try:
+            hit = habit.matches(cmd, reading)
+        except (TypeError, ValueError, AttributeError):  # a habit never stops the reading
+            hit = False
+        if hit:
+            habitual = True
+            found = reading.habits.setdefault(owner, {})
+            if habit not in found:
+                seen = found[habit] = seen or _seen(cmd, number, raw)
+    if kind in _KINDS:
+        key = (kind, (code or kind).upper())
+        if key not in reading.kinds and len(reading.kinds) < _MAX_KINDS:
+            reading.kinds[key] = seen or _seen(cmd, number, raw)
+        return
+    if code is None or kind not in (GCODE, TEXT):
         return
     params = cmd.params
     letter = code[0]
@@ -204,66 +314,120 @@ def _read_command(reading: ContentReading, cmd: Command, number: int, raw: str) 
         reading.codes[code] = seen or _seen(cmd, number, raw)
     if letter == "T":
         tail = code[1:]
-        if tail.isdigit() and int(tail) not in reading.tool_commands:
-            reading.tool_commands[int(tail)] = _seen(cmd, number, raw)
+        if tail.isdigit():
+            n = int(tail)
+            if n not in reading.tool_commands:
+                reading.tool_commands[n] = _seen(cmd, number, raw)
+            added.append(("tool", n))
         return
-    if code in _T_VARIABLE_CODES:
-        _address(reading, cmd, "T", number, raw)
+    tables = _PARAM_TABLES.get(code) if code not in _MOVES else None  # (moves are read for E and axes only)
+    if tables is not None and params:
+        _check_params(reading, cmd, tables, number, raw)
+    if code in _T_VARIABLE_CODES and not habitual:
+        _address(reading, cmd, "T", number, raw, added)
         if code in ("M703", "M704"):
-            _address(reading, cmd, "S", number, raw)
+            _address(reading, cmd, "S", number, raw, added)
     if code == "M6" and "O" in params:
         head = _whole(params.get("T"))
-        if head is not None and head not in reading.declarations:
-            reading.declarations[head] = _seen(cmd, number, raw)
-    elif code in ("M109", "M190", "M191") and _whole(params.get("W")) == 0 and reading.waits_w0 is None:
-        reading.waits_w0 = _seen(cmd, number, raw)
+        if head is not None:
+            if head not in reading.declarations:
+                reading.declarations[head] = _seen(cmd, number, raw)
+            added.append(("decl", head))
+    elif code in ("M109", "M190", "M191") and _whole(params.get("W")) == 0:
+        if reading.waits_w0 is None:
+            reading.waits_w0 = _seen(cmd, number, raw)
+        added.append(("W0",))
     elif code == "M229" and _whole(params.get("E")) == 1:
-        reading.m229_e1 = True
-    elif code == "M116" and reading.m116 is None:
-        reading.m116 = _seen(cmd, number, raw)
-    elif code in ("M253", "M254") and reading.lathe is None:
-        reading.lathe = _seen(cmd, number, raw)
-    elif code in _MODEL_AUX and code not in reading.aux_codes:
-        reading.aux_codes[code] = _seen(cmd, number, raw)
-    if code in _MOVES and "E" in params and reading.e_moves is None:
-        reading.e_moves = _seen(cmd, number, raw)
-    if code in _AXIS_CODES and reading.rotary_axes is None and ("A" in params or "B" in params):
-        reading.rotary_axes = _seen(cmd, number, raw)
+        reading.e_values = True
+    elif (code == "M756" or code == "M221" and ("W" in params or "Z" in params or "P" in params)) or (
+        code == "M229" and _whole(params.get("E")) == 0
+    ):
+        if reading.native_flow is None:
+            reading.native_flow = _seen(cmd, number, raw)
+    elif code == "M106" and "C" in params:
+        reading.fan_range = True
+    elif code == "M116":
+        if reading.m116 is None:
+            reading.m116 = _seen(cmd, number, raw)
+        added.append(("M116",))
+    elif code in ("M253", "M254"):
+        if reading.lathe is None:
+            reading.lathe = _seen(cmd, number, raw)
+        added.append(("lathe",))
+    elif code in _MODEL_AUX:
+        if code not in reading.aux_codes:
+            reading.aux_codes[code] = _seen(cmd, number, raw)
+        added.append(("aux", code))
+    elif code == "G28" and "Z" in params:
+        reading.z_homed = True
+    elif code == "M660":
+        register = cmd.get("H")
+        if register is not None:
+            reading.height_registers.add(register)
+        if reading.z_homed and reading.m660_after_z_home is None:
+            reading.m660_after_z_home = _seen(cmd, number, raw)
+        elif not reading.z_homed and reading.m660_before_z_home is None:
+            reading.m660_before_z_home = _seen(cmd, number, raw)
+    if code in _MOVES and "E" in params:
+        e = params.get("E")
+        if code in ("G0", "G1") and e is not None:
+            _e_word(reading, code[1], "X" in params or "Y" in params, e, number, raw)
+        elif reading.e_moves is None:
+            reading.e_moves = _seen(cmd, number, raw)
+    if code in _AXIS_CODES and ("A" in params or "B" in params):
+        if reading.rotary_axes is None:
+            reading.rotary_axes = _seen(cmd, number, raw)
+        added.append(("axis",))
 
 
-def _match(
-    reading: ContentReading,
-    candidate: str,
-    clue: Clue,
-    cmd: Command,
-    number: int,
-    raw: str,
-    seen: Seen | None,
-    into: dict[str, dict[Clue, Seen]] | None = None,
-) -> Seen | None:
-    table = reading.clues if into is None else into
-    found = table.get(candidate)
+def _check_params(reading: ContentReading, cmd: Command, tables: list, number: int, raw: str) -> None:
+    """Record what each catalogued table says is wrong with ``cmd``'s words (a letter the code does not take,
+    a value outside its range), once per (code, letter); a word a habit reports is the habit's."""
+    code = cmd.code
+    for owner, spec, habit_rules in tables:
+        found = reading.params.get(owner)
+        for letter in cmd.params:
+            if found is not None and (code, letter) in found:
+                continue
+            param = spec.params.get(letter)
+            if param is None:
+                problem = f"{code} takes no {letter}"
+            elif not param.constrained or param.rule in habit_rules:
+                continue
+            else:
+                problem = param.problem(cmd.get(letter))
+                if problem is None:
+                    continue
+            if found is None:
+                found = reading.params[owner] = {}
+            found[(code, letter)] = (_seen(cmd, number, raw), problem)
+
+
+def _match(table: dict, owner: str, item: Clue, cmd: Command, number: int, raw: str, seen: Seen | None):
+    """Record the clue ``item`` for ``owner`` when ``cmd`` matches it first."""
+    found = table.get(owner)
     if found is None:
-        found = table[candidate] = {}
-    elif clue in found:
+        found = table[owner] = {}
+    elif item in found:
         return seen
     try:
-        matched = clue.matches(cmd)
+        matched = item.matches(cmd)
     except (TypeError, ValueError, AttributeError):  # a clue never stops the reading
         matched = False
     if matched:
         seen = seen or _seen(cmd, number, raw)
-        found[clue] = seen
+        found[item] = seen
     return seen
 
 
-def _address(reading: ContentReading, cmd: Command, letter: str, number: int, raw: str) -> None:
+def _address(reading: ContentReading, cmd: Command, letter: str, number: int, raw: str, added: list) -> None:
     value = _whole(cmd.params.get(letter))
     if value is None:
         return
     key = (cmd.code or "", letter, value)
     if key not in reading.addresses:
         reading.addresses[key] = _seen(cmd, number, raw)
+    added.append(("T", *key))
 
 
 def _whole(text: str | None) -> int | None:
@@ -303,3 +467,6 @@ def _seen(cmd: Command, number: int, raw: str) -> Seen:
 def _touches(word: Word, spans: list[secrets.Secret]) -> bool:
     start, end = word.column - 1, word.end_column - 1
     return any(s.start < end and start < s.end for s in spans)
+
+
+__all__ = ["ContentReading", "Seen", "read_content"]

@@ -53,6 +53,10 @@ class Context:
     printer_candidates: tuple[str, ...] = ()  # every model the job fits as well (the first is ``printer``)
     flavor: str | None = None  # the firmware a Marlin-flavour file was written for (gclint.firmware)
     flavor_reasons: tuple[str, ...] = ()
+    # every candidate reading's score, best first (``marlin/klipper``: Marlin with Klipper's inventory), and
+    # what costs the leading ones most (gclint.context.score): ``gclint check -v`` shows them
+    candidates: tuple[tuple[str, float], ...] = ()
+    candidate_reasons: tuple[str, ...] = ()
 
     def __post_init__(self) -> None:
         for name in _EVIDENCE:
@@ -76,13 +80,18 @@ class Context:
         """True when the user should be told how the file was read (little or conflicting evidence)."""
         return self.strength in (WEAK, NONE) or bool(self.conflict)
 
-    def label(self) -> str:
-        """``hyrel v5, printer 30m (assumed)`` / ``marlin`` / ``marlin (prusa-buddy)``."""
+    def dialect_label(self) -> str:
+        """``hyrel v5`` / ``marlin`` / ``marlin (prusa-buddy)``: the label without the printer."""
         text = self.dialect
         if self.flavor is not None:
             text += f" ({self.flavor})"
         if self.firmware is not None:
             text = f"hyrel v{self.firmware}"
+        return text
+
+    def label(self) -> str:
+        """``hyrel v5, printer 30m (assumed)`` / ``marlin`` / ``marlin (prusa-buddy)``."""
+        text = self.dialect_label()
         if self.printer is not None:
             text += f", printer {self.printer}"
             if self.printer_origin == DEFAULT:
@@ -134,15 +143,31 @@ class Context:
             return self.printer_origin
         return "job" if self.printer_origin == CONTENT else "default"
 
+    def scores_text(self) -> str:
+        """``hyrel 9.5, marlin -14, ...``: the candidates' scores (``-v``), and what costs the leading ones."""
+        if not self.candidates:
+            return ""
+        shown = ", ".join(f"{name} {value:g}" for name, value in self.candidates[:6])
+        more = len(self.candidates) - 6
+        text = f"scores {shown}" + (f" (and {more} more)" if more > 0 else "")
+        if self.candidate_reasons:
+            text += "; against: " + "; ".join(self.candidate_reasons[:3])
+        return text
+
     def to_dict(self) -> dict:
         return asdict(self)
 
     @classmethod
     def from_dict(cls, data: dict) -> Context:
         known = {f.name for f in fields(cls)}
-        values = {k: (tuple(v) if isinstance(v, list) else v) for k, v in data.items() if k in known}
+        values = {k: _tuples(v) for k, v in data.items() if k in known}
         return cls(**values)
 
 
+def _tuples(value):
+    """JSON lists back to the tuples a context holds (``candidates`` holds pairs)."""
+    return tuple(_tuples(v) for v in value) if isinstance(value, list) else value
+
+
 # The fields that quote the file (what the user is told as evidence).
-_EVIDENCE = ("reasons", "conflict", "firmware_reasons", "printer_reasons", "flavor_reasons")
+_EVIDENCE = ("reasons", "conflict", "firmware_reasons", "printer_reasons", "flavor_reasons", "candidate_reasons")

@@ -163,8 +163,17 @@ CARVERA = Dialect(
     codes=describe(table(codes(_G), codes(_M)), _DESCRIPTIONS),
     aliases=("smoothieware", "makera"),
     detection=Detection(
-        patterns=((r"(?i)carvera|makera", 10),),
+        # (not in gclint's own notes: the translator's "; gclint: pause (Carvera M600)" names the source)
+        patterns=(
+            (r"(?im)^(?![^\n]*gclint:)[^\n]*(?:carvera|makera)", 10),
+            # the firmware Carvera's is built on, named by the CAM ("; Smoothieware device profile": LightBurn)
+            (r"(?im)^[;(][^\n]*\bsmoothieware\b", 5),
+        ),
         extensions=(".nc", ".cnc", ".tap"),
+        # Smoothieware skips a code no module takes, and its switch modules take any G or M number a machine's
+        # configuration assigns (M106/M107 for a fan: gclint/firmware/smoothieware.py), so a code the table
+        # lacks (CAM preambles' G40, LightBurn's M106 air assist) says little
+        unlisted=0.5,
         clues=(*NGC_LANGUAGE_CLUES, Clue("an echo command (RepRapFirmware or Carvera console)", "echo", weight=1)),
     ),
     owords=True,

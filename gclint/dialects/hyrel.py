@@ -15,7 +15,20 @@ from gclint.dialects.addressing import (
     resolve_v4_variable,
     resolve_v5,
 )
-from gclint.dialects.base import Clue, Code, Detection, Dialect, Param, code, has_all, has_any, table, value_at_least
+from gclint.dialects.base import (
+    Clue,
+    Code,
+    Detection,
+    Dialect,
+    LineMark,
+    Param,
+    code,
+    has_all,
+    has_any,
+    table,
+    value_at_least,
+)
+from gclint.dialects.habits import HYREL_HABITS
 from gclint.dialects.semantics import DWELL_MS_S_SUM, WORKSPACES, Semantics, effects
 
 P = Param
@@ -879,7 +892,8 @@ HYREL_DETECTION = Detection(
     ),
     clues=(
         # T_v5 Default Mode: "M6 T0 O1 X0 Y0 Z0" declares a head and its offset register; a CNC M6 has no O.
-        Clue("M6 T# O# declares a head and its offset register (Hyrel)", "M6", test=has_all("T", "O"), weight=4),
+        # (Repetrel writes one per loaded head; no other firmware's M6 takes O: as telling as a code only Hyrel has)
+        Clue("M6 T# O# declares a head and its offset register (Hyrel)", "M6", test=has_all("T", "O"), weight=8),
         # M109/M190/M191 "Sn Hn Cn Ln Un Rn [v5+] W0": H C L U W are Hyrel's wait window.
         *(
             Clue(f"{c} H/C/L/U/W: a Hyrel temperature-wait window", c, test=has_any("H", "C", "L", "U", "W"))
@@ -897,56 +911,24 @@ HYREL_DETECTION = Detection(
         ),
         Clue("M106 C: the Hyrel fan range (M106 Set Cooling)", "M106", test=has_all("C")),
         Clue("M620 T# E: Hyrel's enable-emitter command", "M620", test=has_all("T", "E")),
-        # What a Hyrel job never says: marks for the dialects that have the code.  They weigh less than
-        # what only Hyrel has: in a Hyrel job they are the very mistakes gclint is there to find.
-        # "R ... is how close the relative temperature needs to be to the set temp" (M109): never a target
-        *(
-            Clue(
-                f"{c} R as a target temperature (on Hyrel R is a tolerance)",
-                c,
-                test=value_at_least("R", 40, without="S"),
-                weight=2,
-                against=True,
-            )
-            for c in ("M109", "M190", "M191")
-        ),
-        # "Sn is the percent of duty cycle ... Cn is the range (0-100 or 0-255) ... default is C100" (M106)
-        Clue(
-            "M106 S above 100 with no C range (a 0-255 fan value)",
-            "M106",
-            test=value_at_least("S", 101, without="C"),
-            weight=1,
-            against=True,
-        ),
-        # "Any axis not homed will have its position remain unchanged" (G28): a bare G28 homes nothing on Hyrel
-        Clue(
-            "G28 with no axis (home all; on Hyrel it homes nothing)",
-            "G28",
-            test=lambda c: not c.params,
-            weight=2,
-            against=True,
-        ),
-        # "Sn - power (0-100%)" (M3 Turn On Spindle): an rpm is another firmware's spindle speed
-        *(
-            Clue(
-                f"{c} S above 100 (an rpm; Hyrel's S is a percentage)",
-                c,
-                test=value_at_least("S", 101),
-                weight=2,
-                against=True,
-            )
-            for c in ("M3", "M4")
-        ),
-        # "M6 declares that a particular head holds a set of X, Y, and/or Z offsets" (M6): an M6 T1 with
-        # nothing to declare is a CNC tool change
-        Clue(
-            "M6 with no offset (a CNC tool change; Hyrel's M6 declares offsets)",
-            "M6",
-            test=lambda c: not any(k in c.params for k in "OXYZABDIK"),
-            weight=2,
-            against=True,
+        # M3/M4/M5 "T# (target head)" (M3 Turn On Spindle (CW), M5 Turn Off Spindle): the spindle is a head
+        # address; Marlin's, RepRapFirmware's and Carvera's spindles take no T
+        *(Clue(f"{c} T#: a Hyrel spindle address", c, test=has_all("T")) for c in ("M3", "M4", "M5")),
+    ),
+    # The Marlin habits the HY rules catch (gclint.dialects.habits): a small cost, never evidence for Marlin.
+    habits=HYREL_HABITS,
+    # gclint's translator writes only Hyrel (gclint.translate.pairs): a "; gclint: ..." note on a command that is
+    # not a directive (dialect=, disable=, enable=) is its mark: a pause "M0 ; gclint: pause (Carvera M600)",
+    # with --annotate every line it added ("M229 E1 D1 ; gclint: added (...)").  The output reads as its target.
+    line_marks=(
+        LineMark(
+            "gclint:",
+            r"(?i)^[^;(]*\S[^;(]*[;(][ \t]*gclint:[ \t]*(?!(?:dialect|disable|enable)[ \t]*=)[a-z]",
+            "a note gclint's translator writes (its output is Hyrel)",
+            weight=6,
         ),
     ),
+    prior=1.0,  # the first target: Hyrel wins where the evidence ties (DESIGN.md, "Dialect names")
 )
 # What a Hyrel machine does with a line (Hyrel wiki, Gcode page; the section named at each effect).
 HYREL_SEMANTICS = Semantics(

@@ -180,12 +180,14 @@ def _bracket_expression(cmd) -> bool:
 NGC_LANGUAGE_CLUES = (
     # "S10000 M3": a spindle speed written as a word of its own, before the M3 (RS274NGC)
     Clue("an S word on its own (a spindle speed)", kind=IMPLICIT, test=lambda c: "S" in c.params, weight=2),
-    Clue("an O-word (o100 sub/if/while/call)", kind=OWORD, weight=4),
     Clue("a # parameter assignment", kind=ASSIGNMENT, weight=4),
-    Clue("a [expression] or #parameter value", test=_bracket_expression, weight=2),
+    Clue("a [expression] or #parameter value", test=_bracket_expression, weight=2, contains="[#"),
 )
 MACHINEKIT_CLUES = (
     *NGC_LANGUAGE_CLUES,
+    # LinuxCNC's O-word control flow ("o100 sub", "o<name> call", "o101 if [...]": LinuxCNC documentation,
+    # o-code.adoc); Carvera's subprograms are M98/M99 calls of numbered programs
+    Clue("an O-word (o100 sub/if/while/call)", kind=OWORD, weight=4),
     # the remap.ini M-codes take the value in P ("M104 P200"), where the others write S
     *(
         Clue(
@@ -199,8 +201,8 @@ MACHINEKIT_CLUES = (
     # a C axis: five-axis LinuxCNC machines (Carvera's 4th axis is A, Hyrel's rotary axes A and B; but an
     # E3D tool changer on RepRapFirmware locks tools with C: weak)
     *(Clue(f"{c} C#: a C axis", c, test=lambda c: "C" in c.params, weight=1) for c in ("G0", "G1")),
-    # (weak: Carvera's 4th axis and Hyrel's A/B axes move A too)
-    Clue("G1 A#: extrusion on the A axis", "G1", test=lambda c: "A" in c.params and "E" not in c.params, weight=1),
+    # (weak, less than the first target's prior: Carvera's 4th axis and Hyrel's A/B axes move A too)
+    Clue("G1 A#: extrusion on the A axis", "G1", test=lambda c: "A" in c.params and "E" not in c.params, weight=0.5),
 )
 
 # The LinuxCNC interpreter's reading of a line, which Machinekit shares (gclint.dialects.semantics names the
@@ -269,6 +271,10 @@ MACHINEKIT = Dialect(
         patterns=((r"(?i)^;\s*gcode_flavor\s*=\s*machinekit", 12),),
         extensions=(".ngc",),
         clues=MACHINEKIT_CLUES,
+        prior=0.05,  # an RS274NGC program Carvera runs as well is more often LinuxCNC's (it shares Carvera's clues)
+        # the interpreter stops on a code it does not have, unless the machine's INI remaps it (REMAP=), as
+        # LinuxCNC configurations often do
+        unlisted=4.0,
     ),
     owords=True,
     not_move_words="E",  # research/dialects.md 1.1 (G1, Machinekit: A = extruder) and 1.8 [MK]

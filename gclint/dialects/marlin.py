@@ -185,7 +185,7 @@ def _open(code: str) -> bool:
     return code[0] == "T"
 
 
-# Content that marks Marlin-flavour G-code (the uses Hyrel would never write are Hyrel's "against" clues).
+# Content that marks Marlin-flavour G-code (the Marlin habits Hyrel's rules catch are Hyrel's habits, no clue).
 MARLIN_CLUES = (Clue("a Klipper extended command (NAME KEY=VALUE)", kind=EXTENDED, weight=4),)
 
 # What Marlin's machine does with a line (gclint.dialects.semantics names the sources; research/dialects.md 1.1-1.5
@@ -246,9 +246,16 @@ MARLIN = Dialect(
                 r"(?i)generated (?:by|with) (?:PrusaSlicer|Slic3r|SuperSlicer|OrcaSlicer|BambuStudio|Cura|Simplify3D|KISSlicer|ideaMaker|Skeinforge)",
                 3,
             ),
+            # Cura's own markers (";LAYER:0", ";TYPE:SKIRT", ";Layer count: 404"): Cura writes Marlin flavour
+            # unless its ";FLAVOR:" line says otherwise (legacy Cura wrote none: "RepRap (Marlin/Sprinter)")
+            (r"(?m)^;(?:LAYER:-?\d|TYPE:[A-Z]|Layer count: \d)", 5),
         ),
         extensions=(".gcode", ".gco"),
         clues=MARLIN_CLUES,
+        prior=0.5,  # between Marlin and RepRapFirmware, a .gcode file with nothing else leans Marlin
+        # Marlin echoes "Unknown command" and goes on (research/anchors.md, Marlin), and the Marlin-flavour files
+        # this dialect reads come from forks that add codes of their own (FABtotum's M728, Creality's...)
+        unlisted=3.0,
     ),
     extended_commands=True,
     open_codes=_open,

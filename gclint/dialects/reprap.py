@@ -186,7 +186,15 @@ REPRAP_CLUES = (
     Clue("an echo command (RepRapFirmware or Carvera console)", "echo", weight=1),
     # (a CNC M98 calls a numbered subprogram: M98 P100)
     Clue('M98 P"file": calls a macro file by name', "M98", test=lambda c: not is_number(c.params.get("P") or "")),
-    Clue("an object-model expression {...}", test=_object_model),
+    Clue("an object-model expression {...}", test=_object_model, contains="{"),
+    # "string parameters ... enclosed in double quotes" (Duet G-code dictionary; research/dialects.md 1 [RRF]):
+    # M291 P"message", M4000 S"tool name" (Prusa's M862.3 P "MK4S" is its flavour's own pattern)
+    Clue(
+        'a quoted string parameter (P"...")',
+        test=lambda c: any(v and v[0] == '"' for v in c.params.values()),
+        weight=2,
+        contains='"',
+    ),
     # LinuxCNC's G10 always has L (G10 L2 P1 R45 rotates a coordinate system)
     Clue(
         "G10 P# R/S: tool temperatures",
@@ -194,6 +202,13 @@ REPRAP_CLUES = (
         test=lambda c: "P" in c.params and "L" not in c.params and ("R" in c.params or "S" in c.params),
     ),
     Clue("T-1: deselects every tool", "T-1"),
+    # "G1 H1: ... the move is terminated when the endstop switch is triggered", H2 moves motors individually
+    # (Duet G-code dictionary, G0/G1; research/dialects.md 1.1 [RRF]); Marlin's moves have no H, Hyrel's H
+    # applies an M660 register (a Hyrel job with no M660 gets HY034, gclint.dialects.habits)
+    *(
+        Clue(f"{c} H1/H2/H3/H4: a homing move", c, test=lambda c: c.params.get("H") in ("1", "2", "3", "4"))
+        for c in ("G0", "G1")
+    ),
 )
 
 # RepRapFirmware reads a line as Marlin does (G0 is G1 in FDM mode, G4 S counts when both are given: GCodes.cpp
@@ -235,6 +250,7 @@ REPRAP = Dialect(
         ),
         extensions=(".g",),
         clues=REPRAP_CLUES,
+        prior=0.2,
     ),
     meta_commands=True,
     open_codes=_open,

@@ -9,7 +9,9 @@ go in ``extend-known-codes``.
 from __future__ import annotations
 
 from gclint.dialects.base import Clue, Detection
+from gclint.firmware.bambu import BAMBU
 from gclint.firmware.base import Firmware, code_set
+from gclint.firmware.prusa_mk3 import PRUSA_MK3
 from gclint.syntax.nodes import EXTENDED
 
 _G = "G0 G1 G2 G3 G4 G10 G11 G17 G18 G19 G20 G21 G28 G90 G91 G92"
@@ -48,6 +50,13 @@ _EXTENDED = """
 EXTENDED_COMMANDS = frozenset(_EXTENDED.split())
 
 
+_OTHER_WORDS = PRUSA_MK3.words | BAMBU.words
+
+
+def _macro(cmd) -> bool:
+    return not _klipper_command(cmd) and (cmd.code or "").upper() not in _OTHER_WORDS
+
+
 def _klipper_command(cmd) -> bool:
     # a command Klipper lists, or any word with KEY=VALUE arguments (the syntax only Klipper has: a macro)
     return cmd.code in EXTENDED_COMMANDS or bool(cmd.params)
@@ -64,7 +73,12 @@ KLIPPER = Firmware(
     detection=Detection(
         # the slicer's flavour names the firmware itself: it outweighs the printer model
         patterns=((r"(?i)^;\s*gcode_flavor\s*=\s*klipper\s*$", 20),),
-        clues=(Clue("a Klipper extended command (NAME KEY=VALUE)", kind=EXTENDED, test=_klipper_command, weight=5),),
+        clues=(
+            Clue("a Klipper extended command (NAME KEY=VALUE)", kind=EXTENDED, test=_klipper_command, weight=5),
+            # any other command word no other firmware runs: a [gcode_macro] of the machine's (stock Marlin runs
+            # none; "PRUSA Fir" is Prusa's)
+            Clue("a command word (a Klipper macro)", kind=EXTENDED, test=_macro, weight=2),
+        ),
     ),
     source="research/firmware_codes.md section 4 (Klipper @ 84104bbb)",
 )

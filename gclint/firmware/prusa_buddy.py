@@ -44,6 +44,9 @@ PRUSA_BUDDY = Firmware(
             # printer check (M862.3 P "MK4S": firmware_codes.md section 1, M862.3)
             (rf"(?i)^;\s*printer_model\s*=\s*{MODELS}[\w.]*\s*$", 8),
             (rf'(?i)^\s*M862\.3\s*P\s*"{MODELS}[\w.]*"', 8),
+            # PrusaSlicer's printer profile keywords ("; printer_notes = ...PRINTER_MODEL_MK3..."): the profile
+            # the job was sliced with names the printer
+            (rf"(?i)^;\s*printer_notes\s*=[^\n]*PRINTER_MODEL_{MODELS}", 8),
         )
     ),
     source="research/firmware_codes.md section 1 (Prusa-Firmware-Buddy @ 818d812f)",

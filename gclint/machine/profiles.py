@@ -21,6 +21,7 @@ class PrinterProfile:
     aux_codes: frozenset[str]  # model-specific aux port codes it has (M670-M689)
     lathe: bool = False
     needs_z_home_for_m660: bool = False
+    named: str = ""  # how a comment names the model (gclint.context.printer)
 
     @property
     def max_position(self) -> int:
@@ -41,6 +42,7 @@ PROFILES: dict[str, PrinterProfile] = {
             (0, 1, 2, 3),
             "XYZ",
             _ALWAYS | {"M671", "M675", "M677", "M679"},
+            named=r"\b(?:System ?)?30M\b",
         ),
         PrinterProfile(
             "esr",
@@ -48,6 +50,7 @@ PROFILES: dict[str, PrinterProfile] = {
             (0, 1, 2, 3),
             "XYZ",
             _ALWAYS | {"M671", "M679"},
+            named=r"\bESR\b|\bEngine ?SR\b",
         ),
         PrinterProfile(
             "ehr",
@@ -56,6 +59,7 @@ PROFILES: dict[str, PrinterProfile] = {
             "XYZAB",
             _ALWAYS,
             needs_z_home_for_m660=True,
+            named=r"\bEHR\b|\bEngine ?HR\b",
         ),
         PrinterProfile(
             "16a",
@@ -64,6 +68,7 @@ PROFILES: dict[str, PrinterProfile] = {
             "XYZAB",
             _ALWAYS | {"M675", "M676", "M678", "M684", "M685"},
             lathe=True,
+            named=r"\b(?:Hydra ?)?16A\b",
         ),
         PrinterProfile(
             "16a-dual",
@@ -72,6 +77,7 @@ PROFILES: dict[str, PrinterProfile] = {
             "XYZAB",
             _ALWAYS | {"M675", "M676", "M678", "M684", "M685"},
             lathe=True,
+            named=r"\b(?:Hydra ?)?16A\b[^\n]*\bdual\b",
         ),
     )
 }

@@ -26,8 +26,10 @@ def context_notes(results: list[FileResult], verbose: bool = False) -> list[str]
             continue
         if verbose:
             lines.append(f"{r.path}: checked as {c.label()}: {c.why()}")
+            if c.candidates:  # the scored choice (gclint.context.score): every reading's score, best first
+                lines.append(f"{r.path}: {c.scores_text()}")
         elif c.strength == "none" and not c.conflict:
-            defaulted.append(r.path)
+            defaulted.append((r.path, c))
         elif c.weak:
             how = " on weak evidence" if c.strength in (WEAK, NONE) else ""
             weak.append(f"{r.path}: checked as {c.label()}{how}: {c.why()}")
@@ -37,11 +39,24 @@ def context_notes(results: list[FileResult], verbose: bool = False) -> list[str]
     if len(weak) > MAX_NOTES:
         more = len(weak) - MAX_NOTES
         lines.append(f"{more} more file{'s were' if more != 1 else ' was'} read on weak evidence (-v lists every file)")
-    if defaulted:
-        shown = ", ".join(defaulted[:3]) + (f" and {len(defaulted) - 3} more" if len(defaulted) > 3 else "")
-        files = "1 file" if len(defaulted) == 1 else f"{len(defaulted)} files"
+    # (each group names what its files were checked as, as the "Checked as" line does: the version and the
+    # printer too, which a file's addresses may tell when nothing tells its dialect)
+    groups: dict[str, list[str]] = {}
+    for path, c in defaulted:
+        groups.setdefault(c.dialect_label() + _printer_part(c), []).append(path)
+    for label, paths in groups.items():
+        shown = ", ".join(paths[:3]) + (f" and {len(paths) - 3} more" if len(paths) > 3 else "")
+        files = "1 file" if len(paths) == 1 else f"{len(paths)} files"
         lines.append(
-            f"nothing in {files} tells the dialect ({shown}): checked as hyrel v5, the first target; "
+            f"nothing in {files} tells the dialect ({shown}): checked as {label}; "
             "set --dialect, dialect = ... in gclint.toml or '; gclint: dialect=NAME' in the file"
         )
     return lines
+
+
+def _printer_part(c) -> str:
+    """``, the first target`` and, when the job tells the printer, which one."""
+    text = ", the first target"
+    if c.printer is not None and c.printer_origin == "content":
+        text += f" (printer {c.printer}, from the job)"
+    return text

@@ -250,14 +250,17 @@ class Source:
             here = stream.tell()
             end = stream.seek(0, io.SEEK_END)
             start = max(here, end - limit)
-            stream.seek(start)
-            data = stream.read(end - start)
+            # (one byte before: whether the tail starts a line; the head stops at a byte count, mid-line)
+            stream.seek(start - 1 if start > 0 else 0)
+            data = stream.read(end - start + (1 if start > 0 else 0))
             stream.seek(here)
         except (OSError, ValueError, AttributeError):
             return None
-        if start > here:  # begins mid-line: keep whole lines only
-            cut = max(data.find(b"\n"), data.find(b"\r"))
-            data = data[cut + 1 :] if cut >= 0 else b""
+        if start > 0:
+            before, data = data[:1], data[1:]
+            if before not in (b"\n", b"\r"):  # begins mid-line: keep whole lines only
+                cut = max(data.find(b"\n"), data.find(b"\r"))
+                data = data[cut + 1 :] if cut >= 0 else b""
         if self.encoding == "utf-8":
             return data.decode("utf-8", "surrogateescape")
         unit = 4 if "32" in self.encoding else 2
