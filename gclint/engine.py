@@ -236,6 +236,7 @@ class Linter:
             flavor=options.flavor,
             flavor_origin=options.flavor_origin,
             env_flavor=options.env_flavor,
+            machine_codes=tuple(options.machine_codes),
         )
 
     def prepare(self, source: Source) -> tuple[FileContext, FileResult]:

@@ -41,6 +41,7 @@ def infer(
     env_flavor: str | None = None,
     complete: bool = True,
     tail: str | None = None,
+    machine_codes: tuple[str, ...] = (),
 ) -> Context:
     """The context of the file whose beginning is ``head`` (``complete``: the whole file; ``tail``: the
     end of a longer file, whole lines; the flavour reads it too).
@@ -48,7 +49,9 @@ def infer(
     ``dialect`` is a dialect name or ``auto``; ``printer`` a model name or None (infer it); ``flavor`` the
     firmware the user declared (``klipper``; None: read it from the file), which also says the dialect when
     nobody else does.  The ``*_origin`` arguments say where an explicit value came from (``option`` or
-    ``configuration``).
+    ``configuration``).  ``machine_codes`` are the codes the machine's own INI beside the job defines
+    (LinuxCNC's ``REMAP=``, gclint.machine.linuxcnc_ini): known codes of the dialects that read such an INI, and
+    evidence for them.
     """
     declared = firmware.get(flavor) if flavor is not None else None
     told = (f"--flavor {flavor}" if flavor_origin == OPTION else f"flavor = {flavor} in the configuration",)
@@ -75,7 +78,7 @@ def infer(
     elif declared is not None:  # the firmware's files are its dialect's
         name, origin, reasons, strength, conflict = declared.dialect, flavor_origin, told, EXPLICIT, ""
     else:
-        decision = decide(rank(content(), scan, tail_scan, path, env_flavor))
+        decision = decide(rank(content(), scan, tail_scan, path, env_flavor, machine_codes=machine_codes))
         name, origin, reasons = decision.dialect, decision.origin, decision.reasons
         strength, conflict = decision.strength, decision.conflict
     if notes:  # a directive that names nothing is shown, as weak evidence is

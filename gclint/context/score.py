@@ -41,6 +41,7 @@ from gclint.syntax.nodes import ASSIGNMENT, EXTENDED, META, OWORD
 
 MISFIT = 8.0  # a kind of line a language lacks; an E word on a machine whose moves have none
 NOBODY = 4.0  # a code no known table has (at most what the dialect's ``Detection.unlisted`` says)
+INI_POINTS = 4.0  # a LinuxCNC machine's INI beside the job defines codes (REMAP=): the job is that machine's
 # A code the firmware runs though it does not list it (a RepRapFirmware macro file sys/M<n>.g, a LinuxCNC user
 # M-code): where no firmware has the number it is the machine's own (MillenniumOS's M4000 macros), where another
 # firmware has it the file more likely comes from that firmware
@@ -155,12 +156,19 @@ def rank(
     path: str,
     env_flavor: str | None,
     pool: tuple[Candidate, ...] | None = None,
+    machine_codes: tuple[str, ...] = (),
 ) -> Ranking:
-    """Score every candidate of ``pool`` (default: all) on the file's content, header and name."""
+    """Score every candidate of ``pool`` (default: all) on the file's content, header and name (and the codes the
+    machine's INI beside the job defines: ``machine_codes``)."""
     ranking = Ranking(pool if pool is not None else candidates())
     known = tuple(c for c in ranking.pool if c.known)
     add = ranking.items.append
-    _codes(reading, known, add)
+    if machine_codes:
+        # a LinuxCNC machine's INI beside the job that defines codes (REMAP=): the job is that machine's, and
+        # the codes are its own (LinuxCNC docs/src/config/ini-config.adoc, [RS274NGC] REMAP)
+        readers = {c.key: INI_POINTS for c in known if c.dialect.machine_ini}
+        add(Item(f"the machine's INI beside the job defines {', '.join(machine_codes[:3])}", 0, CONTENT, readers))
+    _codes(reading, known, add, frozenset(machine_codes))
     _clues(reading, ranking.pool, add)
     _kinds(reading, known, add)
     _e_words(reading, known, add)
@@ -183,11 +191,13 @@ def _owners(keys: list[str]) -> str:
     return ", ".join(keys)
 
 
-def _codes(reading: ContentReading, known: tuple[Candidate, ...], add) -> None:
+def _codes(reading: ContentReading, known: tuple[Candidate, ...], add, machine: frozenset[str] = frozenset()) -> None:
     for code, seen in reading.codes.items():
         has = having(code)
         deltas: dict[str, float] = {}
         for c in known:
+            if code in machine and c.dialect.machine_ini:
+                continue  # (the machine's own code: its INI defines it)
             if c.has(code):
                 if not c.supported(code):
                     continue  # (a code the table lists as unsupported: the dialect's habit, when it is one)

@@ -431,6 +431,7 @@ class Dialect:
     semantics: Semantics = field(default_factory=lambda: _GENERIC_SEMANTICS)
     known: bool = True
     console: bool = False  # the firmware runs a bare word as a console command (Smoothieware)
+    machine_ini: bool = False  # the machine's INI file defines codes (LinuxCNC's REMAP=): they are known codes
     meta_keywords: frozenset[str] = frozenset()  # the words of its meta commands (RepRapFirmware's if, var...)
     # the firmware's own files, which configure it and may write files on purpose (RepRapFirmware's sys/ and
     # macros/): ``macro_file(path)`` any of them, ``system_file(path)`` the system files proper

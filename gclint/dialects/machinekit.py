@@ -283,6 +283,7 @@ MACHINEKIT = Dialect(
     unknown_note="the machinekit interpreter stops on an unknown code",
     description="Machinekit's FDM configuration of the LinuxCNC interpreter; also plain LinuxCNC programs.",
     semantics=MACHINEKIT_SEMANTICS,
+    machine_ini=True,
     sources=("seeds/machinekit-fdm-mcodes.md", "research/dialects.md section 1.8 [MK, LCNC]"),
     extras={"fan_max": 255},
 )

@@ -15,8 +15,9 @@ from gclint.firmware.base import Firmware, code_set
 
 
 def _remap_temperature(cmd) -> bool:
+    # the final remap's "M104 P<temperature> T<index>": a value in P and no S (Marlin and Hyrel write S)
     params = cmd.params
-    return ("P" in params and "S" not in params) or "T" in params
+    return "P" in params and "S" not in params
 
 
 FDM_CODES = "G22 G23 G28 G29 G29.1 G29.2 G30 M104 M106 M107 M109 M140 M141 M190 M191 M200 M207 M221 M226 M280 M300"
@@ -32,7 +33,7 @@ MACHINEKIT_FDM = Firmware(
         patterns=((r"(?i)^;\s*gcode_flavor\s*=\s*machinekit", 8),),
         clues=(
             *(
-                Clue(f"{code} P/T: a Machinekit FDM remap temperature", code, test=_remap_temperature, weight=4)
+                Clue(f"{code} P without S: a Machinekit FDM remap temperature", code, test=_remap_temperature, weight=4)
                 for code in ("M104", "M109", "M140", "M190")
             ),
             Clue("G22: a Machinekit FDM retraction", "G22", weight=4),

@@ -62,7 +62,7 @@ class UnknownCode(Rule):
         flavor = ctx.context.flavor
         self.flavor = firmware.get(flavor) if flavor is not None else None
         self.declared = frozenset(ctx.options.extend_known_codes)
-        if ctx.dialect.family == "linuxcnc":  # (the REMAP codes of the LinuxCNC INI beside the job)
+        if ctx.dialect.machine_ini:  # (the REMAP codes of the LinuxCNC INI beside the job)
             self.declared |= frozenset(ctx.options.machine_codes)
         self.verdicts: dict[tuple[str, str | None], tuple[str, Severity] | None] = {}  # (codes repeat: M204)
 
