@@ -163,4 +163,4 @@ def test_one_dwell_per_dialect(tmp_path: Path, dialect: str, seconds: float) -> 
     if read_as.name in TO_HYREL:
         back = tmp_path / "back.gcode"
         back.write_text(_translated(str(job), read_as))
-        assert _read(str(back), dialects.get("hyrel"))[0] == {1: seconds}
+        assert _read(str(back), dialects.get("hyrel"))[0] == {2: seconds}  # (after the line saying what it is)

@@ -9,13 +9,15 @@ import stat
 from .conftest import run_cli
 
 JOB = b"; job\nM104 S200\nM140 S60\nG28\nG1 X10 Y10 E0.5 F1200\nM204 P1500\nM107\n"
+MARK = "; gclint: dialect=hyrel (written by gclint translate from marlin)"
 
 
 def test_stdin_to_stdout_with_findings_on_stderr():
     proc = run_cli("translate", "--from", "marlin", "--to", "hyrel", "-", input=JOB)
     assert proc.returncode == 0
     out = proc.stdout.decode().splitlines()
-    assert out[:3] == ["; job", "M104 T0 S200", "M140 T24 S60"]
+    # the first line says what the output is, so that the gate reads it as Hyrel (issue 27)
+    assert out[:4] == [MARK, "; job", "M104 T0 S200", "M140 T24 S60"]
     assert out[-1] == "M30"
     err = proc.stderr.decode()
     assert "-:4:1: TR003 " in err and ":6:1: TR002 M204" in err
@@ -27,7 +29,7 @@ def test_output_file(tmp_path):
     out = tmp_path / "out.gcode"
     proc = run_cli("translate", "--from", "marlin", "--to", "hyrel", str(job), "-o", str(out))
     assert proc.returncode == 0
-    assert out.read_bytes().startswith(b"; job\nM104 T0 S200\n")
+    assert out.read_bytes().startswith(MARK.encode() + b"\n; job\nM104 T0 S200\n")
     assert job.read_bytes() == JOB
 
 
@@ -37,7 +39,7 @@ def test_in_place_replaces_the_file_and_keeps_its_mode(tmp_path):
     os.chmod(job, 0o640)
     proc = run_cli("translate", "--from", "marlin", "--to", "hyrel", "--in-place", str(job))
     assert proc.returncode == 0
-    assert job.read_bytes().startswith(b"; job\nM104 T0 S200\n")
+    assert job.read_bytes().startswith(MARK.encode() + b"\n; job\nM104 T0 S200\n")
     assert stat.S_IMODE(job.stat().st_mode) == 0o640
     assert [p.name for p in tmp_path.iterdir()] == ["job.gcode"]  # no temporary file left
 
@@ -77,7 +79,7 @@ def test_unsupported_ignore_is_quiet():
 def test_annotate():
     proc = run_cli("translate", "--from", "marlin", "--to", "hyrel", "--annotate", "-", input=JOB)
     out = proc.stdout.decode().splitlines()
-    assert out[1] == "M104 T0 S200 ; gclint: was 'M104 S200'"
+    assert out[2] == "M104 T0 S200 ; gclint: was 'M104 S200'"
     assert any(line.startswith("; gclint: dropped 'M204 P1500' (TR002") for line in out)
     assert "; job" in out
 
@@ -88,7 +90,7 @@ def test_tool_map_and_printer():
         "translate", "--from", "marlin", "--to", "hyrel", "--tool-map", "1=T4", "--printer", "ehr", "-", input=data
     )
     assert proc.returncode == 0
-    assert proc.stdout.decode().splitlines()[:2] == ["T4", "M104 T4 S200"]
+    assert proc.stdout.decode().splitlines()[:3] == [MARK, "T4", "M104 T4 S200"]
     proc = run_cli("translate", "--from", "marlin", "--to", "hyrel", "--tool-map", "1=T4", "-", input=data)
     assert b"TR007" in proc.stderr  # a 30M has no T4
 
@@ -109,7 +111,7 @@ def test_flow_and_settings():
         input=data,
     )
     assert proc.returncode == 0
-    assert proc.stdout.decode().splitlines() == ["G21", "G90", "T0", "G1 X1 Y1 E1 F600", "M721 T0 I1", "M30"]
+    assert proc.stdout.decode().splitlines() == [MARK, "G21", "G90", "T0", "G1 X1 Y1 E1 F600", "M721 T0 I1", "M30"]
 
 
 def test_bad_setting_is_a_usage_error():

@@ -197,6 +197,7 @@ def test_foreign_source_to_v4_is_v5_renumbered() -> None:
     text = "M104 S200\nM140 S60\nT1\nG1 X1 Y1 E0.5 F600\nM107\n"
     v4, _ = _translate(text.encode(), "marlin", "hyrel-v4")
     assert v4.decode().splitlines() == [
+        "; gclint: dialect=hyrel-v4 (written by gclint translate from marlin)",
         "M104 T11 S200",
         "M140 T91 S60",
         "T1",

@@ -672,7 +672,7 @@ def test_footer_turns_spindle_off() -> None:
 
 def test_no_footer_for_a_file_without_commands() -> None:
     out, _ = translate("marlin", "; just a comment\nM117 hello\n")
-    assert out == "; just a comment\n"
+    assert out == "; gclint: dialect=hyrel (written by gclint translate from marlin)\n; just a comment\n"
 
 
 def test_untouched_lines_are_byte_for_byte() -> None:
@@ -685,7 +685,7 @@ def test_checksum_recomputed_on_a_changed_line() -> None:
     from gclint.rules.syntax import compute_checksum
 
     out, _ = translate("marlin", "N10 M104 S200*99\n")
-    line = out.splitlines()[0]
+    line = out.splitlines()[1]
     head, _, value = line.partition("*")
     assert head == "N10 M104 T0 S200"
     assert int(value) == compute_checksum(head)
@@ -696,7 +696,7 @@ def test_annotate_marks_changed_and_dropped_lines() -> None:
     translator = translator_for(dialects.get("marlin"), dialects.get("hyrel"), options)
     result = TranslationResult("t", "marlin", "hyrel")
     out = "".join(translate_source(Source.from_text("M104 S200\nM204 P1500\nG1 X1 F600\n"), translator, result))
-    lines = out.splitlines()
+    lines = out.splitlines()[1:]  # (after the line that says what the output is)
     assert lines[0] == "M104 T0 S200 ; gclint: was 'M104 S200'"
     assert lines[1].startswith("; gclint: dropped 'M204 P1500' (TR002")
     assert "G1 X1 F600" in lines  # untouched

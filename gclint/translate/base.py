@@ -157,6 +157,9 @@ class HyrelTranslator(LineWriter, Heads, Program, Motion, ArcMoves, Modal, Spind
 
     # -- the loop --------------------------------------------------------------------------------------
 
+    def mark(self) -> str | None:
+        return f"; gclint: dialect={self.target.name} (written by gclint translate from {self.source.name})"
+
     def read_job(self, source) -> None:
         # several materials through one nozzle and heater (an MMU, an AMS): every source tool is the one head
         self.single_nozzle = read_settings(source.head_text(), source.tail_text()).single_nozzle

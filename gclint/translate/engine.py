@@ -62,6 +62,13 @@ class Translator:
     def start(self, result: TranslationResult) -> Iterator[str]:
         return iter(())
 
+    def mark(self) -> str | None:
+        """The first line of the output, or None: what it is written in, said so that whoever reads it next (gclint
+        check, the pre-commit hook) reads it as that, not as the firmware its kept comments name
+        (``;FLAVOR:Marlin``).  Only a translation from another dialect says it (a v4 <-> v5 renumbering keeps
+        the job's own lines, and a round trip gives back the job byte for byte)."""
+        return None
+
     def translate_line(self, line: Line, result: TranslationResult) -> Iterator[str]:
         yield line.render()
 
@@ -99,6 +106,7 @@ def translate_source(source: Source, translator: Translator, result: Translation
 def _translate(source: Source, translator: Translator, result: TranslationResult) -> Iterator[str]:
     translator.read_job(source)
     yield from translator.start(result)
+    mark = translator.mark()
     number = 0
     translate = translator.translate_line
     plain = translator.plain_route()  # plain moves the translator keeps as they are skip the tree
@@ -108,6 +116,9 @@ def _translate(source: Source, translator: Translator, result: TranslationResult
         extend = parts.extend
         for raw, ending in chunk:
             number += 1
+            if mark is not None:  # (with the first line's ending: a CRLF job stays CRLF)
+                extend((mark, ending or "\n"))
+                mark = None
             if plain is not None and raw[:1] == "G" and len(raw) <= 100:  # longer lines: Translator._fit
                 m = plain_match(raw)
                 if m is not None:

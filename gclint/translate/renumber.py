@@ -173,6 +173,12 @@ class Chain(Translator):
         self.second = second
         self._number = 0
 
+    def mark(self) -> str | None:
+        mark = self.first.mark()
+        return (
+            None if mark is None else mark.replace(f"dialect={self.first.target.name}", f"dialect={self.target.name}")
+        )
+
     def start(self, result: TranslationResult) -> Iterator[str]:
         yield from self._pipe(self.first.start(result), result)
         yield from self.second.start(result)
