@@ -6,6 +6,11 @@ from __future__ import annotations
 
 import pytest
 
+from gclint import dialects
+from gclint.simulate import Mapping, diff_sources
+from gclint.simulate.translation import explanations_from
+from gclint.syntax.source import Source
+
 from .test_diff import diff_texts, translate_and_diff
 
 JOB = "G28\nM83\nM104 S200\nM109 S200\nM106 S128\nG1 Z0.2 X10 F600\nG1 X20 E1\nG4 S10\nG1 X30 E1\nG1 X40 E1\n"
@@ -62,11 +67,20 @@ def test_dwells_and_pauses_in_each_dialect(dialect: str, source: str, output: st
 
 
 def test_finding_on_the_line_of_the_last_agreeing_move_explains() -> None:
-    """C: the M3 after the move on line 3 runs after it; its TR003 (assumed 15000 rpm) explains the speed."""
+    """C: the M3 after the move on line 3 runs after it; its TR003 (assumed 15000 rpm) explains a speed that
+    differs.  (With no spindle-max-rpm the speeds are compared relatively, so the translation has none.)"""
     source = "G21 G90 G54\nG0 X0 Y0 Z1\nG1 Z-1 F100 M3 S12000 M7\nG1 X10\nG1 X20 M5 M9\nM2\n"
-    _, _, diff = translate_and_diff("carvera", source)
-    assert diff.differences
+    text, result, diff = translate_and_diff("carvera", source)
     assert not diff.unexplained(), [(d.aspect, d.source, d.output) for d in diff.unexplained()]
+    slower = diff_sources(
+        Source.from_text(source, "source"),
+        Source.from_text(text.replace("M3 T0 S80", "M3 T0 S60"), "output"),
+        dialects.get("carvera"),
+        dialects.get("hyrel"),
+        Mapping(spindle_max_rpm=15000),
+        explanations_from(result),
+    )
+    assert [(d.aspect, d.explained_by) for d in slower.differences] == [("spindle", ("TR003", 3))]
 
 
 # -- D: Marlin's one part fan ---------------------------------------------------------------------------------
@@ -194,7 +208,7 @@ def test_carvera_optional_stop_pauses_in_optional_stop_mode() -> None:
 def test_a_difference_about_several_fans_needs_a_finding_for_each() -> None:
     """B: ``fan 2, fan 3 -> none`` is explained by findings about fan 2 and fan 3, not by one of them."""
     source = "M83\nM104 S200\nM109 S200\nM106 P2 S100\nM106 P3 S180\nG1 Z0.2 X10 F600 E1\n"
-    output = "M229 E1 D1\nM83\nM104 T0 S200\nM109 T0 S200\nT0\nG1 Z0.2 X10 F600 E1\n"
+    output = "M229 E1 D1\nM83\nM104 T0 S200\nM109 T0 S200\nT0\nG1 Z0.2 X10 F600 E1\nM30\n"
     both = _diff_with("marlin", source, output, [("TR002", ("fan:2",), [4]), ("TR002", ("fan:3",), [5])])
     assert [(d.aspect, d.explained_by) for d in both.differences] == [("aux", ("TR002", 4)), ("end", ("TR002", 4))]
     one = _diff_with("marlin", source, output, [("TR002", ("fan:2",), [4])])

@@ -1,9 +1,9 @@
 """Simulation of G-code jobs in their own dialect, and the meaning diff built on it (``gclint diff``).
 
 ``simulator_for`` gives the simulator of a dialect (fdm.py: Marlin, RepRapFirmware; cnc.py: Machinekit,
-Carvera; hyrel.py: Hyrel v5 and v4).  Each reads its dialect's pages on its own, not the translator's
-tables, and describes every working move in Hyrel terms (trace.py).  ``diff_sources`` runs two of them
-side by side and compares them (compare.py).
+Carvera; hyrel.py: Hyrel v5 and v4; what they share beyond the reader, devices.py).  Each reads its dialect's
+pages on its own, not the translator's tables, and describes every working move in Hyrel terms (trace.py).
+``diff_sources`` runs two of them side by side and compares them (compare.py).
 """
 
 from __future__ import annotations
@@ -13,6 +13,7 @@ from dataclasses import dataclass, field
 from gclint.dialects.base import Dialect
 from gclint.simulate.cnc import CarveraSimulator, MachinekitSimulator
 from gclint.simulate.compare import Diff, Difference, Explanations
+from gclint.simulate.devices import DeviceModel
 from gclint.simulate.fdm import MarlinSimulator, RepRapSimulator
 from gclint.simulate.hyrel import HyrelSimulator
 from gclint.simulate.machine import Simulator
@@ -67,7 +68,9 @@ def diff_sources(
     cnc = is_cnc(source_dialect) or is_cnc(output_dialect)
     first = simulator_for(source_dialect, mapping, cnc=cnc)
     second = simulator_for(output_dialect, mapping, cnc=cnc)
-    diff = Diff(explanations)
+    if explanations is not None and explanations.reference is None and isinstance(first, DeviceModel):
+        first.anchoring = True  # which source line last set each thing (what a finding may explain)
+    diff = Diff(explanations, native=mapping is not None and mapping.flow == "native")
     diff.run(first.run(source), second.run(output))
     diff.finish(first.trace.end, second.trace.end)
     return DiffResult(

@@ -2,7 +2,9 @@
 
 Both files are simulated, each in its own dialect, and compared at their working moves and at the end
 (compare.py).  With ``explain`` (the default) SOURCE is also translated in memory with the same settings,
-and each difference is marked with the TR finding that explains it.  Exit code: 0 no difference (or,
+and each difference is marked with the TR finding that explains it; when OUTPUT is not that translation
+(edited since, or translated otherwise), a difference is explained only where the translation has the very
+same one (compare.Explanations.reference).  Exit code: 0 no difference (or,
 with ``fail_on="unexplained"``, none unexplained), 1 differences, 2 a usage error or a file that could
 not be read.  No click here: gclint/cli.py parses the options.
 """
@@ -56,17 +58,27 @@ def run_diff(
         )
         return 2
     explanations: Explanations | None = None
+    mapping = Mapping.from_options(options)
     try:
         opener = _opener(source_path)
+        translation: str | None = None
         if explain and source.name != target.name:
-            explanations = _explanations(opener(), source, target, options)
+            explanations, translation = _explanations(opener(), source, target, options)
+        if translation is not None and explanations is not None and _text(output_path) != translation:
+            # not the translator's own output: a finding explains only a difference that output has too
+            first = opener()
+            try:
+                own = diff_sources(first, Source.from_text(translation), source, target, mapping, explanations)
+            finally:
+                first.close()
+            explanations = Explanations(explanations.entries, reference=own.differences)
         first = opener()
         try:
             refuse_non_gcode(first)
             second = Source.open(output_path)
             try:
                 refuse_non_gcode(second)
-                result = diff_sources(first, second, source, target, Mapping.from_options(options), explanations)
+                result = diff_sources(first, second, source, target, mapping, explanations)
             finally:
                 second.close()
         finally:
@@ -101,18 +113,28 @@ def _opener(path: str):
     return lambda: Source.from_bytes(data, first.display)
 
 
-def _explanations(src: Source, source: Dialect, target: Dialect, options) -> Explanations:
+def _explanations(src: Source, source: Dialect, target: Dialect, options) -> tuple[Explanations, str | None]:
+    """The findings of translating SOURCE with the same settings, and the translation (None: it failed)."""
     from gclint.simulate.translation import explanations_from, translate_text
 
     try:
         refuse_non_gcode(src)
-        _, result = translate_text(src, source, target, options)
+        text, result = translate_text(src, source, target, options)
     except SourceError:
         raise
     except Exception as exc:  # the translator's own problem must not hide the diff
         _say(f"gclint: {src.display}: could not translate it to explain the differences: {type(exc).__name__}")
-        return Explanations()
-    return explanations_from(result)
+        return Explanations(), None
+    return explanations_from(result), text
+
+
+def _text(path: str) -> str:
+    """OUTPUT's text as the translator would have written it (its lines and their endings)."""
+    output = Source.open(path)
+    try:
+        return "".join(raw + ending for chunk in output.chunks() for raw, ending in chunk)
+    finally:
+        output.close()
 
 
 def _say(text: str) -> None:

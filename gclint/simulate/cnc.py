@@ -17,7 +17,9 @@ from __future__ import annotations
 
 import math
 
-from gclint.simulate.machine import Simulator, number
+from gclint.simulate.devices import DeviceModel
+from gclint.simulate.heat import LayerHeights, ToolHeat
+from gclint.simulate.machine import number
 from gclint.simulate.trace import AUX_PORTS, EndState, Look, Move
 from gclint.syntax.nodes import Command
 
@@ -35,7 +37,7 @@ def _length(move: Move) -> float | None:
     return math.dist(a[:3], b[:3])
 
 
-class CncSimulator(Simulator):
+class CncSimulator(DeviceModel):
     """What LinuxCNC and Carvera share: workspaces, G53, spindle, tool change, coolant, end of program."""
 
     def __init__(self, dialect, mapping=None, *, cnc: bool = True) -> None:
@@ -186,12 +188,23 @@ class CncSimulator(Simulator):
         self.spindle = None
         self.dirty()
 
+    def spindle_direction(self) -> str | None:
+        return self.spindle
+
     def m2(self, cmd: Command, n: int) -> None:
         self.end_program(cmd, n)
 
+    def spindle_look(self) -> tuple | None:
+        """(direction, percent); with no maximum known, (direction, None, rpm): compared relatively (compare.py)."""
+        if not self.spindle:
+            return None
+        pct = self.spindle_percent()
+        return (self.spindle, pct) if pct is not None or self.rpm is None else (self.spindle, None, self.rpm)
+
     def build_look(self) -> Look:
-        spindle = (self.spindle, self.spindle_percent()) if self.spindle else None
-        return Look(head=self.working_head(), spindle=spindle, aux=tuple(sorted(self.aux.items())), wcs=self.wcs)
+        return Look(
+            head=self.working_head(), spindle=self.spindle_look(), aux=tuple(sorted(self.aux.items())), wcs=self.wcs
+        )
 
     def working_head(self) -> int | str | None:
         return self.mapping.spindle_address()
@@ -206,16 +219,27 @@ class CncSimulator(Simulator):
 
     def end_state(self) -> EndState:
         spindles = {self.spindle_head(): self.spindle} if self.spindle else {}
-        return EndState(spindles=spindles, aux=dict(self.aux))
+        # the job ends at its end of program or with its file (the translation's footer ends it with M30)
+        end = EndState(ended=True, spindles=spindles, aux=dict(self.aux))
+        return end if self.pure else self.finish_end(end)
 
 
 class MachinekitSimulator(CncSimulator):
+    """Machinekit FDM.  Velocity extrusion (research/dialects.md 1.1 G1, 2.2: "VE mode if M700/M701/M702 or
+    G22/G23 without A-moves"; g22.ngc/g23.ngc in the corpus: with VE, G22 disables the extruder and G23
+    enables it): from its start every feed move (G1/G2/G3 moving X, Y or Z) outside G22 ... G23 extrudes at a
+    rate the machine computes from the line width (M701 P) and height (M702 P), Hyrel's native flow; once a
+    move has an A word the extruder is an axis again.  Without VE, G22/G23 retract and recover."""
+
     def __init__(self, dialect, mapping=None, *, cnc: bool = True) -> None:
         super().__init__(dialect, mapping, cnc=cnc)
-        from gclint.simulate.heat import ToolHeat
-
         self.heat = ToolHeat(self.mapping)
         self.heat.tool = None
+        self.ve = False  # velocity extrusion
+        self.ve_travel = False  # between G22 and G23 in VE
+        self.a_moves = False  # a move had an A word: the extruder is the A axis
+        self.bead: tuple[float | None, float | None] = (None, None)  # VE line width (M701), height (M702)
+        self.layers = LayerHeights() if self.mapping.flow == "native" else None
 
     def m2(self, cmd: Command, n: int) -> None:
         # LinuxCNC's M2/M30 end the program with the spindle stopped and the coolant off
@@ -243,6 +267,11 @@ class MachinekitSimulator(CncSimulator):
                 "M7": self.coolant_on,
                 "M8": self.coolant_on,
                 "M9": self.coolant_off,
+                "G22": self.g22,
+                "G23": self.g22,
+                "M700": self.ve_line,
+                "M701": self.ve_line,
+                "M702": self.ve_line,
                 # M0 "program pause" (LinuxCNC); M226 a pause of the FDM remap (research/dialects.md 2.2, M226
                 # -> M0); M1 is an optional stop, off unless the operator enables it: not counted
                 "M0": self.pause,
@@ -258,7 +287,64 @@ class MachinekitSimulator(CncSimulator):
         if "E" in params:
             self.note_once("E", "E is not a word of Machinekit/LinuxCNC (the extruder is the A axis): ignored")
             params = {k: v for k, v in params.items() if k != "E"}
+        if "A" in params:
+            self.a_moves = True
+            if self.ve:
+                self.ve = False
+                self.dirty()
+            self.e_only = not any(a in params for a in self.axes)
         return super().motion(mode, params, n)
+
+    def arc(self, cmd: Command, n: int) -> Move | None:
+        if "A" in cmd.params:
+            self.a_moves = True
+            if self.ve:
+                self.ve = False
+                self.dirty()
+        return super().arc(cmd, n)
+
+    def velocity_extrusion(self) -> bool:
+        """VE starts (M700-M702, or G22/G23 before any A move); whether it is on."""
+        if not self.ve and not self.a_moves:
+            self.ve = True
+            self.dirty()
+        return self.ve
+
+    def g22(self, cmd: Command, n: int) -> None:
+        if self.velocity_extrusion():
+            self.ve_travel = cmd.code == "G22"
+        elif self.mapping.retract == "explicit":
+            (self.unprime if cmd.code == "G22" else self.prime)(self.working_head())
+
+    def ve_line(self, cmd: Command, n: int) -> None:
+        """M700 P cross-section (mm²), M701 P line width, M702 P line height (mm): VE's bead."""
+        self.velocity_extrusion()
+        p = number(cmd.params.get("P"))
+        width, height = self.bead
+        if cmd.code == "M701":
+            width = p
+        elif cmd.code == "M702":
+            height = p
+        else:
+            width = p / height if p is not None and height else None
+        self.bead = (width, height)
+        self.dirty()
+
+    def retraction(self, delta: float) -> None:
+        if self.mapping.retract == "explicit":
+            (self.unprime if delta < 0 else self.prime)(self.working_head())
+
+    def sync(self, start, arc, delta, feed, rapid, native=False):
+        moved = self.machine() != start or arc is not None
+        if self.ve and not self.ve_travel and not rapid and moved and self.cnc:
+            native = True  # a feed move in VE extrudes (Hyrel: native flow)
+        move = super().sync(start, arc, delta, feed, rapid, native=native)
+        layers = self.layers
+        printing = layers is not None and move is not None and move.e is not None and not self.ve
+        if printing and layers.printing(self.logical(2), self.line):  # type: ignore[union-attr]
+            self.dirty()
+            move.look = self.look()  # type: ignore[union-attr]
+        return move
 
     def predefined(self, cmd: Command, n: int) -> Move | None:
         """LinuxCNC's G28/G30: "a rapid move to the position specified by axes including any offsets, then ... a
@@ -291,6 +377,7 @@ class MachinekitSimulator(CncSimulator):
     def tool_change(self, cmd: Command, n: int) -> None:
         super().tool_change(cmd, n)
         self.heat.tool = self.tool
+        self.dirty()
 
     def _flavour(self, cmd: Command) -> tuple[float | None, int | None]:
         """(value, index): the README's ``P<index> S<value>`` or the remap's ``P<value> T<index>``."""
@@ -350,21 +437,30 @@ class MachinekitSimulator(CncSimulator):
     def working_head(self) -> int | str | None:
         return self.mapping.head(self.heat.tool if self.heat.tool is not None else 0)
 
+    def layer_look(self) -> tuple | None:
+        """Native flow: VE's bead (width, height), or the layer heights of a job translated to native flow."""
+        if self.ve:
+            width, height = self.bead
+            return (width, (height,) if height else ())
+        if self.layers is not None:
+            return (None, self.layers.heights)
+        return None
+
     def build_look(self) -> Look:
         heat = self.heat
         saved = heat.tool
         if heat.tool is None:
             heat.tool = 0
-        temp, flow = heat.working()
+        temp, flow = heat.working(infer=not self.pure)
         heat.tool = saved
-        spindle = (self.spindle, self.spindle_percent()) if self.spindle else None
         return Look(
+            layer=self.layer_look(),
             head=self.working_head(),
             temp=temp,
             fan=round(heat.fans.get(0, 0.0), 3),
             flow=round(flow, 4),
             beds=heat.bed_look(),
-            spindle=spindle,
+            spindle=self.spindle_look(),
             aux=heat.aux_fans() + tuple(sorted(self.aux.items())),
             wcs=self.wcs,
         )
@@ -372,10 +468,13 @@ class MachinekitSimulator(CncSimulator):
     def end_state(self) -> EndState:
         state = super().end_state()
         heat = self.heat
+        saved = heat.tool
         if heat.tool is None:
             heat.tool = 0
         state.heaters = heat.end_heaters()
         state.fans = heat.end_fans()
+        if self.pure:
+            heat.tool = saved
         return state
 
 

@@ -8,33 +8,43 @@ re-homing) are not working moves, so they do not count; what they change shows i
 that follow.
 
 For each matched pair every aspect is compared (trace.ASPECTS): where the move ends, the path, what it
-deposits, the feed, the pauses and the total dwell since the previous working move, and the state it runs
-in (head, set-point and wait, fan, flow, beds, spindle, laser, aux, workspace, units).  A difference that lasts over many moves is one ``Difference`` with a count.
-Finally the end states are compared: what is still hot, blowing, spinning or emitting.
+deposits, the feed, what happened since the previous working move (the pauses, in their order among the
+spindle's changes; the total dwell; the unprimes and primes), and the state it runs in (head, set-point and
+wait, fan, flow, layer height in native flow, beds, spindle, laser, aux, workspace, units, the head's
+unprime and prime settings).  A state that differs over many moves is one ``Difference`` with a count (and
+a trail of the values on the way).  Finally the end states are compared: what is still hot, blowing,
+spinning or emitting, and whether the job ends.
 
 A difference is *explained* when the translation reported a warning-level TR finding for it: a finding
 whose aspects include the difference's, on a source line between the last move where the aspect agreed
 and the move where it first differs (that move's own line included when commands follow the move there:
-they run after it); for the end state anywhere, about the end or about the kind of every device that
-differs.  A finding about one source device (``tool:9``, ``fan:3``) explains only differences about it.
+they run after it), and not before the source line that last set what differs (``Move.marks``: what
+came before that line cannot have caused it); for the end state anywhere after the line that last set
+the device that differs, about the end or about the kind of every device that differs.  A finding about
+one source device (``tool:9``, ``fan:3``) explains only differences about it.
+
+When the output compared is not the translator's own (an edited file, another tool's), its differences are
+explained only where the translator's own output has the very same difference (``Explanations.reference``):
+a finding explains what the translator did, not what was done to its output afterwards.
 """
 
 from __future__ import annotations
 
 import math
 import re
+import zlib
 from bisect import bisect_right
 from collections import deque
 from collections.abc import Iterable, Iterator
 from dataclasses import dataclass, field
 
-from gclint.simulate.trace import ASPECTS, NATIVE, PART_FAN, EndState, Move
+from gclint.simulate.trace import ASPECTS, LOOK_ASPECTS, NATIVE, PART_FAN, EndState, Move
 
 _DEVICE_LABEL = re.compile(r"(tool|fan) (\d+)(?: \(no head\))?")
 POSITION_TOLERANCE = 0.002  # mm: the translator writes 4 decimals; inches converted from 4 decimals
 CHORD_TOLERANCE = 0.02  # mm: the largest distance allowed between a segment and the arc it replaces
 FEED_TOLERANCE = 0.011  # mm/min (the translator writes 2 decimals)
-FAN_TOLERANCE = 0.005  # of full speed (one step of 255)
+FAN_TOLERANCE = 0.0025  # of full speed (less than one step of 255: 0.0039; more than rounding to one)
 LOOKAHEAD = 8  # moves looked ahead on each side to tell a missing move from an extra one
 MAX_SEGMENTS = 20000  # output moves one source move may become (an arc's segments)
 
@@ -48,6 +58,9 @@ class Difference:
     output: str
     count: int = 1
     explained_by: tuple[str, int] | None = None  # (TR code, source line)
+    # the values on every move it lasts, as a checksum: two differences with the same start and count but
+    # other values on the way are not the same (``Diff._match``)
+    trail: int = 0
 
     def to_dict(self) -> dict:
         return {
@@ -81,28 +94,46 @@ class Explanations:
     """
 
     entries: list[tuple[str, frozenset[str], list[int]]] = field(default_factory=list)
+    # the differences of the translator's own output, explained (None: the output compared is that output)
+    reference: list[Difference] | None = None
 
     def find(
-        self, aspect: str, lo: float, hi: int, axes: str = "", anchor: int = 0, devices: frozenset[str] = frozenset()
+        self,
+        aspect: str,
+        lo: float,
+        hi: int,
+        axes: str = "",
+        anchor: int = 0,
+        devices: frozenset[str] = frozenset(),
+        mark: int = 0,
     ) -> tuple[str, int] | None:
         """The first finding for ``aspect`` on a line in (lo, hi]; a position (``axes`` differ, set outright
         on line ``anchor``) and a spindle speed (``axes`` "speed") as the class says; ``devices``: the source
-        devices the difference is about (``tool:9``, ``fan:3``), for findings about one device."""
+        devices the difference is about (``tool:9``, ``fan:3``), for findings about one device; ``mark``: the
+        source line that last set what differs (a finding on it or after it only; a native-flow layer height
+        comes from Z, so a lost offset reaches across it as for a position)."""
         best: tuple[str, int] | None = None
         for code, aspects, lines in self.entries:
             start = lo
+            if mark and not (aspect == "layer" and "offsets" in aspects):
+                start = max(lo, mark - 1)
             if aspect == "position":
                 if "offsets" not in aspects:
                     if not ("*" in aspects or "position" in aspects or _names_axes(aspects, axes)):
                         continue
                     start = max(lo, anchor - 1)  # a finding on the anchoring line itself counts
-            elif aspect not in aspects and "*" not in aspects and not (axes and f"{aspect}:{axes}" in aspects):
+            elif (
+                aspect not in aspects
+                and "*" not in aspects
+                and not (axes and f"{aspect}:{axes}" in aspects)
+                and not (aspect == "layer" and "e" in aspects)  # native flow computes the E from the layer
+            ):
                 continue
             i = bisect_right(lines, start)
             if i < len(lines) and lines[i] <= hi and (best is None or lines[i] < best[1]):
                 best = (code, lines[i])
         if best is None and devices:
-            best = self._devices(aspect, lo, hi, devices)
+            best = self._devices(aspect, max(lo, mark - 1), hi, devices)
         return best
 
     def _devices(self, aspect: str, lo: float, hi: int, devices: frozenset[str]) -> tuple[str, int] | None:
@@ -335,7 +366,7 @@ def _temp(value: tuple) -> str:
         return "no set-point"
     if ready:
         return f"{_num(target, 1)} °C (waited for)"
-    before = f"heated to {_num(heated, 1)} °C before" if heated is not None else "never heated before"
+    before = f"at least {_num(heated, 1)} °C" if heated is not None else "never heated before"
     return f"{_num(target, 1)} °C (not waited for; {before})"
 
 
@@ -348,7 +379,9 @@ def _beds(value: tuple) -> str:
 def _spindle(value) -> str:
     if value is None:
         return "off"
-    direction, pct = value
+    direction, pct = value[:2]
+    if pct is None and len(value) > 2:
+        return f"{direction} {_num(value[2], 1)} rpm"
     return f"{direction} {_num(pct, 1) + ' %' if pct is not None else '(speed unknown)'}"
 
 
@@ -362,6 +395,33 @@ def _aux(value: tuple) -> str:
     )
 
 
+def _layer(value) -> str:
+    if value is None:
+        return "E values (no layer height)"
+    width, heights = value
+    height = " or ".join(_num(h) for h in heights) if heights else "unknown"
+    return f"layer height {height}" + (f", width {_num(width)}" if width is not None else "")
+
+
+def _prime(value) -> str:
+    if value is None:
+        return "the head's own unprime/prime"
+    unprime, prime = value
+
+    def settings(v) -> str:
+        return (
+            "unset" if v is None else " ".join(f"{k}{_num(x)}" for k, x in zip("SEP", v, strict=True) if x is not None)
+        )
+
+    return f"unprime {settings(unprime)}, prime {settings(prime)}"
+
+
+def _primes(events: tuple) -> str:
+    if not events:
+        return "no unprime or prime"
+    return ", ".join(f"{kind} {_head(head)}" for kind, head in events)
+
+
 _DESCRIBE = {
     "head": _head,
     "temp": _temp,
@@ -373,6 +433,8 @@ _DESCRIBE = {
     "aux": _aux,
     "wcs": lambda v: v or "no fixture offsets",
     "units": str,
+    "layer": _layer,
+    "prime": _prime,
 }
 
 
@@ -393,26 +455,41 @@ def _same(aspect: str, a, b) -> bool:
         return _close(a, b, 0.11)
     if aspect == "aux":
         return len(a) == len(b) and all(x[0] == y[0] and abs(x[1] - y[1]) <= 0.5 for x, y in zip(a, b, strict=True))
+    if aspect == "layer":
+        return _same_layer(a, b)
     return a == b
 
 
-_LOOK_ASPECTS = ("head", "temp", "fan", "flow", "beds", "spindle", "laser", "aux", "wcs", "units")
+def _same_layer(a, b) -> bool:
+    """Native flow's bead: the same width, and a layer height both sides allow (where the source knows none:
+    any; where the output sets none, the head's own, which is not the source's)."""
+    if a is None or b is None:
+        return a is b
+    (wa, ha), (wb, hb) = a, b
+    if not _close(wa, wb, 1e-4):
+        return False
+    return not ha or any(abs(x - y) <= 1e-4 for x in ha for y in hb)
 
 
 # -- the diff -----------------------------------------------------------------------------------------------
 
 
 class Diff:
-    """Walks two simulations and gathers the differences."""
+    """Walks two simulations and gathers the differences.  ``native``: the translation asked for native flow
+    (an E amount becomes Hyrel's own flow computation, compared through the layer height instead)."""
 
-    def __init__(self, explanations: Explanations | None = None) -> None:
+    def __init__(self, explanations: Explanations | None = None, *, native: bool = False) -> None:
         self.explanations = explanations
+        # explained by the window of findings (below), or by the translator's own differences (``reference``)
+        self.windows = explanations is not None and explanations.reference is None
+        self.native = native
         self.differences: list[Difference] = []
         self.open: dict[str, Difference] = {}
         self.last_ok: dict[str, int] = {}
         self.last_all_ok: float = 0
         self.last_line: float = 0  # the last matched source move
         self.pairs = 0  # matched moves
+        self.spindle_scale: tuple[float, float] | None = None  # (percent / rpm, rpm) of the first pair compared
 
     def run(self, source: Iterable[Move], output: Iterable[Move]) -> None:
         for s, run, next_line in align(source, output):
@@ -462,7 +539,7 @@ class Diff:
             )
         # what it deposits
         e_out = _sum_e(run)
-        if not _same_e(s.e, e_out, len(run)):
+        if not _same_e(s.e, e_out, len(run)) and not (self.native and e_out == NATIVE and _deposits(s.e)):
             bad.append("e")
             self.differ("e", s.line, first.line, _e(s.e), _e(e_out))
         # feed
@@ -473,26 +550,42 @@ class Diff:
                 # the finding on the G93 line explains it still
                 self.differ("feed", s.line, m.line, _feed(s.feed), _feed(m.feed), reach=s.feed_mode)
                 break
-        # pauses and dwells since the previous working move (what the output moves of this one add too)
+        # pauses, dwells, unprimes and primes since the previous working move (and those of the output moves
+        # of this one)
         pauses = sum(m.pauses for m in run)
-        if s.pauses != pauses:
+        trail = first.trail if len(run) == 1 else tuple(t for m in run for t in m.trail)
+        if s.pauses != pauses or (pauses and s.trail != trail):
             bad.append("pause")
-            self.differ("pause", s.line, first.line, _pauses(s.pauses), _pauses(pauses))
+            self.differ("pause", s.line, first.line, _pauses(s.pauses, s.trail), _pauses(pauses, trail))
         dwell = sum(m.dwell for m in run)
         if not _same_dwell(s.dwell, dwell):
             bad.append("dwell")
             self.differ("dwell", s.line, first.line, _dwell(s.dwell), _dwell(dwell))
+        primes = first.primes if len(run) == 1 else tuple(p for m in run for p in m.primes)
+        if s.primes != primes:
+            bad.append("prime")
+            self.differ("prime", s.line, first.line, _primes(s.primes), _primes(primes), event=True)
         # the state it runs in
         a, b = s.look, first.look
+        skipped: tuple[str, ...] = ()  # aspects that do not matter on this move (neither agree nor differ)
+        if s.e is None and first.e is None:
+            skipped = ("laser", "layer")  # the power matters while the laser fires, the layer while printing
+        elif e_out != NATIVE and s.e != NATIVE:
+            skipped = ("layer",)  # the layer height matters where Hyrel computes the flow
         if a != b:
-            for aspect in _LOOK_ASPECTS:
-                if aspect == "laser" and s.e is None and first.e is None:
-                    continue  # the power matters while the laser fires
+            for aspect in LOOK_ASPECTS:
+                if aspect in skipped:
+                    continue
                 va, vb = getattr(a, aspect), getattr(b, aspect)
-                if not _same(aspect, va, vb):
+                if aspect == "spindle":
+                    same = self._same_spindle(va, vb)
+                else:
+                    same = _same(aspect, va, vb)
+                if not same:
                     bad.append(aspect)
                     describe = _DESCRIBE[aspect]
-                    detail = "speed" if aspect == "spindle" and va and vb and va[0] == vb[0] else ""
+                    # a speed that differs in proportion (no maximum known) is no matter of the maximum assumed
+                    detail = "speed" if aspect == "spindle" and va and vb and va[0] == vb[0] and len(va) < 3 else ""
                     self.differ(
                         aspect,
                         s.line,
@@ -501,6 +594,7 @@ class Diff:
                         describe(vb),
                         axes=detail,
                         devices=_devices(aspect, a, b),
+                        mark=_mark(s.marks, aspect, va, vb),
                     )
         # a finding on the move's own line may be about a command after the move there (it runs later)
         ok_line = s.line - 0.5 if s.tail else s.line
@@ -508,16 +602,47 @@ class Diff:
         if not bad:
             if self.open:
                 for aspect in list(self.open):
-                    self.close(aspect)
-            self.last_all_ok = ok_line
+                    if aspect not in skipped:
+                        self.close(aspect)
+            if not (self.open and skipped):
+                self.last_all_ok = ok_line
+            else:
+                for aspect in ASPECTS:
+                    if aspect not in self.open and aspect != "moves":
+                        self.last_ok[aspect] = ok_line
             return
+        # a pair that ends in different places may be two different moves (a move lost before it): what agrees
+        # there says little, so the findings before it still explain what differs next
+        paired = "position" not in bad
         for aspect in list(self.open):
-            if aspect not in bad:
+            if aspect not in bad and aspect not in skipped:
                 self.close(aspect)
-                self.last_ok[aspect] = ok_line
-        for aspect in ASPECTS:
-            if aspect not in bad and aspect != "moves":
-                self.last_ok[aspect] = ok_line
+                if paired:
+                    self.last_ok[aspect] = ok_line
+        if paired:
+            for aspect in ASPECTS:
+                if aspect not in bad and aspect != "moves" and aspect not in skipped:
+                    self.last_ok[aspect] = ok_line
+
+    def _same_spindle(self, a, b) -> bool:
+        """The spindle's direction and speed.  Where the source gives rpm and no maximum is known (no
+        spindle-max-rpm), the speeds are compared relatively: the first pair sets the scale, and every later
+        speed must keep it (a halved speed, a speed left unchanged where the source's changed)."""
+        if a is None or b is None:
+            return a is b
+        if a[0] != b[0]:
+            return False
+        if len(a) < 3 or a[1] is not None or b[1] is None:
+            return _close(a[1], b[1], 0.11)
+        rpm, pct = a[2], b[1]
+        if rpm <= 0:
+            return False
+        if self.spindle_scale is None:
+            self.spindle_scale = (pct / rpm, rpm)
+            return True
+        scale, first = self.spindle_scale
+        # the percent is written to 0.1: the scale carries that rounding, in proportion to the speed
+        return abs(pct - rpm * scale) <= 0.11 + 0.06 * rpm / first
 
     def differ(
         self,
@@ -531,19 +656,27 @@ class Diff:
         anchor: int = 0,
         devices: frozenset[str] = frozenset(),
         reach: int = 0,
+        event: bool = False,
+        mark: int = 0,
     ) -> None:
-        """A difference on this pair; one going on since an earlier pair only counts."""
+        """A difference on this pair; one going on since an earlier pair only counts.  ``anchor``: the line that
+        set the differing axes outright; ``mark``: the source line that last set what differs in a state (a
+        finding before it cannot explain it); ``event``: the difference is in what happened since the previous
+        working move (unprimes and primes), not a state that lasts."""
         current = self.open.get(aspect)
-        if current is not None:
+        if current is not None and not event:
             current.count += 1
+            current.trail = zlib.crc32(f"{source}\0{output}".encode("utf-8", "surrogateescape"), current.trail)
             return
         diff = Difference(aspect, source_line, output_line, source, output)
-        if self.explanations is not None:
+        if self.windows:
             lo = max(self.last_all_ok, self.last_ok.get(aspect, 0))
             if reach:
                 lo = min(lo, reach - 1)
             top = hi if hi is not None else (source_line if source_line is not None else 1 << 62)
-            diff.explained_by = self.explanations.find(aspect, lo, top, axes, anchor, devices)
+            diff.explained_by = self.explanations.find(  # type: ignore[union-attr]
+                aspect, lo, top, axes, anchor if aspect == "position" else 0, devices, mark
+            )
         self.open[aspect] = diff
         self.differences.append(diff)
 
@@ -553,18 +686,20 @@ class Diff:
     def finish(self, source: EndState, output: EndState) -> None:
         for aspect in list(self.open):
             self.close(aspect)
-        # pauses and dwells after the last working move
+        # pauses, dwells, unprimes and primes after the last working move
         for aspect, a, b, same, describe in (
-            ("pause", source.pauses, output.pauses, lambda x, y: x == y, _pauses),
+            ("pause", (source.pauses, source.trail), (output.pauses, output.trail), _same_pauses, _pause_trail),
             ("dwell", source.dwell, output.dwell, _same_dwell, _dwell),
+            ("prime", source.primes, output.primes, lambda x, y: x == y, _primes),
         ):
             if same(a, b):
                 continue
             diff = Difference(aspect, source.line or None, output.line or None, describe(a), describe(b))
-            if self.explanations is not None:
-                diff.explained_by = self.explanations.find(aspect, self.last_line, 1 << 62)
+            if self.windows:
+                diff.explained_by = self.explanations.find(aspect, self.last_line, 1 << 62)  # type: ignore[union-attr]
             self.differences.append(diff)
         for name, a, b in (
+            ("program", {"end": "ended"} if source.ended else {}, {"end": "ended"} if output.ended else {}),
             ("heaters", source.heaters, output.heaters),
             ("fans", source.fans, _fold_part_fan(source.fans, output.fans)),
             ("spindles", source.spindles, output.spindles),
@@ -574,31 +709,66 @@ class Diff:
             if _same_end(a, b):
                 continue
             percent = name == "fans"
-            diff = Difference(
-                "end",
-                source.line or None,
-                output.line or None,
-                f"{name}: {_end(a, percent)}",
-                f"{name}: {_end(b, percent)}",
-            )
-            if self.explanations is not None:
-                diff.explained_by = self._explain_end(name, a, b)
+            if name == "program":
+                texts = tuple("an end of program (M30)" if x else "no end of program" for x in (a, b))
+            else:
+                texts = (f"{name}: {_end(a, percent)}", f"{name}: {_end(b, percent)}")
+            diff = Difference("end", source.line or None, output.line or None, *texts)
+            if self.windows:
+                diff.explained_by = self._explain_end(name, a, b, source.marks)
             self.differences.append(diff)
+        if self.explanations is not None and self.explanations.reference is not None:
+            self._match(self.explanations.reference)
 
-    def _explain_end(self, name: str, a: dict, b: dict) -> tuple[str, int] | None:
+    def _match(self, reference: list[Difference]) -> None:
+        """Explain each difference by the same difference of the translator's own output (its aspect, where it
+        starts in the source, both values, how many moves it lasts), with that one's explanation."""
+        by_key: dict[tuple, list[Difference]] = {}
+        for d in reference:
+            by_key.setdefault(_key(d), []).append(d)
+        for d in self.differences:
+            same = by_key.get(_key(d))
+            d.explained_by = same.pop(0).explained_by if same else None
+
+    def _explain_end(self, name: str, a: dict, b: dict, marks: dict) -> tuple[str, int] | None:
         """A finding for an end-state difference: about the end, or about the kind of every device that
         differs (a nozzle's heater: temp; a bed: beds; a head's fan: fan; another fan: aux), or about those
-        very devices (``tool:9``, ``fan:3``)."""
+        very devices (``tool:9``, ``fan:3``), on or after the source line that last set one of them."""
         assert self.explanations is not None
+        if name == "program":
+            return None  # every source job ends; nothing the translator reports drops Hyrel's end of program
         keys = [k for k in set(a) | set(b) if k not in a or k not in b or not _same_end({k: a[k]}, {k: b[k]})]
         kinds = {_end_kind(name, k) for k in keys}
         devices = {_device(k) for k in keys}
-        found = self.explanations.find("end", 0, 1 << 62)
+        set_at = [marks[f"{name}:{k}"] for k in keys if f"{name}:{k}" in marks]
+        lo = min(set_at) - 1 if set_at and len(set_at) == len([k for k in keys if k in a]) else 0
+        found = self.explanations.find("end", lo, 1 << 62)
         if found is None and len(kinds) == 1:
-            found = self.explanations.find(kinds.pop(), 0, 1 << 62)
+            found = self.explanations.find(kinds.pop(), lo, 1 << 62)
         if found is None and None not in devices:
-            found = self.explanations.find("end", 0, 1 << 62, devices=frozenset(devices))  # type: ignore[arg-type]
+            found = self.explanations.find("end", lo, 1 << 62, devices=frozenset(devices))  # type: ignore[arg-type]
         return found
+
+
+def _key(d: Difference) -> tuple:
+    return (d.aspect, d.source_line, d.source, d.output, d.count, d.trail)
+
+
+def _deposits(e) -> bool:
+    return e == NATIVE or (e is not None and e > 1e-9)
+
+
+def _mark(marks: dict, aspect: str, a, b) -> int:
+    """The source line that last set what differs in a look aspect (0: not known); for beds and aux, the
+    earliest of the devices that differ."""
+    if not marks:
+        return 0
+    if aspect in ("beds", "aux"):
+        x = {item[0]: item[1:] for item in a or ()}
+        y = {item[0]: item[1:] for item in b or ()}
+        lines = [marks.get(f"{aspect}:{k}", 0) for k in set(x) | set(y) if x.get(k) != y.get(k)]
+        return min(lines) if lines else marks.get(aspect, 0)
+    return marks.get(aspect, 0)
 
 
 def _end_kind(name: str, key) -> str:
@@ -675,8 +845,17 @@ def _end(d: dict, percent: bool = False) -> str:
     return ", ".join(parts)
 
 
-def _pauses(n: int) -> str:
-    return "no pause" if not n else f"{n} pause{'s' if n != 1 else ''}"
+def _pauses(n: int, trail: tuple = ()) -> str:
+    text = "no pause" if not n else f"{n} pause{'s' if n != 1 else ''}"
+    return f"{text} ({', '.join(trail)})" if trail and any(t != "pause" for t in trail) else text
+
+
+def _same_pauses(a: tuple, b: tuple) -> bool:
+    return a[0] == b[0] and (not a[0] or a[1] == b[1])
+
+
+def _pause_trail(value: tuple) -> str:
+    return _pauses(*value)
 
 
 def _dwell(seconds: float) -> str:

@@ -10,9 +10,10 @@ M568 set a tool's temperature, M109 T selects the tool.
 
 from __future__ import annotations
 
+from gclint.simulate.devices import DeviceModel
 from gclint.simulate.events import Limits
-from gclint.simulate.heat import ToolHeat
-from gclint.simulate.machine import Simulator, number
+from gclint.simulate.heat import LayerHeights, ToolHeat
+from gclint.simulate.machine import number
 from gclint.simulate.trace import AUX_PORTS, EndState, Look, Move
 from gclint.syntax.nodes import Command
 
@@ -24,12 +25,14 @@ def _index(text: str | None) -> int | None:
     return int(value)
 
 
-class MarlinSimulator(Simulator):
+class MarlinSimulator(DeviceModel):
     RRF = False
 
     def __init__(self, dialect, mapping=None, *, cnc: bool = False) -> None:
         super().__init__(dialect, mapping, cnc=cnc)
         self.heat = ToolHeat(self.mapping)
+        # native flow asked for: the layer heights Hyrel is to compute the flow of the printing moves with
+        self.layers = LayerHeights() if self.mapping.flow == "native" else None
         self.feed_factor = 1.0  # M220
         self.spindle: tuple | None = None
         self.cutter: str | None = None  # M3/M4 until M5: an S on a move is the laser power (dialects.md 1.1 G1)
@@ -73,6 +76,9 @@ class MarlinSimulator(Simulator):
             "M8": self.coolant_on,
             "M9": self.coolant_off,
             "G4": self.g4,
+            # firmware retraction: "G10 - Retract", "G11 - Recover" (Marlin; RepRapFirmware's G10 without P or L)
+            "G10": self.firmware_retract,
+            "G11": self.firmware_retract,
             # waits for the operator or an event: M0/M1 "wait for user", M25 "pause file print", M226 "wait
             # for pin state" (research/firmware_codes.md 5), M600 filament change (research/dialects.md M600)
             "M0": self.pause,
@@ -108,6 +114,7 @@ class MarlinSimulator(Simulator):
     # -- motion ---------------------------------------------------------------------------------------
 
     def motion(self, mode: str, params: dict, n: int) -> Move | None:
+        self.e_only = "E" in params and not ("X" in params or "Y" in params or "Z" in params)
         if self._g53_line == n:
             self._g53_alone = False
             return self.machine_move(mode, params, n)
@@ -122,6 +129,27 @@ class MarlinSimulator(Simulator):
         if move is not None and self.feed_factor != 1.0 and move.feed is not None:
             move.feed *= self.feed_factor
         return move
+
+    def sync(self, start, arc, delta, feed, rapid, native=False):
+        move = super().sync(start, arc, delta, feed, rapid, native=native)
+        layers = self.layers
+        if (
+            layers is not None
+            and move is not None
+            and move.e is not None
+            and layers.printing(self.logical(2), self.line)
+        ):
+            self.dirty()
+            move.look = self.look()
+        return move
+
+    def retraction(self, delta: float) -> None:
+        if self.mapping.retract == "explicit":
+            (self.unprime if delta < 0 else self.prime)(self.heat.head())
+
+    def firmware_retract(self, cmd: Command, n: int) -> None:
+        if self.mapping.retract == "explicit":
+            (self.unprime if cmd.code == "G10" else self.prime)(self.heat.head())
 
     def g53(self, cmd: Command, n: int) -> None:
         # G53: "Machine coordinates for the move it prefixes; alone on a line activates native workspace"
@@ -301,11 +329,17 @@ class MarlinSimulator(Simulator):
 
     def spindle_on(self, cmd: Command, n: int) -> None:
         self.cutter = cmd.code
-        self.set_power(cmd.code, self.spindle_percent(cmd.params))
+        self.set_power(cmd.code, self.spindle_percent(cmd.params), self.spindle_rpm(cmd.params))
 
-    def set_power(self, code: str | None, pct: float | None) -> None:
-        if pct is not None and pct == 0:
+    def spindle_rpm(self, params: dict) -> float | None:
+        """The speed in rpm where the percent is not known (RepRapFirmware with no spindle-max-rpm)."""
+        return None
+
+    def set_power(self, code: str | None, pct: float | None, rpm: float | None = None) -> None:
+        if (pct is not None and pct == 0) or (pct is None and rpm is not None and rpm <= 0):
             self.spindle = None
+        elif pct is None and rpm is not None:
+            self.spindle = (code, None, rpm)  # rpm with no known maximum: compared relatively (compare.py)
         else:
             self.spindle = (code, None if pct is None else round(pct, 1))
         self.dirty()
@@ -317,6 +351,9 @@ class MarlinSimulator(Simulator):
 
     def cutting(self) -> bool:
         return self.spindle is not None
+
+    def spindle_direction(self) -> str | None:
+        return self.spindle[0] if self.spindle else None
 
     def coolant_on(self, cmd: Command, n: int) -> None:
         self.coolant[cmd.code] = True  # type: ignore[index]
@@ -330,10 +367,11 @@ class MarlinSimulator(Simulator):
 
     def build_look(self) -> Look:
         heat = self.heat
-        temp, flow = heat.working()
+        temp, flow = heat.working(infer=not self.pure)
         aux = heat.aux_fans() + tuple((AUX_PORTS[code], 100.0) for code in sorted(self.coolant))
         own = heat.own_fan(heat.tool)
         return Look(
+            layer=(None, self.layers.heights) if self.layers is not None and self.cutter is None else None,
             head=heat.head(),
             temp=temp,
             fan=round(own if own is not None else heat.fans.get(0, 0.0) if heat.owner(0) is None else 0.0, 3),
@@ -347,12 +385,14 @@ class MarlinSimulator(Simulator):
     def end_state(self) -> EndState:
         heat = self.heat
         spindles = {self.mapping.spindle_address(): self.spindle[0]} if self.spindle else {}
-        return EndState(
+        end = EndState(
+            ended=True,  # a print ends with its file (RepRapFirmware's M0/M1/M2 end it before)
             heaters=heat.end_heaters(),
             fans=heat.end_fans(),
             spindles=spindles,
             aux={AUX_PORTS[code]: 100.0 for code in self.coolant},
         )
+        return end if self.pure else self.finish_end(end)
 
 
 class RepRapSimulator(MarlinSimulator):
@@ -394,6 +434,9 @@ class RepRapSimulator(MarlinSimulator):
 
     def g10(self, cmd: Command, n: int) -> None:
         params = cmd.params
+        if not params:
+            self.firmware_retract(cmd, n)  # "G10: Retract" (firmware retraction: no parameters)
+            return
         if "P" in params and "L" not in params and "S" in params:
             s = number(params.get("S"))
             if s is not None:
@@ -466,6 +509,10 @@ class RepRapSimulator(MarlinSimulator):
             return s
         top = self.mapping.spindle_max_rpm
         if top is None:
-            self.note_once("rpm", "spindle rpm with no known maximum (set spindle-max-rpm)")
-            return None  # rpm with no known maximum: compared as unknown
+            return None  # rpm with no known maximum: compared relatively (spindle_rpm)
         return max(0.0, min(100.0, s / top * 100))
+
+    def spindle_rpm(self, params: dict) -> float | None:
+        if self.mapping.spindle_max_rpm is not None:
+            return None
+        return number(params.get("S"))

@@ -18,18 +18,41 @@ references; the Machinekit FDM README in the seeds):
 
 from __future__ import annotations
 
+from collections import deque
+
 from gclint.simulate.trace import PART_FAN, Mapping
 
+# A heater's state: (set-point, lowest, highest): the temperatures the nozzle may be at from now until the next
+# command about it (None: unknown, as cold as the room).  Ready: both are the set-point.
+Heater = tuple[float, float | None, float | None]
 
-def heat_wait(old: tuple[float, float | None] | None, value: float, both_ways: bool) -> float:
-    """The set-point a wait for ``value`` leaves waited for, from the heater's ``old`` (set-point, waited).
-    A wait that only heats (Marlin and RRF ``M109 S``, "set & wait only when heating"; Hyrel ``M109`` with
-    no C/U/R, "waits until T >= S-1 °C (heating only)": research/dialects.md 1.3 M109) does not wait when
-    the heater was waited to ``value`` or more and not set below it since: the nozzle is hotter, and
-    what it was waited to stays."""
-    if not both_ways and old is not None and old[1] is not None and old[1] > value and old[0] >= value:
-        return old[1]
-    return value
+
+def heat_set(old: Heater | None, value: float) -> Heater:
+    """A set-point without a wait (M104): the nozzle goes towards ``value`` from where it may be."""
+    if old is None:
+        return (value, None, value)
+    _, low, high = old
+    return (value, None if low is None else min(low, value), value if high is None else max(high, value))
+
+
+def heat_wait(old: Heater | None, value: float, both_ways: bool) -> Heater:
+    """A wait for ``value``.  One that cools too (Marlin/RRF ``M109 R``, Hyrel's C/U/R, Machinekit's in-range
+    wait, RRF M116) leaves the nozzle at the set-point.  One that only heats (Marlin and RRF ``M109 S``, "set &
+    wait only when heating"; Hyrel ``M109`` with no C/U/R, "waits until T >= S-1 °C (heating only)":
+    research/dialects.md 1.3 M109) leaves it at least at the set-point, and as hot as it may have been before
+    (a nozzle waited to 250 °C and then set to 220 °C is not waited for at 220 °C)."""
+    if both_ways:
+        return (value, value, value)
+    high = old[2] if old is not None else None
+    return (value, value, value if high is None else max(high, value))
+
+
+def heater_look(heat: Heater | None) -> tuple[float | None, bool, float | None]:
+    """How a working head's heater is compared: (set-point, ready, the lowest temperature it may be at)."""
+    if heat is None:
+        return (None, False, None)
+    target, low, high = heat
+    return (target, low == target and high == target, low)
 
 
 class ToolHeat:
@@ -38,8 +61,8 @@ class ToolHeat:
     def __init__(self, mapping: Mapping) -> None:
         self.mapping = mapping
         self.tool: int | None = 0  # the active tool (Marlin starts with T0)
-        self.temps: dict[int, tuple[float, float | None]] = {}  # tool -> (set-point, set-point waited for)
-        self.nozzle: tuple[float, float | None] | None = None  # the last set-point set on any tool
+        self.temps: dict[int, Heater] = {}  # tool -> its heater
+        self.nozzle: Heater | None = None  # the heater last set, whatever the tool
         self.shared = False  # a single-nozzle machine (inferred)
         self.flows: dict[int, float] = {}
         self.last_flow: float | None = None
@@ -63,16 +86,16 @@ class ToolHeat:
             value = old[0]
         if value < 0:
             value = 0.0  # RepRapFirmware's -273.15: heater off
-        waited = heat_wait(old, value, both_ways) if wait else (old[1] if old is not None else None)
-        entry = (value, waited)
+        entry = heat_wait(old, value, both_ways) if wait else heat_set(old, value)
         self.temps[tool] = entry
         self.nozzle = entry
 
     def wait_all(self) -> None:
-        """RepRapFirmware ``M116``: wait for every set-point."""
-        self.temps = {t: (v, v) for t, (v, _) in self.temps.items()}
+        """RepRapFirmware ``M116``: wait for every set-point ("within tolerance": heating or cooling)."""
+        self.temps = {t: (v, v, v) for t, (v, _, _) in self.temps.items()}
         if self.nozzle is not None:
-            self.nozzle = (self.nozzle[0], self.nozzle[0])
+            v = self.nozzle[0]
+            self.nozzle = (v, v, v)
         self.beds = {a: (v, v) for a, (v, _) in self.beds.items()}
 
     def set_bed(self, address: int, value: float | None, wait: bool) -> None:
@@ -110,22 +133,21 @@ class ToolHeat:
 
     # -- what the working head sees --------------------------------------------------------------------
 
-    def working(self) -> tuple[tuple[float | None, bool, float | None], float]:
-        """(set-point, readiness and the set-point last waited for, flow) of the active tool, inferring a shared nozzle when the tool
-        never got a set-point of its own."""
+    def working(self, infer: bool = True) -> tuple[tuple[float | None, bool, float | None], float]:
+        """(``heater_look``: set-point, readiness, lowest temperature; flow) of the active tool, inferring a shared
+        nozzle when the tool never got a set-point of its own (``infer`` False: what it would be, nothing kept)."""
         tool = self.tool
-        if tool is not None:
-            self.used.add(tool)
-        if not self.shared and tool is not None and tool not in self.temps and self.nozzle is not None:
-            self.shared = True
-        heat = self.nozzle if self.shared else self.temps.get(tool) if tool is not None else None
-        if self.shared:
+        shared = self.shared or (tool is not None and tool not in self.temps and self.nozzle is not None)
+        if infer:
+            if tool is not None:
+                self.used.add(tool)
+            self.shared = shared
+        heat = self.nozzle if shared else self.temps.get(tool) if tool is not None else None
+        if shared:
             flow = self.last_flow if self.last_flow is not None else 1.0
         else:
             flow = self.flows.get(tool, 1.0) if tool is not None else 1.0
-        if heat is None:
-            return (None, False, None), flow
-        return (heat[0], heat[1] == heat[0], heat[1]), flow
+        return heater_look(heat), flow
 
     def head(self) -> int | str | None:
         return self.mapping.head(self.tool) if self.tool is not None else None
@@ -151,7 +173,7 @@ class ToolHeat:
                 for tool in self.used or {self.tool or 0}:
                     out[self.mapping.head(tool)] = self.nozzle[0]
         else:
-            for tool, (value, _) in self.temps.items():
+            for tool, (value, _, _) in self.temps.items():
                 if value > 0:
                     out[self.mapping.head(tool)] = value
         for address, (value, _) in self.beds.items():
@@ -173,3 +195,101 @@ class ToolHeat:
         for label, value in self.aux_fans():
             out[label] = value
         return out
+
+
+class LayerHeights:
+    """The layer height a source's printing moves are sliced for, which Hyrel's native flow computes the flow
+    from ("We declare M756 at the beginning of every layer"; "M756 will overwrite the Z value from the M221
+    command", Gcode page, M756), when the translation asks for native flow (``--flow native``).
+
+    A layer starts at the first printing move at a new Z; its height is the rise from the layer below (the
+    first layer: its Z above the bed), or the one the slicer states for it in a comment line (PrusaSlicer and
+    Orca ``;HEIGHT:0.2``, Bambu ``; LAYER_HEIGHT: 0.2``); a height stated once for the job (Cura
+    ``;Layer height: 0.2``, a ``; layer_height = 0.2`` setting) where the rise says nothing.  Where the
+    layer below had one printing move or none (a spiral, or a lone move at its own height), that rise is no
+    layer height: the height in force before stays possible too (the last layer not itself above such a one).  ``heights`` are the
+    heights a printing move of this layer may be computed with (empty: none known)."""
+
+    def __init__(self) -> None:
+        self.z: float | None = None  # the current layer's Z (program coordinates, mm)
+        self.moves = 0  # printing moves at that Z
+        self.heights: tuple[float, ...] = ()
+        # the heights of the last layer that came after a layer of two moves or more (where a spiral started)
+        self.held: tuple[float, ...] = ()
+        self.thin = False  # the layer below the current one had one printing move
+        self.statements: deque[tuple[int, bool, float]] = deque()  # (line, per layer, height) not yet read
+        self.stated: float | None = None  # the height the slicer states for the coming layer
+        self.nominal: float | None = None  # the height it states once for the job
+
+    def read(self, source):
+        """``source`` as the reader reads it, its slicer's statements of the layer height noted on the way
+        (the reader gives no comments): a source whose chunks are the same."""
+        return _Statements(source, self)
+
+    def printing(self, z: float | None, line: int) -> bool:
+        """A printing move on ``line`` ending at ``z``: whether a new layer starts (``heights`` changed)."""
+        statements = self.statements
+        while statements and statements[0][0] < line:
+            _, per_layer, value = statements.popleft()
+            if per_layer:
+                self.stated = value
+            elif self.nominal is None:
+                self.nominal = value
+        if z is None:
+            return False
+        current = self.z
+        if current is not None and abs(z - current) < 1e-6:
+            self.moves += 1
+            return False
+        thin = current is not None and self.moves <= 1
+        if not self.thin:
+            self.held = self.heights
+        self.z, self.moves, self.thin = z, 1, thin
+        rise = round(z - current if current is not None else z, 4)
+        heights = {rise} if rise > 0 else set()
+        if self.stated is not None:
+            heights.add(self.stated)
+        elif not heights and self.nominal is not None:
+            heights.add(self.nominal)
+        if thin:
+            heights.update(self.held)
+        new = tuple(sorted(heights))
+        if new == self.heights:
+            return False
+        self.heights = new
+        return True
+
+
+# Comment lines where a slicer states the layer height: (prefix, per layer)
+_STATEMENTS = (("HEIGHT:", True), ("LAYER_HEIGHT:", True), ("Layer height:", False), ("layer_height =", False))
+
+
+class _Statements:
+    """A source read through, its comment lines that state a layer height noted (``LayerHeights.read``)."""
+
+    def __init__(self, source, layers: LayerHeights) -> None:
+        self.source = source
+        self.layers = layers
+
+    def chunks(self):
+        note = self.layers.statements.append
+        n = 0
+        for chunk in self.source.chunks():
+            for raw, _ in chunk:
+                n += 1
+                if ";" in raw and ("eight" in raw or "EIGHT" in raw):
+                    text = raw.lstrip()
+                    if not text.startswith(";"):
+                        continue
+                    body = text[1:].strip()
+                    for prefix, per_layer in _STATEMENTS:
+                        if body.startswith(prefix):
+                            words = body[len(prefix) :].split()
+                            try:
+                                value = float(words[0]) if words else 0.0
+                            except ValueError:
+                                break
+                            if value > 0 and value == value:
+                                note((n, per_layer, round(value, 4)))
+                            break
+            yield chunk

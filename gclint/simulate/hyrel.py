@@ -14,6 +14,10 @@ Hyrel Gcode page in the seeds (section named) or T_v5:
 * ``M3``/``M4 T# S`` run a spindle at a percent, S0 is off; ``M5 T#`` stops it.
 * ``M620 T# E1`` enables a laser or UV emitter, ``M621 P`` sets its power; it fires on printing moves.
 * ``M7``/``M8 S`` Aux1/Aux2 (default S100), ``M9`` both off; ``M679`` vacuum, ``M685`` air, ``M670`` light.
+* ``M221 T# W Z``: the head's bead width and layer height for native flow; ``M756 S`` "will overwrite the Z
+  value from the M221 command" (M756), ignored under ``M229 E1 D1``.
+* ``M721``/``M722 T# S E P``: how much the head unprimes and primes on a print <-> travel transition; with
+  ``I1`` "execute an unprime [prime] with the previously specified values at that point in the gcode".
 * ``M30`` ends the job ("No gcode after an M30 will be executed as part of the previous job") and resets
   M229, the M106 range, fixture offsets, the head index (to 0).
 * ``M18``/``M84`` cut the motors: "All axes with homes must be rehomed after an M18".
@@ -24,9 +28,10 @@ from __future__ import annotations
 from dataclasses import replace
 
 from gclint.dialects.addressing import resolve_v5
+from gclint.simulate.devices import DeviceModel
 from gclint.simulate.events import Flow
-from gclint.simulate.heat import heat_wait
-from gclint.simulate.machine import Simulator, number
+from gclint.simulate.heat import Heater, heat_set, heat_wait, heater_look
+from gclint.simulate.machine import number
 from gclint.simulate.trace import AUX_PORTS, EndState, Look, Move
 from gclint.syntax.nodes import Command
 
@@ -41,17 +46,21 @@ _GROUP_HEADS = {
 
 
 class Head:
-    __slots__ = ("target", "waited", "fan", "fan_p", "flow")
+    __slots__ = ("heat", "waited", "fan", "fan_p", "flow", "width", "height", "unprime", "prime")
 
-    def __init__(self) -> None:
-        self.target: float | None = None
-        self.waited: float | None = None
+    def __init__(self, height: float | None = None) -> None:
+        self.heat: Heater | None = None  # a nozzle's (heat.py); None: never set
+        self.waited: float | None = None  # a bed's or chamber's set-point waited for
         self.fan = 0.0  # S, in the range's units
         self.fan_p: float | None = None  # P: duty during extrusion moves
         self.flow = 1.0
+        self.width: float | None = None  # M221 W (None: as the head stores it)
+        self.height = height  # M221 Z, M756 S
+        self.unprime: tuple | None = None  # M721 S E P
+        self.prime: tuple | None = None  # M722 S E P
 
 
-class HyrelSimulator(Simulator):
+class HyrelSimulator(DeviceModel):
     def __init__(self, dialect, mapping=None, *, cnc: bool = False) -> None:
         super().__init__(dialect, mapping, cnc=cnc)
         self.resolve_variable = dialect.extras.get("resolve_variable", resolve_v5)
@@ -64,13 +73,14 @@ class HyrelSimulator(Simulator):
         self.emitters: set[int] = set()
         self.laser_power: float | None = None
         self.aux: dict[str, float] = {}
-        self.pending_w0: set[int] = set()
+        self.pending_w0: dict[int, bool] = {}  # M109 W0: the head waits at M116 (both ways?)
         self.ran = False  # a command ran since the last M30 (the job's end state is worth keeping)
         self._one_shot: float | None = None  # G1 S: this move's flow multiplier
         self.head_offsets: dict[int, tuple[list[float], bool]] = {}  # M6 T# O: (X Y Z A B, move on T: I1)
         self.registers: dict[int, float] = {}  # M660 H<n> Z<mm>
         self.head_offset = [0.0] * 5  # the focused head's M6 offsets, invoked by T
         self.height = 0.0  # the Z of the M660 register a G1 H invoked
+        self.layer_height: float | None = None  # M756 S: every head's layer height for native flow
 
     def table(self):
         h = {
@@ -99,6 +109,9 @@ class HyrelSimulator(Simulator):
             "M106": self.m106,
             "M107": self.m107,
             "M221": self.m221,
+            "M756": self.m756,
+            "M721": self.m721,
+            "M722": self.m721,
             "M3": self.spindle_on,
             "M4": self.spindle_on,
             "M5": self.spindle_off,
@@ -166,7 +179,7 @@ class HyrelSimulator(Simulator):
     def head(self, address: int) -> Head:
         head = self.heads.get(address)
         if head is None:
-            head = self.heads[address] = Head()
+            head = self.heads[address] = Head(self.layer_height)
         return head
 
     def tool_command(self, cmd: Command, n: int) -> None:
@@ -212,6 +225,7 @@ class HyrelSimulator(Simulator):
             self._one_shot = None
 
     def sync(self, start, arc, delta, feed, rapid, native=False):
+        self.ran = True
         if not self.evalues and delta is not None and not rapid:
             native = True  # any E (even a negative one) marks a printing move in native flow
         move = super().sync(start, arc, delta, feed, rapid, native=native)
@@ -253,6 +267,7 @@ class HyrelSimulator(Simulator):
         if e is not None:
             self.evalues = e == 1
             self.emit(Flow(n, "evalues" if self.evalues else "native"))
+            self.dirty()  # the layer height matters in native flow only
 
     def home(self, cmd: Command, n: int) -> None:
         listed = "".join(a for a in "XYZAB" if a in cmd.params)
@@ -284,6 +299,7 @@ class HyrelSimulator(Simulator):
         self.evalues = False
         self.emit(Flow(n, "native"))
         self.fan_range = 100.0
+        self.trace.end.ended = True
         self.wcs = None
         self.focus = 0
         self.dirty()
@@ -297,8 +313,8 @@ class HyrelSimulator(Simulator):
             return
         for address in self.addresses(cmd):
             head = self.head(address)
-            head.target = s
-            self.pending_w0.discard(address)
+            head.heat = heat_set(head.heat, s)
+            self.pending_w0.pop(address, None)
         self.dirty()
 
     def m109(self, cmd: Command, n: int) -> None:
@@ -308,21 +324,22 @@ class HyrelSimulator(Simulator):
         both_ways = any(letter in cmd.params for letter in "CUR")
         for address in self.addresses(cmd):
             head = self.head(address)
-            old = (head.target, head.waited) if head.target is not None else None
             if s is not None:
-                head.target = s
+                head.heat = heat_set(head.heat, s)
+            if head.heat is None:
+                continue
             if w0:
-                self.pending_w0.add(address)
+                self.pending_w0[address] = both_ways
             else:
-                if head.target is not None:
-                    head.waited = heat_wait(old, head.target, both_ways)
-                self.pending_w0.discard(address)
+                head.heat = heat_wait(head.heat, head.heat[0], both_ways)
+                self.pending_w0.pop(address, None)
         self.dirty()
 
     def m116(self, cmd: Command, n: int) -> None:
-        for address in self.pending_w0:
+        for address, both_ways in self.pending_w0.items():
             head = self.head(address)
-            head.waited = head.target
+            if head.heat is not None:
+                head.heat = heat_wait(head.heat, head.heat[0], both_ways)
         self.pending_w0.clear()
         self.dirty()
 
@@ -333,9 +350,9 @@ class HyrelSimulator(Simulator):
         for address in addresses:
             head = self.head(address)
             if s is not None:
-                head.target = s
-            if wait and "W" not in cmd.params:
-                head.waited = head.target
+                head.heat = heat_set(head.heat, s)
+            if wait and "W" not in cmd.params and head.heat is not None:
+                head.waited = head.heat[0]
         self.dirty()
 
     def m106(self, cmd: Command, n: int) -> None:
@@ -368,11 +385,39 @@ class HyrelSimulator(Simulator):
         self.dirty()
 
     def m221(self, cmd: Command, n: int) -> None:
+        s, w, z = (number(cmd.params.get(letter)) for letter in "SWZ")
+        for address in self.addresses(cmd):
+            head = self.head(address)
+            if s is not None:
+                head.flow = s
+            if w is not None:
+                head.width = w
+            if z is not None:
+                head.height = z
+        self.dirty()
+
+    def m756(self, cmd: Command, n: int) -> None:
         s = number(cmd.params.get("S"))
         if s is None:
             return
+        self.layer_height = s
+        for head in self.heads.values():
+            head.height = s
+        self.dirty()
+
+    def m721(self, cmd: Command, n: int) -> None:
+        """M721 (unprime) / M722 (prime): the head's settings; with I1 one now."""
+        params = cmd.params
+        settings = tuple(number(params.get(letter)) for letter in "SEP")
         for address in self.addresses(cmd):
-            self.head(address).flow = s
+            head = self.head(address)
+            if any(v is not None for v in settings):
+                if cmd.code == "M721":
+                    head.unprime = settings
+                else:
+                    head.prime = settings
+            if number(params.get("I")) == 1:
+                (self.unprime if cmd.code == "M721" else self.prime)(address)
         self.dirty()
 
     # -- spindles, emitters, aux --------------------------------------------------------------------------
@@ -388,6 +433,10 @@ class HyrelSimulator(Simulator):
 
     def cutting(self) -> bool:
         return bool(self.spindles)
+
+    def spindle_direction(self) -> str | None:
+        spindle = self.spindles.get(self.focus) if self.focus is not None else None
+        return spindle[0] if spindle else None
 
     def spindle_off(self, cmd: Command, n: int) -> None:
         for address in self.addresses(cmd):
@@ -437,13 +486,18 @@ class HyrelSimulator(Simulator):
             temp: tuple = (None, False, None)
             fan, flow = 0.0, 1.0
         else:
-            temp = (head.target, head.target is not None and head.waited == head.target, head.waited)
+            temp = heater_look(head.heat)
             fan, flow = self.fan_of(head), round(head.flow, 4)
+        layer = None
+        if not self.evalues and not self.emitters:  # (an E on a laser's move marks it firing: no material)
+            height = head.height if head is not None else self.layer_height
+            layer = (head.width if head is not None else None, (height,) if height is not None else ())
+        prime = (head.unprime, head.prime) if head is not None and (head.unprime or head.prime) else None
         beds = tuple(
             sorted(
-                (a, h.target, h.waited == h.target)
+                (a, h.heat[0], h.waited == h.heat[0])
                 for a, h in self.heads.items()
-                if a in (24, 25) and h.target is not None
+                if a in (24, 25) and h.heat is not None
             )
         )
         spindle = None
@@ -465,21 +519,27 @@ class HyrelSimulator(Simulator):
             aux=fans + tuple(sorted(self.aux.items())),
             wcs=self.wcs,
             units="inch" if self.scale != 1.0 else "mm",
+            layer=layer,
+            prime=prime,
         )
 
     def end_state(self) -> EndState:
         if not self.ran and self.trace.end.line:
-            return self.trace.end  # the last M30 ended the job: what was on then
-        heaters = {a: h.target for a, h in self.heads.items() if h.target is not None and h.target > 0}
+            # the last M30 ended the job: what was on then
+            return self.trace.end if self.pure else self.finish_end(self.trace.end)
+        heaters = {a: h.heat[0] for a, h in self.heads.items() if h.heat is not None and h.heat[0] > 0}
         fans: dict = {}
         for a, h in self.heads.items():
             value = round(max(0.0, min(1.0, h.fan)), 3)
             if value > 0:
                 fans[a if a < 20 else f"T{a} fan"] = value
-        return EndState(
+        end = EndState(
+            # nothing ran since the last M30 (or at all: a job with nothing to end)
+            ended=not self.ran,
             heaters=heaters,
             fans=fans,
             spindles={a: d for a, (d, _) in self.spindles.items()},
             emitters=frozenset(self.emitters),
             aux=dict(self.aux),
         )
+        return end if self.pure else self.finish_end(end)

@@ -25,6 +25,8 @@ ASPECTS = (
     "temp",  # the working head's set-point, whether it was waited for, and the heat it was last waited at
     "fan",  # the working head's part-cooling fan
     "flow",  # the working head's flow multiplier (M221)
+    "layer",  # native flow: the bead's layer height (M756, M221 Z) and width (M221 W) Hyrel computes the flow from
+    "prime",  # unprimes and primes done now (M721/M722 I1; the source's retractions) and the head's settings
     "beds",  # beds and chambers: set-points and waits
     "spindle",
     "laser",
@@ -50,6 +52,11 @@ class Mapping:
     spindle_max_rpm: float | None = None
     positions: tuple[int, ...] = (0, 1, 2, 3)
     air: str = "M7"  # where a CNC source's air goes (Hyrel aux port code)
+    # native: Hyrel computes the flow of a printing move itself (an E amount becomes native flow by request)
+    flow: str = "evalues"
+    # explicit: the source's retractions are the translation's unprimes and primes (M721/M722 I1); auto: Hyrel's
+    # heads unprime and prime by themselves on print <-> travel transitions, which nothing in the job says
+    retract: str = "auto"
 
     def head(self, tool: int) -> int | str:
         """The Hyrel head of source tool ``tool``, or a label when the printer has none for it."""
@@ -77,6 +84,8 @@ class Mapping:
             spindle_max_rpm=options.spindle_max_rpm,
             positions=tuple(options.printer.positions),
             air=options.air,
+            flow=options.flow,
+            retract=options.retract,
         )
 
 
@@ -102,6 +111,16 @@ class Look:
     aux: tuple = ()  # ((device, value), ...) other fans and aux ports that are on
     wcs: str | None = None
     units: str = "mm"
+    # native flow: (bead width or None, the layer heights the move may be computed with); None: the E amounts are
+    # used (E values), so no height matters.  A source may allow several heights (the one its slicer states
+    # and the rise from the layer below); Hyrel has one.  An empty tuple: no height known.
+    layer: tuple | None = None
+    # the working head's unprime and prime settings (M721/M722 without I1: S, E, P), Hyrel only
+    prime: tuple | None = None
+
+
+# The aspects of a Look, compared one by one (compare.py)
+LOOK_ASPECTS = ("head", "temp", "fan", "flow", "layer", "beds", "spindle", "laser", "aux", "wcs", "units", "prime")
 
 
 class Move:
@@ -126,6 +145,9 @@ class Move:
         "tool",
         "origin",
         "point",
+        "primes",
+        "marks",
+        "trail",
     )
 
     def __init__(
@@ -154,9 +176,20 @@ class Move:
         self.tool: str | None = None
         self.origin: tuple = ()
         self.point: tuple = ()
+        # unprimes and primes since the previous synchronisation point, in Hyrel terms: (("unprime", head), ...)
+        self.primes: tuple = ()
+        # per look aspect (a bed or aux device by itself: "beds:24"), the source line that last changed it
+        # (``Anchored``): a finding before that line cannot explain a difference in it
+        self.marks: dict = _NO_MARKS
+        # where there were pauses since the previous synchronisation point: the pauses and the spindle's
+        # direction changes in their order ("pause", "M3", "off", "pause"...): which pause it was
+        self.trail: tuple = ()
 
     def __repr__(self) -> str:  # pragma: no cover - debugging aid
         return f"Move(line={self.line}, end={self.end}, e={self.e}, feed={self.feed})"
+
+
+_NO_MARKS: dict = {}
 
 
 @dataclass
@@ -164,6 +197,9 @@ class EndState:
     """What is still on when the job ends, in Hyrel terms."""
 
     line: int = 0
+    # the job ends with an end of program: Hyrel's M30 ("No gcode after an M30 will be executed as part of the
+    # previous job"; it resets M229, the fan range, the offsets); a source job ends with its file, or its own end
+    ended: bool = False
     heaters: dict = field(default_factory=dict)  # address -> set-point (> 0 only)
     fans: dict = field(default_factory=dict)  # address -> fraction (> 0 only)
     spindles: dict = field(default_factory=dict)  # address -> direction
@@ -171,6 +207,10 @@ class EndState:
     aux: dict = field(default_factory=dict)
     pauses: int = 0  # pauses after the last working move
     dwell: float = 0.0  # seconds of dwell after the last working move
+    primes: tuple = ()  # unprimes and primes after the last working move
+    trail: tuple = ()  # the pauses after the last working move among the spindle's changes (``Move.trail``)
+    # per device of the end state ("heaters:24", "program"), the source line that last changed it (``Anchored``)
+    marks: dict = field(default_factory=dict)
 
 
 @dataclass
