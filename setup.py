@@ -1,31 +1,32 @@
-"""Optional compiled build (like black's): ``GCLINT_USE_MYPYC=1`` compiles the hot modules with mypyc.
+"""The build step pyproject.toml cannot say: the rule reference goes into the package.
 
-    pip install "mypy>=1.8" && GCLINT_USE_MYPYC=1 pip install --no-build-isolation .
+``docs/rules.md`` (generated from the rules by scripts/gen_rules_doc.py) is copied to
+``gclint/_docs/rules.md`` in the built package, so that the links to a rule's documentation (the
+language server's diagnostics, SARIF's ``helpUri``: gclint.ruledocs) point into the installed gclint in
+any install: a wheel, ``pip install .``, ``pip install ./gclint``.  An editable install links to the
+source folder's ``docs/rules.md`` instead (nothing is copied).  MANIFEST.in puts the file in sdists.
 
-The compiled modules are the same source files (typed Python); without the variable gclint installs as
-pure Python, which is the default and what the tests use.  bench/bench_check.py reports both builds.
+(A mypyc-compiled build used to be offered here; it failed mypy's type checks and was never tested, so
+it was removed; the pure-Python install is the one the tests and benchmarks measure.)
 """
 
-import os
+import shutil
+from pathlib import Path
 
 from setuptools import setup
+from setuptools.command.build_py import build_py
 
-# The per-line hot path: parsing, the tree, the machine state, the engine loop.  Rules stay
-# interpreted (third-party rules subclass them).
-HOT_MODULES = [
-    "gclint/syntax/nodes.py",
-    "gclint/syntax/fastpath.py",
-    "gclint/syntax/build.py",
-    "gclint/syntax/parse.py",
-    "gclint/machine/state.py",
-    "gclint/machine/interpreter.py",
-    "gclint/engine.py",
-]
+RULES_DOC = Path(__file__).resolve().parent / "docs" / "rules.md"
 
-ext_modules = []
-if os.environ.get("GCLINT_USE_MYPYC") == "1":
-    from mypyc.build import mypycify
 
-    ext_modules = mypycify(["--ignore-missing-imports", "--follow-imports=silent", *HOT_MODULES], opt_level="3")
+class BuildWithRuleDocs(build_py):
+    def run(self):
+        super().run()
+        if getattr(self, "editable_mode", False) or not RULES_DOC.is_file():
+            return
+        target = Path(self.build_lib) / "gclint" / "_docs" / "rules.md"
+        target.parent.mkdir(parents=True, exist_ok=True)
+        shutil.copyfile(RULES_DOC, target)
 
-setup(ext_modules=ext_modules)
+
+setup(cmdclass={"build_py": BuildWithRuleDocs})

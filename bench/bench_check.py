@@ -6,8 +6,8 @@ Each task runs in a fresh process, ROUNDS times, interleaved, and the fastest ro
 is shared and noisy: compare ratios measured in the same run, not absolute speeds across runs).  Prints
 lines/s, the ratio to the regex baseline, and peak memory.  Not a test.
 
-``BENCH_COMPILED_PYTHON=/path/to/python`` adds the same checks run by another interpreter that has the
-mypyc-compiled build installed (``GCLINT_USE_MYPYC=1 pip install --no-build-isolation .``, see setup.py).
+``BENCH_COMPILED_PYTHON=/path/to/python`` adds the same checks run by another interpreter that has a
+compiled build of gclint installed (setup.py no longer offers one: the mypyc build failed type checks).
 """
 
 from __future__ import annotations

@@ -127,16 +127,25 @@ def fix_file(result: FileResult, linter: Linter, *, unsafe: bool = False, write:
 def add_noqa(result: FileResult) -> FixOutcome:
     """``check --add-noqa``: a ``; noqa: CODES`` on every line with findings (an archive of old jobs keeps
     its findings as they are and new ones stand out, as ruff's --add-noqa), written as --fix writes:
-    atomically, and only if the file is still what was checked.  Security findings (SC) cannot be
-    silenced by the job and are left out, and so are lines whose comment a pause or action code reads as its
-    text (M0, M1, M792 and the codes translated to M0: a noqa there would change what the printer says or
-    does); ``reverted`` says which."""
+    atomically, and only if the file is still what was checked.
+
+    A line whose comment a pause or action code reads as its text (M0, M1, M792 and the codes translated
+    to M0) cannot take a noqa (it would change what the printer says or does): it is put between a
+    ``; gclint: disable=CODES`` line and a ``; gclint: enable=CODES`` line instead, and a finding after
+    the last line gets a ``; gclint: disable=CODES`` line at the end.  Security findings (SC) cannot be
+    silenced by the job: ``reverted`` names each such line and why."""
     outcome = FixOutcome(result)
     by_line: dict[int, list[str]] = {}
+    security: dict[int, list[str]] = {}
     for f in result.findings:
-        if not f.code.startswith(INLINE_UNSUPPRESSIBLE) and f.code not in by_line.setdefault(f.line, []):
-            by_line[f.line].append(f.code)
-    by_line = {line: codes for line, codes in by_line.items() if codes}
+        into = security if f.code.startswith(INLINE_UNSUPPRESSIBLE) else by_line
+        if f.code not in into.setdefault(f.line, []):
+            into[f.line].append(f.code)
+    for line, codes in sorted(security.items()):
+        outcome.reverted.append(
+            f"{result.path}:{line}: {', '.join(codes)} not marked: a job cannot silence its own security"
+            " findings (--ignore on the command line or a configuration named by --config can)"
+        )
     if not by_line or result.error is not None:
         return outcome
     if (why := read_only(result.path)) is not None:
@@ -150,25 +159,38 @@ def add_noqa(result: FileResult) -> FixOutcome:
         with AtomicWriter(result.path, follow_links=True) as out:
             out.write(source.bom)
             number = 0
+            usual = "\n"  # (the file's line ending, for the lines written here)
             for chunk in source.chunks():
                 for raw, ending in chunk:
                     number += 1
+                    if number == 1 and ending:
+                        usual = ending
                     codes = by_line.get(number)
-                    action = codes and text_code(raw)
-                    if action:
+                    if codes and (action := text_code(raw)):
+                        listed = ",".join(codes)
                         outcome.reverted.append(
-                            f"{result.path}:{number}: no noqa added: the comment is the text of {action} (a noqa "
-                            "would change what it says or does)"
+                            f"{result.path}:{number}: {', '.join(codes)} marked by '; gclint: disable=' and"
+                            f" 'enable=' lines around it: its comment is the text of {action}, which a noqa"
+                            " would change"
                         )
-                        codes = None
+                        out.write(source.encode(f"; gclint: disable={listed}{usual}{raw}{ending or usual}"))
+                        out.write(source.encode(f"; gclint: enable={listed}{ending}"))
+                        continue
                     out.write(source.encode((with_noqa(raw, codes) if codes else raw) + ending))
+            after = sorted({code for line, codes in by_line.items() if line > number for code in codes})
+            if after:  # (findings about the end of the job, after its last line)
+                out.write(
+                    source.encode(
+                        ("" if not number or ending else usual) + f"; gclint: disable={','.join(after)}{usual}"
+                    )
+                )
             if source.sha256 != result.digest:
                 out.discard()
                 raise OutputError(f"{result.path}: no noqa added: the file changed since it was checked")
     except (OSError, SourceError, OutputError) as exc:
         outcome.error = str(exc)
         return outcome
-    outcome.fixed = len(by_line) - len(outcome.reverted)
+    outcome.fixed = len(by_line)
     return outcome
 
 

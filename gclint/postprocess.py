@@ -30,7 +30,7 @@ from gclint.io import AtomicWriter, OutputError
 from gclint.rules.base import Finding, Severity
 from gclint.syntax.source import Source, SourceError
 
-FAIL_ON = {"error": Severity.ERROR, "warning": Severity.WARNING, "never": None}
+FAIL_ON = {"error": Severity.ERROR, "warning": Severity.WARNING, "info": Severity.INFO, "never": None}
 STDERR_LIMIT = 30  # findings printed on stderr (the slicer's dialog); the report has them all
 
 

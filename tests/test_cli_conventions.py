@@ -8,7 +8,7 @@ import subprocess
 import sys
 from pathlib import Path
 
-from tests.conftest import run_cli
+from tests.conftest import ROOT, run_cli
 
 V4_IN_V5 = "; gclint: dialect=hyrel\nM6 T12 O2 X0 Y0 Z0\nM109 T12 S200\nT1\nG1 X10 Y10 E1 F1200\nM30\n"
 MARLIN = "; gclint: dialect=marlin\nG1 X1 X2 F600\nG1 X1 X3\nM9999\n"
@@ -183,12 +183,18 @@ def test_noqa_unknown_codes_unused_noqa_and_add_noqa(tmp_path: Path) -> None:
     # --add-noqa: an archive keeps its findings as they are; security findings stay
     job.write_text("; gclint: dialect=marlin\nG1 X1 X2 F100 ; note\nM9999\nM792 ; SHELL x.exe\n")
     proc = run_cli("check", "--add-noqa", str(job))
-    assert proc.returncode == 0 and b"Added a noqa comment to 2 lines." in proc.stdout
-    assert job.read_text() == (  # (the comment after M792 is its text on Hyrel: left as it is)
-        "; gclint: dialect=marlin\nG1 X1 X2 F100 ; note ; noqa: SX002\nM9999 ; noqa: DL001\nM792 ; SHELL x.exe\n"
+    # (the comment after M792 is its text on Hyrel: the line goes between disable and enable lines)
+    assert job.read_text() == (
+        "; gclint: dialect=marlin\nG1 X1 X2 F100 ; note ; noqa: SX002\nM9999 ; noqa: DL001\n"
+        "; gclint: disable=DL001\nM792 ; SHELL x.exe\n; gclint: enable=DL001\n"
     )
+    assert b"Added a noqa comment to 3 lines." in proc.stdout
+    # the security finding cannot be marked by the job: said, with the line and why, and the exit says it
+    assert proc.returncode == 1
+    assert b":4: SC001 not marked: a job cannot silence its own security findings" in proc.stderr
+    assert b"1 finding is still reported (" in proc.stdout and b":5 SC001)" in proc.stdout
     left = json.loads(run_cli("check", "-f", "json", str(job)).stdout)
-    assert [f["code"] for f in left] == ["DL001", "SC001"]
+    assert [f["code"] for f in left] == ["SC001"]
 
 
 def test_clean_removes_nested_projects_and_all(tmp_path: Path) -> None:
@@ -247,6 +253,69 @@ def test_add_noqa_leaves_the_text_of_pauses_and_actions_alone(tmp_path: Path) ->
     job = tmp_path / "a.gcode"
     job.write_text("G28 X0 Y0\nM792 ; FOO bar\nM0 T40 ; SAY hello\nM109 T40 S200\nM30\n")
     proc = run_cli("check", "--add-noqa", str(job))
-    assert job.read_text() == "G28 X0 Y0\nM792 ; FOO bar\nM0 T40 ; SAY hello\nM109 T40 S200 ; noqa: HY003\nM30\n"
-    assert b"Added a noqa comment to 1 line." in proc.stdout
-    assert proc.stderr.count(b"no noqa added: the comment is the text of") == 2
+    assert job.read_text() == (
+        "G28 X0 Y0\n; gclint: disable=HY059\nM792 ; FOO bar\n; gclint: enable=HY059\n"
+        "; gclint: disable=DL002\nM0 T40 ; SAY hello\n; gclint: enable=DL002\nM109 T40 S200 ; noqa: HY003\nM30\n"
+    )
+    assert b"Added a noqa comment to 3 lines." in proc.stdout
+    assert (
+        proc.stderr.count(b"marked by '; gclint: disable=' and 'enable=' lines around it: its comment is the text of")
+        == 2
+    )
+    assert proc.returncode == 0 and run_cli("check", "--no-cache", str(job)).returncode == 0  # the file passes
+
+
+def test_add_noqa_leaves_the_readme_example_passing(tmp_path: Path) -> None:
+    """Issue 28: after --add-noqa the README's own example still exited 1 (HY006 on an M6 line, whose comment
+    is the text M6 carries)."""
+    job = tmp_path / "hyrel_job.gcode"
+    job.write_bytes((ROOT / "examples" / "hyrel_job.gcode").read_bytes())
+    assert run_cli("check", "--no-cache", str(job)).returncode == 1
+    proc = run_cli("check", "--add-noqa", str(job))
+    assert proc.returncode == 0, proc.stdout + proc.stderr
+    assert b"Added a noqa comment to 5 lines." in proc.stdout
+    after = run_cli("check", "--no-cache", str(job))
+    assert after.returncode == 0 and b"All checks passed." in after.stdout
+
+
+def test_notes_about_how_files_were_read_are_one_line_per_run(tmp_path: Path) -> None:
+    """Issue 28: a folder run printed one "weak evidence" note per file (20 lines, then a count); now one
+    summary line per run names the first few, and -v gives each file's reasons."""
+    for n in range(6):
+        (tmp_path / f"prog{n}.ngc").write_text("G0 X0\nM2\n")  # machinekit, on weak evidence
+    for n in range(4):
+        (tmp_path / f"plain{n}.gcode").write_text("G1 X1 Y1 F600\nM30\n")  # nothing says the dialect
+    proc = run_cli("check", "--no-cache", "--jobs", "1", str(tmp_path))
+    notes = [line for line in proc.stderr.decode().splitlines() if line.startswith("gclint: note:")]
+    assert len(notes) == 2, notes
+    assert "6 files were read on weak evidence (machinekit 6: " in notes[0] and "and 3 more); -v gives" in notes[0]
+    assert "nothing in 4 files tells the dialect" in notes[1]
+    verbose = run_cli("check", "--no-cache", "--jobs", "1", "-v", str(tmp_path)).stderr.decode()
+    assert verbose.count("checked as machinekit") == 6 and verbose.count("checked as hyrel") == 4
+    assert run_cli("check", "--no-cache", "-q", str(tmp_path)).stderr == b""
+
+
+def test_fail_on_is_the_same_in_every_entry_point(tmp_path: Path) -> None:
+    """Issue 28: `check --fail-on never` was refused while postprocess and the Action took it, and the
+    Action failed on errors only while check (and so the pre-commit hook) failed on warnings."""
+    import re
+
+    from gclint.cli.app import DEFAULT_FAIL_ON, FAIL_ON_LEVELS
+
+    assert DEFAULT_FAIL_ON == "warning" and FAIL_ON_LEVELS == ("error", "warning", "info", "never")
+    action = (ROOT / "action.yml").read_text(encoding="utf-8")
+    default = re.search(r"\n  fail-on:\n    description: [^\n]*\n    default: (\w+)\n", action)
+    assert default and default.group(1) == DEFAULT_FAIL_ON
+    assert "error|warning|info|never)" in action  # the values the action takes before passing them to check
+    hooks = (ROOT / ".pre-commit-hooks.yaml").read_text(encoding="utf-8").splitlines()
+    entries = [line for line in hooks if line.startswith(("  entry:", "  args:"))]
+    assert entries and all("--fail-on" not in line for line in entries)  # the hooks run check's default
+    assert all(line.startswith("  entry: gclint check ") for line in entries if "entry" in line)
+    job = tmp_path / "a.gcode"
+    job.write_text("; gclint: dialect=marlin\nG28\nM9999\nG1 X1 Y1 F100\n")  # DL001, a warning
+    for command in (["check", "--no-cache"], ["postprocess", "--no-report"]):
+        assert run_cli(*command, str(job)).returncode == 1, command  # the default: warning
+        for level, code in (("error", 0), ("warning", 1), ("info", 1), ("never", 0)):
+            assert run_cli(*command, "--fail-on", level, str(job)).returncode == code, (command, level)
+    job.write_text("; gclint: dialect=marlin\nG28\nG1 X1 X2 Y1 F100\n")  # SX002, an error
+    assert run_cli("check", "--no-cache", "--fail-on", "never", str(job)).returncode == 0

@@ -286,7 +286,7 @@ def test_postprocess_reads_hyrel_content_despite_gcode_flavor_reprap(tmp_path: P
     assert "source dialect: hyrel" in report and "SLIC3R_GCODE_FLAVOR=reprap" in report
     fixed = HYREL_FROM_SLICER.replace("M109 T41", "M109 T1")
     job.write_text(fixed)
-    proc = run_cli("postprocess", "--to", "hyrel", str(job), env=env)
+    proc = run_cli("postprocess", "--to", "hyrel", "--fail-on", "error", str(job), env=env)  # (warnings left)
     assert proc.returncode == 0, proc.stderr
     assert job.read_text() == fixed  # a Hyrel job is not translated as if it were Marlin
 

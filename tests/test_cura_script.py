@@ -176,6 +176,9 @@ def test_translation_keeps_cura_chunks(cura):
     else:
         joined = "".join(result)
         assert "M109 T" in joined and "gclint-cura-chunk" not in joined
+        # issue 28: the M30 the translation writes after the last chunk was dropped, then reported missing
+        assert joined.rstrip().endswith("M30") and result[-1].startswith("M84")
+        assert "HY010" not in shown and "no M30" not in shown
 
 
 def test_a_missing_gclint_is_reported_not_raised(cura):

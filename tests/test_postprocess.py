@@ -106,9 +106,10 @@ def test_fail_on_warning(tmp_path):
     warning_only = "; gclint: dialect=marlin\nG28\nM9999\nG1 X1 Y1 F100\n"  # DL001 is a warning on Marlin
     pp, final = export(tmp_path, warning_only)
     env = {"SLIC3R_GCODE_FLAVOR": "marlin", "SLIC3R_PP_HOST": "File", "SLIC3R_PP_OUTPUT_NAME": str(final)}
-    assert prusaslicer(f"{GCLINT} postprocess", pp, **env).returncode == 0
-    strict = prusaslicer(f"{GCLINT} postprocess --fail-on warning", pp, **env)
+    assert prusaslicer(f"{GCLINT} postprocess --fail-on error", pp, **env).returncode == 0
+    strict = prusaslicer(f"{GCLINT} postprocess", pp, **env)  # the default, as gclint check's: warning
     assert strict.returncode == 1 and "DL001" in strict.stderr.decode()
+    assert prusaslicer(f"{GCLINT} postprocess --fail-on info", pp, **env).returncode == 1
 
 
 def test_quoted_path_and_print_host_output_name(tmp_path):

@@ -20,6 +20,12 @@ from tests.conftest import ROOT
 GOOD = "; gclint: dialect=marlin\nG28\nG1 X10 Y10 E1 F1200\n"
 BAD = "; gclint: dialect=marlin\nG28\nG1 X10 X20 Y10 E1 F1200\nM9999\n"
 EXPR = re.compile(r"\$\{\{\s*(.*?)\s*\}\}")
+# What the runner says about the action being run (a test value: where a workflow would have fetched it)
+GITHUB_CONTEXT = {
+    "github.action_repository": "example-owner/gclint",
+    "github.action_ref": "v0.1.0",
+    "github.server_url": "https://github.com",
+}
 
 
 def _yaml():
@@ -82,6 +88,8 @@ def run_action(action: Path, workspace: Path, runner_temp: Path, **inputs: str) 
                 return values[expr[len("inputs.") :]]
             if expr == "github.action_path":
                 return str(action)
+            if expr in GITHUB_CONTEXT:
+                return GITHUB_CONTEXT[expr]
             m = re.fullmatch(r"steps\.([\w-]+)\.outputs\.([\w-]+)", expr)
             if m:
                 return outputs.get(m.group(1), {}).get(m.group(2), "")
@@ -134,7 +142,45 @@ def test_action_fails_the_job_on_errors_and_writes_sarif(tmp_path, action_copy, 
     uri = log["runs"][0]["results"][0]["locations"][0]["physicalLocation"]["artifactLocation"]["uri"]
     assert uri == "jobs/bad.gcode"  # relative to the repository root, as code scanning expects
     assert "::error file=jobs/bad.gcode,line=3," in result["log"]  # annotations
-    assert "::error title=gclint::1 error(s) in G-code" in result["log"]
+    assert "::error title=gclint::1 error(s), 1 warning(s), 0 info in G-code (fail-on: warning)" in result["log"]
+    # the rules' help links: the rule reference in the action's repository, at the ref the workflow uses
+    for rule in log["runs"][0]["tool"]["driver"]["rules"]:
+        assert (
+            rule["helpUri"] == f"https://github.com/example-owner/gclint/blob/v0.1.0/docs/rules.md#{rule['id'].lower()}"
+        )
+
+
+def test_an_installed_gclint_links_its_own_rule_reference(tmp_path, action_copy, runner_temp):
+    """Installed from a copy (not editable), the package carries docs/rules.md (setup.py copies it), and
+    the links of SARIF (helpUri) and of the language server point to that copy."""
+    workspace = tmp_path / "repo"
+    workspace.mkdir()
+    (workspace / "bad.gcode").write_text(BAD)
+    run_action(action_copy, workspace, runner_temp, upload_sarif="false")  # (installs the copy)
+    gclint = runner_temp / "gclint-venv" / "bin" / "gclint"
+    env = {k: v for k, v in os.environ.items() if not k.startswith(("GCLINT_", "PYTHONPATH"))}
+    proc = subprocess.run(
+        [str(gclint), "check", "-f", "sarif", "--no-cache", "bad.gcode"], cwd=workspace, env=env, capture_output=True
+    )
+    assert proc.returncode == 1, proc.stderr
+    rules = json.loads(proc.stdout)["runs"][0]["tool"]["driver"]["rules"]
+    python = runner_temp / "gclint-venv" / "bin" / "python"
+    for rule in rules:
+        uri = rule["helpUri"]
+        assert uri.startswith("file://") and uri.endswith("/site-packages/gclint/_docs/rules.md#" + rule["id"].lower())
+        where = subprocess.run(
+            [
+                str(python),
+                "-c",
+                "import sys, urllib.parse, urllib.request as u; print(u.url2pathname(urllib.parse.urlparse(sys.argv[1]).path))",
+                uri,
+            ],
+            capture_output=True,
+            text=True,
+            env=env,
+        ).stdout.strip()
+        text = Path(where).read_text(encoding="utf-8")
+        assert f"### {rule['id']}" in text  # the heading the anchor names
 
 
 def test_action_passes_clean_jobs_and_honours_fail_on(tmp_path, action_copy, runner_temp):
@@ -146,10 +192,15 @@ def test_action_passes_clean_jobs_and_honours_fail_on(tmp_path, action_copy, run
     assert clean["steps"]["check"]["errors"] == "0"
 
     (workspace / "warn.gcode").write_text("; gclint: dialect=marlin\nM9999\n")
-    relaxed = run_action(action_copy, workspace, runner_temp)
+    relaxed = run_action(action_copy, workspace, runner_temp, fail_on="error")
     assert relaxed["failed"] is None, relaxed["log"]
-    strict = run_action(action_copy, workspace, runner_temp, fail_on="warning")
+    report_only = run_action(action_copy, workspace, runner_temp, fail_on="never")
+    assert report_only["failed"] is None, report_only["log"]
+    strict = run_action(action_copy, workspace, runner_temp)  # the default, as gclint check's: warning
     assert strict["failed"] == "Gate on findings"
+    assert "(fail-on: warning)" in strict["log"]
+    bad = run_action(action_copy, workspace, runner_temp, fail_on="sometimes")
+    assert bad["failed"] == "Gate on findings" and "fail-on must be error, warning, info or never" in bad["log"]
 
 
 def test_action_reports_unreadable_files(tmp_path, action_copy, runner_temp):

@@ -10,10 +10,8 @@ from pathlib import Path
 
 import pytest
 
-pytest.importorskip("pygls")
-
-from tests.lsp_client import LspClient  # noqa: E402
-from tests.test_server_units import apply_edits  # noqa: E402
+from tests.lsp_client import LspClient
+from tests.test_server_units import apply_edits
 
 EMOJI = "\U0001f600"
 
@@ -62,19 +60,7 @@ def _code_actions(client: LspClient, uri: str, line: int, diagnostics: list[dict
 
 
 def _apply(text: str, edit: dict, uri: str) -> str:
-    from lsprotocol import types as lsp
-
-    edits = [
-        lsp.TextEdit(
-            range=lsp.Range(
-                lsp.Position(e["range"]["start"]["line"], e["range"]["start"]["character"]),
-                lsp.Position(e["range"]["end"]["line"], e["range"]["end"]["character"]),
-            ),
-            new_text=e["newText"],
-        )
-        for e in edit["changes"][uri]
-    ]
-    return apply_edits(text, edits)
+    return apply_edits(text, edit["changes"][uri])
 
 
 def test_session_without_client_capabilities(client, tmp_path):
@@ -320,8 +306,7 @@ def test_bad_input_never_kills_the_server(client, tmp_path):
 
 
 def test_a_request_whose_params_do_not_fit_is_answered_invalid_params(client, tmp_path):
-    # pygls alone never answers it (the deserialization error ends in its reader loop, with a cattrs
-    # traceback on standard error), and the client waits forever
+    # (pygls, which the server used before, never answered it: the client waited forever)
     client.initialize()
     uri = (tmp_path / "a.gcode").as_uri()
     client.open(uri, "M109 T40 S215\n")
@@ -346,15 +331,49 @@ def test_a_request_whose_params_do_not_fit_is_answered_invalid_params(client, tm
     assert len(client.stderr.strip().splitlines()) <= len(bad) + 1, client.stderr
 
 
-def test_server_without_the_extra_says_so(tmp_path):
-    blocker = "import sys; sys.modules['pygls'] = None; from gclint.cli import main; main(['server'])"
-    proc = subprocess.run(
-        [sys.executable, "-c", blocker],
+def test_the_server_needs_no_package_beyond_gclints_own(tmp_path):
+    """The server is the standard library and gclint: it starts and answers where pygls, lsprotocol and
+    cattrs cannot be imported, and imports none of them where they can (importing lsprotocol's types
+    alone took longer than checking a 20,000-line job)."""
+    script = (
+        "import sys\n"
+        "for name in ('pygls', 'lsprotocol', 'cattrs', 'attrs'):\n"
+        "    sys.modules[name] = None\n"
+        "from gclint.cli import main\n"
+        "main(['server'])\n"
+    )
+    client = LspClient(args=[sys.executable, "-c", script], cwd=str(Path(__file__).parent.parent))
+    try:
+        assert client.initialize()["serverInfo"]["name"] == "gclint"
+        uri = (tmp_path / "a.gcode").as_uri()
+        client.open(uri, "; gclint: dialect=hyrel\nM109 T40 S215\n")
+        assert "HY003" in _by_code(client.diagnostics(uri))
+        assert client.shutdown_and_exit() == 0
+    finally:
+        client.kill()
+    imported = subprocess.run(
+        [sys.executable, "-c", "import sys, gclint.server.protocol; print(sorted(sys.modules))"],
         capture_output=True,
         text=True,
         timeout=60,
         cwd=str(Path(__file__).parent.parent),
+    ).stdout
+    assert "'lsprotocol" not in imported and "'pygls" not in imported and "'cattrs" not in imported
+
+
+def test_requests_before_initialize_and_after_shutdown_are_refused(client, tmp_path):
+    uri = (tmp_path / "a.gcode").as_uri()
+    early = client.wait_response(
+        client.request_async(
+            "textDocument/hover", {"textDocument": {"uri": uri}, "position": {"line": 0, "character": 0}}
+        )
     )
-    assert proc.returncode == 2
-    lines = proc.stderr.strip().splitlines()
-    assert len(lines) == 1 and "pip install 'gclint[server]'" in lines[0], proc.stderr
+    assert early["error"]["code"] == -32002  # ServerNotInitialized
+    client.initialize()
+    unknown = client.wait_response(client.request_async("gclint/nonsense", {}))
+    assert unknown["error"]["code"] == -32601  # MethodNotFound
+    client.request("shutdown")
+    late = client.wait_response(client.request_async("textDocument/hover", {}))
+    assert late["error"]["code"] == -32600  # InvalidRequest
+    client.notify("exit")
+    assert client.proc.wait(30) == 0

@@ -9,33 +9,36 @@ import threading
 
 import pytest
 
-pytest.importorskip("lsprotocol")
-
-from lsprotocol import types as lsp  # noqa: E402
-
-from gclint import dialects  # noqa: E402
-from gclint.engine import Linter, Options  # noqa: E402
-from gclint.fixes import fix_file  # noqa: E402
-from gclint.rules.base import Edit, Finding, Fix, Severity, rule_url  # noqa: E402
-from gclint.server import analysis, convert  # noqa: E402
-from gclint.server.text import UTF8, UTF16, UTF32, Snapshot, char_to_units, clean_surrogates, units_to_char  # noqa: E402
+from gclint import dialects
+from gclint.engine import Linter, Options
+from gclint.fixes import fix_file
+from gclint.ruledocs import rule_url
+from gclint.rules.base import Edit, Finding, Fix, Severity
+from gclint.server import analysis, convert
+from gclint.server.text import UTF8, UTF16, UTF32, Snapshot, char_to_units, clean_surrogates, units_to_char
 
 EMOJI = "\U0001f600"  # outside the BMP: one character, two UTF-16 units, four UTF-8 bytes
 
 
-def apply_edits(text: str, edits: list[lsp.TextEdit], encoding: str = UTF16) -> str:
+def apply_edits(text: str, edits: list[dict], encoding: str = UTF16) -> str:
     """Apply text edits as a client does: all ranges refer to the original text; inserts at the same
     place keep their array order."""
     snap = Snapshot(text)
     spans = []
     for order, e in enumerate(edits):
-        a = snap.offset(e.range.start.line, e.range.start.character, encoding)
-        b = snap.offset(e.range.end.line, e.range.end.character, encoding)
-        spans.append((a, b, order, e.new_text))
+        start, end = e["range"]["start"], e["range"]["end"]
+        a = snap.offset(start["line"], start["character"], encoding)
+        b = snap.offset(end["line"], end["character"], encoding)
+        spans.append((a, b, order, e["newText"]))
     out = text
     for a, b, _, new in sorted(spans, key=lambda s: (s[0], s[2]), reverse=True):
         out = out[:a] + new + out[b:]
     return out
+
+
+def _chars(r: dict) -> tuple[int, int]:
+    """The start and end characters of a range on one line."""
+    return r["start"]["character"], r["end"]["character"]
 
 
 # -- text and positions ----------------------------------------------------------------------------------
@@ -90,11 +93,14 @@ def test_diagnostic_has_code_severity_range_link_and_source():
     result = Linter(Options()).check_text(text, "job.gcode")
     [f] = [f for f in result.findings if f.code == "HY003"]
     [d] = convert.diagnostics([f], convert.Geometry(Snapshot(text)))
-    assert d.code == "HY003" and d.source == "gclint"
-    assert d.severity == lsp.DiagnosticSeverity.Error
-    assert d.code_description is not None and d.code_description.href == rule_url("HY003")
-    assert d.code_description.href.endswith("docs/rules.md#hy003")
-    assert (d.range.start.line, d.range.start.character, d.range.end.character) == (1, 5, 8)  # "T40"
+    assert d["code"] == "HY003" and d["source"] == "gclint"
+    assert d["severity"] == 1  # error
+    assert d["codeDescription"]["href"] == rule_url("HY003")
+    assert d["codeDescription"]["href"].startswith("file://") and d["codeDescription"]["href"].endswith(
+        "/rules.md#hy003"
+    )
+    r = d["range"]
+    assert (r["start"]["line"], r["start"]["character"], r["end"]["character"]) == (1, 5, 8)  # "T40"
 
 
 def test_diagnostic_columns_after_a_non_bmp_comment():
@@ -104,9 +110,9 @@ def test_diagnostic_columns_after_a_non_bmp_comment():
     assert f.column == 10  # gclint: characters
     geo = convert.Geometry(Snapshot(text), UTF16)
     d = convert.to_diagnostic(f, geo)
-    assert (d.range.start.character, d.range.end.character) == (10, 13)  # UTF-16: the emoji counts twice
+    assert _chars(d["range"]) == (10, 13)  # UTF-16: the emoji counts twice
     d8 = convert.to_diagnostic(f, convert.Geometry(Snapshot(text), UTF8))
-    assert (d8.range.start.character, d8.range.end.character) == (12, 15)
+    assert _chars(d8["range"]) == (12, 15)
 
 
 def test_byte_order_mark_moves_line_one():
@@ -115,17 +121,17 @@ def test_byte_order_mark_moves_line_one():
     [f] = [f for f in result.findings if f.code == "HY003"]
     d = convert.to_diagnostic(f, convert.Geometry(Snapshot(text)))
     line = Snapshot(text).line(0)
-    assert line[d.range.start.character : d.range.end.character] == "T40"
+    assert line[d["range"]["start"]["character"] : d["range"]["end"]["character"]] == "T40"
 
 
 def test_range_without_end_column_covers_the_word_and_is_clamped():
     geo = convert.Geometry(Snapshot("G1 X10 Y20\nM30"))
     f = Finding("x", 1, 4, "SX002", Severity.ERROR, "m")
     r = convert.finding_range(f, geo)
-    assert (r.start.character, r.end.character) == (3, 6)
+    assert _chars(r) == (3, 6)
     past = Finding("x", 9, 1, "HY010", Severity.WARNING, "m")  # after the last line (end of file)
     r = convert.finding_range(past, geo)
-    assert (r.start.line, r.start.character) == (1, 3)
+    assert (r["start"]["line"], r["start"]["character"]) == (1, 3)
 
 
 def test_diagnostics_limit():
@@ -203,27 +209,27 @@ def test_code_actions_per_line_and_kind():
     result = Linter(Options(dialect="hyrel")).check_text(text, "job.gcode")
     geo = convert.Geometry(Snapshot(text))
     actions = convert.code_actions("file:///job.gcode", result.findings, geo, 0, 0)
-    titles = [a.title for a in actions]
+    titles = [a["title"] for a in actions]
     assert any(t.startswith("HY008: ") for t in titles)
     # (line 1 is M6, whose comment the translator carries into an M0: no noqa there, as --add-noqa)
-    second = [a.title for a in convert.code_actions("file:///job.gcode", result.findings, geo, 1, 1)]
+    second = [a["title"] for a in convert.code_actions("file:///job.gcode", result.findings, geo, 1, 1)]
     assert "HY008: suppress on this line (; noqa: HY008)" in second
-    assert sum(1 for a in actions if a.kind == convert.FIX_ALL_KIND) == 1
-    assert any(a.kind == "quickfix" and a.title.startswith("Fix all safe") for a in actions)
-    fix = next(a for a in actions if a.title.startswith("HY008: ") and a.is_preferred)
-    assert fix.diagnostics and fix.diagnostics[0].code == "HY008"
-    assert fix.edit is not None and list(fix.edit.changes) == ["file:///job.gcode"]
+    assert sum(1 for a in actions if a["kind"] == convert.FIX_ALL_KIND) == 1
+    assert any(a["kind"] == "quickfix" and a["title"].startswith("Fix all safe") for a in actions)
+    fix = next(a for a in actions if a["title"].startswith("HY008: ") and a["isPreferred"])
+    assert fix["diagnostics"] and fix["diagnostics"][0]["code"] == "HY008"
+    assert list(fix["edit"]["changes"]) == ["file:///job.gcode"]
     # an unsafe fix (the checksum) is offered, marked, never preferred
     fifth = convert.code_actions("file:///job.gcode", result.findings, geo, 4, 4)
-    unsafe = next(a for a in fifth if a.title.startswith("SX004: "))
-    assert unsafe.title.endswith("(unsafe fix)") and not unsafe.is_preferred
+    unsafe = next(a for a in fifth if a["title"].startswith("SX004: "))
+    assert unsafe["title"].endswith("(unsafe fix)") and not unsafe["isPreferred"]
     # only source.fixAll: the fix-all action alone; versioned edits when the client takes them
     only = convert.code_actions("file:///job.gcode", result.findings, geo, 0, 0, only=["source.fixAll"], version=3)
-    assert [a.kind for a in only] == [convert.FIX_ALL_KIND]
-    assert only[0].edit is not None and only[0].edit.document_changes[0].text_document.version == 3
+    assert [a["kind"] for a in only] == [convert.FIX_ALL_KIND]
+    assert only[0]["edit"]["documentChanges"][0]["textDocument"]["version"] == 3
     # line 3 (HY011, no fix): noqa only, and fix-all stays available as a source action
     third = convert.code_actions("file:///job.gcode", result.findings, geo, 2, 2)
-    assert [a.kind for a in third] == ["quickfix", convert.FIX_ALL_KIND]
+    assert [a["kind"] for a in third] == ["quickfix", convert.FIX_ALL_KIND]
     assert convert.kind_wanted("source.fixAll.gclint", ["source"]) and not convert.kind_wanted("quickfix", ["source"])
 
 
@@ -278,7 +284,7 @@ def test_hover_range_after_a_non_bmp_comment():
     target = _hover(text, 0, 10)  # the T of T40 (character 10)
     assert target is not None and target.word == "T40"
     h = convert.hover(target, convert.Geometry(Snapshot(text)), 1, markdown=False)
-    assert h.range is not None and (h.range.start.character, h.range.end.character) == (10, 13)
+    assert _chars(h["range"]) == (10, 13)
 
 
 # -- settings, configuration, cancellation ---------------------------------------------------------------
@@ -348,7 +354,7 @@ def test_no_noqa_is_offered_where_it_would_do_nothing_or_change_the_command():
 
     def noqa(line: int) -> list[str]:
         actions = convert.code_actions("file:///job.gcode", result.findings, geo, line - 1, line - 1)
-        return [a.title.split(":")[0] for a in actions if "noqa" in a.title]
+        return [a["title"].split(":")[0] for a in actions if "noqa" in a["title"]]
 
     assert noqa(1) == [] and noqa(2) == []  # SC001; and the M0 line whose comment is what it says
     assert noqa(3) == ["HY003"] and noqa(4) == ["DL001"]  # (M98 P1234: DL001 may be silenced, SC004 not)
@@ -368,3 +374,29 @@ def test_a_found_configuration_does_not_switch_security_rules_off_in_the_editor(
     assert problem is None and analysis.security_off(options) is None
     result = analysis.check_text("M792 ; SHELL C:\\x.exe\n", str(tmp_path / "job.gcode"), options)
     assert [f.code for f in result.findings if f.code.startswith("SC")] == ["SC001"]
+
+
+def test_rule_links_in_any_install(tmp_path, monkeypatch):
+    """Issue 28: a rule's link (codeDescription.href, SARIF helpUri) existed only in editable installs.  The
+    build copies docs/rules.md into the package (setup.py); the copy is linked first, then the checkout's."""
+    from gclint import ruledocs
+
+    packaged = tmp_path / "site-packages" / "gclint" / "_docs" / "rules.md"
+    packaged.parent.mkdir(parents=True)
+    packaged.write_text("### HY003\n")
+    monkeypatch.delenv("GCLINT_DOCS_URL", raising=False)
+    monkeypatch.setattr(ruledocs, "PACKAGED", packaged)
+    ruledocs.reference.cache_clear()
+    try:
+        assert ruledocs.rule_url("HY003") == packaged.as_uri() + "#hy003"
+        geo = convert.Geometry(Snapshot("M109 T40 S200\n"))
+        d = convert.to_diagnostic(Finding("x", 1, 6, "HY003", Severity.ERROR, "m"), geo)
+        assert d["codeDescription"]["href"] == packaged.as_uri() + "#hy003"
+        monkeypatch.setattr(ruledocs, "PACKAGED", tmp_path / "missing.md")  # an editable install: the checkout's
+        ruledocs.reference.cache_clear()
+        assert ruledocs.rule_url("SX002") == ruledocs.CHECKOUT.as_uri() + "#sx002"
+        monkeypatch.setenv("GCLINT_DOCS_URL", "https://docs.example/rules.md")  # a published copy wins
+        ruledocs.reference.cache_clear()
+        assert ruledocs.rule_url("SX002") == "https://docs.example/rules.md#sx002"
+    finally:
+        ruledocs.reference.cache_clear()

@@ -24,7 +24,7 @@ exports.activate = async function activate(context) {
   } catch (err) {
     window.showErrorMessage(
       `gclint: could not start "${command} server" (${err.message || err}). ` +
-        "Install it with: pip install 'gclint[server]', or set gclint.path."
+        "Install gclint (see docs/editors.md in gclint's sources), or set gclint.path to its full path."
     );
   }
 };

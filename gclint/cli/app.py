@@ -66,6 +66,27 @@ def _fail(message: str) -> None:
     raise UsageFailure(message)
 
 
+# --fail-on, the same in every entry point that gates (check, postprocess, the pre-commit hooks, which run
+# check, and the GitHub Action, which passes its fail-on input to check): exit 1 when a finding reaches
+# this level; "never" reports only.
+FAIL_ON_LEVELS = ("error", "warning", "info", "never")
+DEFAULT_FAIL_ON = "warning"
+FAIL_ON_HELP = "Exit 1 when a finding reaches this level: error, warning (the default), info, or never (report only)."
+
+
+def fail_on_option(help_text: str = FAIL_ON_HELP):
+    return click.option(
+        "--fail-on", type=click.Choice(FAIL_ON_LEVELS), default=DEFAULT_FAIL_ON, show_default=True, help=help_text
+    )
+
+
+def _reaches(worst, fail_on: str) -> bool:
+    """Whether the worst severity found (None: no finding) reaches ``--fail-on``."""
+    from gclint.rules.base import Severity
+
+    return fail_on != "never" and worst is not None and worst >= Severity.parse(fail_on)
+
+
 def _split(values: tuple[str, ...]) -> list[str]:
     out: list[str] = []
     for v in values:

@@ -19,14 +19,16 @@ from gclint.cli.app import (
     _fail,
     _left_out_notes,
     _note,
+    _reaches,
     _same_file,
     _split,
+    fail_on_option,
     main,
 )
 from gclint.config import ConfigError, check_flavor, parse_heads, parse_known_codes
 from gclint.engine import FileResult, Options
 from gclint.machine.profiles import PROFILES
-from gclint.rules.base import RuleError, Severity
+from gclint.rules.base import RuleError
 
 
 @main.command()
@@ -75,13 +77,7 @@ from gclint.rules.base import RuleError, Severity
     "--respect-gitignore/--no-respect-gitignore", default=None, help="Leave out what .gitignore ignores (default on)."
 )
 @click.option("--exit-zero", is_flag=True, help="Exit 0 even when findings exist.")
-@click.option(
-    "--fail-on",
-    type=click.Choice(["error", "warning", "info"]),
-    default="warning",
-    show_default=True,
-    help="Exit 1 when a finding reaches this level.",
-)
+@fail_on_option()
 @click.option(
     "--statistics",
     is_flag=True,
@@ -310,7 +306,7 @@ def check(
                 _note(note)
         if tally.unread:
             sys.exit(2)
-        if not exit_zero and tally.worst is not None and tally.worst >= Severity.parse(fail_on):
+        if not exit_zero and _reaches(tally.worst, fail_on):
             sys.exit(1)
         return
     with _checking(bar):
@@ -323,7 +319,7 @@ def check(
                 error = f"{r.path}: now a link to {target}, outside the folder: not fixed"
                 results[i] = FileResult(r.path, error=error)
     if add_noqa:
-        sys.exit(_add_noqa(problems + results, links))
+        sys.exit(_add_noqa(problems + results, links, overrides, config_file, fail_on, exit_zero))
     fixed = None
     if fix or show_diff:
         results, fixed = _apply_fixes(
@@ -354,7 +350,7 @@ def check(
     if any(r.error for r in results):
         sys.exit(2)
     worst = max((f.severity for r in results for f in r.findings), default=None)
-    if not exit_zero and worst is not None and worst >= Severity.parse(fail_on):
+    if not exit_zero and _reaches(worst, fail_on):
         sys.exit(1)
 
 
@@ -399,12 +395,23 @@ def _apply_fixes(
     return out, fixed
 
 
-def _add_noqa(results: list[FileResult], links: dict[str, str]) -> int:
-    """``--add-noqa``: suppress what each file has now, line by line; says how many lines it marked."""
+def _add_noqa(
+    results: list[FileResult],
+    links: dict[str, str],
+    overrides: dict,
+    config_file: str | None,
+    fail_on: str,
+    exit_zero: bool,
+) -> int:
+    """``--add-noqa``: suppress what each file has now, line by line; says how many lines it marked, and
+    which findings it could not mark and why.  Each file written is checked again: the exit code is what
+    ``gclint check`` would now say (0 when every file passes)."""
+    from gclint import runner
     from gclint.fixes import add_noqa
     from gclint.textsafe import human
 
     added, failed = 0, False
+    left: list[FileResult] = []
     for r in results:
         if r.error is not None:
             _error(r.error)
@@ -413,6 +420,7 @@ def _add_noqa(results: list[FileResult], links: dict[str, str]) -> int:
         if r.path in links:
             if r.findings:
                 _note(f"{r.path}: a link found in a folder: no noqa added (check the file it points to)")
+                left.append(r)
             continue
         if r.profile:  # (its findings are in the G-code of its settings: a noqa goes there, by hand)
             if r.findings:
@@ -425,8 +433,21 @@ def _add_noqa(results: list[FileResult], links: dict[str, str]) -> int:
         if outcome.error is not None:
             _error(outcome.error)
             failed = True
+            continue
+        if outcome.fixed:  # (what the file says now, as gclint check reads it)
+            r = runner.check_one(r.path, runner.options_for(r.path, Options(), overrides, config_file))
+        left.append(r)
     click.echo(f"Added a noqa comment to {added} line{'s' if added != 1 else ''}.")
-    return 2 if failed else 0
+    remaining = [(r.path, f) for r in left for f in r.findings]
+    if remaining:
+        noun = "finding is" if len(remaining) == 1 else "findings are"
+        where = ", ".join(f"{human(path)}:{f.line} {f.code}" for path, f in remaining[:10])
+        more = f" and {len(remaining) - 10} more" if len(remaining) > 10 else ""
+        click.echo(f"{len(remaining)} {noun} still reported ({where}{more}); the notes above say why.")
+    if failed:
+        return 2
+    worst = max((f.severity for _, f in remaining), default=None)
+    return 1 if not exit_zero and _reaches(worst, fail_on) else 0
 
 
 def _fix_stdin(
@@ -471,7 +492,7 @@ def _fix_stdin(
 
     write_text([outcome.result], sys.stderr, ReportContext(fixed=outcome.fixed))
     worst = max((f.severity for f in outcome.result.findings), default=None)
-    return 1 if not exit_zero and worst is not None and worst >= Severity.parse(fail_on) else 0
+    return 1 if not exit_zero and _reaches(worst, fail_on) else 0
 
 
 def _cache_where(files: list[str], cache_dir: str | None, no_cache: bool) -> str:

@@ -12,6 +12,7 @@ from gclint.cli.app import (
     _check_printer,
     _error,
     _fail,
+    fail_on_option,
     main,
 )
 from gclint.config import ConfigError, parse_heads
@@ -65,13 +66,9 @@ def clean(paths: tuple[str, ...], everything: bool, cache_dir: str | None) -> No
 @click.option("--stdio", is_flag=True, help="Talk over standard input and output (the default; for LSP clients).")
 def server(stdio: bool) -> None:
     """Language server (LSP) over standard input and output, for editors (docs/editors.md)."""
-    from gclint.server import ServerUnavailable
     from gclint.server import main as serve
 
-    try:
-        serve()
-    except ServerUnavailable as exc:
-        _fail(str(exc))
+    serve()
 
 
 @main.command()
@@ -85,12 +82,9 @@ def server(stdio: bool) -> None:
     metavar="D",
     help="Dialect of the slicer's output (default: SLIC3R_GCODE_FLAVOR, else the header).",
 )
-@click.option(
-    "--fail-on",
-    type=click.Choice(["error", "warning", "never"]),
-    default="error",
-    show_default=True,
-    help="Exit 1 (the slicer stops the export) when a finding reaches this level.",
+@fail_on_option(
+    "Exit 1 (the slicer stops the export) when a finding reaches this level: error, warning (the default),"
+    " info, or never (report only)."
 )
 @click.option("--printer", "-p", metavar="MODEL", help="Hyrel model of the target.")
 @click.option("--loaded", metavar="T0,T2", help="Head positions loaded on the yoke.")

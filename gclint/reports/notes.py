@@ -1,20 +1,22 @@
-"""Notes for people about how files were read (the way ruff prints warnings on stderr): a file read on weak
-or conflicting evidence gets a note; files where nothing told the dialect share one note (read as
-``hyrel``, the first target); ``-v`` gives the decision for every file."""
+"""Notes for people about how files were read (the way ruff prints warnings on stderr), summarised once per
+run: the files read on weak or conflicting evidence share one note (one file: its reasons; more: how many,
+as what, the first few names), and so do the files where nothing told the dialect (read as ``hyrel``,
+the first target); ``-v`` gives the decision, its reasons and every reading's score for every file."""
 
 from __future__ import annotations
 
 from gclint.context.model import NONE, WEAK
 from gclint.engine import FileResult
 
-MAX_NOTES = 20  # more weak files than this: the rest are counted (-v lists every file)
+NAMED = 3  # files named in a summary note (-v lists every file)
 
 
 def context_notes(results: list[FileResult], verbose: bool = False) -> list[str]:
     """The note lines (without the ``note:`` prefix's colour) for ``results``, in file order."""
     lines: list[str] = []
-    defaulted: list[str] = []
-    weak: list[str] = []
+    defaulted: list[tuple[str, object]] = []
+    weak: list[tuple[str, str, str]] = []  # (path, checked as, why)
+    conflicting = False
     for r in results:
         c = r.context
         if r.profile and r.error is None:  # (a slicer profile: what its check filled in, and how it read)
@@ -32,26 +34,38 @@ def context_notes(results: list[FileResult], verbose: bool = False) -> list[str]
             defaulted.append((r.path, c))
         elif c.weak:
             how = " on weak evidence" if c.strength in (WEAK, NONE) else ""
-            weak.append(f"{r.path}: checked as {c.label()}{how}: {c.why()}")
+            conflicting = conflicting or not how
+            weak.append((r.path, f"{c.label()}{how}", c.why()))
     if verbose:
         return lines
-    lines.extend(weak[:MAX_NOTES])
-    if len(weak) > MAX_NOTES:
-        more = len(weak) - MAX_NOTES
-        lines.append(f"{more} more file{'s were' if more != 1 else ' was'} read on weak evidence (-v lists every file)")
+    if len(weak) == 1:
+        path, label, why = weak[0]
+        lines.append(f"{path}: checked as {label}: {why}")
+    elif weak:
+        kinds: dict[str, int] = {}
+        for _, label, _ in weak:
+            name = label.removesuffix(" on weak evidence")
+            kinds[name] = kinds.get(name, 0) + 1
+        read_as = ", ".join(f"{name} {n}" for name, n in sorted(kinds.items(), key=lambda kv: (-kv[1], kv[0])))
+        evidence = "weak or conflicting evidence" if conflicting else "weak evidence"
+        lines.append(f"{len(weak)} files were read on {evidence} ({read_as}: {_named(p for p, _, _ in weak)}); -v gives each file's reasons")
     # (each group names what its files were checked as, as the "Checked as" line does: the version and the
     # printer too, which a file's addresses may tell when nothing tells its dialect)
     groups: dict[str, list[str]] = {}
     for path, c in defaulted:
-        groups.setdefault(c.dialect_label() + _printer_part(c), []).append(path)
+        groups.setdefault(c.dialect_label() + _printer_part(c), []).append(path)  # type: ignore[attr-defined]
     for label, paths in groups.items():
-        shown = ", ".join(paths[:3]) + (f" and {len(paths) - 3} more" if len(paths) > 3 else "")
         files = "1 file" if len(paths) == 1 else f"{len(paths)} files"
         lines.append(
-            f"nothing in {files} tells the dialect ({shown}): checked as {label}; "
+            f"nothing in {files} tells the dialect ({_named(paths)}): checked as {label}; "
             "set --dialect, dialect = ... in gclint.toml or '; gclint: dialect=NAME' in the file"
         )
     return lines
+
+
+def _named(paths) -> str:
+    paths = list(paths)
+    return ", ".join(paths[:NAMED]) + (f" and {len(paths) - NAMED} more" if len(paths) > NAMED else "")
 
 
 def _printer_part(c) -> str:

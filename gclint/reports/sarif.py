@@ -21,6 +21,7 @@ from urllib.parse import quote
 from gclint.engine import FileResult
 from gclint.reports.common import clean, mask, message, rule_docs, source_line
 from gclint.reports.stream import Report, Spool
+from gclint.ruledocs import rule_url
 from gclint.rules.base import Finding, Severity, project_url
 
 SCHEMA = "https://docs.oasis-open.org/sarif/sarif/v2.1.0/errata01/os/schemas/sarif-schema-2.1.0.json"
@@ -76,8 +77,8 @@ def _rule_descriptor(code: str, doc: dict | None, name: str | None) -> dict:
     }
     if doc["source"]:
         descriptor["properties"]["source"] = doc["source"]
-    if doc["url"] and doc["url"].startswith(("https://", "http://")):  # a link code scanning can follow
-        descriptor["helpUri"] = doc["url"]
+    if url := rule_url(code):  # (gclint.ruledocs: a published address, else the installed rules.md)
+        descriptor["helpUri"] = url
     return descriptor
 
 

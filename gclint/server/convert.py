@@ -1,8 +1,8 @@
 """gclint's results in the protocol's terms: findings -> diagnostics, fixes -> text edits, a ``noqa``
 comment -> a text edit, ``explain`` output -> hover text.
 
-Pure functions over ``lsprotocol`` data classes (no server, no client), so each conversion is tested on
-its own.  gclint lines and columns are 1-based characters; the protocol's are 0-based, in the code
+Pure functions returning the protocol's JSON objects as dicts (no server, no client), so each conversion
+is tested on its own.  gclint lines and columns are 1-based characters; the protocol's are 0-based, in the code
 units of the negotiated position encoding (``Geometry`` does that arithmetic for one version of the text).
 """
 
@@ -11,20 +11,34 @@ from __future__ import annotations
 import re
 from collections.abc import Iterable, Sequence
 
-from lsprotocol import types as lsp
-
 from gclint.noqa import INLINE_UNSUPPRESSIBLE, noqa_insertion, text_code
-from gclint.rules.base import Edit, Finding, Fix, Severity, rule_url
+from gclint.ruledocs import rule_url
+from gclint.rules.base import Edit, Finding, Fix, Severity
 from gclint.server.analysis import HoverTarget
 from gclint.server.text import UTF16, Snapshot, char_to_units
 
 SOURCE = "gclint"
 FIX_ALL_KIND = "source.fixAll.gclint"
-SEVERITIES = {
-    Severity.ERROR: lsp.DiagnosticSeverity.Error,
-    Severity.WARNING: lsp.DiagnosticSeverity.Warning,
-    Severity.INFO: lsp.DiagnosticSeverity.Information,
-}
+QUICK_FIX = "quickfix"
+# DiagnosticSeverity: 1 error, 2 warning, 3 information, 4 hint
+SEVERITIES = {Severity.ERROR: 1, Severity.WARNING: 2, Severity.INFO: 3}
+PLAINTEXT = "plaintext"
+MARKDOWN = "markdown"
+
+# The protocol's objects, as JSON has them.
+Position = dict
+Range = dict
+TextEdit = dict
+Diagnostic = dict
+CodeAction = dict
+
+
+def position(line: int, character: int) -> Position:
+    return {"line": line, "character": character}
+
+
+def range_(start: Position, end: Position) -> Range:
+    return {"start": start, "end": end}
 
 
 class Geometry:
@@ -51,23 +65,21 @@ class Geometry:
         shift = 1 if index == 0 and self._bom else 0
         return max(0, min(column - 1 + shift, len(text)))
 
-    def position(self, line: int, column: int) -> lsp.Position:
+    def position(self, line: int, column: int) -> Position:
         index = self.line_index(line)
-        return lsp.Position(
-            index, char_to_units(self.snapshot.line(index), self.char_index(line, column), self.encoding)
-        )
+        return position(index, char_to_units(self.snapshot.line(index), self.char_index(line, column), self.encoding))
 
-    def line_end(self, line: int) -> lsp.Position:
+    def line_end(self, line: int) -> Position:
         index = self.line_index(line)
         text = self.snapshot.line(index)
-        return lsp.Position(index, char_to_units(text, len(text), self.encoding))
+        return position(index, char_to_units(text, len(text), self.encoding))
 
-    def span(self, line: int, start: int, end: int) -> lsp.Range:
+    def span(self, line: int, start: int, end: int) -> Range:
         """The range of gclint columns ``start``..``end`` (1-based, end exclusive) on ``line``."""
-        return lsp.Range(self.position(line, start), self.position(line, max(start, end)))
+        return range_(self.position(line, start), self.position(line, max(start, end)))
 
 
-def finding_range(f: Finding, geo: Geometry) -> lsp.Range:
+def finding_range(f: Finding, geo: Geometry) -> Range:
     """Where a finding is: its columns when the rule gave an end, else the word (the run of
     non-blank characters) that starts at its column."""
     if f.end_column is not None and f.end_column > f.column:
@@ -80,24 +92,24 @@ def finding_range(f: Finding, geo: Geometry) -> lsp.Range:
     while end < limit and not text[end].isspace():
         end += 1
     units = char_to_units
-    return lsp.Range(
-        lsp.Position(index, units(text, start, geo.encoding)), lsp.Position(index, units(text, end, geo.encoding))
-    )
+    return range_(position(index, units(text, start, geo.encoding)), position(index, units(text, end, geo.encoding)))
 
 
-def to_diagnostic(f: Finding, geo: Geometry) -> lsp.Diagnostic:
+def to_diagnostic(f: Finding, geo: Geometry) -> Diagnostic:
+    out: Diagnostic = {
+        "range": finding_range(f, geo),
+        "severity": SEVERITIES.get(f.severity, 2),
+        "code": f.code,
+        "source": SOURCE,
+        "message": f.message,
+    }
     url = rule_url(f.code)
-    return lsp.Diagnostic(
-        range=finding_range(f, geo),
-        message=f.message,
-        severity=SEVERITIES.get(f.severity, lsp.DiagnosticSeverity.Warning),
-        code=f.code,
-        code_description=lsp.CodeDescription(href=url) if url else None,
-        source=SOURCE,
-    )
+    if url:
+        out["codeDescription"] = {"href": url}
+    return out
 
 
-def diagnostics(findings: Iterable[Finding], geo: Geometry, limit: int | None = None) -> list[lsp.Diagnostic]:
+def diagnostics(findings: Iterable[Finding], geo: Geometry, limit: int | None = None) -> list[Diagnostic]:
     out = []
     for f in findings:
         if limit is not None and len(out) >= limit:
@@ -109,11 +121,11 @@ def diagnostics(findings: Iterable[Finding], geo: Geometry, limit: int | None = 
 # -- edits -----------------------------------------------------------------------------------------------
 
 
-def _text_edit(e: Edit, geo: Geometry) -> lsp.TextEdit:
-    return lsp.TextEdit(range=geo.span(e.line, e.start, e.end), new_text=e.text)
+def _text_edit(e: Edit, geo: Geometry) -> TextEdit:
+    return {"range": geo.span(e.line, e.start, e.end), "newText": e.text}
 
 
-def fix_edits(fix: Fix, geo: Geometry) -> list[lsp.TextEdit]:
+def fix_edits(fix: Fix, geo: Geometry) -> list[TextEdit]:
     """One fix's edits, as the protocol's text edits (in an order the protocol accepts: no overlaps)."""
     return [_text_edit(e, geo) for e in _without_overlaps(fix.edits)]
 
@@ -138,7 +150,7 @@ def _without_overlaps(edits: Iterable[Edit]) -> list[Edit]:
     return out
 
 
-def fix_all_edits(findings: Sequence[Finding], geo: Geometry) -> list[lsp.TextEdit]:
+def fix_all_edits(findings: Sequence[Finding], geo: Geometry) -> list[TextEdit]:
     """The edits of every safe fix, as ``gclint check --fix`` applies them (none when the file does not
     parse: a fix is never applied to a file with SX001 findings)."""
     if any(f.code == "SX001" for f in findings):
@@ -156,15 +168,15 @@ def noqa_offered(finding: Finding, geo: Geometry) -> bool:
     return text_code(geo.snapshot.line(geo.line_index(finding.line))) is None
 
 
-def noqa_edit(geo: Geometry, line: int, code: str) -> lsp.TextEdit:
+def noqa_edit(geo: Geometry, line: int, code: str) -> TextEdit:
     """The edit that suppresses ``code`` on ``line`` (1-based), as ``check --add-noqa`` writes it
     (gclint.noqa: first in the line's ``noqa: ...`` list, else `` ; noqa: CODE`` at the end)."""
     index = geo.line_index(line)
     text = geo.snapshot.line(index)
     start, end, new_text = noqa_insertion(text, [code])
-    first = lsp.Position(index, char_to_units(text, start, geo.encoding))
-    last = lsp.Position(index, char_to_units(text, end, geo.encoding))
-    return lsp.TextEdit(range=lsp.Range(first, last), new_text=new_text)
+    first = position(index, char_to_units(text, start, geo.encoding))
+    last = position(index, char_to_units(text, end, geo.encoding))
+    return {"range": range_(first, last), "newText": new_text}
 
 
 # -- code actions ----------------------------------------------------------------------------------------
@@ -187,31 +199,30 @@ def code_actions(
     only: Sequence[str] | None = None,
     version: int | None = None,
     fix_all: Sequence[Finding] | None = None,
-) -> list[lsp.CodeAction]:
+) -> list[CodeAction]:
     """Quick fixes for the findings on lines ``first_line``..``last_line`` (0-based, as in the request):
     each fix, "suppress with noqa" per code and line, and "fix all safe" for the file."""
 
-    def workspace_edit(edits: list[lsp.TextEdit]) -> lsp.WorkspaceEdit:
+    def workspace_edit(edits: list[TextEdit]) -> dict:
         if version is None:
-            return lsp.WorkspaceEdit(changes={uri: edits})
-        doc = lsp.OptionalVersionedTextDocumentIdentifier(uri=uri, version=version)
-        return lsp.WorkspaceEdit(document_changes=[lsp.TextDocumentEdit(text_document=doc, edits=edits)])
+            return {"changes": {uri: edits}}
+        return {"documentChanges": [{"textDocument": {"uri": uri, "version": version}, "edits": edits}]}
 
-    quick = lsp.CodeActionKind.QuickFix.value
-    out: list[lsp.CodeAction] = []
+    quick = QUICK_FIX
+    out: list[CodeAction] = []
     here = [f for f in findings if first_line <= geo.line_index(f.line) <= last_line]
     if kind_wanted(quick, only):
         for f in here:
             if f.fix is not None:
                 title = f"{f.code}: {f.fix.message}" + ("" if f.fix.safe else " (unsafe fix)")
                 out.append(
-                    lsp.CodeAction(
-                        title=title,
-                        kind=quick,
-                        diagnostics=[to_diagnostic(f, geo)],
-                        edit=workspace_edit(fix_edits(f.fix, geo)),
-                        is_preferred=f.fix.safe,
-                    )
+                    {
+                        "title": title,
+                        "kind": quick,
+                        "diagnostics": [to_diagnostic(f, geo)],
+                        "edit": workspace_edit(fix_edits(f.fix, geo)),
+                        "isPreferred": f.fix.safe,
+                    }
                 )
         seen: set[tuple[int, str]] = set()
         for f in here:
@@ -222,12 +233,12 @@ def code_actions(
             if not noqa_offered(f, geo):
                 continue
             out.append(
-                lsp.CodeAction(
-                    title=f"{f.code}: suppress on this line (; noqa: {f.code})",
-                    kind=quick,
-                    diagnostics=[to_diagnostic(g, geo) for g in here if g.code == f.code and g.line == f.line],
-                    edit=workspace_edit([noqa_edit(geo, f.line, f.code)]),
-                )
+                {
+                    "title": f"{f.code}: suppress on this line (; noqa: {f.code})",
+                    "kind": quick,
+                    "diagnostics": [to_diagnostic(g, geo) for g in here if g.code == f.code and g.line == f.line],
+                    "edit": workspace_edit([noqa_edit(geo, f.line, f.code)]),
+                }
             )
     kept = list(findings) if fix_all is None else list(fix_all)  # (fix_all: what --fix keeps, gclint.fixes)
     safe = sum(1 for f in kept if f.fix is not None and f.fix.safe)
@@ -235,9 +246,9 @@ def code_actions(
     if all_edits:
         title = f"Fix all safe gclint problems in this file ({safe})"
         if kind_wanted(quick, only) and any(f.fix is not None and f.fix.safe for f in here) and safe > 1:
-            out.append(lsp.CodeAction(title=title, kind=quick, edit=workspace_edit(all_edits)))
+            out.append({"title": title, "kind": quick, "edit": workspace_edit(all_edits)})
         if kind_wanted(FIX_ALL_KIND, only):
-            out.append(lsp.CodeAction(title=title, kind=FIX_ALL_KIND, edit=workspace_edit(all_edits)))
+            out.append({"title": title, "kind": FIX_ALL_KIND, "edit": workspace_edit(all_edits)})
     return out
 
 
@@ -282,12 +293,11 @@ def hover_text(target: HoverTarget, markdown: bool, dialect_reason: str = "") ->
     return "\n".join(lines)
 
 
-def hover(target: HoverTarget, geo: Geometry, line: int, markdown: bool, dialect_reason: str = "") -> lsp.Hover:
+def hover(target: HoverTarget, geo: Geometry, line: int, markdown: bool, dialect_reason: str = "") -> dict:
     """The hover for ``target`` found on ``line`` (1-based)."""
-    kind = lsp.MarkupKind.Markdown if markdown else lsp.MarkupKind.PlainText
-    contents = lsp.MarkupContent(kind=kind, value=hover_text(target, markdown, dialect_reason))
+    contents = {"kind": MARKDOWN if markdown else PLAINTEXT, "value": hover_text(target, markdown, dialect_reason)}
     index = geo.line_index(line)
     text = geo.snapshot.line(index)
     start = char_to_units(text, target.start - 1, geo.encoding)
     end = char_to_units(text, target.end - 1, geo.encoding)
-    return lsp.Hover(contents=contents, range=lsp.Range(lsp.Position(index, start), lsp.Position(index, end)))
+    return {"contents": contents, "range": range_(position(index, start), position(index, end))}

@@ -1,4 +1,4 @@
-"""The language server: pygls glue between the editor and gclint.
+"""The language server: the Language Server Protocol methods gclint answers, over ``gclint.server.jsonrpc``.
 
 * Diagnostics are pushed on open and save at once, and on change after a short pause (``DEBOUNCE``).
   Checks run in worker threads, never on the event loop; a check whose text has changed since it
@@ -12,8 +12,11 @@
   ``workspace/configuration`` when the client offers it).
 
 Whatever goes wrong in a handler becomes one line in the client's log (``window/logMessage``); the
-server keeps running.  The document text is kept here (``Snapshot``), with LSP line breaks, instead of in
-pygls' workspace.
+server keeps running.  The document text is kept here (``Snapshot``), with LSP line breaks.
+
+Start-up is kept short (the first diagnostics of a 20,000-line job within half a second of starting the
+process, bench/bench_server.py): only the standard library and gclint are imported, and the rules are
+loaded in a worker thread while the client sends ``initialized`` and opens the first file.
 """
 
 from __future__ import annotations
@@ -30,16 +33,23 @@ from dataclasses import dataclass, field
 from typing import Any, BinaryIO
 from urllib.parse import unquote, urlparse
 
-from lsprotocol import types as lsp
-from pygls.lsp.server import LanguageServer
-from pygls.protocol import LanguageServerProtocol, lsp_method
-from pygls.uris import to_fs_path
-
 from gclint import __version__, dialects
 from gclint.engine import FileResult, Options
 from gclint.runner import linter_for
 from gclint.server import analysis, convert
 from gclint.server.analysis import Cancelled, Settings
+from gclint.server.jsonrpc import (
+    INVALID_REQUEST,
+    SERVER_NOT_INITIALIZED,
+    Endpoint,
+    InvalidParams,
+    ResponseError,
+    document_uri,
+    member,
+    obj,
+    position,
+    range_of,
+)
 from gclint.server.text import UTF8, UTF16, UTF32, Snapshot, clean_surrogates, units_to_char
 from gclint.syntax.source import Source
 
@@ -50,6 +60,11 @@ MAX_DIAGNOSTICS = 10_000  # per document; beyond that the editor gains nothing a
 ANALYSIS_WAIT = 5.0  # how long a code action waits for the check of the current text
 HOVER_WAIT = 1.0  # how long a hover waits for it (it needs only the dialect)
 CONFIG_WAIT = 5.0  # how long to wait for the client's answer to workspace/configuration
+
+# MessageType
+ERROR, WARNING, INFO = 1, 2, 3
+# TextDocumentSyncKind.Incremental
+INCREMENTAL = 2
 
 
 @dataclass
@@ -74,128 +89,75 @@ class Document:
 
 
 def _path_of(uri: str) -> str | None:
-    if urlparse(uri).scheme != "file":
-        return None
     try:
-        return to_fs_path(uri)
-    except Exception:
-        return None
+        parsed = urlparse(uri)
+        if parsed.scheme != "file":
+            return None
+        if os.name == "nt":
+            from nturl2path import url2pathname  # (urllib.request's, without importing http and ssl)
 
-
-@dataclass
-class _Unreadable:
-    """A message whose params do not fit the protocol's types (a negative position, a missing field):
-    answered with InvalidParams when it is a request, instead of going unanswered."""
-
-    msg_id: Any  # None for a notification
-    method: str
-    problem: str
-
-
-def _problem(exc: BaseException) -> str:
-    """What is wrong with a message, in one short line (``invalid value @ $.params.position``)."""
-    try:
-        import cattrs
-
-        said = "; ".join(cattrs.transform_error(exc)) if isinstance(exc, cattrs.BaseValidationError) else ""
-    except Exception:
-        said = ""
-    return " ".join((said or f"{type(exc).__name__}: {exc}").split())[:300]
-
-
-class GclintProtocol(LanguageServerProtocol):
-    """pygls' protocol without its own copy of the documents (the server keeps them, split into lines
-    the way the protocol counts them), and with an answer to a request that cannot be read; everything
-    else is pygls'.
-
-    pygls (2.x) reads a message whose params do not deserialize by raising JsonRpcInvalidParams from the
-    JSON decoder's object hook: the exception ends in its reader loop, which logs it (a cattrs traceback)
-    and never answers, so the client waits forever for that request.  Here such a message becomes an
-    ``_Unreadable``, answered with the JSON-RPC error InvalidParams (-32602) and one line in the log."""
-
-    def structure_message(self, data: dict[str, Any]):
-        if "jsonrpc" in data and "method" in data and "error" not in data:
-            message_type = self.get_message_type(data["method"])
-            if message_type is not None:
-                try:
-                    return self._converter.structure(data, message_type)
-                except Exception as exc:  # what pygls turns into an unanswered JsonRpcInvalidParams
-                    return _Unreadable(data.get("id"), str(data["method"])[:100], _problem(exc))
-        return super().structure_message(data)
-
-    def handle_message(self, message):
-        if not isinstance(message, _Unreadable):
-            return super().handle_message(message)
-        what = f"{message.method}: invalid params ({message.problem})"
-        if message.msg_id is not None and not self._shutdown:
-            self._send_response(
-                message.msg_id, None, lsp.ResponseError(code=lsp.ErrorCodes.InvalidParams, message=what)
-            )
-        if message.msg_id is not None:
-            what = f"request {message.msg_id!r} {what}"
-        server = self._server
-        if isinstance(server, GclintServer):
-            server.log(what, lsp.MessageType.Warning)
+            path = url2pathname(parsed.path)
+            if parsed.netloc and parsed.netloc != "localhost":  # a UNC path (file://server/share/...)
+                path = f"\\\\{parsed.netloc}{path}"
         else:
-            logger.warning("%s", what)
-
-    @lsp_method(lsp.TEXT_DOCUMENT_DID_OPEN)
-    def lsp_text_document__did_open(self, params: lsp.DidOpenTextDocumentParams):
-        if (handler := self.fm.features.get(lsp.TEXT_DOCUMENT_DID_OPEN)) is not None:
-            yield handler, (params,), None
-
-    @lsp_method(lsp.TEXT_DOCUMENT_DID_CHANGE)
-    def lsp_text_document__did_change(self, params: lsp.DidChangeTextDocumentParams):
-        if (handler := self.fm.features.get(lsp.TEXT_DOCUMENT_DID_CHANGE)) is not None:
-            yield handler, (params,), None
-
-    @lsp_method(lsp.TEXT_DOCUMENT_DID_CLOSE)
-    def lsp_text_document__did_close(self, params: lsp.DidCloseTextDocumentParams):
-        if (handler := self.fm.features.get(lsp.TEXT_DOCUMENT_DID_CLOSE)) is not None:
-            yield handler, (params,), None
+            path = unquote(parsed.path)
+            if parsed.netloc and parsed.netloc != "localhost":
+                path = f"//{parsed.netloc}{path}"
+        return path or None
+    except Exception:
+        return None
 
 
-class GclintServer(LanguageServer):
-    def __init__(self) -> None:
-        super().__init__(
-            "gclint",
-            __version__,
-            text_document_sync_kind=lsp.TextDocumentSyncKind.Incremental,
-            protocol_cls=GclintProtocol,
-        )
+def _choose_encoding(capabilities: dict) -> str:
+    """The position encoding: the first the client offers that gclint counts in, else UTF-16 (the
+    protocol's default, and all a client that offers nothing understands)."""
+    general = capabilities.get("general")
+    offered = general.get("positionEncodings") if isinstance(general, dict) else None
+    if isinstance(offered, list):
+        for name in offered:
+            if name in (UTF8, UTF16, UTF32):
+                return name
+    return UTF16
+
+
+def _flag(caps: dict, *path: str) -> Any:
+    """``caps[path[0]][path[1]]...`` or None where the path ends early (capabilities are all optional)."""
+    value: Any = caps
+    for key in path:
+        if not isinstance(value, dict):
+            return None
+        value = value.get(key)
+    return value
+
+
+class GclintServer:
+    def __init__(self, endpoint: Endpoint) -> None:
+        self.endpoint = endpoint
         self.documents: dict[str, Document] = {}
         self.settings = Settings()
         # Checks in their own threads (two: one long job does not hold up another file); hovers in
         # another, so that a hover never waits behind a check.
         self.checks = ThreadPoolExecutor(max_workers=2, thread_name_prefix="gclint-check")
         self.requests = ThreadPoolExecutor(max_workers=1, thread_name_prefix="gclint-request")
+        self.initialized = False
         self.shutdown_requested = False
+        self.exit_status: int | None = None
+        self.encoding = UTF16
         self.markdown = False
         self.versioned_edits = False
         self.pull_configuration = False
         self.logged: set[str] = set()
+        self.warmed = threading.Event()  # set when the warm-up has ended, or should (a document came)
 
     # -- helpers ------------------------------------------------------------------------------------------
 
-    @property
-    def encoding(self) -> str:
-        try:
-            chosen = self.workspace.position_encoding
-        except RuntimeError:  # not initialized yet
-            return UTF16
-        value = getattr(chosen, "value", chosen)
-        return value if value in (UTF8, UTF16, UTF32) else UTF16
-
-    def log(self, message: str, kind: lsp.MessageType = lsp.MessageType.Info) -> None:
+    def log(self, message: str, kind: int = INFO) -> None:
         """One line in the client's log (window/logMessage) and on standard error."""
         message = " ".join(str(message).split())[:2000]
-        logger.log(logging.ERROR if kind == lsp.MessageType.Error else logging.INFO, "%s", message)
-        try:
-            self.window_log_message(lsp.LogMessageParams(type=kind, message=f"gclint: {message}"))
-        except Exception:  # the client is gone: nothing more to say
-            pass
+        logger.log(logging.ERROR if kind == ERROR else logging.INFO, "%s", message)
+        self.endpoint.notify("window/logMessage", {"type": kind, "message": f"gclint: {message}"})
 
-    def log_once(self, message: str, kind: lsp.MessageType = lsp.MessageType.Warning) -> None:
+    def log_once(self, message: str, kind: int = WARNING) -> None:
         if message not in self.logged:
             if len(self.logged) > 1000:
                 self.logged.clear()
@@ -207,16 +169,23 @@ class GclintServer(LanguageServer):
         if message in self.logged:
             return
         self.log_once(message)
-        try:
-            self.window_show_message(lsp.ShowMessageParams(type=lsp.MessageType.Warning, message=f"gclint: {message}"))
-        except Exception:  # the client is gone: nothing more to say
-            pass
+        self.endpoint.notify("window/showMessage", {"type": WARNING, "message": f"gclint: {message}"})
 
-    def report_server_error(self, error: Exception, source: Any) -> None:
-        """pygls' out-of-band errors (a message that is not JSON, a failing notification): a line in the
-        client's log, not a pop-up."""
-        detail = f"{type(error).__name__}: {error}".splitlines()[0][:300]
-        self.log(f"server error ({getattr(source, '__name__', source)}): {detail}", lsp.MessageType.Error)
+    def problem(self, text: str) -> None:
+        """What the transport could not handle (not JSON, params that do not fit): a line in the log."""
+        self.log(text, WARNING if "invalid params" in text else ERROR)
+
+    def gate(self, method: str) -> None:
+        if self.shutdown_requested:
+            raise ResponseError(INVALID_REQUEST, f"{method[:100]}: the server is shutting down")
+        if not self.initialized and method != "initialize":
+            raise ResponseError(SERVER_NOT_INITIALIZED, f"{method[:100]}: the server is not initialized")
+
+    def publish(self, uri: str, diagnostics: list[dict], version: int | None = None) -> None:
+        params: dict = {"uri": uri, "diagnostics": diagnostics}
+        if version is not None:
+            params["version"] = version
+        self.endpoint.notify("textDocument/publishDiagnostics", params)
 
     def apply_settings(self, raw: object) -> None:
         """Take the client's settings; open documents are checked again when they change anything."""
@@ -248,9 +217,8 @@ class GclintServer(LanguageServer):
                 self.log_once(problem)
             if (off := analysis.security_off(options)) is not None:
                 self.warn_once(off)
-            encoding = self.encoding
             loop = asyncio.get_running_loop()
-            work = functools.partial(_analyse, snapshot, doc.name, options, cancel, encoding)
+            work = functools.partial(_analyse, snapshot, doc.name, options, cancel, self.encoding)
             try:
                 result, diagnostics = await loop.run_in_executor(self.checks, work)
             except Cancelled:
@@ -266,19 +234,17 @@ class GclintServer(LanguageServer):
                     f"{doc.name}: {len(result.findings):,} findings; the first {len(diagnostics):,} are shown"
                     " (gclint check lists them all)",
                 )
-            self.text_document_publish_diagnostics(
-                lsp.PublishDiagnosticsParams(uri=doc.uri, diagnostics=diagnostics, version=snapshot.version)
-            )
+            self.publish(doc.uri, diagnostics, snapshot.version)
         except asyncio.CancelledError:
             cancel.set()
             raise
         except Exception as exc:
-            self.log(f"{doc.name}: check failed: {type(exc).__name__}: {exc}", lsp.MessageType.Error)
+            self.log(f"{doc.name}: check failed: {type(exc).__name__}: {exc}", ERROR)
 
     def _log_document(self, doc: Document, message: str) -> None:
         if message not in doc.problems:
             doc.problems.add(message)
-            self.log(message, lsp.MessageType.Warning)
+            self.log(message, WARNING)
 
     async def current_analysis(self, doc: Document, timeout: float) -> Analysis | None:
         """The analysis of ``doc``'s current text, waiting up to ``timeout`` seconds for it (a check is
@@ -317,180 +283,242 @@ class GclintServer(LanguageServer):
         self.checks.shutdown(wait=False, cancel_futures=True)
         self.requests.shutdown(wait=False, cancel_futures=True)
 
+    # -- the protocol's methods -------------------------------------------------------------------------
 
-def _analyse(
-    snapshot: Snapshot, name: str, options: Options, cancel: threading.Event, encoding: str
-) -> tuple[FileResult, list[lsp.Diagnostic]]:
-    """In a worker thread: check the text and turn the findings into diagnostics."""
-    result = analysis.check_text(snapshot.text, name, options, cancel)
-    geo = convert.Geometry(snapshot, encoding)
-    return result, convert.diagnostics(result.findings, geo, MAX_DIAGNOSTICS)
+    def initialize(self, params: Any) -> dict:
+        params = obj(params, "$.params")
+        caps = member(params, "capabilities", "$.params", dict, {})
+        self.encoding = _choose_encoding(caps)
+        formats = _flag(caps, "textDocument", "hover", "contentFormat")
+        self.markdown = isinstance(formats, list) and "markdown" in formats
+        self.versioned_edits = bool(_flag(caps, "workspace", "workspaceEdit", "documentChanges"))
+        self.pull_configuration = bool(_flag(caps, "workspace", "configuration"))
+        self.initialized = True
+        self.apply_settings(params.get("initializationOptions"))
+        self.checks.submit(_warm_up, self.warmed, self.settings)  # while the editor opens the first file
+        return {
+            "capabilities": {
+                "positionEncoding": self.encoding,
+                "textDocumentSync": {"openClose": True, "change": INCREMENTAL, "save": {"includeText": False}},
+                "hoverProvider": True,
+                "codeActionProvider": {"codeActionKinds": [convert.QUICK_FIX, convert.FIX_ALL_KIND]},
+            },
+            "serverInfo": {"name": "gclint", "version": __version__},
+        }
 
+    async def initialized_(self, params: Any) -> None:
+        if self.pull_configuration:
+            await self.pull_settings()
 
-def _guard(handler: Callable) -> Callable:
-    """Any exception in a handler becomes a line in the client's log and an empty answer."""
+    def shutdown(self, params: Any) -> None:
+        self.shutdown_requested = True
+        self.stop()
+        return None
 
-    if asyncio.iscoroutinefunction(handler):
+    def exit(self, params: Any) -> None:
+        self.exit_status = 0 if self.shutdown_requested else 1
+        self.endpoint.stop()
 
-        @functools.wraps(handler)
-        async def wrapped_async(ls: GclintServer, params: Any) -> Any:
-            try:
-                return await handler(ls, params)
-            except asyncio.CancelledError:
-                raise
-            except Exception as exc:
-                ls.log(f"{handler.__name__} failed: {type(exc).__name__}: {exc}", lsp.MessageType.Error)
-                return None
-
-        return wrapped_async
-
-    @functools.wraps(handler)
-    def wrapped(ls: GclintServer, params: Any) -> Any:
-        try:
-            return handler(ls, params)
-        except Exception as exc:
-            ls.log(f"{handler.__name__} failed: {type(exc).__name__}: {exc}", lsp.MessageType.Error)
-            return None
-
-    return wrapped
-
-
-def create_server() -> GclintServer:
-    server = GclintServer()
-
-    @server.feature(lsp.INITIALIZE)
-    @_guard
-    def initialize(ls: GclintServer, params: lsp.InitializeParams) -> None:
-        caps = params.capabilities
-        hover_caps = caps.text_document.hover if caps.text_document is not None else None
-        formats = (hover_caps.content_format or []) if hover_caps is not None else []
-        ls.markdown = lsp.MarkupKind.Markdown in formats
-        edit_caps = caps.workspace.workspace_edit if caps.workspace is not None else None
-        ls.versioned_edits = bool(edit_caps is not None and edit_caps.document_changes)
-        ls.pull_configuration = bool(caps.workspace is not None and caps.workspace.configuration)
-        ls.apply_settings(params.initialization_options)
-        ls.checks.submit(_warm_up)  # load the rules while the editor opens the first file
-
-    @server.feature(lsp.INITIALIZED)
-    @_guard
-    async def initialized(ls: GclintServer, params: lsp.InitializedParams) -> None:
-        if ls.pull_configuration:
-            await _pull_settings(ls)
-
-    @server.feature(lsp.SHUTDOWN)
-    @_guard
-    def shutdown(ls: GclintServer, params: Any) -> None:
-        ls.shutdown_requested = True
-        ls.stop()
-
-    @server.feature(lsp.WORKSPACE_DID_CHANGE_CONFIGURATION)
-    @_guard
-    async def did_change_configuration(ls: GclintServer, params: lsp.DidChangeConfigurationParams) -> None:
-        if params.settings is None or (ls.pull_configuration and params.settings in ({}, {"gclint": None})):
-            await _pull_settings(ls)  # the client says "changed" and expects to be asked
+    async def did_change_configuration(self, params: Any) -> None:
+        settings = params.get("settings") if isinstance(params, dict) else None
+        if settings is None or (self.pull_configuration and settings in ({}, {"gclint": None})):
+            await self.pull_settings()  # the client says "changed" and expects to be asked
         else:
-            ls.apply_settings(params.settings)
+            self.apply_settings(settings)
 
-    @server.feature(lsp.TEXT_DOCUMENT_DID_OPEN)
-    @_guard
-    def did_open(ls: GclintServer, params: lsp.DidOpenTextDocumentParams) -> None:
-        item = params.text_document
-        old = ls.documents.get(item.uri)
+    async def pull_settings(self) -> None:
+        try:
+            answer = await self.endpoint.request(
+                "workspace/configuration", {"items": [{"section": "gclint"}]}, timeout=CONFIG_WAIT
+            )
+        except Exception as exc:
+            self.log(f"could not read the editor's gclint settings: {type(exc).__name__}: {exc}", WARNING)
+            return
+        if isinstance(answer, list) and answer:
+            self.apply_settings(answer[0])
+
+    def did_open(self, params: Any) -> None:
+        params = obj(params, "$.params")
+        item = obj(params.get("textDocument"), "$.params.textDocument")
+        where = "$.params.textDocument"
+        uri = member(item, "uri", where, str)
+        text = member(item, "text", where, str)
+        version = member(item, "version", where, int, None)
+        old = self.documents.get(uri)
         if old is not None and old.cancel is not None:
             old.cancel.set()
-        path = _path_of(item.uri)
-        doc = Document(item.uri, path, path or unquote(item.uri), Snapshot(item.text, item.version))
-        ls.documents[item.uri] = doc
-        ls.schedule(doc, 0)
+        path = _path_of(uri)
+        doc = Document(uri, path, path or unquote(uri), Snapshot(text, version))
+        self.documents[uri] = doc
+        self.warmed.set()  # the check of this document warms up what it needs: no time for the rest
+        self.schedule(doc, 0)
 
-    @server.feature(lsp.TEXT_DOCUMENT_DID_CHANGE)
-    @_guard
-    def did_change(ls: GclintServer, params: lsp.DidChangeTextDocumentParams) -> None:
-        doc = ls.documents.get(params.text_document.uri)
+    def did_change(self, params: Any) -> None:
+        params = obj(params, "$.params")
+        uri = document_uri(params)
+        version = member(params["textDocument"], "version", "$.params.textDocument", int, None)
+        changes = member(params, "contentChanges", "$.params", list)
+        doc = self.documents.get(uri)
         if doc is None:
             return
         text = doc.snapshot.text
-        encoding = ls.encoding
-        for change in params.content_changes:
-            if isinstance(change, lsp.TextDocumentContentChangePartial):
-                r = change.range
-                text = Snapshot(text).edited(
-                    (r.start.line, r.start.character), (r.end.line, r.end.character), change.text, encoding
-                )
+        for i, change in enumerate(changes):
+            where = f"$.params.contentChanges[{i}]"
+            change = obj(change, where)
+            new_text = member(change, "text", where, str)
+            if change.get("range") is not None:
+                (l0, c0), (l1, c1) = range_of(change["range"], f"{where}.range")
+                text = Snapshot(text).edited((l0, c0), (l1, c1), new_text, self.encoding)
             else:
-                text = change.text
-        doc.snapshot = Snapshot(text, params.text_document.version)
-        ls.schedule(doc, DEBOUNCE)
+                text = new_text
+        doc.snapshot = Snapshot(text, version)
+        self.schedule(doc, DEBOUNCE)
 
-    @server.feature(lsp.TEXT_DOCUMENT_DID_SAVE, lsp.SaveOptions(include_text=False))
-    @_guard
-    def did_save(ls: GclintServer, params: lsp.DidSaveTextDocumentParams) -> None:
-        doc = ls.documents.get(params.text_document.uri)
+    def did_save(self, params: Any) -> None:
+        params = obj(params, "$.params")
+        doc = self.documents.get(document_uri(params))
         if doc is None:
             return
-        if params.text is not None and params.text != doc.snapshot.text:
-            doc.snapshot = Snapshot(params.text, doc.snapshot.version)
-        ls.schedule(doc, 0)  # at once: the configuration may have changed too
+        text = params.get("text")
+        if isinstance(text, str) and text != doc.snapshot.text:
+            doc.snapshot = Snapshot(text, doc.snapshot.version)
+        self.schedule(doc, 0)  # at once: the configuration may have changed too
 
-    @server.feature(lsp.TEXT_DOCUMENT_DID_CLOSE)
-    @_guard
-    def did_close(ls: GclintServer, params: lsp.DidCloseTextDocumentParams) -> None:
-        doc = ls.documents.pop(params.text_document.uri, None)
+    def did_close(self, params: Any) -> None:
+        params = obj(params, "$.params")
+        doc = self.documents.pop(document_uri(params), None)
         if doc is None:
             return
         if doc.cancel is not None:
             doc.cancel.set()
         if doc.task is not None:
             doc.task.cancel()
-        ls.text_document_publish_diagnostics(lsp.PublishDiagnosticsParams(uri=doc.uri, diagnostics=[]))
+        self.publish(doc.uri, [])
 
-    @server.feature(lsp.TEXT_DOCUMENT_HOVER)
-    @_guard
-    async def hover(ls: GclintServer, params: lsp.HoverParams) -> lsp.Hover | None:
-        doc = ls.documents.get(params.text_document.uri)
+    async def hover(self, params: Any) -> dict | None:
+        params = obj(params, "$.params")
+        uri = document_uri(params)
+        line, character = position(params.get("position"), "$.params.position")
+        doc = self.documents.get(uri)
         if doc is None:
             return None
         snapshot = doc.snapshot
-        encoding = ls.encoding
-        line = params.position.line
-        char = units_to_char(snapshot.line(line), params.position.character, encoding)
+        encoding = self.encoding
+        char = units_to_char(snapshot.line(line), character, encoding)
         # the dialect of the last check (it rarely changes while typing); wait only when there is none
-        done = doc.analysis if doc.analysis is not None else await ls.current_analysis(doc, HOVER_WAIT)
-        options = done.options if done is not None else analysis.document_options(doc.path, ls.settings)[0]
+        done = doc.analysis if doc.analysis is not None else await self.current_analysis(doc, HOVER_WAIT)
+        options = done.options if done is not None else analysis.document_options(doc.path, self.settings)[0]
         dialect, reason = _dialect_for(done, options, snapshot, doc.name)
-        target = await ls.run_in_thread(analysis.explain_at, snapshot, line, char, dialect, options.loaded)
+        target = await self.run_in_thread(analysis.explain_at, snapshot, line, char, dialect, options.loaded)
         if target is None:
             return None
-        return convert.hover(target, convert.Geometry(snapshot, encoding), line + 1, ls.markdown, reason)
+        return convert.hover(target, convert.Geometry(snapshot, encoding), line + 1, self.markdown, reason)
 
-    @server.feature(
-        lsp.TEXT_DOCUMENT_CODE_ACTION,
-        lsp.CodeActionOptions(code_action_kinds=[lsp.CodeActionKind.QuickFix, convert.FIX_ALL_KIND]),
-    )
-    @_guard
-    async def code_action(ls: GclintServer, params: lsp.CodeActionParams) -> list[lsp.CodeAction] | None:
-        doc = ls.documents.get(params.text_document.uri)
+    async def code_action(self, params: Any) -> list[dict] | None:
+        params = obj(params, "$.params")
+        uri = document_uri(params)
+        (first, _), (last, _) = range_of(params.get("range"), "$.params.range")
+        context = obj(params.get("context"), "$.params.context")
+        only_raw = member(context, "only", "$.params.context", list, None)
+        only = [str(k) for k in only_raw] if only_raw else None
+        doc = self.documents.get(uri)
         if doc is None:
             return None
-        done = await ls.current_analysis(doc, ANALYSIS_WAIT)
+        done = await self.current_analysis(doc, ANALYSIS_WAIT)
         if done is None or done.snapshot is not doc.snapshot:
             return None  # edits computed on other text would land in the wrong places
-        only = [str(getattr(k, "value", k)) for k in params.context.only] if params.context.only else None
         # "fix all" applies what --fix would: the safe fixes that bring no new finding (gclint.fixes)
-        fix_all = await ls.run_in_thread(analysis.safe_fix_set, done.result, done.snapshot.text, done.options)
+        fix_all = await self.run_in_thread(analysis.safe_fix_set, done.result, done.snapshot.text, done.options)
         actions = convert.code_actions(
             doc.uri,
             done.result.findings,
-            convert.Geometry(done.snapshot, ls.encoding),
-            params.range.start.line,
-            params.range.end.line,
+            convert.Geometry(done.snapshot, self.encoding),
+            first,
+            last,
             only,
-            version=done.snapshot.version if ls.versioned_edits else None,
+            version=done.snapshot.version if self.versioned_edits else None,
             fix_all=fix_all,
         )
         return actions or None
 
+
+def _analyse(
+    snapshot: Snapshot, name: str, options: Options, cancel: threading.Event, encoding: str
+) -> tuple[FileResult, list[dict]]:
+    """In a worker thread: check the text and turn the findings into diagnostics."""
+    result = analysis.check_text(snapshot.text, name, options, cancel)
+    geo = convert.Geometry(snapshot, encoding)
+    return result, convert.diagnostics(result.findings, geo, MAX_DIAGNOSTICS)
+
+
+def _guard(server: GclintServer, name: str, handler: Callable) -> Callable:
+    """Any exception in a handler but params that do not fit (answered InvalidParams by the transport)
+    becomes a line in the client's log and an empty answer."""
+
+    if asyncio.iscoroutinefunction(handler):
+
+        @functools.wraps(handler)
+        async def wrapped_async(params: Any) -> Any:
+            try:
+                return await handler(params)
+            except (asyncio.CancelledError, InvalidParams, ResponseError):
+                raise
+            except Exception as exc:
+                server.log(f"{name} failed: {type(exc).__name__}: {exc}", ERROR)
+                return None
+
+        return wrapped_async
+
+    @functools.wraps(handler)
+    def wrapped(params: Any) -> Any:
+        try:
+            return handler(params)
+        except (InvalidParams, ResponseError):
+            raise
+        except Exception as exc:
+            server.log(f"{name} failed: {type(exc).__name__}: {exc}", ERROR)
+            return None
+
+    return wrapped
+
+
+def create_server(reader: BinaryIO, writer: BinaryIO) -> GclintServer:
+    endpoint = Endpoint(reader, writer)
+    server = GclintServer(endpoint)
+    endpoint.problem = server.problem
+    endpoint.gate = server.gate
+    requests = {
+        "initialize": server.initialize,
+        "shutdown": server.shutdown,
+        "textDocument/hover": server.hover,
+        "textDocument/codeAction": server.code_action,
+    }
+    notifications = {
+        "initialized": server.initialized_,
+        "exit": server.exit,
+        "workspace/didChangeConfiguration": server.did_change_configuration,
+        "textDocument/didOpen": server.did_open,
+        "textDocument/didChange": server.did_change,
+        "textDocument/didSave": server.did_save,
+        "textDocument/didClose": server.did_close,
+    }
+    endpoint.requests = {m: _guard(server, m, h) for m, h in requests.items()}
+    endpoint.notifications = {m: _guard(server, m, h) for m, h in notifications.items()}
+    # before "initialize" only "exit" is heard (the protocol drops other notifications)
+    for method in notifications:
+        if method != "exit":
+            endpoint.notifications[method] = _before_initialize(server, endpoint.notifications[method])
     return server
+
+
+def _before_initialize(server: GclintServer, handler: Callable) -> Callable:
+    @functools.wraps(handler)
+    def wrapped(params: Any) -> Any:
+        if not server.initialized:
+            return None
+        return handler(params)
+
+    return wrapped
 
 
 def _dialect_for(
@@ -507,24 +535,45 @@ def _dialect_for(
     return dialects.reading(context.dialect, context.flavor), context.why()
 
 
-async def _pull_settings(ls: GclintServer) -> None:
-    try:
-        answer = await asyncio.wait_for(
-            ls.workspace_configuration_async(lsp.ConfigurationParams(items=[lsp.ConfigurationItem(section="gclint")])),
-            CONFIG_WAIT,
-        )
-    except Exception as exc:
-        ls.log(f"could not read the editor's gclint settings: {type(exc).__name__}: {exc}", lsp.MessageType.Warning)
-        return
-    if answer:
-        ls.apply_settings(answer[0])
+# What the first check of a job would otherwise do on top of checking it (about four times the check of
+# 20,000 lines): load the rules and the grammar, compile the patterns that find runs of plain moves, and
+# check a Hyrel and a Marlin job once.  Done step by step in a worker thread after "initialize", until
+# the first document is opened (its own check then warms up what it needs, no more).
+_WARM_HYREL = (
+    "; gclint: dialect=hyrel\nM6 T0 O1 X0 Y0 Z0\nG21\nG90\nG28 X0 Y0\nM106 C255\nM229 E1 D1\nM109 T0 S215\nT0\n"
+    + "".join(f"G1 X{i % 50}.5 Y{i % 30}.25 E{i * 0.05:.3f} F1800\n" for i in range(60))
+    + "G2 X10 Y10 I5 J0 E4\nM104 T0 S0\nM30\n"
+)
+_WARM_MARLIN = (
+    ";FLAVOR:Marlin\nM140 S60\nM104 S200\nG28\nM190 S60\nM109 S200\nG92 E0\n"
+    + "".join(f"G1 X{i % 50}.5 Y{i % 30}.25 E{i * 0.1:.3f} F1800\nG0 X1 Y2 F9000 ; travel\n" for i in range(60))
+    + "G2 X10 Y10 I5 J0 E1\nM104 S0\nM84\n"
+)
 
 
-def _warm_up() -> None:
+def _warm_up(stop: threading.Event, settings: Settings) -> None:
+    def steps():
+        from gclint.rules.base import all_rules
+        from gclint.syntax.fastpath import run_pattern
+        from gclint.syntax.parse import parse_slow
+
+        yield all_rules
+        yield lambda: parse_slow("G1 X1 (warm up) ; the grammar")
+        yield lambda: run_pattern(False)
+        yield lambda: run_pattern(True)
+        options = analysis.document_options(None, settings)[0]
+        for text in (_WARM_HYREL, _WARM_MARLIN):
+            yield functools.partial(analysis.check_text, text, "warm-up.gcode", options, stop)
+
     try:
-        analysis.check_text("G28\n", "warm-up.gcode", Options())
-    except Exception:
+        for step in steps():
+            if stop.is_set():
+                return
+            step()
+    except Exception:  # (Cancelled included: a document came)
         pass
+    finally:
+        stop.set()
 
 
 class _OneLine(logging.Formatter):
@@ -541,39 +590,6 @@ class _OneLine(logging.Formatter):
         return " ".join(text.split())[:2000]
 
 
-class _Input:
-    """Standard input for pygls' reader, made safe: a message body that is not valid UTF-8 is repaired
-    (bad bytes become U+FFFD) instead of failing to parse, and a huge Content-Length is read in pieces
-    rather than allocated at once."""
-
-    PIECE = 1 << 24
-
-    def __init__(self, raw: BinaryIO) -> None:
-        self.raw = raw
-
-    def readline(self) -> bytes:
-        return self.raw.readline()
-
-    def read(self, n: int) -> bytes:
-        if n <= self.PIECE:
-            data = self.raw.read(n)
-        else:
-            parts = []
-            left = n
-            while left > 0:
-                part = self.raw.read(min(left, self.PIECE))
-                if not part:
-                    break
-                parts.append(part)
-                left -= len(part)
-            data = b"".join(parts)
-        try:
-            data.decode("utf-8")
-        except UnicodeDecodeError:
-            data = data.decode("utf-8", "replace").encode("utf-8")
-        return data
-
-
 def run(stdin: BinaryIO | None = None, stdout: BinaryIO | None = None) -> int:
     """Serve over standard input and output until the client says exit (or goes away).  Returns the exit
     status the protocol asks for: 0 after a shutdown request, else 1."""
@@ -585,9 +601,11 @@ def run(stdin: BinaryIO | None = None, stdout: BinaryIO | None = None) -> int:
         handler = logging.StreamHandler(sys.stderr)
         handler.setFormatter(_OneLine())
         logging.basicConfig(level=logging.WARNING, handlers=[handler])
-    server = create_server()
+    server = create_server(source, out)
     try:
-        server.start_io(_Input(source), out)  # type: ignore[arg-type]
+        server.endpoint.serve()
     finally:
         server.stop()
+    if server.exit_status is not None:
+        return server.exit_status
     return 0 if server.shutdown_requested else 1
