@@ -92,7 +92,7 @@ def setpoints(folder: str, scale: float) -> None:
     with open(path, "w") as fh:
         fh.write("G28 X0 Y0\n")
         for i in range(n):
-            fh.write("G1 Z%d.%03d E1 F100\nM104 T0 S%d.%d\n" % (i // 1000, i % 1000, i // 10, i % 10))
+            fh.write(f"G1 Z{i // 1000}.{i % 1000:03d} E1 F100\nM104 T0 S{i // 10}.{i % 10}\n")
         fh.write("M30\n")
     out = os.path.join(folder, "o.html")
     r = measure(["check", "--no-cache", "-f", "html", "-o", out, path], folder)

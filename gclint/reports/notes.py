@@ -48,7 +48,9 @@ def context_notes(results: list[FileResult], verbose: bool = False) -> list[str]
             kinds[name] = kinds.get(name, 0) + 1
         read_as = ", ".join(f"{name} {n}" for name, n in sorted(kinds.items(), key=lambda kv: (-kv[1], kv[0])))
         evidence = "weak or conflicting evidence" if conflicting else "weak evidence"
-        lines.append(f"{len(weak)} files were read on {evidence} ({read_as}: {_named(p for p, _, _ in weak)}); -v gives each file's reasons")
+        lines.append(
+            f"{len(weak)} files were read on {evidence} ({read_as}: {_named(p for p, _, _ in weak)}); -v gives each file's reasons"
+        )
     # (each group names what its files were checked as, as the "Checked as" line does: the version and the
     # printer too, which a file's addresses may tell when nothing tells its dialect)
     groups: dict[str, list[str]] = {}
