@@ -157,12 +157,17 @@ def translate(job: Job, source: str | None = None) -> Translation:
     src, dst = dialects.get(job.dialect), dialects.get("hyrel")
     translator = translator_for(src, dst, job.options())
     result = TranslationResult(job.path, src.name, dst.name)
-    pieces: list[tuple[int, str]] = [(0, "".join(translator.start(result)))]
-    number = 0
     reader = Source.from_text(source, job.path)
+    translator.read_job(reader)  # (as translate_source does: the job's settings, then its lines)
+    pieces: list[tuple[int, str]] = [(0, "".join(translator.start(result)))]
+    mark = translator.mark()  # (the line saying what the output is, with the first line's ending)
+    number = 0
     for chunk in reader.chunks():
         for raw, ending in chunk:
             number += 1
+            if mark is not None:
+                pieces.append((0, mark + (ending or "\n")))
+                mark = None
             pieces.append(
                 (number, "".join(translator.translate_line(Line(number, raw, ending, parse_line(raw)), result)))
             )

@@ -10,6 +10,7 @@ M568 set a tool's temperature, M109 T selects the tool.
 
 from __future__ import annotations
 
+from gclint.machine.job_settings import read_settings
 from gclint.simulate.devices import DeviceModel
 from gclint.simulate.events import Limits
 from gclint.simulate.heat import LayerHeights, ToolHeat
@@ -110,6 +111,12 @@ class MarlinSimulator(DeviceModel):
 
     def tool_name(self) -> str:
         return self.named(self.heat.tool)
+
+    def read_job(self, source) -> None:
+        # "single_extruder_multi_material = 1": one nozzle and heater for every tool, from the start (the job's
+        # slicer settings; PrusaSlicer and Orca write them at the end of the file, Bambu at its start)
+        if read_settings(source.head_text(), source.tail_text()).single_nozzle:
+            self.heat.shared = self.heat.one_nozzle = True
 
     # -- motion ---------------------------------------------------------------------------------------
 

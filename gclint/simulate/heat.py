@@ -64,6 +64,7 @@ class ToolHeat:
         self.temps: dict[int, Heater] = {}  # tool -> its heater
         self.nozzle: Heater | None = None  # the heater last set, whatever the tool
         self.shared = False  # a single-nozzle machine (inferred)
+        self.one_nozzle = False  # the job's settings say so (single_extruder_multi_material): every tool is head 0's
         self.flows: dict[int, float] = {}
         self.last_flow: float | None = None
         self.fans: dict[int, float] = {}  # fan index -> fraction
@@ -150,6 +151,8 @@ class ToolHeat:
         return heater_look(heat), flow
 
     def head(self) -> int | str | None:
+        if self.one_nozzle:
+            return self.mapping.head(0)
         return self.mapping.head(self.tool) if self.tool is not None else None
 
     def bed_look(self) -> tuple:
@@ -170,7 +173,7 @@ class ToolHeat:
         out: dict = {}
         if self.shared:
             if self.nozzle is not None and self.nozzle[0] > 0:
-                for tool in self.used or {self.tool or 0}:
+                for tool in {0} if self.one_nozzle else self.used or {self.tool or 0}:
                     out[self.mapping.head(tool)] = self.nozzle[0]
         else:
             for tool, (value, _, _) in self.temps.items():
@@ -270,6 +273,7 @@ class _Statements:
     def __init__(self, source, layers: LayerHeights) -> None:
         self.source = source
         self.layers = layers
+        self.head_text, self.tail_text = source.head_text, source.tail_text  # (the job's settings: read_job)
 
     def chunks(self):
         note = self.layers.statements.append

@@ -128,7 +128,11 @@ class Simulator:
         self.listening = True
         yield from self._read(source)
 
+    def read_job(self, source: Source) -> None:
+        """Before the first line: what the job's own settings say of its machine (gclint.machine.job_settings)."""
+
     def _read(self, source: Source) -> Iterator[Event]:
+        self.read_job(source)
         handlers = self.handlers
         plain_match = PLAIN_MOVE.fullmatch
         plain = self.plain_moves()

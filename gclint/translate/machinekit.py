@@ -316,17 +316,19 @@ class MachinekitToHyrel(CncTranslator):
         all axes will go to the machine origin" (g-code.adoc, "G28, G28.1", "G30, G30.1").  The stored position
         is not in the file: the point is written as a rapid, then Hyrel's G28 homes those axes (the machine
         origin, where a machine with nothing stored goes), and the job's workspace and head are set again."""
-        if not self.hy.started_motion:
-            self.before_motion(focus=False)
         params = cmd.params
         st = self.state
         listed = [a for a in "XYZ" if a in params]
+        for axis in listed:
+            if num(params[axis]) is None:
+                self.untranslatable(cmd, f"{cmd.code} {axis} is not a number", key=(cmd.code, "value"))
+                return
+        if not self.hy.started_motion:
+            self.before_motion(focus=False)  # (the T follows the G28: restore_offsets)
         via = []
         for axis in listed:
             value = num(params[axis])
-            if value is None:
-                self.untranslatable(cmd, f"{cmd.code} {axis} is not a number", key=(cmd.code, "value"))
-                return
+            assert value is not None
             moves = value != 0 if not st.absolute else st.position.get(axis) != value
             if moves:
                 via.append(axis + fmt(value * INCH if self.inch else value))

@@ -128,4 +128,12 @@ class Spindles:
                 aspects="spindle:speed",
             )
             pct = 100
+        if 0 < pct < 0.05:  # (written to one decimal it would be S0, which stops Hyrel's spindle: "S0 is off")
+            self.report(
+                TR_APPROX,
+                f"{fmt(rpm)} rpm is below 0.1 % of the spindle's {fmt(top)} rpm: written as 0.1 %, since S0 stops it",
+                key="rpm-least",
+                aspects="spindle:speed",
+            )
+            pct = 0.1
         return fmt(max(pct, 0.0), 1)
