@@ -58,12 +58,7 @@ def _fan_reprap(job: Job, exp: Explanation, cmd: Command, spec: Code | None) -> 
     s = cmd.param("S")
     if s is not None:
         value = number(s.value)
-        if (
-            value is not None
-            and value <= 1
-            and "." in (s.value or "")
-            and job.facts.fan_scale == "255-or-fraction"
-        ):
+        if value is not None and value <= 1 and "." in (s.value or "") and job.facts.fan_scale == "255-or-fraction":
             exp.add(s.text.strip(), f"fan speed {fmt(value * 100)}% (RepRapFirmware reads 0-1 as a fraction)")
         elif value is not None:
             exp.add(s.text.strip(), f"fan speed {s.value} of 255: {fmt(round(value / 255 * 100, 1))}%")

@@ -7,7 +7,7 @@ in the Hyrel table subclass it, so the range lives once, as data.
 
 from __future__ import annotations
 
-from gclint import dialects, firmware
+from gclint import firmware
 from gclint.dialects.base import Param
 from gclint.rules.base import Rule, Severity, register
 from gclint.syntax.nodes import EXTENDED, GCODE, IMPLICIT, META, OWORD, TEXT, WORD_LETTERS, Command, Line, to_number
