@@ -312,7 +312,7 @@ def test_exponent_notation_is_read_and_explained_one_way():
     assert "F1.875 (moving at 1.875 mm/min)" in text  # (the same reading as the rules' state)
     assert "F1.875e+06 is exponent notation" in text and "the E of F1.875e+06" in text
     # a compact line's E word is not an exponent: "G1X10E5" is X10 and E5
-    assert lint("G1X10E5F600\nG1 X10E0.5\n", codes=("HY067",)) == []
+    assert lint("G1X10E5F600\nG1 X10E0.5\ng1x10e1\n", codes=("HY067",)) == []
     # RepRapFirmware reads "C7.06e-8" as one number: not a finding there
     reprap = Linter(Options(dialect="reprap")).check_text("M305 P0 T100000 B4725 C7.06e-8\n").findings
     assert not [f for f in reprap if f.code in ("HY067", "SX006")]

@@ -74,8 +74,9 @@ class Assignment:
 MAX_DIGITS = 30  # per side of the decimal point; the fast path's patterns use the same bound
 
 # The exponent of a number in exponent notation ("F1.875e+06", as some generators print floats): an E word
-# straight after a number, "e" with an integer, or "E" with a signed integer of two digits or more (as
-# printf's %E writes it; "X10E-2" in a line without blanks is a compact E word).
+# straight after a number, "e" with an integer (signed, or after an upper-case letter: "g1x10e1" is a compact
+# line in lower case), or "E" with a signed integer of two digits or more (as printf's %E writes it; "X10E-2"
+# in a line without blanks is a compact E word).
 _EXPONENT_LOWER = re.compile(r"[-+]?[0-9]{1,4}")
 _EXPONENT_UPPER = re.compile(r"[-+][0-9]{2,4}")
 
@@ -91,7 +92,9 @@ def _exponent_of(previous: Word | None, piece: Word) -> str | None:
     lower = piece.text[:1] == "e"
     if not (_EXPONENT_LOWER if lower else _EXPONENT_UPPER).fullmatch(piece.value) or not is_number(previous.value):
         return None
-    return f"{previous.letter}{previous.value}{piece.text[:1]}{piece.value}"
+    if lower and piece.value[0] not in "+-" and not previous.text[:1].isupper():
+        return None  # ("g1x10e1": a compact line in lower case, whose e1 is an E word)
+    return f"{previous.text[:1]}{previous.value}{piece.text[:1]}{piece.value}"
 
 
 def written_out(number: str) -> str:
