@@ -26,6 +26,7 @@ from gclint.engine import FileResult, Linter
 from gclint.io import AtomicWriter, OutputError
 from gclint.noqa import INLINE_UNSUPPRESSIBLE, text_code, with_noqa
 from gclint.rules.base import Edit, Finding, Fix
+from gclint.syntax.parse import parse_line
 from gclint.syntax.source import Source, SourceError
 from gclint.textsafe import human, human_path
 
@@ -241,7 +242,25 @@ def _fixed_lines(source: Source, edits: dict[int, list[Edit]]) -> Iterator[tuple
         for raw, ending in chunk:
             number += 1
             line_edits = edits.get(number)
-            yield number, raw, (_edit(raw, line_edits) if line_edits else raw), ending
+            yield number, raw, (_with_checksum(raw, _edit(raw, line_edits)) if line_edits else raw), ending
+
+
+def _with_checksum(raw: str, text: str) -> str:
+    """``text`` (``raw`` fixed) with its ``*`` checksum recomputed when ``raw``'s was right: a fix must not turn a
+    good line into one the printer rejects (SX004), whatever rules are selected.  A wrong checksum is left
+    as it is (it may mark a line damaged in transfer; recomputing it would bless the damage)."""
+    from gclint.rules.syntax import compute_checksum
+
+    old = parse_line(raw).checksum
+    if old is None or old.value != compute_checksum(raw[: old.column - 1]):
+        return text
+    new = parse_line(text).checksum
+    if new is None:
+        return text
+    right = compute_checksum(text[: new.column - 1])
+    if new.value == right:
+        return text
+    return f"{text[: new.column - 1]}*{right}{text[new.end_column - 1 :]}"
 
 
 def _check_fixed(
@@ -280,11 +299,11 @@ def _diff(path: str, edits: dict[int, list[Edit]], context: int = 3) -> Iterator
     shown = human_path(path)
     yield f"--- {shown}\n+++ {shown} (fixed)\n"
     index, lines = 0, []
-    for number, raw, text, _ in _fixed_lines(Source.open(path), edits):
+    for number, raw, text, ending in _fixed_lines(Source.open(path), edits):
         first, last = ranges[index]
         if number < first:
             continue
-        lines.append((raw, text))
+        lines.append((raw, text, ending))
         if number == last:
             yield from _hunk(first, lines)
             index, lines = index + 1, []
@@ -294,13 +313,19 @@ def _diff(path: str, edits: dict[int, list[Edit]], context: int = 3) -> Iterator
         yield from _hunk(ranges[index][0], lines)
 
 
-def _hunk(start: int, lines: list[tuple[str, str]]) -> Iterator[str]:
+# What a unified diff (diff -u, git diff) writes after a last line that has no line break: every line of the
+# diff ends with one, so without this mark the diff would say the file ends with a line break it does not have.
+_NO_NEWLINE = "\\ No newline at end of file\n"
+
+
+def _hunk(start: int, lines: list[tuple[str, str, str]]) -> Iterator[str]:
     yield f"@@ -{start},{len(lines)} +{start},{len(lines)} @@\n"
-    for raw, text in lines:
+    for raw, text, ending in lines:
+        mark = "" if ending else _NO_NEWLINE
         if raw == text:
-            yield f" {human(raw)}\n"
+            yield f" {human(raw)}\n{mark}"
         else:
-            yield f"-{human(raw)}\n+{human(text)}\n"
+            yield f"-{human(raw)}\n{mark}+{human(text)}\n{mark}"
 
 
 def _edit(raw: str, edits: list[Edit]) -> str:

@@ -248,13 +248,16 @@ def test_html_report_renders_in_chromium(tmp_path: Path, browser: Browser):
         "var r = c.getBoundingClientRect(); return [r.left, r.top]; })()"
     )
     # the markers of layer 1 as drawn: dots in the error colour; the rightmost is line 16's (X90 Y40)
-    dots = browser.js(
-        """(function () { var c = document.querySelector('canvas.tp-canvas'), g = c.getContext('2d');
+    # (drawn on an animation frame, which comes late on a loaded machine: wait for it)
+    browser.js(
+        """window.errorDots = function () { var c = document.querySelector('canvas.tp-canvas'), g = c.getContext('2d');
         var d = g.getImageData(0, 0, c.width, c.height).data, hits = [];
         for (var i = 0; i < d.length; i += 4) if (d[i] > 200 && d[i + 1] < 60 && d[i + 2] < 60)
           hits.push([(i / 4) % c.width, Math.floor(i / 4 / c.width)]);
-        return hits; })()"""
+        return hits; }"""
     )
+    browser.wait("window.errorDots().length > 0")
+    dots = browser.js("window.errorDots()")
     assert dots, "no marker drawn"
     px, py = sorted(dots)[-1]
     browser.click(at[0] + px - 2, at[1] + py)

@@ -88,17 +88,15 @@ def test_hy027_m116_on_v4_is_one_finding():
     assert where(found) == [(1, "HY027", "error")]
 
 
-def test_hy035_targets_per_device():
+def test_hy035_a_wait_without_s_is_the_pages_own_example():
+    # Gcode page, M109 Example 6: "M109 R10 ... (no T# - use head with current focus) R10 (to get +/-10°C of
+    # set temperature)": no earlier S in the job is needed (the head settings or the operator may have set it)
     text = """\
-        M104 T0 S200
-        M109 T0 R5
+        M109 R10
         M109 T1 R5
-        M140 S60
         M190 R2
-        T1
-        M109 R3
         """
-    assert where(lint(text, codes=("HY035",))) == [(3, "HY035", "warning"), (7, "HY035", "warning")]
+    assert lint(text, codes=("HY035",)) == []
 
 
 def test_hy035_no_limit_on_r_with_s():
@@ -145,7 +143,10 @@ def test_hy051_a_chilled_head_is_not_an_error():
 
 def test_hy004_needs_the_register_set_and_applied():
     assert where(lint("G1 Z5 F600 H1\nG81 T0 X1 Y1 I3 P1 Q-1 Z-2 F100\n", codes=("HY004",))) == [(2, "HY004", "error")]
-    assert lint("M660 H1 Z5\nG0 Z5 H1\nG81 T0 X1 Y1 I3 P1 Q-1 Z-2 F100\n", codes=("HY004",)) == []
+    assert lint("M660 H1 Z5\nG1 Z5 F600 H1\nG81 T0 X1 Y1 I3 P1 Q-1 Z-2 F100\n", codes=("HY004",)) == []
+    # "M660 Hn Zn (followed by) G1 Xn Yn Zn Fn Hn": the register is applied by H on a G1; G0's usage has no H
+    g0 = lint("M660 H1 Z5\nG0 Z5 H1\nG81 T0 X1 Y1 I3 P1 Q-1 Z-2 F100\n", codes=("HY004",))
+    assert where(g0) == [(3, "HY004", "error")] and "no G1 applies it" in g0[0].message
 
 
 @pytest.mark.parametrize("printer", ["30m", "esr", "16a", "16a-dual"])
@@ -239,17 +240,18 @@ def test_hy010_not_for_files_without_moves():
 
 
 @pytest.mark.parametrize(
-    "line,detail",
+    "line,detail,severity",
     [
-        ("; " + "x" * 120, "the comment is cut"),
-        ("G1 X10 Y10 E1 F600 ; " + "x" * 100, "only comment text is lost"),
-        ("M0 ; SAY " + "x" * 100, "M0/M792 text"),
-        ("G1 " + "X10.000000000 " * 7 + "Y20 E1", "loses Y20 E1"),
+        ("; " + "x" * 120, "only comment text is cut", "info"),
+        ("G1 X10 Y10 E1 F600 ; " + "x" * 100, "only comment text is cut", "info"),
+        ("M0 ; SAY " + "x" * 100, "M0/M792 text", "warning"),
+        ("G1 " + "X10.000000000 " * 7 + "Y20 E1", "loses Y20 E1", "warning"),
     ],
 )
-def test_hy029_says_what_is_lost(line, detail):
+def test_hy029_says_what_is_lost(line, detail, severity):
     found = lint(line + "\n", codes=("HY029",))
     assert len(found) == 1 and found[0].column == 101 and detail in found[0].message, found
+    assert found[0].severity.label == severity
 
 
 def test_hy029_does_not_count_a_trailing_noqa_comment(tmp_path):

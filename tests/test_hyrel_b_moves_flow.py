@@ -20,7 +20,7 @@ TRIGGERS = """\
 G0 X5 Y5 E1
 G1 X10 Y10 E1
 G1 X20 Y10 E-1 F600
-G1 X20 Y20 E1 S20
+G1 X20 Y20 E1 S-2
 G91
 G1 X1 Y1 E1
 G90
@@ -154,8 +154,9 @@ def test_hy030_g0_with_e():
     assert lines("G0 X1 E1\nG1 X2 E1 F600\n", "HY030") == [1]
 
 
-def test_hy033_g1_s_and_m221_percentage():
-    assert lines("G1 X1 E1 S16 F600\nG1 X2 E1 S1.2\nM221 S95\nM221 S1.5\n", "HY033") == [1, 3]
+def test_hy033_g1_s_and_m221_negative_only():
+    # the page gives the multiplier no limit (HY033): only a negative one is reported
+    assert lines("G1 X1 E1 S16 F600\nG1 X2 E1 S-1.2\nM221 S95\nM221 S-1\nM221 S2.5\n", "HY033") == [2, 4]
 
 
 # -- flow codes -------------------------------------------------------------------------------------------

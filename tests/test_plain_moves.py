@@ -292,7 +292,7 @@ def test_a_run_never_applied_is_tried_a_bounded_number_of_times(dialect, job, mo
 
 def test_hyrel_long_lines_are_read_one_by_one(monkeypatch):
     # HY029 looks at lines longer than 100 characters: runs take only moves surely shorter
-    long = "G1 X1.1234567 Y2.1234567 Z3.1234567 E4.1234567 F5000.12345" + " " * 50
+    long = "G1 X1.1234567" + " " * 60 + "Y2.1234567 Z3.1234567 E4.1234567 F5000.12345"  # (E and F cut)
     job = "G28\nG1 X1 Y1 Z.2 E1 F600\n" + _SLICED + "G1 X2 Y2 E2\n" * 200 + long + "\n" + "G1 X3 Y3 E3\n" * 200
     alone, bulk = _how_read("hyrel", job, monkeypatch)
     assert job.count("\n") - 200 in alone and bulk >= 200

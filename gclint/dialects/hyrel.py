@@ -308,7 +308,13 @@ HYREL_CODES = table(
         # feed rate)"
         P("F", "one-shot feed rate, mm/min", absent="no F: use the G0 speed from the settings (or M203)"),
         P("E", "not meaningful on G0 (HY030)"),
-        _HEIGHT_REGISTER,
+        # "Usage G0 Xn Yn Zn An Bn Fn": no H, which G1's usage has ("Hn is the stored head offset to apply")
+        P(
+            "H",
+            "G0's usage has no H (the stored head offset is applied by H on a G1)",
+            rule="HY034",
+            forbidden=True,
+        ),
         source="G0 Rapid Move",
     ),
     code(
@@ -324,12 +330,12 @@ HYREL_CODES = table(
         ),
         P("F", "feed rate, mm/min (persistent)"),
         _HEIGHT_REGISTER,
-        # "Sn is a one-time (non-persistent) material flow rate multiplier (rarely used) applied to this move only"
+        # "Sn is a one-time (non-persistent) material flow rate multiplier (rarely used) applied to this move
+        # only": the page gives no limit; a multiplier of flow is not negative (HY033)
         P(
             "S",
             "one-shot flow multiplier",
             minimum=0,
-            maximum=15.99,
             rule="HY033",
             says="one-time flow multiplier {value} for this move only",
         ),
@@ -464,7 +470,15 @@ HYREL_CODES = table(
         "M221",
         "flow: pulses per ul (P), multiplier (S), width (W), layer (Z)",
         P("P", "pulses per microliter (volumetric) or per mm (linear)", minimum=0.000001),
-        P("S", "flow multiplier (1.0 = as sliced)", minimum=0, maximum=15.99, rule="HY033"),
+        # "Sn is the direct flow multiplier (to allow for undersized or oversized stock": no limit on the page;
+        # "S1.0 (flow multiplier of 1.0)"
+        P(
+            "S",
+            "direct flow multiplier (for undersized or oversized stock)",
+            minimum=0,
+            rule="HY033",
+            says="flow multiplier of {value}",
+        ),
         P("W", "path width, mm", minimum=0.000001),
         P("Z", "layer height, mm", minimum=0.000001),
         P("T", "target head"),
@@ -578,6 +592,8 @@ HYREL_CODES = table(
             integer=True,
             rule="HY061",
             says='offset stored in register "O{value}"',
+            # the M6 K1 example: "(no offset registers, so ignore all offsets)"
+            absent="no offset register, so the offsets are ignored (as the page decodes an M6 without O)",
         ),
         *_axes("offset in"),
         P("D", "tool diameter", says="tool diameter {value} mm (pocket commands)"),

@@ -73,7 +73,12 @@ def spiral(job: Job, exp: Explanation, cmd: Command, spec: Code | None) -> None:
 
 def arc3(job: Job, exp: Explanation, cmd: Command, spec: Code | None) -> None:
     does(exp, spec)
-    exp.note(f"arc plane: {PLANES.get(job.state.plane, 'X/Y plane')}")
+    plane = job.state.plane
+    exp.note(f"arc plane: {PLANES.get(plane, 'X/Y plane')}")
+    normal = "".join(letter for letter in "UVW" if letter in cmd.params)
+    if normal and plane != 16:
+        # G2.3: "If we are in G17 (X/Y plane) or G18 (X/Z plane) or G19 (Y/Z plane) mode, these are ignored."
+        exp.warn(f"{' '.join(normal)} ignored: the normal vector applies only in G16 mode (here G{plane})")
     segments(exp, cmd, spec)
     generic(job.dialect, exp, cmd, spec, skip="S")
 

@@ -14,6 +14,8 @@ from gclint.explain.generic import generic, title, unknown
 from gclint.explain.job import Decoder, Job
 from gclint.explain.model import Explanation, secret_values
 from gclint.machine.state import MachineState
+from gclint.rules.hyrel.jobflow import exponent_message
+from gclint.syntax.build import exponents
 from gclint.syntax.nodes import ASSIGNMENT, EXTENDED, GCODE, HOST, IMPLICIT, META, OWORD, PERCENT, TEXT, Command, Line
 from gclint.syntax.parse import parse_line
 from gclint.syntax.source import Source
@@ -31,6 +33,8 @@ class Explainer(Job):
         self._decoders: dict[str, Decoder] = {}
         for topic in TOPICS:
             self._decoders.update(topic.decoders(self))
+        self._word_issues = _word_issues(dialect)
+        self._exponents = _rule_applies("HY067", dialect)  # (numbers in exponent notation)
 
     def explain_line(self, line: Line) -> list[Explanation]:
         """The line's commands in the order the machine runs them (LinuxCNC's order of execution), with its
@@ -41,9 +45,16 @@ class Explainer(Job):
         values, starts = _secrets_of(line.raw)  # (once for the line: it may hold 30,000 commands)
         commands = line.commands
         facts = self.facts
+        issues = _issues_by_command(line, starts, self._word_issues) if line.parsed.issues else {}
         for cmd in facts.running(commands) if len(commands) > 1 else commands:
             hidden = _hidden_words(cmd, starts) if starts else ()
-            out.append(self.explain_command(cmd, line).masked(values, hidden))
+            exp = self.explain_command(cmd, line)
+            if self._exponents:
+                for _, _, number in exponents(cmd):
+                    exp.warn(exponent_message(number))  # (as HY067 reports it)
+            for message in issues.get(id(cmd), ()):
+                exp.warn(message)  # (as check reports it: SX002, SX006, SX007)
+            out.append(exp.masked(values, hidden))
             self.interpreter.apply(cmd, line)
         for cmd in facts.ignored(commands):
             exp = Explanation(line.number, line.raw, cmd.code, "not run").masked(values, ())
@@ -152,6 +163,39 @@ def _secrets_of(raw: str) -> tuple[tuple[str, ...], tuple[int, ...]]:
         return (), ()
     found = secrets.find(raw)
     return secret_values(raw) if found else (), tuple(s.start + 1 for s in found)
+
+
+# The parser's findings on the words of a command (check reports them as these rules): a repeated letter, a
+# value that is not a number, a number with no letter.
+_WORD_ISSUES = ("SX002", "SX006", "SX007")
+
+
+def _rule_applies(code: str, dialect: Dialect) -> bool:
+    """Whether the rule ``code`` checks files of ``dialect`` (what explain says, check says)."""
+    from gclint.rules.base import all_rules
+
+    rule = all_rules().get(code)
+    return rule is not None and rule.applies_to(dialect)
+
+
+def _word_issues(dialect: Dialect) -> frozenset[str]:
+    """The codes of ``_WORD_ISSUES`` whose rule checks files of ``dialect``."""
+    return frozenset(code for code in _WORD_ISSUES if _rule_applies(code, dialect))
+
+
+def _issues_by_command(line: Line, starts: tuple[int, ...], codes: frozenset[str]) -> dict[int, list[str]]:
+    """The parser's word issues of a line (``codes``), by the command (``id``) they fall in; none from a secret
+    on."""
+    commands = line.commands
+    secret = min(starts, default=None)
+    found: dict[int, list[str]] = {}
+    for issue in line.parsed.issues:
+        if issue.code not in codes or (secret is not None and issue.column >= secret):
+            continue
+        cmd = max((c for c in commands if c.column <= issue.column), key=lambda c: c.column, default=None)
+        if cmd is not None:
+            found.setdefault(id(cmd), []).append(issue.message)
+    return found
 
 
 def _hidden_words(cmd: Command, starts: tuple[int, ...]) -> frozenset[str]:

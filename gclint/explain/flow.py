@@ -39,14 +39,24 @@ def prime(job: Job, exp: Explanation, cmd: Command, spec: Code | None) -> None:
             exp.add(word.text.strip(), reading(spec, letter, word.value or ""))
     p = cmd.param("P")
     if p is not None:
-        # M721: "milliseconds relative to the end of the move ...; a negative number initiates this before
-        # the end of the move"; M722: "relative to the start of the move"
         v = p.value or ""
-        edge = "end" if cmd.code == "M721" else "start"
-        exp.add(
-            p.text.strip(),
-            f"{v.lstrip('-')} ms {'before' if v.startswith('-') else 'after'} the {edge} of the print move",
-        )
+        if cmd.code == "M721":
+            # "Pn is the number of milliseconds relative to the end of the move to begin the unprime (retract)
+            # action; a negative number initiates this before the end of the move"
+            exp.add(
+                p.text.strip(),
+                f"{v.lstrip('-')} ms {'before' if v.startswith('-') else 'after'} the end of the print move",
+            )
+        elif not v.startswith("-"):
+            # M722 "Pn is the number of milliseconds to dwell relative to the start of the move to allow for the
+            # prime (advance) action"; T_v5, One Head Loaded: "P20 (20ms before start of print move sequence)"
+            exp.add(p.text.strip(), f"{v.lstrip('+')} ms before the start of the print move sequence")
+        else:
+            exp.add(
+                p.text.strip(),
+                f"{v} ms relative to the start of the print move: the pages decode a prime P only as a time "
+                "before the start ('P20 (20ms before start of print move sequence)')",
+            )
     target(job, exp, cmd, spec)
     i = cmd.param("I")
     if i is not None and i.value == "1":
@@ -56,9 +66,22 @@ def prime(job: Job, exp: Explanation, cmd: Command, spec: Code | None) -> None:
     generic(job.dialect, exp, cmd, spec, skip="SEPTI")
 
 
+def layer_height(job: Job, exp: Explanation, cmd: Command, spec: Code | None) -> None:
+    """M756: the layer height of native flow, "ignored if you are using M229 E1 D1 to enable use of E
+    values" (M756 Set Height for Flow)."""
+    generic(job.dialect, exp, cmd, spec)
+    state = job.state
+    if state.e_values():
+        exp.warn(
+            f"ignored: E values are enabled (M229 E1 on line {state.m229_line}); 'this command is ignored if you "
+            "are using M229 E1 D1 to enable use of E values'"
+        )
+
+
 def decoders(job: Job) -> dict[str, Decoder]:
     facts = job.facts
     return {
         **dict.fromkeys(facts.codes_with("flow-mode"), use_e_values),
         **dict.fromkeys(facts.codes_with("unprime", "prime"), prime),
+        **dict.fromkeys(facts.codes_with("layer-height"), layer_height),
     }

@@ -72,7 +72,18 @@ def move(job: Job, exp: Explanation, cmd: Command, spec: Code | None, mode: str)
         exp.note(f"using the previously set F{fmt(job.state.feed)}")
     h = cmd.param("H")
     if h is not None and job.interpreter.height_registers:
-        _height_register(job, exp, h.text.strip(), h.value, line)
+        if mode == "G0":
+            # "Usage G0 Xn Yn Zn An Bn Fn": H is G1's ("Hn is the stored head offset to apply")
+            exp.items.append(
+                Item(
+                    h.text.strip(),
+                    "G0 has no H: its usage is G0 Xn Yn Zn An Bn Fn; the stored head offset is applied by H on a "
+                    "G1, and the pages do not say whether a G0 applies it (gclint does not count it as applied)",
+                    True,
+                )
+            )
+        else:
+            _height_register(job, exp, h.text.strip(), h.value, line)
     s = cmd.param("S")
     if s is not None:
         s_param = spec.param("S") if spec is not None else None

@@ -65,7 +65,8 @@ def set_position(job: Job, exp: Explanation, cmd: Command, spec: Code | None) ->
 def declare_offsets(job: Job, exp: Explanation, cmd: Command, spec: Code | None) -> None:
     # "M6 T# O..." is the header line that declares the head: it is loaded from this line on
     target(job, exp, cmd, spec, declares="O" in cmd.params)
-    read(exp, cmd, spec, "O")
+    if read(exp, cmd, spec, "O") is None and any(axis in cmd.params for axis in "XYZAB"):
+        exp.warn(absent(spec, "O"))  # M6 K1: "(no offset registers, so ignore all offsets)"
     for axis in "XYZAB":
         word = cmd.param(axis)
         if word is not None:

@@ -28,8 +28,11 @@ _WORDS = frozenset(
     + [f"TMC_SET_{what}_{axis}" for what in ("WAVE", "STEP", "CHOP") for axis in "XYZE"]
 )
 
-# printer_model / M862.3 names of the printers the section's title lists (MK3S, MK3SMMU2S, MK2.5S ...)
-MODELS = r"(?:MK3(?![.\d])|MK2\.5)"
+# printer_model / M862.3 names of the printers the section's title lists (MK3S, MK3SMMU2S, MK2.5S ...), and
+# the MK2/MK2S (MK2S, MK2SMM), whose firmware is the same Prusa-Firmware at an older release (PrusaSlicer's
+# MK2 profile: "M115 U3.2.3 ; tell printer latest fw version", "MK2 firmware only supports the old M204
+# format"): the nearest inventory gclint has, not that release's own
+MODELS = r"(?:MK3(?![.\d])|MK2\.5|MK2(?![.\d]))"
 
 PRUSA_MK3 = Firmware(
     name="prusa-mk3",

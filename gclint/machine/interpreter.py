@@ -159,15 +159,24 @@ class Interpreter:
         st.moved = True
         if st.first_move_line is None:
             st.first_move_line = line.number
+        if (
+            st.first_work_since_home_line is None
+            and mode != "G0"
+            and (not st.printed or st.spindles)
+            and ("X" in p or "Y" in p or "Z" in p or "A" in p or "B" in p)
+        ):
+            st.first_work_since_home_line = line.number
         if mode in _MOTION:
             st.motion_mode = mode
         if "E" in p:
             self._extrude(p["E"], mode, line.number)
-        if self.height_registers and "H" in p:
+        if self.height_registers and "H" in p and mode == "G1":  # (G1's "Hn is the stored head offset to apply")
             register = _int(p["H"])
             if register != st.applied_height_register or st.applied_height_line is None:
                 st.applied_height_line = line.number
             st.applied_height_register = register
+        elif self.height_registers and "H" in p and mode == "G0":  # (the pages do not say a G0 applies it: HY034)
+            st.g0_height_register, st.g0_height_line = _int(p["H"]), line.number
 
     def plain_move(
         self, mode: str, number: int, x: str | None, y: str | None, z: str | None, e: str | None, f: str | None
@@ -198,6 +207,13 @@ class Interpreter:
         st.moved = True
         if st.first_move_line is None:
             st.first_move_line = number
+        if (
+            st.first_work_since_home_line is None
+            and mode != "G0"
+            and (not st.printed or st.spindles)
+            and (x is not None or y is not None or z is not None)
+        ):
+            st.first_work_since_home_line = number
         st.motion_mode = mode
         if e is not None:
             self._extrude(e, mode, number)
@@ -215,6 +231,8 @@ class Interpreter:
         st = self.state
         if not st.absolute or st.first_move_line is None:
             return False
+        if st.first_work_since_home_line is None and (not st.printed or st.spindles):
+            return False  # a move of the run may be the first work since the last G28: it sets its line
         e_at = _last_word(text, "E", start, end)
         if e_at >= 0 and (
             st.first_print_since_tool_line is None  # (first: it is the one a tool change clears)
@@ -336,7 +354,9 @@ class Interpreter:
         st.fixture_offsets_active = False
         st.applied_height_register = None
         st.applied_height_line = None
+        st.g0_height_register = st.g0_height_line = None
         st.first_print_since_home_line = None
+        st.first_work_since_home_line = None
         self._g28(cmd, line)
 
     def _g28(self, cmd: Command, line: Line) -> None:
@@ -357,6 +377,7 @@ class Interpreter:
         for axis in homed:
             st.position.set(axis, 0.0)
             st.homed_axes.add(axis)
+            st.axes_with_homes.add(axis)
         if "Z" in homed:
             st.z_homed_line = line.number
         st.axes_to_rehome.difference_update(homed)
@@ -382,13 +403,16 @@ class Interpreter:
             if v is not None:
                 st.position.set_raw(axis, v)
         st.moved = True
+        if st.first_work_since_home_line is None:  # (peck drilling is work: "make holes")
+            st.first_work_since_home_line = line.number
 
     def _motors_off(self, cmd: Command, line: Line) -> None:
-        # "All axes with homes must be rehomed after an M18." (Hyrel Gcode page, M18)
+        # "All axes with homes must be rehomed after an M18." (Hyrel Gcode page, M18).  Which axes have homes:
+        # X and Y ("G28 Send X, Y to Physical Home"), and Z, A, B where the job itself homes them; the pages
+        # do not say which models have a Z home (a 30M's own Hyrel header homes X and Y only)
         st = self.state
         st.motors_off_line = line.number
-        # every axis with a home (G28 homes X Y Z A B; A and B only where the job homed them)
-        st.axes_to_rehome = {"X", "Y", "Z"} | (st.homed_axes & {"A", "B"})
+        st.axes_to_rehome = set(st.axes_with_homes)
         st.homed_axes.clear()
 
     # -- heads and tools -----------------------------------------------------------------------------
@@ -571,6 +595,7 @@ class Interpreter:
         st.tool_height_offsets.clear()
         st.applied_height_register = None
         st.applied_height_line = None
+        st.g0_height_register = st.g0_height_line = None
         st.first_print_since_m30_line = None
         st.first_print_since_tool_line = None
         st.head_reselected_line = None

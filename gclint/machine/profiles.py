@@ -4,7 +4,8 @@ Sources: T_v5 "Using the T with the ESR and 30M / EHR and 16A / 16A (Dual Yoke)"
 Gcode page "G0 Rapid Move" note ("All Hyrel printers have built-in support for three axes. Hyrel model
 16A and EHR printers may be expanded to five") for A/B; "Controlling Aux Devices" for which model has
 which port (M671 30M/ESR only, M676 16A only, ...); "M253 Turn On Lathe" (16A only); "M660" (EHR needs
-G28 Z0).
+G28 Z0); "Controlling Temperature" for the second bed ("our Hydra models have room to have a second
+hotbed": the 16A; the pages give the other models none).
 """
 
 from __future__ import annotations
@@ -22,6 +23,7 @@ class PrinterProfile:
     lathe: bool = False
     needs_z_home_for_m660: bool = False
     named: str = ""  # how a comment names the model (gclint.context.printer)
+    second_bed: bool = False  # room for Bed2 (T25): "our Hydra models have room to have a second hotbed"
 
     @property
     def max_position(self) -> int:
@@ -69,6 +71,7 @@ PROFILES: dict[str, PrinterProfile] = {
             _ALWAYS | {"M675", "M676", "M678", "M684", "M685"},
             lathe=True,
             named=r"\b(?:Hydra ?)?16A\b",
+            second_bed=True,
         ),
         PrinterProfile(
             "16a-dual",
@@ -78,6 +81,7 @@ PROFILES: dict[str, PrinterProfile] = {
             _ALWAYS | {"M675", "M676", "M678", "M684", "M685"},
             lathe=True,
             named=r"\b(?:Hydra ?)?16A\b[^\n]*\bdual\b",
+            second_bed=True,
         ),
     )
 }

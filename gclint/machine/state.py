@@ -94,12 +94,18 @@ class MachineState:
     tool_height_offsets: dict[int, float | None] = field(default_factory=dict)
     applied_height_register: int | None = None
     applied_height_line: int | None = None  # where the applied register was first applied (repeats keep it)
+    g0_height_register: int | None = None  # H on a G0 (which the pages do not say applies it: HY034, HY004)
+    g0_height_line: int | None = None
 
     # homing and motors
     homed_axes: set[str] = field(default_factory=set)
+    # axes the job has homed anywhere (a G28 that lists Z shows the machine's Z has a home: "Z0 ensures that
+    # the Z axis is homed"); X and Y have homes on every Hyrel ("G28 sends the X and/or Y axes to the
+    # sensor-defined physical home position")
+    axes_with_homes: set[str] = field(default_factory=lambda: {"X", "Y"})
     z_homed_line: int | None = None
     motors_off_line: int | None = None  # last M18/M84 while some axis is not homed again since
-    axes_to_rehome: set[str] = field(default_factory=set)  # axes M18/M84 left unhomed (G28 takes them off)
+    axes_to_rehome: set[str] = field(default_factory=set)  # axes with homes M18/M84 left unhomed (G28 takes them off)
     fixture_offsets_active: bool = False
     g92_offsets_active: bool = False
 
@@ -118,6 +124,10 @@ class MachineState:
     first_print_line: int | None = None
     first_move_line: int | None = None  # first G0/G1/G2/G3 (or spiral) move; homing does not count
     first_print_since_home_line: int | None = None  # first printing move after the last Hyrel G28
+    # First working move after the last Hyrel G28 that works without E: a G1 or arc moving an axis while a
+    # spindle turns or before the job has printed (milling, pick and place: G1 "is a working move, during
+    # which you may be printing, milling, lasering, or doing other active work"), or a G81 peck drilling.
+    first_work_since_home_line: int | None = None
     first_print_since_m30_line: int | None = None  # first printing move after the last M30
     first_print_since_tool_line: int | None = None  # first printing move since the last T command (or M30)
     after_m30: bool = False

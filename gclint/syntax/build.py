@@ -73,6 +73,56 @@ class Assignment:
 
 MAX_DIGITS = 30  # per side of the decimal point; the fast path's patterns use the same bound
 
+# The exponent of a number in exponent notation ("F1.875e+06", as some generators print floats): an E word
+# straight after a number, "e" with an integer (signed, or after an upper-case letter: "g1x10e1" is a compact
+# line in lower case), or "E" with a signed integer of two digits or more (as printf's %E writes it; "X10E-2"
+# in a line without blanks is a compact E word).
+_EXPONENT_LOWER = re.compile(r"[-+]?[0-9]{1,4}")
+_EXPONENT_UPPER = re.compile(r"[-+][0-9]{2,4}")
+
+
+def _exponent_of(previous: Word | None, piece: Word) -> str | None:
+    """The number written in exponent notation when the E word ``piece`` is the exponent of the word
+    ``previous`` (written straight after it), else None.  G-code numbers have no exponent: the grammar reads
+    the E as a word of its own, and this names the number the author may have meant."""
+    if previous is None or piece.letter != "E" or piece.value is None or previous.value is None:
+        return None
+    if previous.kind != NUMBER or previous.letter in "GMTN" or previous.column + len(previous.text) != piece.column:
+        return None
+    lower = piece.text[:1] == "e"
+    if not (_EXPONENT_LOWER if lower else _EXPONENT_UPPER).fullmatch(piece.value) or not is_number(previous.value):
+        return None
+    if lower and piece.value[0] not in "+-" and not previous.text[:1].isupper():
+        return None  # ("g1x10e1": a compact line in lower case, whose e1 is an E word)
+    return f"{previous.text[:1]}{previous.value}{piece.text[:1]}{piece.value}"
+
+
+def written_out(number: str) -> str:
+    """The number of an exponent notation written plainly: ``F1.875e+06`` -> ``F1875000``."""
+    from decimal import Decimal, InvalidOperation
+
+    try:
+        plain = format(Decimal(number[1:]), "f")
+    except InvalidOperation:  # pragma: no cover - _exponent_of gives numbers only
+        return number
+    return number[0] + (plain.rstrip("0").rstrip(".") if "." in plain else plain)
+
+
+def exponents(cmd: Command) -> list[tuple[Word, Word, str]]:
+    """The numbers of ``cmd`` written in exponent notation: (the word the number starts, the E word the grammar
+    reads its exponent as, the number as written, ``F1.875e+06``).  What such a number means depends on the
+    firmware (RepRapFirmware reads ``C7.06e-8`` as one number), so the rules of a dialect say whether to report
+    it (HY067 on Hyrel, whose pages do not say)."""
+    words = cmd.words
+    if cmd.word is not None:
+        words = (cmd.word, *words)
+    found = []
+    for previous, word in zip(words, words[1:], strict=False):
+        number = _exponent_of(previous, word)
+        if number is not None:
+            found.append((previous, word, number))
+    return found
+
 
 def _too_long(value: str) -> bool:
     whole, _, frac = value.lstrip("+-").partition(".")
@@ -133,6 +183,8 @@ def assemble(
     checksum: Checksum | None = None
     current: Command | None = None
     current_words: list[Word] = []
+    previous_word: Word | None = None  # the word just before (for exponent notation)
+    exponents: dict[tuple[int, str], str] = {}  # (command, letter) -> the number in exponent notation its word ends
 
     def close() -> None:
         nonlocal current, current_words
@@ -149,6 +201,8 @@ def assemble(
             checksum = None
         if isinstance(piece, Word):
             letter = piece.letter
+            exponent = _exponent_of(previous_word, piece)  # (named in the message of a repeated E)
+            previous_word = piece
             if piece.kind == NUMBER and piece.value is not None:
                 if not is_number(piece.value):
                     issues.append(Issue(BAD_NUMBER, piece.column, f"{letter} value {piece.value!r} is not a number"))
@@ -185,7 +239,18 @@ def assemble(
                 current = Command(None, IMPLICIT, piece.column, {})
             if letter in current.params:
                 where = current.code or "this block"
-                if current.params[letter] == piece.value:
+                first_exponent = exponents.get((id(current), letter))
+                if first_exponent is not None or exponent is not None:
+                    # (one of the two is the exponent of a number in exponent notation)
+                    issues.append(
+                        Issue(
+                            DUPLICATE_WORD,
+                            piece.column,
+                            f"{letter} appears more than once in {where}: the E of "
+                            f"{first_exponent or exponent} is read as an E word of its own",
+                        )
+                    )
+                elif current.params[letter] == piece.value:
                     # The same value twice is redundant, not ambiguous: every firmware gets the same value.
                     issues.append(
                         Issue(DUPLICATE_WORD, piece.column, f"{piece.text.strip()} is repeated in {where}", "warning")
@@ -194,8 +259,12 @@ def assemble(
                     issues.append(Issue(DUPLICATE_WORD, piece.column, f"{letter} appears more than once in {where}"))
             else:
                 current.params[letter] = piece.value
+                if exponent is not None:
+                    exponents[(id(current), letter)] = exponent
             current_words.append(piece)
-        elif isinstance(piece, Comment):
+            continue
+        previous_word = None
+        if isinstance(piece, Comment):
             comments.append(piece)
             if not piece.closed:
                 issues.append(Issue(UNCLOSED_COMMENT, piece.column, "comment opened with '(' is never closed"))

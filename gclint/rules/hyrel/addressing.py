@@ -204,7 +204,7 @@ class ToolBeyondModel(Rule):
     code = "HY007"
     name = "tool-beyond-model"
     severity = Severity.ERROR
-    summary = "A T command or T variable names a head position the printer model does not have"
+    summary = "A T command or T variable names a head position (or a second bed) the printer model does not have"
     explanation = """
         Each Hyrel model has a fixed number of tool positions (T_v5, "Using the T with ..."): the
         System 30M and Engine SR have four (T0-T3), the Engine HR and the single-yoke Hydra 16A five
@@ -212,17 +212,24 @@ class ToolBeyondModel(Rule):
         A T command or an M-code addressed to a position the model lacks selects or heats nothing, and
         the moves that follow run with the wrong head.  Choose the printer with `--printer` (or
         `printer = "16a-dual"` in the configuration); the default is the 30m.
+
+        T25 is "Bed2 / Chamber2" (T_v5, Chart of Addresses), and "our Hydra models have room to have a
+        second hotbed" (Gcode page, Controlling Temperature): `M140 T25` or `M190 T25` on a model that
+        is not a Hydra (16A) heats or waits for a bed the pages give that model no room for (warning:
+        the pages do not say outright that the others have none).  A second chamber is only something
+        Hyrel has "talked about", on no model, so M141/M191 T25 are not reported.
     """
     example_bad = """
         ; gclint-test: printer=30m
         T4
     """
     example_good = """
-        ; gclint-test: printer=ehr
-        T4
+        ; gclint-test: printer=30m
+        T3
     """
     source = (
-        "T_v5, Chart of Addresses and Using the T with the ESR and 30M / EHR and 16A / 16A (Dual Yoke) (catalogue H44)"
+        "T_v5, Chart of Addresses and Using the T with the ESR and 30M / EHR and 16A / 16A (Dual Yoke); Gcode "
+        "page, Controlling Temperature (Hotbed 2) (catalogue H44)"
     )
     families = ("hyrel",)
 
@@ -242,6 +249,9 @@ class ToolBeyondModel(Rule):
             what = f"{cmd.code} T{cmd.params.get('T')}"
         else:
             what = str(cmd.code)
+        if address is not None and address.kind == BED and address.v5 == 25 and cmd.code in ("M140", "M190"):
+            self._second_bed(line, node, what, address)
+            return
         if address is None or address.kind != HEAD:
             return
         profile = self.ctx.profile
@@ -254,6 +264,20 @@ class ToolBeyondModel(Rule):
                 f"{profile.describe_positions()} only ({profile.title}){self.ctx.model_note()}{hint}",
                 node=node,
             )
+
+    def _second_bed(self, line: Line, node: Node | None, what: str, address: Address) -> None:
+        """Bed2 (T25) on a model the pages give no second bed ("our Hydra models have room to have a second
+        hotbed", Controlling Temperature)."""
+        if not self.ctx.on_every_model(lambda p: not p.second_bed):
+            return
+        profile = self.ctx.profile
+        self.report(
+            line,
+            f"{what} names {address.label}, but the pages give a second bed to the Hydra models only ('our Hydra models "
+            f"have room to have a second hotbed'), and a {profile.name} is not one{self.ctx.model_note()}",
+            node=node,
+            severity=Severity.WARNING,
+        )
 
 
 # -- HY008 ---------------------------------------------------------------------------------------------

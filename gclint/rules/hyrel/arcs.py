@@ -227,8 +227,11 @@ class ArcEAmountIgnored(Rule):
         Every Hyrel arc says: "We will print this element with our native Hyrel flow calculations (based on
         nozzle diameter, layer thickness, and feed rate) even if your gcode has enabled the use of E values
         with M229 E1 D1."  The E amount of an arc (from a slicer's arc fitting) only marks it as printing;
-        its flow comes from M221/M756, so it may over- or under-extrude next to the E-driven lines.  Turn
-        off arc fitting in the slicer, or check the native flow settings.
+        its flow is the native one, so it may over- or under-extrude next to the E-driven lines.  Which
+        layer thickness the native calculation of an arc uses under M229 E1 the pages do not say: M756
+        "is ignored if you are using M229 E1 D1" (HY014), and M221 Z is the head's layer thickness that
+        "your gcode M756 will overwrite".  Turn off arc fitting in the slicer, or check the head's flow
+        settings (M221 W and Z).
     """
     example_bad = """
         M229 E1 D1
@@ -254,8 +257,9 @@ class ArcEAmountIgnored(Rule):
         if "E" in cmd.params and self.state.e_values():
             self.report(
                 line,
-                f"{cmd.code} is printed with native flow even under M229 E1 (line {self.state.m229_line}): "
-                "its E amount is ignored",
+                f"{cmd.code} is printed with native flow even under M229 E1 (line {self.state.m229_line}): its E "
+                "amount is ignored; the flow is 'based on nozzle diameter, layer thickness, and feed rate', and "
+                "the pages do not say which layer thickness, M756 being ignored under M229 E1 D1",
                 node=cmd.param("E") or cmd,
             )
 
@@ -297,3 +301,44 @@ class PlainArcInOtherPlane(Rule):
                 "(use G2.3/G3.3)"
             )
             self.report(line, message, node=cmd)
+
+
+@register
+class ArcNormalOutsideG16(Rule):
+    code = "HY064"
+    name = "arc-normal-outside-g16"
+    severity = Severity.WARNING
+    summary = "G2.3/G3.3 with U, V or W outside G16: the normal vector is ignored"
+    explanation = """
+        G2.3 and G3.3 draw arcs in 3-space; U, V and W are "the X/Y/Z component of a vector normal to the
+        working plane".  The page: "If we are in G16 mode, Un, Vn, Wn define the vector normal to the
+        work plane.  If we are in G17 (X/Y plane) or G18 (X/Z plane) or G19 (Y/Z plane) mode, these are
+        ignored."  A G2.3 with U/V/W under G17 (the default), G18 or G19 is drawn in that plane, not in
+        the one the vector describes.  Put G16 before it, or drop U/V/W.
+    """
+    example_bad = """
+        G17
+        G2.3 X10 Y0 Z5 I5 J0 K0 U0 V1 W1
+    """
+    example_good = """
+        G16
+        G2.3 X10 Y0 Z5 I5 J0 K0 U0 V1 W1
+    """
+    source = "Gcode page, G2.3 3-Space CW Arc (note on G16-G19) and G3.3 3-Space CCW Arc (catalogue H22)"
+    codes = ("G2.3", "G3.3")
+    families = ("hyrel",)
+
+    def check(self, line: Line, cmd: Command) -> None:
+        plane = self.state.plane
+        if plane == 16:
+            return
+        given = [letter for letter in "UVW" if letter in cmd.params]
+        if given:
+            word = cmd.param(given[0])
+            self.report(
+                line,
+                f"{cmd.code} {'/'.join(given)} under G{plane}: the normal vector applies only in G16 mode ('If we "
+                "are in G17 ... or G18 ... or G19 ... mode, these are ignored'); the arc is drawn in the "
+                f"G{plane} plane",
+                node=word or cmd,
+            )

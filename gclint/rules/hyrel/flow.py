@@ -73,9 +73,11 @@ class FanDutyOverRange(ParamTableRule):
         Hyrel's M106 S is a duty cycle within the range set by C: "if unspecified, the default is C100
         (use C255 to be compatible with most slicers)", and "all following M106 commands for the rest of
         this print job will be based on this range".  A slicer's `M106 S255` with the default range asks
-        for 255 % and runs the fan (or UV LEDs) at full power whatever the slicer meant: put `M106 C255`
-        in the header.  P is "the percent of duty cycle ... to come on only during extrusion moves"
-        (0-100), not Marlin's fan index; with both S and P on one line the firmware uses S.
+        for 255 % of the range, which the pages do not define (whatever Repetrel makes of it, it is not
+        the half speed a slicer's S128 means on the 0-255 scale): put `M106 C255` in the header.  P is
+        "the percent of duty cycle ... to come on only during extrusion moves" (0-100), not Marlin's fan
+        index; the page gives `M106 T# Sn` and `M106 T# Pn` as two forms, and does not say which one
+        counts when a line has both.
     """
     example_bad = "M106 T0 S128"
     example_good = """
@@ -105,13 +107,15 @@ class FanDutyOverRange(ParamTableRule):
             hint = "; slicer fan values are 0-255: add M106 C255 before it" if duty <= 255 and fan_range != 255 else ""
             self.report(
                 line,
-                f"M106 S{text} is above the fan range C{_fmt(fan_range)} ({where}): the duty is clamped to 100 %{hint}",
+                f"M106 S{text} is above the fan range C{_fmt(fan_range)} ({where}): S is a share of that range, and "
+                f"the pages do not say what a duty above it does{hint}",
                 node=cmd.param("S") or cmd,
             )
         if "P" in p:
             self.report(
                 line,
-                "M106 with both S and P: S is used and P (duty during extrusion only) is ignored",
+                "M106 with both S and P: the page gives 'M106 T# Sn' and 'M106 T# Pn' (duty during extrusion only) "
+                "as two forms and does not say which one counts on one line",
                 node=cmd.param("P") or cmd,
             )
 
@@ -127,9 +131,9 @@ class FanRangeValue(ParamTableRule):
     summary = "M106 C outside 1-255 (warning) or other than 100/255 (info)"
     explanation = """
         "Cn is the range (0-100 or 0-255) that we will use; if unspecified, the default is C100 (use C255
-        to be compatible with most slicers)."  The range stays until M30.  The firmware fits C into 1-255,
-        so a value outside it does not do what it says (warning); any other value in 1-255 works but is
-        not one of the two documented ranges (info).
+        to be compatible with most slicers)."  The range stays until M30.  A value outside 1-255 is beyond
+        both ranges the page gives (warning: the pages do not say what Repetrel makes of it); any other
+        value in 1-255 is not one of the two documented ranges either (info).
     """
     example_bad = "M106 C1000"
     example_good = "M106 C255"
@@ -148,7 +152,7 @@ class FanRangeValue(ParamTableRule):
             )
 
     def range_message(self, cmd: Command, p: Param, problem: str) -> str:
-        return f"M106: {problem} (the fan range; the firmware fits it into 1-255)"
+        return f"M106: {problem} (the fan range: the page gives C100 and C255)"
 
 
 @register
@@ -181,12 +185,21 @@ class EModeWithoutM229(Rule):
 class M756IgnoredUnderM229(Rule):
     code = "HY014"
     name = "m756-ignored-under-m229"
-    severity = Severity.WARNING
+    severity = Severity.INFO
     summary = "M756 layer height while E values are enabled: ignored"
     explanation = """
         M756 sets the layer height that native flow uses: "Note: this command is ignored if you are using
-        M229 E1 D1 to enable use of E values."  Under M229 E1 the slicer's E amounts set the flow, so the
-        layer height written here has no effect.
+        M229 E1 D1 to enable use of E values."  Under M229 E1 the slicer's E amounts set the flow of
+        G1 moves, so the layer height written here has no effect on them.  An ignored command changes
+        nothing the printer does, so this is info, once per M229 E1 (Hyrel's own slicer profile writes
+        `M756 S[layer_height]` at every layer after `M229 E1 D1`, so that the same profile serves
+        native flow).
+
+        Arcs are the one place the pages leave open: every arc is printed "with our native Hyrel flow
+        calculations (based on nozzle diameter, layer thickness, and feed rate) even if your gcode has
+        enabled the use of E values with M229 E1 D1" (G2), while the M756 note makes no exception for
+        them.  So in a job with arcs under M229 E1, the pages do not say whether an M756 sets their layer
+        thickness; gclint says what the M756 page says (ignored), and HY037 says the same of the arcs.
     """
     example_bad = """
         M229 E1 D1
@@ -200,10 +213,21 @@ class M756IgnoredUnderM229(Rule):
     codes = ("M756",)
     families = ("hyrel",)
 
+    def __init__(self, ctx) -> None:
+        super().__init__(ctx)
+        self.reported_for: int | None = None  # the M229 E1 line already reported
+
     def check(self, line: Line, cmd: Command) -> None:
         st = self.state
-        if st.e_values():
-            self.report(line, f"M756 is ignored: E values are enabled (M229 E1 on line {st.m229_line})", node=cmd)
+        if st.e_values() and st.m229_line != self.reported_for:
+            self.reported_for = st.m229_line
+            self.report(
+                line,
+                f"M756 is ignored: E values are enabled (M229 E1 on line {st.m229_line}); 'this command is ignored if "
+                "you are using M229 E1 D1 to enable use of E values' (so are the M756 lines after it, until "
+                "M229 E0)",
+                node=cmd,
+            )
 
 
 @register
@@ -211,43 +235,39 @@ class FlowMultiplierRange(ParamTableRule):
     code = "HY033"
     name = "flow-multiplier-range"
     severity = Severity.WARNING
-    summary = "G1 S / M221 S is a flow multiplier (0-15.99); M221 S above 2 looks like a percentage"
+    summary = "G1 S / M221 S is a flow multiplier: a negative one asks for negative flow"
     explanation = """
-        On Hyrel, `G1 ... Sn` is "a one-time (non-persistent) material flow rate multiplier" and M221 S
-        "is the direct flow multiplier": 1.0 is the flow as computed.  The firmware accepts 0 to 15.99.
-        Marlin's `M221 S95` means 95 %; on Hyrel it asks for 95 times the flow (clamped).  An M221 S above
-        2 is reported as a likely percentage: write `M221 S0.95`.  (On Marlin/RRF, S on G1 is laser power.)
+        On Hyrel, `G1 ... Sn` is "a one-time (non-persistent) material flow rate multiplier (rarely used)
+        applied to this move only", and M221 S "is the direct flow multiplier (to allow for undersized
+        or oversized stock"; the page's example decodes `S1.0` as "(flow multiplier of 1.0)".  The pages
+        give no upper limit, so any multiplier from 0 up is taken as written (`M221 S2.5` asks for 2.5
+        times the flow, as a generator may mean it).  A negative multiplier is no stock size and asks for
+        a negative flow: that is reported.  (On Marlin/RRF, S on G1 is laser power and M221 S a
+        percentage; on Hyrel `M221 S95` is a multiplier of 95.)  The ranges are data in
+        gclint/dialects/hyrel.py (`rule="HY033"`).
     """
-    example_bad = "M221 T0 S95"
-    example_good = "M221 T0 S0.95"
-    source = "Gcode page, G1 Working Move and M221 Set Flow Rate (catalogue H15, H39, F04)"
+    example_bad = "M221 T0 S-1"
+    example_good = "M221 T0 S1.0"
+    source = "Gcode page, G1 Working Move (Sn) and M221 Set Flow Rate (Sn) (catalogue H15, H39)"
     families = ("hyrel",)
-
-    LIKELY_PERCENT = 2.0
 
     def __init__(self, ctx) -> None:
         super().__init__(ctx)
         MoveChecks.join(self, "flow_multiplier")  # G1 S is checked from the one G0/G1 listener
 
-    def check(self, line: Line, cmd: Command) -> None:
-        if cmd.code == "M221":
-            s = cmd.get("S")
-            if s is not None and s > self.LIKELY_PERCENT:
-                self.report(
-                    line,
-                    f"M221 S{cmd.raw('S')} asks for {_fmt(s)} times the computed flow (S is a multiplier on Hyrel, at "
-                    f"most 15.99); if a percentage was meant (Marlin's M221), write S{_fmt(s / 100)} for {_fmt(s)} %",
-                    node=cmd.param("S") or cmd,
-                )
-                return
-        super().check(line, cmd)
+    def trigger_letters(self, code: str) -> frozenset[str] | None:
+        # (the member that leads MoveChecks listens to every G0/G1 for all: its moves must all reach it)
+        return None if code in ("G0", "G1") else super().trigger_letters(code)
 
     def move(self, line: Line, cmd: Command) -> None:
         """G1 lines with S (called by ``MoveChecks``)."""
         ParamTableRule.check(self, line, cmd)
 
     def range_message(self, cmd: Command, p: Param, problem: str) -> str:
-        return f"{cmd.code}: {problem} (S is a flow multiplier, 0-15.99; 1.0 = as computed)"
+        return (
+            f"{cmd.code}: {problem}: S is a flow multiplier ('to allow for undersized or oversized stock'); "
+            "a negative one asks for negative flow"
+        )
 
 
 @register

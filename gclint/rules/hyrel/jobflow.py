@@ -8,6 +8,8 @@ catalogued in ../shared/research/dialects.md section 3 (H35, H36, H47, H50, H51)
 
 from __future__ import annotations
 
+import re
+
 from gclint.dialects.base import Param
 from gclint.machine.profiles import PROFILES
 from gclint.machine.state import EVALUES
@@ -16,7 +18,8 @@ from gclint.rules.base import ANY_T, Rule, Severity, register
 from gclint.rules.dialect import ParamTableRule
 from gclint.rules.hyrel.addressing import int_value
 from gclint.rules.security import ACTIONS, host_actions, shell_offsets
-from gclint.syntax.nodes import Command, Line
+from gclint.syntax.build import exponents, written_out
+from gclint.syntax.nodes import GCODE, Command, Line
 
 # -- HY009 ---------------------------------------------------------------------------------------------
 
@@ -103,6 +106,26 @@ class MissingM30(Rule):
 # -- HY029 ---------------------------------------------------------------------------------------------
 
 _LIMIT = 100  # "Note that all lines will be truncated at 100 characters." (M0 Stop Until Resume)
+_QUOTED = 60  # at most this many characters of what is cut are quoted (a line may be 99,000 long)
+
+
+def _quoted(text: str) -> str:
+    """``text`` for a message: whole when short, else its start and its length."""
+    if len(text) <= _QUOTED:
+        return text
+    return f"{text[:_QUOTED].rstrip()}... ({len(text):,} characters)"
+
+
+def _outside_comments(line: Line) -> str:
+    """The text after column 100 that is not in a comment (blanks between words included)."""
+    raw = line.raw
+    tail = list(raw[_LIMIT:])
+    for comment in line.parsed.comments:
+        start = max(comment.column - 1, _LIMIT)
+        end = comment.column - 1 + len(comment.text)
+        if end > start:
+            tail[start - _LIMIT : end - _LIMIT] = " " * (end - start)
+    return "".join(tail).strip()
 
 
 @register
@@ -110,15 +133,16 @@ class LineOver100Characters(Rule):
     code = "HY029"
     name = "line-over-100-characters"
     severity = Severity.WARNING
-    summary = "A line longer than 100 characters: Repetrel truncates it"
+    summary = "A line longer than 100 characters: Repetrel truncates it (info when only comment text is cut)"
     explanation = """
         The M0 section says "Note that all lines will be truncated at 100 characters."  Whether "all
         lines" means the M0/M792 text or every line of the file is not clear, so gclint takes it as
-        written (research/dialects.md 3.3): a longer line loses what follows column 100: the end of an
-        M0/M792 message or action, a comment, or parameters of the command itself.  The message says
-        which.  Shorten the line or move the comment to a line of its own.  As with ruff's E501, a line
-        whose text up to a trailing `noqa` comment fits is not reported (only the suppression comment is
-        cut, which the printer does not need).
+        written (research/dialects.md 3.3): a longer line loses what follows column 100.  A warning
+        when that is part of a command (a word, a parameter, a checksum) or the text of an M0/M792
+        (its message or action: what the printer says or does); info when it is only comment text,
+        which changes nothing the printer does (a slicer profile's banner comment, Hyrel's own among
+        them).  The message says what is cut, quoting at most 60 characters of it.  As with ruff's
+        E501, a line whose text up to a trailing `noqa` comment fits is not reported.
     """
     example_bad = (
         "M0 ; SAY "
@@ -135,10 +159,11 @@ class LineOver100Characters(Rule):
 
     def check_line(self, line: Line) -> None:
         raw = line.raw
-        if len(raw) <= _LIMIT:
-            return
+        if len(raw) <= _LIMIT or not raw[_LIMIT:].strip():
+            return  # (only blanks after column 100: nothing is lost)
         parsed = line.parsed
-        if not any(cmd.code in ("M0", "M792") for cmd in parsed.commands):
+        says = any(cmd.code in ("M0", "M792") for cmd in parsed.commands)  # (their comment is their text)
+        if not says:
             pragma = NOQA.search(raw)
             at = pragma.start() if pragma is not None else -1
             if pragma is not None and raw[at] == ";" and len(raw[:at].rstrip()) <= _LIMIT:  # (";" runs to the end)
@@ -146,19 +171,24 @@ class LineOver100Characters(Rule):
         lost_words = []
         for cmd in parsed.commands:
             if cmd.word is not None and cmd.word.end_column > _LIMIT + 1:
-                lost_words.append(cmd.word.text)
+                lost_words.append(cmd.word.text.strip())
             if cmd.code not in ("M0", "M792"):
-                lost_words.extend(w.text for w in cmd.words if w.end_column > _LIMIT + 1)
+                lost_words.extend(w.text.strip() for w in cmd.words if w.end_column > _LIMIT + 1)
+        severity = None
         if lost_words:
-            detail = f"the command loses {' '.join(lost_words)}"
-        elif any(cmd.code in ("M0", "M792") for cmd in parsed.commands):
+            detail = f"the command loses {_quoted(' '.join(lost_words))}"
+        elif (outside := _outside_comments(line)) != "":
+            detail = f"'{_quoted(outside)}' is cut"
+        elif says:
             detail = "the M0/M792 text (message or action) is cut"
         else:
-            detail = "only comment text is lost" if parsed.commands else "the comment is cut"
+            severity = Severity.INFO  # "the comment is cut" changes nothing the printer does
+            detail = "only comment text is cut, which changes nothing the printer does"
         self.report(
             line,
-            f"line is {len(raw)} characters long; Repetrel truncates lines at {_LIMIT}: {detail}",
+            f"line is {len(raw):,} characters long; Repetrel truncates lines at {_LIMIT}: {detail}",
             column=_LIMIT + 1,
+            severity=severity,
         )
 
 
@@ -185,8 +215,8 @@ class AuxPortNotOnModel(Rule):
         M676 S100
     """
     example_good = """
-        ; gclint-test: printer=16a
-        M676 S100
+        ; gclint-test: printer=30m
+        M679 S100
     """
     source = "Gcode page, Controlling Aux Devices (M671-M689) (catalogue H50)"
     codes = tuple(_MODEL_AUX)
@@ -221,7 +251,8 @@ class AuxPercentRange(ParamTableRule):
     explanation = """
         The aux ports take "Sn is the percentage (0-100)": M7 and M8 ("default is 100"), the lights,
         fans and air of M670-M689 ("0-100; no default - if no Sn, no change").  A larger value (a 0-255
-        duty from another firmware) is clamped (warning); M670-M689 without S change nothing (info).
+        duty from another firmware) is outside what the page gives, and the pages do not say what it does
+        (warning); M670-M689 without S change nothing (info).
         The ranges are data in gclint/dialects/hyrel.py (`rule="HY044"`).
     """
     example_bad = "M7 S255"
@@ -240,7 +271,7 @@ class AuxPercentRange(ParamTableRule):
             )
 
     def range_message(self, cmd: Command, p: Param, problem: str) -> str:
-        return f"{cmd.code}: {problem}: S is a percentage 0-100 (the firmware clamps it)"
+        return f"{cmd.code}: {problem}: S is a percentage 0-100"
 
 
 # -- HY056 ---------------------------------------------------------------------------------------------
@@ -397,3 +428,98 @@ class M0UnknownAction(Rule):
                 )
             self.report(line, message, column=column)
             return
+
+
+# -- HY066 ---------------------------------------------------------------------------------------------
+
+
+@register
+class CommandsRunTogether(Rule):
+    code = "HY066"
+    name = "commands-run-together"
+    severity = Severity.WARNING
+    summary = "A command written straight after the word before it (G1 Z20G1 X60): two commands on one line"
+    explanation = """
+        `G1 Z20G1 X60 Y40` holds two commands with no blank between them, as where a line break was
+        lost.  gclint reads it as the grammar does, `G1 Z20` and then `G1 X60 Y40`; every example on the
+        Hyrel pages writes one command a line, and the pages do not say how Repetrel reads a second
+        command (as two moves, as a parameter of the first, or not at all).  Put each command on a
+        line of its own.  (Commands separated by a blank, `G21 G90`, are not reported.)
+    """
+    example_bad = "G1 Z20G1 X60 Y40 F1200"
+    example_good = """
+        G1 Z20 F1200
+        G1 X60 Y40
+    """
+    source = "Gcode page, the Usage and Example of every code (one command a line)"
+    families = ("hyrel",)
+    # a G, M or T code right after a number (what the grammar reads as a second command); the check reads
+    # the line to leave out comments and parameters
+    on_line_matching = re.compile(r"(?m)[0-9.][GgMmTt][0-9]")
+
+    def check_view(self, line: Line) -> None:
+        raw = line.raw
+        parsed = line.parsed
+        commands = parsed.commands
+        ends = [c.column for c in commands[1:]] + [min((c.column for c in parsed.comments), default=len(raw) + 1)]
+        for index, (previous, cmd) in enumerate(zip(commands, commands[1:], strict=False)):
+            word = cmd.word
+            if cmd.kind != GCODE or word is None or word.column < 2:
+                continue
+            before = raw[word.column - 2]
+            if before.isalnum() or before == ".":
+                last = previous.words[-1] if previous.words else previous.word
+                start = last.column if last is not None else word.column - 1
+                joined = raw[start - 1 : word.end_column - 1].strip()
+                first = raw[previous.column - 1 : cmd.column - 1].strip()
+                second = raw[cmd.column - 1 : ends[index + 1] - 1].strip()
+                self.report(
+                    line,
+                    f"{cmd.code} runs into the word before it ({_quoted(joined)}): two commands on one line, as if a "
+                    f"line break was lost; gclint reads '{_quoted(first)}' and then '{_quoted(second)}', and the "
+                    "Hyrel pages (one command a line) do not say how Repetrel reads it: put each command on its "
+                    "own line",
+                    node=cmd,
+                )
+
+
+# -- HY067 ---------------------------------------------------------------------------------------------
+
+
+@register
+class ExponentNotation(Rule):
+    code = "HY067"
+    name = "exponent-notation"
+    severity = Severity.WARNING
+    summary = "A number in exponent notation (F1.875e+06): the Hyrel pages do not say how Repetrel reads it"
+    explanation = """
+        Some generators print large or small numbers in exponent notation: `F1.875e+06` for a feed of
+        1,875,000 mm/min, `X1e-05`.  Every number on the Hyrel pages is a plain decimal, and the pages do
+        not say how Repetrel reads an exponent.  gclint reads the line as G-code words are read: the
+        number ends at the `e`, and `e+06` is an E word of its own, so `G1 X10 F1.875e+06` is a move at
+        F1.875 with an E (which on Hyrel makes it a printing move), and an `E2` later on the line is a
+        second E (SX002).  `gclint explain` reads it the same way and says so.  Whatever Repetrel makes
+        of it, the line does not say one thing: write the number out (`F1875000`).  (RepRapFirmware reads
+        `C7.06e-8` as one number, so the rule is Hyrel's only.)
+    """
+    example_bad = "G1 X10 F1.875e+06"
+    example_good = "G1 X10 F1875000"
+    source = "Gcode page, every Usage and Example (numbers are plain decimals); grammar.lark (the E word)"
+    families = ("hyrel",)
+    # a number straight before an e or E and a digit (the words are read to leave out comments and strings)
+    on_line_matching = re.compile(r"(?m)[0-9.][eE][-+]?[0-9]")
+
+    def check_view(self, line: Line) -> None:
+        for cmd in line.parsed.commands:
+            for word, _, number in exponents(cmd):
+                self.report(line, exponent_message(number), node=word)
+
+
+def exponent_message(number: str) -> str:
+    """What HY067 (and ``gclint explain``) say of a number in exponent notation (``F1.875e+06``)."""
+    exponent = number[max(number.rfind("e"), number.rfind("E")) :]
+    return (
+        f"{number} is exponent notation: gclint reads {number[: -len(exponent)]} and then an E word {exponent}, and "
+        f"the Hyrel pages, whose numbers are plain decimals, do not say how Repetrel reads it; write the number "
+        f"out: {written_out(number)}"
+    )

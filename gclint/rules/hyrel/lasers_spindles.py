@@ -115,9 +115,10 @@ class SpindlePowerOver100(ParamTableRule):
     severity = Severity.WARNING
     summary = "M3/M4 S is percent power (0-100); a larger value looks like RPM"
     explanation = """
-        Hyrel's M3/M4 take "Sn - power (0-100%)" and run "using the value set on the head for RPM".  CNC
-        programs (LinuxCNC, Carvera, Marlin with a spindle) write `M3 S12000` in RPM, which Hyrel clamps
-        to full power.  Convert RPM to a percentage of the spindle's maximum speed.
+        Hyrel's M3 activates the spindle "using the value set on the head for RPM", and its S is
+        "Sn - power (0-100%)" (M4: "All options are identical").  CNC programs (LinuxCNC, Carvera,
+        Marlin with a spindle) write `M3 S12000` in RPM: a value outside the page's 0-100, and the pages
+        do not say what Repetrel does with it.  Write the power as a percentage (0-100).
     """
     example_bad = "M3 T20 S12000"
     example_good = "M3 T20 S75"
@@ -127,7 +128,10 @@ class SpindlePowerOver100(ParamTableRule):
     def range_message(self, cmd: Command, p: Param, problem: str) -> str:
         value = cmd.get(p.letter)
         if value is not None and value > 100:
-            return f"{cmd.code} S{cmd.raw('S')}: S is percent power (0-100) on Hyrel, not RPM; {problem}"
+            return (
+                f"{cmd.code} S{cmd.raw('S')}: S is 'power (0-100%)' on Hyrel, not RPM ({problem}); the pages do not "
+                "say what a value above 100 does"
+            )
         return f"{cmd.code}: {problem} (S is percent power, 0-100)"
 
 

@@ -495,12 +495,15 @@ class MotionAfterMotorsOff(MoveRule):
     code = "HY039"
     name = "motion-after-motors-off"
     severity = Severity.ERROR
-    summary = "A move after M18/M84 without homing again"
+    summary = "A move after M18/M84 before the axes with homes are homed again"
     explanation = """
         M18 (and M84, which invokes it) cuts power to all motors so the bed and yoke can be pushed by
         hand: "All axes with homes must be rehomed after an M18."  Positions are lost, so a move before
-        `G28 X0 Y0 Z0` (every axis: one that is not homed again, Z say, can crash the head while X and Y
-        move) goes to the wrong place.  Reported once per M18/M84.
+        the axes are homed again goes to the wrong place.  Which axes have homes: X and Y on every
+        Hyrel ("G28 sends the X and/or Y axes to the sensor-defined physical home position"), and Z, A
+        or B where the job itself homes them ("Z0 ensures that the Z axis is homed"): the pages do not
+        say which models have a Z home, and a 30M's own Hyrel header homes X and Y only, so gclint asks
+        for `G28 Z0` only in a job that homes Z.  Reported once per M18/M84.
     """
     example_bad = """
         M18
@@ -508,7 +511,7 @@ class MotionAfterMotorsOff(MoveRule):
     """
     example_good = """
         M18
-        G28 X0 Y0 Z0
+        G28 X0 Y0
         G0 X10 Y10
     """
     source = "Gcode page, M18 Disengage Motors (catalogue H53)"
@@ -530,7 +533,7 @@ class MotionAfterMotorsOff(MoveRule):
             return
         # any move until every axis is homed again: a position lost on one axis (Z) is a crash on another
         self.reported_for = off
-        left = " ".join(f"{a}0" for a in sorted(st.axes_to_rehome))
+        left = " ".join(f"{a}0" for a in "XYZAB" if a in st.axes_to_rehome)
         self.report(
             line,
             f"{cmd.code} after the motors were disengaged (M18/M84 on line {off}): 'All axes with homes must "

@@ -56,6 +56,16 @@ class G81WithoutAppliedM660(Rule):
                 f"G81: H{register} was applied at line {st.applied_height_line}, "
                 f"but no M660 H{register} sets that register"
             )
+        elif st.g0_height_register in st.tool_height_offsets:
+            self.report(
+                line,
+                f"G81: H{st.g0_height_register} is applied only on a G0 (line {st.g0_height_line}); the pages apply "
+                "the register with H on a G1 and do not say a G0 does: apply it on a G1 ('an M660 offset must be set "
+                "and applied BEFORE THIS COMMAND')",
+                node=cmd,
+                severity=Severity.WARNING,
+            )
+            return
         elif st.tool_height_offsets:
             stored = ", ".join(f"H{h}" for h in sorted(st.tool_height_offsets))
             message = f"G81: M660 stores {stored}, but no G1 applies it with H before the G81"
@@ -151,7 +161,7 @@ class ToolHeightRegister(ParamTableRule):
     code = "HY034"
     name = "tool-height-register"
     severity = Severity.ERROR
-    summary = "An H register outside 0-59, or H on a move applying a register that no M660 has set"
+    summary = "An H register outside 0-59, H on a G1 applying a register that no M660 has set, or H on a G0"
     explanation = """
         `M660 H<n> Z<offset>` stores a tool-height offset in register n; `H<n>` on a G1 applies it ("Hn is
         the stored head offset to apply (see M660 to store offsets)").  Applying a register that no M660
@@ -159,6 +169,12 @@ class ToolHeightRegister(ParamTableRule):
         (warning); M30 resets the registers, so they must be set again in the next job.  The firmware
         has registers 0-59: another number, or an M660 without H, is an error.  H0 (no offset) is not
         reported.
+
+        H belongs to G1: G0's usage is `G0 Xn Yn Zn An Bn Fn`, with no H, and the M660 examples apply
+        the register on a G1 ("G1 Z0.275 F360 H2").  The pages do not say what Repetrel does with H on a
+        G0, so gclint does not count it as applied (as explain and the meaning diff read it) and says so
+        (info: real Hyrel jobs write `G0 Z0 H2`, and Repetrel may well apply it): put the H on a G1.  A G81
+        whose only H came on a G0 is a warning (HY004).
     """
     example_bad = """
         M660 H2 Z28.2
@@ -183,7 +199,18 @@ class ToolHeightRegister(ParamTableRule):
     def check(self, line: Line, cmd: Command) -> None:
         params = cmd.params
         code = cmd.code
-        if code == "G1" or code == "G0":
+        if code == "G0":
+            if "H" in params:
+                self.report(
+                    line,
+                    f"H{params['H'] or ''} on G0: G0's usage has no H (it is G1's: 'Hn is the stored head offset to "
+                    "apply'), and the pages do not say whether a G0 applies it; put the H on a G1 "
+                    "(as in 'G1 Z0.275 F360 H2')",
+                    node=cmd.param("H"),
+                    severity=Severity.INFO,
+                )
+            return
+        if code == "G1":
             if "H" not in params:
                 return
             super().check(line, cmd)
@@ -305,10 +332,16 @@ class OffsetsClearedByG28(Rule):
         for the head offsets a T command, which "invoke[s] all flow, prime, unprime, and offset
         parameters" of the head (or an `M6 T# ... I1`, "when you execute a tool change with T#").
 
+        The work that follows is the printing, and also work without E: G1 "is a working move, during
+        which you may be printing, milling, lasering, or doing other active work".  In a job that has
+        not printed (milling, pick and place) or while a spindle turns, the first G1 or arc that moves
+        an axis, or a G81, after the G28 is where the work resumes: a pick-and-place head loses its
+        `M6 T1 O2 X102.4 Y-23.5` offset there as a print head does.
+
         The head offset counts when a T command selected a head before the G28 and the job does not
         declare that head's offsets as all zero (`M6 T0 O1 X0 Y0 Z0`, where an offset of 0 mm changes
         nothing); a job with no T command at all prints with "the only head loaded" and is not
-        reported.  A G28 at the end of a job is fine.
+        reported.  A G28 at the end of a job, with no work after it, is fine.
     """
     example_bad = """
         T1
@@ -320,7 +353,10 @@ class OffsetsClearedByG28(Rule):
         T1
         G1 X20 Y10 E1 F1200
     """
-    source = "Gcode page, G28 Send X, Y to Physical Home and T Tool Change; T_v5, Explicit Mode (catalogue H27)"
+    source = (
+        "Gcode page, G28 Send X, Y to Physical Home, G1 Working Move and T Tool Change; T_v5, Explicit Mode "
+        "(catalogue H27)"
+    )
     codes = ("G28", "G92", *_FIXTURES, "M30")
     families = ("hyrel",)
 
@@ -375,8 +411,17 @@ class OffsetsClearedByG28(Rule):
             return
         st = self.state
         printed = st.first_print_since_home_line
-        if printed is None:
-            return  # nothing printed after the G28 (the usual G28 at the end of a job)
+        worked = st.first_work_since_home_line  # (milling, pick and place: a G1 with no E is work too)
+        if printed is None and worked is None:
+            return  # no work after the G28 (the usual G28 at the end of a job)
+        if printed is not None and (worked is None or printed <= worked):
+            resumes = f"printing resumes at line {printed}"
+        else:
+            printed = worked
+            resumes = (
+                f"work resumes at line {worked} (G1 is 'a working move, during which you may be printing, "
+                "milling, lasering, or doing other active work')"
+            )
         again = dict(self.again)
         if st.applied_height_register is not None and st.applied_height_line is not None:
             again["H"] = st.applied_height_line
@@ -393,12 +438,11 @@ class OffsetsClearedByG28(Rule):
         if "head" in lost:
             how = (
                 " (G28 'applies a head offset of 0 mm (as in an M6 O0)'; "
-                "a T command before the printing applies the head's offsets again)"
+                "a T command before the work applies the head's offsets again)"
             )
         self.report(
             g28,
-            f"G28 resets {', '.join(lost.values())} to 0, and printing resumes at line {printed} without setting them "
-            f"again{how}",
+            f"G28 resets {', '.join(lost.values())} to 0, and {resumes} without setting them again{how}",
             node=g28.commands[0] if g28.commands else None,
         )
 
@@ -411,7 +455,9 @@ class HeadOffsetRegister(ParamTableRule):
     code = "HY061"
     name = "head-offset-register"
     severity = Severity.ERROR
-    summary = "M6 with an offset register outside 0-59, or offsets stored in the fixed zero register O0"
+    summary = (
+        "M6 with an offset register outside 0-59, offsets stored in the fixed zero register O0, or offsets with no O"
+    )
     explanation = """
         `M6 T# On Xn Yn Zn` stores head offsets in register O ("On is the Offset position where these
         are being stored"), invoked by the T command of that head.  The firmware has registers 0-59, and
@@ -420,18 +466,37 @@ class HeadOffsetRegister(ParamTableRule):
         written to O0, are lost and the head prints without its offset.  `M6 O0` alone (apply the zero
         offset) is fine.
 
+        An M6 that gives offsets but no register (`M6 T1 X25 Y0 Z0.5`) stores them nowhere: the page
+        decodes an M6 without O as "(no offset registers, so ignore all offsets)" (its `M6 K1` example),
+        so the head prints without them (warning).  Write the register: `M6 T1 O2 X25 Y0 Z0.5`.
+
         (The catalogue also suggests an info for every M6 in a job, since "Repetrel reads this data from
         the heads, and sends it to the printer before the gcode file is loaded"; gclint does not report
         it, because Repetrel's own job header is made of exactly these lines.)
     """
     example_bad = "M6 T0 O60 X20 Y-30 Z40"
     example_good = "M6 T0 O1 X20 Y-30 Z40"
-    source = "Gcode page, M6 Declare Head Offsets and G28 Send X, Y to Physical Home (catalogue H55, F06)"
+    source = (
+        "Gcode page, M6 Declare Head Offsets (parameters, M6 K1 example) and G28 Send X, Y to Physical Home "
+        "(catalogue H55, F06)"
+    )
     families = ("hyrel",)
 
     def check(self, line: Line, cmd: Command) -> None:
         super().check(line, cmd)
         params = cmd.params
+        if "O" not in params:
+            given = " ".join(f"{axis}{params[axis]}" for axis in _AXES if params.get(axis) is not None)
+            if given:
+                head = f" T{params['T']}" if params.get("T") is not None else ""
+                self.report(
+                    line,
+                    f"M6{head} {given} has no O register: the page decodes an M6 without one as '(no offset "
+                    f"registers, so ignore all offsets)'; store them in a register: M6{head} O<n> {given}",
+                    node=cmd,
+                    severity=Severity.WARNING,
+                )
+            return
         if int_value(params.get("O")) != 0:
             return
         offsets = [

@@ -7,7 +7,7 @@ Temps (v5+), M190, M191) and the T_v5 chart of addresses, as catalogued in
 
 from __future__ import annotations
 
-from gclint.dialects.addressing import BED, GROUP, HEAD, RESERVED, VIRTUAL
+from gclint.dialects.addressing import BED, GROUP, GROUP_MEMBERS, HEAD, RESERVED, VIRTUAL
 from gclint.dialects.base import Param
 from gclint.rules.base import ANY_T, Rule, Severity, register
 from gclint.rules.dialect import ParamTableRule
@@ -45,8 +45,8 @@ class WaitParameterGroups(Rule):
         A Hyrel wait ends in one of three ways: absolute limits (H "heat up to", C "cool down to"),
         limits relative to S (L below, U above), or a window around S (R).  The page is explicit:
         "Please use EITHER (H and/or C) OR (L and/or U) OR (R) with your M109 command", and "You can use
-        Hn or Ln, but not both.  You can use Cn or Un, but not both."  The firmware takes one group and
-        silently ignores the others, so the wait does not end where the line says.
+        Hn or Ln, but not both.  You can use Cn or Un, but not both."  The pages do not say which group
+        counts when a line has more than one, so the line does not say where the wait ends.
     """
     example_bad = "M109 T0 S240 H230 L10"
     example_good = "M109 T0 S240 L10 U5"
@@ -72,7 +72,7 @@ class WaitParameterGroups(Rule):
         self.report(
             line,
             f"{cmd.code} mixes {' with '.join(letters)}: 'use EITHER (H and/or C) OR (L and/or U) OR (R)'{extra}; "
-            "the firmware keeps one group and ignores the rest",
+            "the pages do not say which one counts",
             node=_second_group_word(cmd) or cmd,
         )
 
@@ -177,26 +177,30 @@ class WaitRIsATolerance(Rule):
     code = "HY035"
     name = "wait-r-is-a-tolerance"
     severity = Severity.ERROR
-    summary = "M109/M190/M191 R without S: R is a tolerance around the set point, not a target (Marlin)"
+    summary = "M109/M190/M191 R above 50 without S: R is a tolerance around the set point, not a target (Marlin)"
     explanation = """
         On Hyrel, "Rn if present, is how close the relative temperature needs to be to the set temp to
         end the pause", and "Sn (optional) is the new set temperature in °C; if omitted, no new target
         temperature is set".  Marlin and RepRapFirmware read `M109 R210` as "set 210 °C and wait, also
-        when cooling"; on Hyrel it sets nothing and waits until the head is within ±210 °C of its old
-        target, which is at once.  An R above 50 °C with no S is such a Marlin target (error; the
+        when cooling"; on Hyrel it sets nothing and waits until the head is within ±210 °C of the
+        temperature already set.  An R above 50 °C with no S is taken for such a Marlin target (the
         threshold is the catalogue's, research/dialects.md H07, not the page's): write `M109 S210 R5`.
         With S, R is the tolerance the page describes, whatever its size: the page gives no limit, so
         `M109 T0 S240 R60` is not reported.
 
-        A wait without S on a device that has no temperature set earlier in the job waits for whatever
-        target the machine holds (warning).  (The page's own "M109 R10", "(no T# - use head with current
-        focus) R10 (to get +/-10°C of set temperature)", is fine after an earlier S.)
+        A wait without S is the page's own example: `M109 R10`, "(no T# - use head with current focus)
+        R10 (to get +/-10°C of set temperature)".  The set temperature may come from the job, from the
+        head settings Repetrel sends at the start ("All parameters are persistent"), or from the
+        operator, so a small R without S is not reported.
     """
     example_bad = "M109 T0 R210"
     example_good = "M109 T0 S210 R5"
-    source = "Gcode page, M109 Wait for Temp (Head) (Sn, Rn; also M190, M191) (catalogue H07)"
+    source = "Gcode page, M109 Wait for Temp (Head) (Sn, Rn, Example 6; also M190, M191) (catalogue H07)"
     codes = _WAITS
     families = ("hyrel",)
+
+    def trigger_letters(self, code: str) -> frozenset[str] | None:
+        return frozenset("R")
 
     def check(self, line: Line, cmd: Command) -> None:
         if cmd.get("S") is not None:
@@ -209,18 +213,6 @@ class WaitRIsATolerance(Rule):
                 f"sets nothing ('if omitted, no new target temperature is set'): write "
                 f"{cmd.code} S{cmd.params['R']} R5",
                 node=cmd.param("R"),
-            )
-            return
-        device = _device(self, cmd)
-        if device not in self.state.targets:
-            what = _WAITED[str(cmd.code)]
-            named = f"{what} T{device}" if device >= 0 else f"the focused {what}"
-            self.report(
-                line,
-                f"{cmd.code} has no S and no temperature was set earlier in the job for {named}: "
-                "it waits for whatever target the machine holds",
-                node=cmd,
-                severity=Severity.WARNING,
             )
 
 
@@ -418,7 +410,10 @@ class HeadPrintsWithoutTemperature(Rule):
     code = "HY063"
     name = "head-prints-without-temperature"
     severity = Severity.WARNING
-    summary = "A head prints after a T command, but no M104/M109 set its temperature (the job heats other heads)"
+    summary = (
+        "A head prints after a T command, but no M104/M109 set its temperature (the job heats other heads), or "
+        "a head prints after it was set to S0"
+    )
     explanation = """
         A T command changes the head that prints, "invoking the parameters specified in the M6" (flow,
         prime, unprime, offsets); it does not heat the head.  Temperatures come from the job: "the
@@ -441,6 +436,11 @@ class HeadPrintsWithoutTemperature(Rule):
         first T command heats the head Repetrel focused at the start, which gclint cannot name, so
         every head then counts as set.  Each head is reported once, at its first printing move without
         a temperature.
+
+        Likewise a head whose temperature the job set to 0 (`M104 T0 S0`, or a group address covering
+        it, as footers switch heaters off) and that prints afterwards, with no new temperature between:
+        "S0 (to 0°C)" is a set point of 0 °C (M109 Example 5), cold for a heated head.  With the same
+        exceptions (a job that heats no head, lasers, UV pens, spindles), reported once per head.
     """
     example_bad = """
         M109 T0 S215
@@ -471,6 +471,8 @@ class HeadPrintsWithoutTemperature(Rule):
         self.first_heat: int | None = None  # first M104/M109 with a non-zero S
         self.candidates: list[tuple[int, int, int | None]] = []  # (first print, head, line of its T command)
         self.no_heat: set[int] = set()  # heads known to need no heat: lasers/UV pens (M620), spindles
+        self.zero_lines: dict[int, int] = {}  # device written on an M104/M109 S0 (-1: the focused one) -> line
+        self.cold: list[tuple[int, int, int]] = []  # (first print, head or -1, line of the S0 that covers it)
 
     def check(self, line: Line, cmd: Command) -> None:
         code = cmd.code
@@ -490,6 +492,8 @@ class HeadPrintsWithoutTemperature(Rule):
             s = cmd.get("S")
             if s is not None and s != 0 and self.first_heat is None:
                 self.first_heat = line.number
+            if s == 0:
+                self.zero_lines[_device(self, cmd)] = line.number
         elif code == "M30" or (code is not None and code[0] == "T"):
             self.judged = False
 
@@ -503,18 +507,46 @@ class HeadPrintsWithoutTemperature(Rule):
             return
         self.judged = True
         head = st.tool
+        targets = st.targets
+        key = head if head is not None and head in targets else -1
+        if targets.get(key) == 0 and (head is None or 0 <= head <= 19):
+            zero = self._zero_line(-1 if head is None else head)
+            if zero is not None:
+                self.cold.append((printed, -1 if head is None else head, zero))
+                return
         if head is None or not 0 <= head <= 19 or st.tool_line is None:
             return  # no T command: the head Repetrel focused at the start (Default Mode)
-        targets = st.targets
         if head in targets or -1 in targets:
             return
         self.candidates.append((printed, head, st.tool_line))
+
+    def _zero_line(self, head: int) -> int | None:
+        """The line of the last M104/M109 S0 written to ``head``, to the focused head, or to a group or
+        squad covering it."""
+        squads = self.state.squads
+        lines = [
+            line
+            for device, line in self.zero_lines.items()
+            if device in (head, -1) or head in GROUP_MEMBERS.get(device, ()) or head in squads.get(device, ())
+        ]
+        return max(lines, default=None)
 
     def finish(self) -> None:
         self._settle()
         if self.first_heat is None:
             return  # the file sets no head temperature: Repetrel's settings, or heads that need none
         reported: set[int] = set()
+        for printed, head, zero in self.cold:
+            if head in self.no_heat or head in reported:
+                continue
+            reported.add(head)
+            named = f"head T{head}" if head >= 0 else "the focused head"
+            self.report(
+                printed,
+                f"{named} prints here, but its temperature was set to 0 at line {zero} and not set again: "
+                "S0 is a set point of 0 °C, cold for a heated head (ignore this for a head that needs no heat "
+                "or a chilled head)",
+            )
         for printed, head, tool_line in self.candidates:
             if head in self.no_heat or head in reported:
                 continue
@@ -525,4 +557,91 @@ class HeadPrintsWithoutTemperature(Rule):
                 f"set its temperature, while the job does set head temperatures (line {self.first_heat}): a "
                 "heated head prints cold (ignore this for a head that needs no heat: a UV pen, a laser, a "
                 "room-temperature paste or bio head)",
+            )
+
+
+# -- HY065 ---------------------------------------------------------------------------------------------
+
+
+@register
+class HeadHeatedNeverSelected(Rule):
+    code = "HY065"
+    name = "head-heated-never-selected"
+    severity = Severity.WARNING
+    summary = "A head is heated and waited on (M109 T#), but no T command of the job ever selects it"
+    explanation = """
+        In a job that changes heads with T commands, a head prints only once a T command gives it the
+        focus: "when printing with multiple heads, the requirement - to explicitly direct Repetrel's
+        'focus' to a particular head" (T_v5, Default Mode), and a T command "invoke[s] all flow, prime,
+        unprime, and offset parameters" of the head.  A head that the job heats and waits on with
+        `M109 T#` but that no T command selects never prints: the job waits for a head it does not
+        use (and keeps its material hot), or the T command that should select it is missing or names
+        another head.  "Although we don't generally recommend keeping heads loaded if they will be
+        unused on the current job, you might want to do this" (Explicit Mode): heat it only if it is
+        used.
+
+        Not reported in a job with no T command at all (Repetrel then focuses "the first head it
+        detects", which a file does not name), nor for a head that prints through a clone squad or
+        copies another head (M703 T#, T_v5).  A wait that cools a head (`M109 T1 S0`) is not a heating.
+    """
+    example_bad = """
+        M109 T0 S215
+        M109 T1 S215
+        T0
+        G1 X10 Y10 E1 F1200
+        M30
+    """
+    example_good = """
+        M109 T0 S215
+        M109 T1 S215
+        T0
+        G1 X10 Y10 E1 F1200
+        T1
+        G1 X20 Y10 E1
+        M30
+    """
+    source = "T_v5, Default Mode and Explicit Mode; Gcode page, M109 Wait for Temp (Head) and T Tool Change"
+    codes = (ANY_T, "M109", "M703")
+    families = ("hyrel",)
+
+    def __init__(self, ctx) -> None:
+        super().__init__(ctx)
+        self.waited: dict[int, tuple[int, str]] = {}  # head position -> (first line heating it and waiting, label)
+        self.selected: set[int] = set()  # positions a T command selects
+        self.copies: set[int] = set()  # heads that print through a squad or copy a head (M703 T#)
+        self.any_t = False
+
+    def check(self, line: Line, cmd: Command) -> None:
+        interpreter = self.ctx.interpreter
+        if cmd.code == "M703":
+            address = interpreter.address(cmd)
+            if address is not None and address.position is not None:
+                self.copies.add(address.position)
+            return
+        if cmd.code == "M109":
+            address = interpreter.address(cmd)
+            if address is None or address.kind != HEAD or address.position is None:
+                return
+            s = cmd.get("S")
+            target = s if s is not None else self.state.targets.get(address.v5)  # type: ignore[arg-type]
+            if target is not None and target > 0:
+                self.waited.setdefault(address.position, (line.number, address.label))
+            return
+        address = interpreter.tool_command_address(cmd)
+        if address is not None:
+            self.any_t = True
+            if address.position is not None:
+                self.selected.add(address.position)
+
+    def finish(self) -> None:
+        if not self.any_t:
+            return  # Default Mode: the head Repetrel focuses is not named in the file
+        for head, (at, label) in sorted(self.waited.items(), key=lambda item: item[1]):
+            if head in self.selected or head in self.copies:
+                continue
+            self.report(
+                at,
+                f"{label} is heated and waited on here, but no T command of the job selects it: in a job "
+                "that changes heads with T commands it never prints, so the job waits for a head it does not "
+                "use (or the T command for it is missing)",
             )
