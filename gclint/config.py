@@ -381,6 +381,25 @@ def _config_in(folder: str) -> Path | None:
     return None
 
 
+def severities_above(config: Path) -> list[dict[str, str]]:
+    """The ``severity`` tables of the configurations further up than ``config`` (nearest first); one that
+    cannot be read is left out (it applies to no file here)."""
+    out: list[dict[str, str]] = []
+    folder = os.path.dirname(os.path.dirname(os.path.abspath(config)))
+    while (found := find_config(folder)) is not None:
+        try:
+            table = load_file(found)
+            if "severity" in table:
+                out.append(parse_severities(table["severity"], found))
+        except ConfigError:
+            pass
+        parent = os.path.dirname(os.path.dirname(os.path.abspath(found)))
+        if parent == folder:
+            break
+        folder = parent
+    return out
+
+
 def config_for(path: str, explicit: str | None = None) -> tuple[Path | None, dict]:
     """The configuration file and table that apply to ``path`` (``explicit`` wins when given)."""
     if explicit:

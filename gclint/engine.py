@@ -25,7 +25,7 @@ from gclint.runs import CodeLines, Runs, combined, comment_tests, rule_run_filte
 from gclint.syntax.build import TEXT_CODES
 from gclint.syntax.fastpath import PLAIN_MOVE, run_pattern
 from gclint.syntax.nodes import EXTENDED, GCODE, Command, Line
-from gclint.syntax.parse import parse_line
+from gclint.syntax.parse import PARSE_LIMIT, parse_line
 from gclint.syntax.sniff import not_gcode_reason
 from gclint.syntax.source import NotGcode, Source, SourceError
 
@@ -298,6 +298,8 @@ class Linter:
             if getattr(r, "on_line_matching", None) is not None:
                 views.setdefault(r.on_line_matching.search, []).append(r.check_view)
         view_hooks = tuple((wants, tuple(hooks)) for wants, hooks in views.items())
+        # (lines ending in a bare carriage return, read with the next as LinuxCNC reads them: one line)
+        cr_hooks = tuple(r.check_joined for r in rules if getattr(r, "on_bare_cr", False))
         for r in rules:
             for c in r.codes:
                 if c == ANY_T:
@@ -318,7 +320,7 @@ class Linter:
             # rest of this file and go on.  The loops below iterate over tuples, so replacing them here
             # does not skip the other rules' hooks on the current line.
             nonlocal line_hooks, numbered_hooks, issue_hooks, comment_hooks, long_hooks, after_end_hooks, plain
-            nonlocal start_hooks, view_hooks, ignored_hooks
+            nonlocal start_hooks, view_hooks, ignored_hooks, cr_hooks
             rule = getattr(hook, "__self__", None)
             if rule is None or rule not in rules:  # pragma: no cover - hooks are bound rule methods
                 raise exc
@@ -334,6 +336,7 @@ class Linter:
             long_hooks = tuple((n, h) for n, h in long_hooks if getattr(h, "__self__", None) is not rule)
             start_hooks = tuple((c, h) for c, h in start_hooks if getattr(h, "__self__", None) is not rule)
             view_hooks = tuple((wants, keep(hooks)) for wants, hooks in view_hooks)
+            cr_hooks = keep(cr_hooks)
             for code, handlers in list(by_code.items()):
                 by_code[code] = list(keep(handlers))
             any_t[:] = keep(any_t)
@@ -424,10 +427,23 @@ class Linter:
             # at the moves)
             return not (plain is None or run_filters is None or (after_end_hooks and state.after_m30))
 
+        joined = _Joined()  # (lines ending in a bare carriage return: cr_hooks)
+
+        def read_joined(number: int, raw: str, ending: str) -> None:
+            text, first = joined.text(raw)
+            line = Line(number, raw, ending, parse(raw))
+            for hook in cr_hooks:
+                try:
+                    hook(line, text, first)
+                except Exception as exc:
+                    disable(hook, exc, number)
+
         number = 0
         for number, chunk in runs.lines(source, may_apply):
             for raw, ending in chunk:
                 number += 1
+                if cr_hooks and (ending == "\r" or joined.parts) and joined.add(number, raw, ending):
+                    read_joined(number, raw, ending)
                 if plain is not None and raw[:1] == "G" and len(raw) <= long_limit:
                     m = plain_match(raw)
                     if m is not None:
@@ -531,6 +547,8 @@ class Linter:
                                 hook(line)
                             except Exception as exc:
                                 disable(hook, exc, number)
+        if joined.parts and cr_hooks:  # (the file ends in a bare carriage return)
+            read_joined(*joined.last)
         result.lines = state.line_number = runs.total
         for r in list(rules):
             try:
@@ -578,6 +596,38 @@ class Linter:
                 return None
             out[code[1]] = (code, filters)
         return out
+
+
+class _Joined:
+    """Lines that end in a bare carriage return, and the one after them: LinuxCNC/Machinekit read them as one
+    line (only a line feed ends a line for them: rules/security/linuxcnc.py), up to PARSE_LIMIT characters (those the grammar parses)."""
+
+    def __init__(self) -> None:
+        self.parts: list[str] = []
+        self.first = self.next = self.size = 0
+        self.last: tuple[int, str, str] = (0, "", "")
+
+    def add(self, number: int, raw: str, ending: str) -> bool:
+        """Take line ``number``; True when it ends a group of joined lines (then read ``text``)."""
+        if self.parts and number != self.next:  # (lines in between were applied in a run: not joined)
+            self.parts = []
+        if ending != "\r":
+            return bool(self.parts)
+        if not self.parts:
+            self.first, self.size = number, 0
+        if self.size < PARSE_LIMIT:
+            self.parts.append(raw)
+            self.size += len(raw) + 1
+        self.next, self.last = number + 1, (number, raw, ending)
+        return False
+
+    def text(self, raw: str) -> tuple[str, int]:
+        """The group's text ending with ``raw`` (the line after the bare carriage returns), and its first line;
+        the group is then done."""
+        parts, self.parts = self.parts, []
+        if self.last[1] is raw and parts and parts[-1] is raw:
+            parts.pop()  # (the file ended in a bare carriage return: ``raw`` is the last part)
+        return "\r".join([*parts, raw])[:PARSE_LIMIT], self.first
 
 
 def _rule_failed(result: FileResult, rule: type[Rule], exc: Exception, line_number: int | None) -> None:

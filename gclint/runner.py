@@ -4,6 +4,7 @@ to each file, spread the work over processes, and return results in a stable ord
 from __future__ import annotations
 
 import os
+import re
 import stat
 from collections import deque
 from collections.abc import Callable, Collection, Iterable, Iterator
@@ -13,28 +14,30 @@ from pathlib import Path
 from typing import TYPE_CHECKING
 
 from gclint.checkout import inside as _inside
-from gclint.config import ConfigError, apply, config_for, find_config
+from gclint.config import ConfigError, apply, config_for, find_config, severities_above
 from gclint.engine import FileResult, Linter, Options
 from gclint.excludes import TOOL_FOLDER, Excluder, Exclusion, LeftOut
 from gclint.machine.linuxcnc_ini import clear as _forget_machine_configs
 from gclint.machine.linuxcnc_ini import machine_codes
 from gclint.syntax.source import NotGcode, Source, SourceError
-from gclint.trust import Refusal, guard, security_only
+from gclint.trust import Refusal, guard, keep_raised, security_only
 
 if TYPE_CHECKING:
     from gclint.cache import ResultCache
 
 GCODE_EXTENSIONS = (".gcode", ".gco", ".gc", ".g", ".nc", ".ngc", ".cnc", ".tap")
-# Packages that carry a job (an Ultimaker Format Package is a ZIP archive with the G-code inside): found by
-# a walk so that the check says it cannot read them (exit 2), never passed in silence.
-PACKAGE_EXTENSIONS = (".ufp",)
+# Packages and encodings that carry a job (an Ultimaker Format Package and a Bambu/Orca ".gcode.3mf" are ZIP
+# archives with the G-code inside; ".bgcode" is Prusa's binary G-code): found by a walk so that the check says it
+# cannot read them (exit 2), never passed in silence.
+PACKAGE_EXTENSIONS = (".ufp", ".gcode.3mf", ".bgcode")
+_TRAILING = re.compile(r"[\s.]+\Z")
 
 
 def is_job_name(name: str) -> bool:
     """Whether a walk takes the file ``name`` for a job: a G-code extension in any case, also before
-    trailing spaces and dots (Windows and FAT drop them: ``job.gcode `` reaches the printer as
+    trailing blanks and dots (Windows and FAT drop them: ``job.gcode `` reaches the printer as
     ``job.gcode``)."""
-    return name.lower().rstrip(" .").endswith(GCODE_EXTENSIONS + PACKAGE_EXTENSIONS)
+    return _TRAILING.sub("", name.lower()).endswith(GCODE_EXTENSIONS + PACKAGE_EXTENSIONS)
 
 
 def collect(
@@ -71,6 +74,13 @@ def collect(
         if path == "-":
             files.append(path)
             continue
+        if os.path.islink(path) and os.path.isdir(path) and excluder.forced(path):
+            # (what pre-commit names is held to what a walk finds, and a walk does not follow a link to a folder:
+            # it may lead out of the checkout, and --fix would write there)
+            problems.append(
+                FileResult(path, error=f"{path}: a symbolic link to a folder, not followed (name the folder)")
+            )
+            continue
         if os.path.isdir(path):
             walk = _Walk(path, excluder, problems, notes, left_out, roots, security_only, links)
             walk.run()
@@ -94,6 +104,10 @@ def collect(
                 problem = _link(path, excluder, links, None)
                 if problem is not None:
                     problems.append(problem)
+                    continue
+                kind = _not_regular(path)
+                if kind is not None:  # (a pipe named by pre-commit would wait forever for a writer)
+                    problems.append(FileResult(path, error=f"{path}: {kind}, not a file: not read"))
                     continue
             if path not in seen:
                 seen.add(path)
@@ -361,9 +375,13 @@ def configured(path: str, base: Options, overrides: dict, explicit_config: str |
         options = replace(options, machine_codes=codes, machine_config=inis)
     if config_path is None or explicit_config is not None:
         return options, []
-    if options.dialect_origin == "configuration" and "dialect" not in (overrides or {}):
-        options = replace(options, dialect_trusted=False)  # (said by the found configuration)
-    return guard(options, replace(base, **overrides) if overrides else base)
+    said = (options.dialect_origin == "configuration" and "dialect" not in (overrides or {})) or (
+        options.flavor_origin == "configuration" and "flavor" not in (overrides or {})
+    )
+    if said:  # the dialect (or the firmware, which names it) said by the found configuration: a change can add one
+        options = replace(options, dialect_trusted=False)
+    options, refused = guard(options, replace(base, **overrides) if overrides else base)
+    return keep_raised(options, severities_above(config_path)), refused
 
 
 _LINTERS: dict[str, Linter] = {}

@@ -14,7 +14,7 @@ from dataclasses import dataclass, replace
 from pathlib import Path
 
 from gclint import trust
-from gclint.config import ConfigError, apply, config_for, find_config, load_file
+from gclint.config import ConfigError, apply, config_for
 from gclint.engine import Linter, Options
 from gclint.rules.base import Severity, all_rules, matches
 from gclint.textsafe import human
@@ -116,11 +116,6 @@ def security_suppressions(
             from_config = key is not None and lowered == _lowered_security(config_options, security)
             origin_of = origin if from_config else "the command line"
             out.append(Suppression(tuple(lowered), origin_of, "severity lowered", len(paths), from_config))
-        if key is not None and explicit_config is None:
-            shadowed = _shadowed_hardening(Path(key), config_options, security)
-            if shadowed:
-                codes, origin, how = shadowed
-                out.append(Suppression(codes, origin, how, len(paths), True, "weakens"))
         for pattern, codes in options.per_file_ignores.items():
             off = [c for c in security if any(c.startswith(s.strip().upper()) for s in codes)]
             single = Linter(replace(options, per_file_ignores={pattern: codes}, allow_file_writes=()))
@@ -171,28 +166,6 @@ def configuration_notes(files: list[str], overrides: dict, explicit_config: str 
                     f"{_display(key)} switches off {families} (per-file-ignores {pattern!r}) for {hit} file{'s' if hit != 1 else ''}"
                 )
     return notes
-
-
-def _shadowed_hardening(config: Path, options: Options, security: list[str]) -> tuple | None:
-    """(codes, origin, how) when ``config`` hides a configuration above it that raises security rules'
-    severity (the nearest configuration wins, as in ruff: nothing is inherited), else None."""
-    parent = find_config(str(config.resolve().parent.parent))
-    if parent is None:
-        return None
-    try:
-        above = apply(Options(), load_file(parent), parent)
-    except ConfigError:
-        return None
-    lost = [code for code in _raised_security(above, security) if _level(options, code) != _level(above, code)]
-    if not lost:
-        return None
-    how = f"it hides {_display(str(parent))}, which raises their severity: configurations do not inherit"
-    return tuple(lost), _display(str(config)), how
-
-
-def _raised_security(options: Options, security: list[str]) -> list[str]:
-    rules = all_rules()
-    return [c for c in security if (level := _level(options, c)) is not None and level > rules[c].severity]
 
 
 def _level(options: Options, code: str) -> Severity | None:

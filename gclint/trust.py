@@ -113,6 +113,25 @@ def _guard(options: Options, trusted: Options) -> tuple[Options, tuple[Refusal, 
     return (replace(options, **changes) if changes else options), tuple(refused)
 
 
+def keep_raised(options: Options, above: list[dict[str, str]]) -> Options:
+    """``options`` with each security rule at no lower a severity than a configuration further up gives it
+    (``above``: their ``severity`` tables): the nearest configuration applies alone, so one added in a
+    sub-folder would otherwise drop, without a word about security, what the project's own raised."""
+    if not above:
+        return options
+    severity = dict(options.severity)
+    for code in all_rules():
+        if not code.startswith(SECURITY):
+            continue
+        now = level(options, code)
+        for table in above:
+            said = level(replace(options, severity=table), code)
+            if said > now:
+                now = said
+                severity[code] = said.label
+    return replace(options, severity=severity) if severity != options.severity else options
+
+
 def security_only(options: Options) -> Options:
     """``options`` with only the security rules they check: for a file a found configuration excludes."""
     codes = [code for code in selected(options) if code.startswith(SECURITY)]

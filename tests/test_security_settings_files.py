@@ -54,6 +54,10 @@ def test_the_user_saying_marlin_exempts_them(tmp_path):
     assert _check(job)[0] == 1
     # ... one named with --config is
     assert _check(job, "--config", str(tmp_path / "gclint.toml")) == (0, set())
+    # nor is a found configuration's firmware flavour, which names the dialect too
+    (tmp_path / "gclint.toml").write_text('flavor = "prusa-buddy"\n')
+    assert _check(job)[0] == 1
+    assert _check(job, "--config", str(tmp_path / "gclint.toml")) == (0, set())
 
 
 @pytest.mark.parametrize("dialect", ["auto", "hyrel", "marlin", "reprap", "machinekit", "carvera"])

@@ -361,3 +361,34 @@ def test_a_fifo_with_a_reader_is_written(tmp_path: Path) -> None:
             time.sleep(0.05)
     reader.join(timeout=10)
     assert got == [b"report\n" * 20000]
+
+
+@needs_links
+def test_pre_commit_does_not_follow_a_named_link_to_a_folder(tmp_path):
+    # (a second stranger's attack: --force-exclude held what pre-commit names to a walk, but a named link to a
+    # folder was walked, outside the checkout too, and --fix wrote there)
+    outside = tmp_path / "outside"
+    outside.mkdir()
+    (outside / "a.gcode").write_text("M106 S255\n")
+    repo = tmp_path / "repo"
+    repo.mkdir()
+    os.symlink(outside, repo / "lnk")
+    proc = run_cli("check", "--no-cache", "--force-exclude", "--fix", "lnk", cwd=repo)
+    assert proc.returncode == 2 and "a symbolic link to a folder, not followed" in proc.stderr.decode()
+    assert (outside / "a.gcode").read_text() == "M106 S255\n"
+
+
+@pytest.mark.skipif(not hasattr(os, "mkfifo"), reason="no named pipes")
+def test_pre_commit_naming_a_pipe_does_not_hang(tmp_path):
+    os.mkfifo(tmp_path / "job.gcode")
+    proc = run_cli("check", "--no-cache", "--force-exclude", "job.gcode", cwd=tmp_path, timeout=30)
+    assert proc.returncode == 2 and "a named pipe, not a file" in proc.stderr.decode()
+
+
+@pytest.mark.parametrize("name", ["a.bgcode", "b.gcode.3mf", "c.gcode\t", "d.GCODE. "])
+def test_a_walk_finds_jobs_it_cannot_read_and_says_so(tmp_path, name):
+    (tmp_path / "ok.gcode").write_text(CLEAN)
+    (tmp_path / name).write_bytes(b"GCDE\x01\x00" if name.endswith("bgcode") else HOSTILE.encode())
+    proc = run_cli("check", "--no-cache", ".", cwd=tmp_path)
+    shown = (proc.stdout + proc.stderr).decode()
+    assert proc.returncode == (2 if name.endswith("bgcode") else 1) and name.rstrip(" \t.") in shown, shown

@@ -17,6 +17,7 @@ from gclint.rules.security.views import (
     _views_of,
 )
 from gclint.syntax.nodes import Command, Comment, Line
+from gclint.syntax.parse import parse_line
 
 
 class _SecurityRule(Rule):
@@ -41,6 +42,9 @@ class _SecurityRule(Rule):
     LINE_VIEWS = frozenset({ERASED_VIEW, DROPPED_VIEW, INVISIBLE_VIEW})
     # the engine calls check_view for lines this finds (gclint/engine.py)
     on_line_matching = _VIEW_TRIGGER
+    # the engine calls check_joined for lines after ones that end in a bare carriage return (LinuxCNC reads them
+    # as one line)
+    on_bare_cr = True
 
     def __init__(self, ctx) -> None:
         super().__init__(ctx)
@@ -108,18 +112,32 @@ class _SecurityRule(Rule):
                 severity=Severity.ERROR,
             )
         for how, view, offset in views:
-            self._view = (how, line, offset)
-            try:
-                parsed = view.parsed
-                for cmd in parsed.commands:
-                    if cmd.code in self.codes:
-                        self.check(view, cmd)
-                if parsed.issues and self.on_issue:
-                    self.check_issues(view)
-                if how in self.LINE_VIEWS and self.on_line_starting_with and view.raw[:1] in self.on_line_starting_with:
-                    self.check_line(view)
-            finally:
-                self._view = None
+            self._read_view(line, how, view, offset)
+
+    def check_joined(self, line: Line, text: str, first: int) -> None:
+        """Read lines ``first`` to ``line`` as LinuxCNC/Machinekit reads them: one line, since only a line feed
+        ends a line for it (interp_read.cc ``read_text`` reads with C's ``fgets``) and the lines before
+        ``line`` end in a bare carriage return; ``text`` is their text joined by those carriage returns.
+        (The engine calls this: ``on_bare_cr``.)"""
+        view = linuxcnc.read_as_one_line(text)
+        how = f"{linuxcnc.JOINED_VIEW} (lines {first}-{line.number})"
+        self._read_view(line, how, Line(line.number, view, line.ending, parse_line(view)), 0, comments=True)
+
+    def _read_view(self, line: Line, how: str, view: Line, offset: int, comments: bool = False) -> None:
+        self._view = (how, line, offset)
+        try:
+            parsed = view.parsed
+            for cmd in parsed.commands:
+                if cmd.code in self.codes:
+                    self.check(view, cmd)
+            for comment in parsed.comments if comments and self.active_comments else ():
+                self.check_comment(view, comment)
+            if parsed.issues and self.on_issue:
+                self.check_issues(view)
+            if how in self.LINE_VIEWS and self.on_line_starting_with and view.raw[:1] in self.on_line_starting_with:
+                self.check_line(view)
+        finally:
+            self._view = None
 
     def inspect(self, line: Line, code: str, rest: str, column: int, cmd: Command | None) -> None:
         raise NotImplementedError

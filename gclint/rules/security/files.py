@@ -111,7 +111,7 @@ class RunsFile(_SecurityRule):
         ' LinuxCNC docs/src/gcode/o-code.adoc "Calling Files" and src/emc/rs274ngc/interp_o_word.cc'
         " control_back_to (o<name> call of a subroutine not defined before the call: the file name.ngc)"
     )
-    codes = ("M98", "M98.1", "M32", "M23", "SDCARD_PRINT_FILE", "O")
+    codes = ("M98", "M98.1", "M32", "M23", "SDCARD_PRINT_FILE", "O", "M99")
 
     # Subroutine names remembered per file: a job that defines more is read as if it defined none after them
     # (its later calls are reported), so memory stays bounded.
@@ -121,6 +121,8 @@ class RunsFile(_SecurityRule):
         super().__init__(ctx)
         self.configuration = macro_file(ctx)
         self._subroutines: set[str] = set()  # the O-word subroutines defined so far (LinuxCNC's offset map)
+        self._blocks: list[tuple[str, str]] = []  # the O-word blocks open: (label, keyword)
+        self._fanuc = False  # within a Fanuc-style subprogram ("O100" ... M99)
 
     def check(self, line: Line, cmd: Command) -> None:
         if cmd.code == "O":
@@ -133,12 +135,12 @@ class RunsFile(_SecurityRule):
         # there is one, else from further down the job (interp_o_word.cc control_back_to, "#1 already
         # defined", "#2 open the File"; https://github.com/LinuxCNC/linuxcnc/blob/master/src/emc/rs274ngc/)
         keyword = (cmd.params.get("keyword") or "").lower()
-        if keyword not in ("sub", "call", ""):
-            return
         name = linuxcnc.subroutine_name(cmd)
-        if keyword != "call":  # ("O100" alone starts a Fanuc-style subprogram, called by M98 P100)
-            if name is not None and len(self._subroutines) < self.SUBROUTINES_KEPT:
-                self._subroutines.add(name)
+        if keyword != "call":
+            # (what the job defines: read on the lines as written, not on a firmware's view of one, and not on a
+            # line ending in a bare carriage return, which LinuxCNC reads with the next: check_joined)
+            if self._view is None and line.ending != "\r":
+                self._define(keyword, name, cmd)
             return
         if name in self._subroutines:
             return
@@ -156,7 +158,45 @@ class RunsFile(_SecurityRule):
             )
         self.report_masked(line, f"o{label} call {what}: code outside this job", cmd.column)
 
+    # O-word blocks (LinuxCNC's o-code.adoc): what opens one, and what closes what ("while" closes a "do" of its
+    # label, else opens a loop)
+    _OPENS = frozenset({"sub", "if", "do", "while", "repeat"})
+    _CLOSES = {"endsub": "sub", "endif": "if", "endwhile": "while", "endrepeat": "repeat"}
+
+    def _define(self, keyword: str, name: str | None, cmd: Command) -> None:
+        """Follow the job's O-word blocks; a subroutine counts as defined above a call only where it is defined at
+        the top level: in LinuxCNC a definition inside an ``if`` not taken, a loop or another subroutine's
+        body is skipped with it (interp_o_word.cc: the lines of a block not run are skipped to its end), and
+        whether the block runs is not known before the job runs."""
+        label = "".join((cmd.params.get("label") or "").split()).lower()
+        blocks = self._blocks
+        if keyword == "while" and blocks and blocks[-1] == (label, "do"):
+            blocks.pop()
+            return
+        if keyword in self._CLOSES:
+            if blocks and blocks[-1] == (label, self._CLOSES[keyword]):
+                blocks.pop()
+            elif (label, self._CLOSES[keyword]) in blocks:  # (a block left open inside it)
+                del blocks[blocks.index((label, self._CLOSES[keyword])) :]
+            return
+        top = not blocks and not self._fanuc
+        if keyword in self._OPENS:
+            if keyword == "sub" and top and name is not None and len(self._subroutines) < self.SUBROUTINES_KEPT:
+                self._subroutines.add(name)
+            if len(blocks) < self.SUBROUTINES_KEPT:
+                blocks.append((label, keyword))
+        elif keyword == "" and label.isdigit():
+            # "O100" alone starts a Fanuc-style subprogram (called by M98 P100), which M99 ends (o-code.adoc,
+            # "Fanuc-Style Numbered Programs")
+            if top and name is not None and len(self._subroutines) < self.SUBROUTINES_KEPT:
+                self._subroutines.add(name)
+            self._fanuc = True
+
     def inspect(self, line: Line, code: str, rest: str, column: int, cmd: Command | None) -> None:
+        if code == "M99":
+            if self._view is None:
+                self._fanuc = False
+            return
         if not _starts_line(line, cmd) or (code == "M98" and self.configuration):
             return
         if code == "SDCARD_PRINT_FILE":

@@ -48,6 +48,33 @@ CODE_RUNS = {
 _HINT = re.compile(r"(?i)[;(][ \t\n\v\f\r]*+(?:log|py|probeopen)")
 
 
+# LinuxCNC reads a file with C's fgets, so only a line feed ends a line (src/emc/rs274ngc/interp_read.cc
+# ``read_text``); interp_internal.cc ``close_and_downcase`` then drops each carriage return outside a comment and
+# keeps those inside one, and ``convert_comment`` steps over them as white space: "(<CR>LOGOPEN,x)" opens x and
+# "o<sub><CR>call" calls sub.
+JOINED_VIEW = "read as LinuxCNC/Machinekit reads lines joined by a bare carriage return (only a line feed ends a line)"
+
+
+def read_as_one_line(text: str) -> str:
+    """``text`` (lines joined by carriage returns) as LinuxCNC reads it: the carriage returns outside comments
+    dropped (``close_and_downcase``), those inside kept."""
+    out = []
+    comment = semicomment = False
+    for char in text:
+        if semicomment or comment:
+            out.append(char)
+            comment = comment and char != ")"
+        elif char == ";":
+            semicomment = True
+            out.append(char)
+        elif char == "(":
+            comment = True
+            out.append(char)
+        elif char != "\r":
+            out.append(char)
+    return "".join(out)
+
+
 def may_be_active(comment: str) -> bool:
     """Whether the comment (with its ";" or "(") may be an active comment."""
     return _HINT.search(comment) is not None
@@ -65,7 +92,7 @@ def active_comment(body: str) -> tuple[str, str] | None:
     if m is None:
         return None
     keyword = (m.group(1) or m.group(2) or m.group(3)).upper()
-    return keyword, body[m.end() :].rstrip(")").strip()
+    return keyword, body[m.end() :].strip()
 
 
 # "(" or ";" on a line the grammar refused: where a comment may start for LinuxCNC.
@@ -74,7 +101,7 @@ _COMMENT_START = re.compile(r"[(;]")
 
 def comments_in(raw: str) -> list[tuple[int, str]]:
     """The comments LinuxCNC may read on a line the grammar refused, as ``(column, body)``: the text after
-    each "(" up to ")" (only those an active comment can start), and after the first ";" to the end."""
+    each "(" up to its ")" (only those an active comment can start), and after the first ";" to the end."""
     out = []
     pos = 0
     while (m := _COMMENT_START.search(raw, pos)) is not None:
@@ -84,7 +111,7 @@ def comments_in(raw: str) -> list[tuple[int, str]]:
             break
         end = raw.find(")", start)
         pos = end + 1 if end >= 0 else len(raw)
-        body = raw[start:pos]
+        body = raw[start:end] if end >= 0 else raw[start:]
         if ACTIVE.match(body) is not None:
             out.append((m.start() + 1, body))
     return out
