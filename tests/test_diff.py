@@ -335,67 +335,20 @@ FLOWS = [
     Flow("marlin", "machinekit", (("retract", "explicit"),), small=True, to_machinekit=True),
 ]
 
-# Differences that are the translator's, reported to it (issue 27), not the diff's: (folder-relative job, part of a
-# flow's name, aspect) -> why.  Each is a real change of meaning that no finding names yet.
-_S_BEFORE_M3 = "LinuxCNC 'S3400 M3' on one line: the M3 written keeps the previous speed (or none)"
-_LINUXCNC_SPEED = {
-    (f"linuxcnc/linuxcnc/{job}", "linuxcnc", "spindle"): _S_BEFORE_M3
-    for job in (
-        "configs/impeller-7bl-xyzac.ngc",
-        "nc_files/arcspiral.ngc",
-        "nc_files/cds.ngc",
-        "nc_files/flowsnake.ngc",
-        "nc_files/g76.ngc",
-        "nc_files/lathe-g76.ngc",
-        "nc_files/lathe_pawn.ngc",
-        "nc_files/spiral.ngc",
-        "nc_files/threading.ngc",
-        "tests/interp/flowsnake/flowsnake.ngc",
-    )
-}
-_G28 = (
-    "Machinekit G28: the dialect's facts read LinuxCNC's (to a stored position, unknown), the translator writes "
-    "the FDM remap g28.ngc (to zero, TR004 info)"
+# Differences the diff reports that are not changes of meaning, with why: (folder-relative job, part of a flow's
+# name, aspect) -> why.  (Each entry is needed: with it removed, the test fails.)
+_SHIFTED = (
+    "a plasma job: its G0 that moves A (read as the extruder) is a working move in the output (TR003), so the moves "
+    "before the first cut pair one off and the M3 pairs with the move before it"
 )
 KNOWN = {
-    **_LINUXCNC_SPEED,
     **{
-        (f"linuxcnc/linuxcnc/nc_files/plasmac/{job}", "linuxcnc", "spindle"): (
-            "M3 S1 (1 rpm) becomes 'M3 T0 S0', which stops Hyrel's spindle"
-        )
-        for job in ("imperial_wrench.ngc", "metric_pipe.ngc")
+        ("linuxcnc/linuxcnc/nc_files/plasmac/metric_pipe.ngc", flow, "spindle"): _SHIFTED
+        for flow in ("linuxcnc-machinekit-evalues", "native", "spindle-max-rpm")
     },
     ("linuxcnc/linuxcnc/nc_files/plasmac/metric_pipe.ngc", "native", "layer"): (
         "a G0 that moves A is written as a printing G1 (TR003 on that line): its Z is taken as a layer height (50 mm)"
     ),
-    **{
-        (f"marlin/{job}", "gcode-to-ngc", "position"): _G28
-        for job in (
-            "cura-2.3.1_puzzle.gcode",
-            "displaylayerprogress/AbsRealPositions.gcode",
-            "displaylayerprogress/cura-lulzbot-3.6.9_LTAZ6A_cube.gcode",
-            "displaylayerprogress/ideamaker-3.4.0_20mm_Calibration_Box.gcode",
-            "displaylayerprogress/simplify3d-3.0.2_ukazovatko.gcode",
-            "displaylayerprogress/slic3r-1.37.2-prusa3d_small_spool.gcode",
-            "kisslicer-1.1.0.5_motor_mount.gcode",
-            "kisslicer-1.1.0.5_thinbox.gcode",
-            "skeinforge-style_dome_export_nospaces.gcode",
-            "slic3r-0.9.8_stick.gcode",
-            "slic3r-1.2.0_cncjs_sample.gcode",
-            "slic3r-prusa-1.36.2_duplo.gcode",
-        )
-    },
-    **{
-        (f"marlin/{job}", "gcode-to-ngc", "fan"): "Machinekit's bare M106 (an error there: its remap needs P) is "
-        "written as a 100 % fan"
-        for job in (
-            "cura-legacy-13.x_robot.gcode",
-            "kisslicer-1.1.0.5_motor_mount.gcode",
-            "kisslicer-1.1.0.5_thinbox.gcode",
-            "skeinforge-style_dome_export_nospaces.gcode",
-            "slic3r-0.9.8_stick.gcode",
-        )
-    },
 }
 
 
@@ -494,3 +447,23 @@ def test_cli_diff_error_lines_escape_file_names(tmp_path: Path) -> None:
     source.write_text("G28\nG1 X1 F600\n")
     proc = run_cli("diff", str(source), str(tmp_path / "gone\x1b[2J.gcode"), "--from", "marlin", "--to", "hyrel")
     assert proc.returncode == 2 and b"\x1b" not in proc.stderr and b"gone\\x1b[2J.gcode" in proc.stderr, proc.stderr
+
+
+def test_cli_diff_reads_the_source_as_its_firmware(tmp_path: Path) -> None:
+    """The diff reads SOURCE with the firmware the job says it was written for, as translate does: a Machinekit
+    FDM job (M104 P, M140 P) homes with its g28.ngc remap (moves to 0), not LinuxCNC's stored position."""
+    source = tmp_path / "fdm.ngc"
+    source.write_text("M140 P60\nM104 P200\nG28 XY\nG1 X10 Y10 A1 F1000\nG28 Z\nG1 X20 Y10 A2\nM2\n")
+    out = tmp_path / "fdm.hy.gcode"
+    assert run_cli("translate", "--from", "machinekit", "--to", "hyrel", str(source), "-o", str(out)).returncode == 0
+    run = run_cli("diff", str(source), str(out), "--from", "machinekit", "--to", "hyrel")
+    assert run.returncode == 0 and b"0 differences" in run.stdout, run.stdout
+
+
+def test_cli_diff_escapes_file_names_in_its_report(tmp_path: Path) -> None:
+    source = tmp_path / "x\x1b[31mred.gcode"
+    source.write_text(DUAL)
+    bad = tmp_path / "bad\x1b[2J.gcode"
+    bad.write_text(WRONG[1].output)
+    proc = run_cli("diff", str(source), str(bad), "--from", "marlin", "--to", "hyrel")
+    assert proc.returncode == 1 and b"\x1b" not in proc.stdout and b"bad\\x1b[2J.gcode" in proc.stdout, proc.stdout

@@ -18,6 +18,8 @@ from gclint.dialects.base import Dialect
 from gclint.simulate import DiffResult, Explanations, Mapping, diff_sources
 from gclint.syntax.sniff import refuse_non_gcode
 from gclint.syntax.source import Source, SourceError
+from gclint.textsafe import human, human_path
+from gclint.translate.cli import source_reading
 from gclint.translate.pairs import is_target
 
 
@@ -61,6 +63,11 @@ def run_diff(
     mapping = Mapping.from_options(options)
     try:
         opener = _opener(source_path)
+        first = opener()
+        try:  # (read with the firmware the job says it was written for, as translate and check read it)
+            source = source_reading(first, source_path, source)
+        finally:
+            first.close()
         translation: str | None = None
         if explain and source.name != target.name:
             explanations, translation = _explanations(opener(), source, target, options)
@@ -143,6 +150,7 @@ def _say(text: str) -> None:
 
 def _print_text(result: DiffResult, source_path: str, output_path: str, explained: bool) -> None:
     out = sys.stdout
+    source_path, output_path = human_path(source_path), human_path(output_path)
     for d in result.differences:
         where = f"{source_path}:{d.source_line or '-'}: {output_path}:{d.output_line or '-'}:"
         count = f" ({d.count} working moves)" if d.count > 1 else ""
@@ -153,14 +161,14 @@ def _print_text(result: DiffResult, source_path: str, output_path: str, explaine
                 if d.explained_by
                 else " [unexplained]"
             )
-        out.write(line + "\n")
+        out.write(human(line) + "\n")
     total = len(result.differences)
     summary = f"{total} difference{'s' if total != 1 else ''} over {result.pairs} matched working moves"
     if explained:
         summary += f" ({len(result.unexplained())} unexplained)"
     out.write(summary + ".\n")
     for note in result.notes:
-        out.write(f"note: {note}\n")
+        out.write(f"note: {human(note)}\n")
 
 
 def _print_json(result: DiffResult, source_path: str, output_path: str, explained: bool) -> None:
