@@ -248,7 +248,11 @@ MARLIN = [
     Row("2.1 M84 S (timeout)", "M84 S600", "", "TR002"),
     Row("2.1 a move after M84: re-home", "M84\nG1 X5", "M84\nG28 X0 Y0 Z0\nT0\nG1 X5", "TR003"),
     Row("2.1 G28 X Y after M84 homes Z too", "M84\nG28 X Y\nG1 X5", "M84\nG28 X0 Y0 Z0\nT0\nG1 X5", "TR003"),
-    Row("2.1 M30 (delete file)", "M30 old.gco", "", "TR005"),
+    Row("2.1 M30 (delete file): the deletion is not made", "M30 old.gco", "", "TR002"),
+    Row("2.1 M30 naming no file deletes nothing", "M30", "", "TR001"),
+    Row("2.1 OctoPrint @pause: Hyrel's pause", "@pause", "M0 ; gclint: pause (@pause)", "TR003"),
+    Row("2.1 OctoPrint @cancel: dropped, the rest ran under OctoPrint only", "@cancel", "", "TR002"),
+    Row("2.1 an OctoPrint plugin's @ command", "@BEDLEVELVISUALIZER", "", "TR001"),
     # M82/M83
     Row("2.1 M82 evalues", "M82", "M82"),
     Row("2.1 M83 native: dropped", "M83", "", "TR004", settings={"flow": "native"}, prelude="G21\n"),

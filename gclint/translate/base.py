@@ -28,7 +28,7 @@ from typing import ClassVar
 from gclint.dialects.base import Dialect
 from gclint.machine.interpreter import Interpreter
 from gclint.machine.job_settings import read_settings
-from gclint.syntax.nodes import ASSIGNMENT, EXTENDED, GCODE, IMPLICIT, META, OWORD, Command, Line
+from gclint.syntax.nodes import ASSIGNMENT, EXTENDED, GCODE, HOST, IMPLICIT, META, OWORD, Command, Line
 from gclint.syntax.parse import PARSE_LIMIT, code_before_long_comment, parse_line
 from gclint.translate.arc_moves import ArcMoves
 from gclint.translate.engine import PlainMove, TranslationResult, Translator
@@ -36,6 +36,7 @@ from gclint.translate.findings import (
     LASTING_OFFSETS,
     TR_AFTER_END,
     TR_APPROX,
+    TR_DROPPED,
     TR_LOST,
     TR_NOTE,
     TR_UNTRANSLATABLE,
@@ -419,6 +420,8 @@ class HyrelTranslator(LineWriter, Heads, Program, Motion, ArcMoves, Modal, Spind
             )
         elif kind == EXTENDED:
             self.extended(cmd)
+        elif kind == HOST:
+            self.host_command(cmd)
         elif code in self.END_CODES:
             self.end_program(cmd)
         else:
@@ -427,6 +430,31 @@ class HyrelTranslator(LineWriter, Heads, Program, Motion, ArcMoves, Modal, Spind
 
     def extended(self, cmd: Command) -> None:
         self.untranslatable(cmd, "a host macro or extended command cannot be translated", key=cmd.code)
+
+    def host_command(self, cmd: Command) -> None:
+        """An OctoPrint @ command: OctoPrint runs it and never sends it to the printer (rules.dialect.HOST_ACTIONS
+        says what its own do); Repetrel is the Hyrel job's host.  ``@pause`` is written as Hyrel's pause."""
+        from gclint.rules.dialect import HOST_ACTIONS
+
+        code = cmd.code or "@"
+        action = HOST_ACTIONS.get(code)
+        if code == "@pause":
+            self.pause_command(cmd, "M0 ; gclint: pause (@pause)")
+            self.report(
+                TR_APPROX,
+                f"OctoPrint's @pause {action[0] if action else ''}: written as Hyrel's pause M0",
+                key="@pause",
+                cmd=cmd,
+                aspects="pause",
+            )
+        elif action is not None:
+            self.remove(
+                cmd, TR_LOST, f"OctoPrint {action[0]}; Repetrel has no counterpart: dropped", key=code, aspects=()
+            )
+        else:
+            self.remove(
+                cmd, TR_DROPPED, "an OctoPrint plugin's @ command (the host's, never the printer's): dropped", key=code
+            )
 
 
 _LINE = re.compile(r"[^\r\n]*(?:\r\n|\r|\n)|[^\r\n]+")  # (only the line breaks gclint reads: syntax/source.py)

@@ -318,7 +318,21 @@ class MarlinToHyrel(HyrelTranslator):
         )
 
     def m30(self, cmd: Command) -> None:
-        self.untranslatable(cmd, "M30 deletes a file on the SD card here; Hyrel's M30 ends the job", aspects=())
+        """M30 "Delete a file on the SD card" ("M30 filename.gco": RepRap G-code page, M30); Hyrel's M30 ends the
+        job, which the translation writes at the end anyway."""
+        name = cmd.args.text.strip() if cmd.args is not None else ""
+        if not name:
+            self.remove(
+                cmd, TR_DROPPED, "M30 deletes the SD card file it names, and this one names none", key="M30", aspects=()
+            )
+            return
+        self.remove(
+            cmd,
+            TR_LOST,
+            "M30 deletes a file on the SD card here (Hyrel's M30 ends the job): the deletion is not made",
+            key="M30-file",
+            aspects=(),
+        )
 
     def m2(self, cmd: Command) -> None:
         self.remove(cmd, TR_LOST, "M2 has no meaning in Marlin", key="M2", aspects=())
