@@ -27,9 +27,9 @@ if TYPE_CHECKING:
 
 GCODE_EXTENSIONS = (".gcode", ".gco", ".gc", ".g", ".nc", ".ngc", ".cnc", ".tap")
 # Packages and encodings that carry a job (an Ultimaker Format Package and a Bambu/Orca ".gcode.3mf" are ZIP
-# archives with the G-code inside; ".bgcode" is Prusa's binary G-code): found by a walk so that the check says it
-# cannot read them (exit 2), never passed in silence.
-PACKAGE_EXTENSIONS = (".ufp", ".gcode.3mf", ".bgcode")
+# archives with the G-code inside; ".bgcode" is Prusa's binary G-code; ".gx" is FlashForge's G-code behind a binary
+# header and thumbnail): found by a walk so that the check says it cannot read them (exit 2), never passed in silence.
+PACKAGE_EXTENSIONS = (".ufp", ".gcode.3mf", ".bgcode", ".gx")
 _TRAILING = re.compile(r"[\s.]+\Z")
 
 

@@ -392,3 +392,11 @@ def test_a_walk_finds_jobs_it_cannot_read_and_says_so(tmp_path, name):
     proc = run_cli("check", "--no-cache", ".", cwd=tmp_path)
     shown = (proc.stdout + proc.stderr).decode()
     assert proc.returncode == (2 if name.endswith("bgcode") else 1) and name.rstrip(" \t.") in shown, shown
+
+
+def test_a_flashforge_gx_job_is_found_and_its_gcode_still_gated(tmp_path):
+    (tmp_path / "ok.gcode").write_text(CLEAN)
+    (tmp_path / "job.gx").write_bytes(b"xgcode 1.0\n\x00\x00\x00\x00BM\x00\x00\nG28\nM30 /sys/config.g\n")
+    proc = run_cli("check", "--no-cache", ".", cwd=tmp_path)
+    shown = (proc.stdout + proc.stderr).decode()
+    assert proc.returncode == 2 and "FlashForge .gx job" in shown and "SC005" in shown, shown

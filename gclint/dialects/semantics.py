@@ -214,6 +214,8 @@ class Semantics:
       "M109 Wait for Temp (Head)"), None (no R).  ``heat_words``: which words carry a set-point and the tool it
       is for: ``"S"`` (S, and T the tool) or ``"remap"`` (Machinekit FDM: the README's ``M104 P<index> S<temp>``,
       else the remap's ``M104 P<temp> T<index>``: research/dialects.md 1.8 [MK]).
+    * ``user_programs``: M100-M199 run the external program of that name where the dialect has no code of its
+      own by that number (LinuxCNC's M-code documentation, "M100-M199 User Defined Commands").
     * ``effects``: code -> effect (``COMMON_EFFECTS`` and the dialect's own).
     """
 
@@ -239,6 +241,7 @@ class Semantics:
     fan_scale: Literal["range", "255", "255-or-fraction"] = "255"
     wait_r: Literal["target", "tolerance"] | None = "target"
     heat_words: Literal["S", "remap"] = "S"
+    user_programs: bool = False
     effects: Mapping[str, Effect] = field(default_factory=lambda: dict(COMMON_EFFECTS))
 
     def set_point(self, params: Mapping[str, str | None], wait: bool) -> tuple[float | None, str | None]:

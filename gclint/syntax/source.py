@@ -494,6 +494,7 @@ def split_lines(text: str) -> list[tuple[str, str]]:
 
 _BINARY_MAGIC = {
     b"GCDE": "binary G-code (.bgcode); export ASCII G-code or convert it first",
+    b"xgcode 1.0": "a FlashForge .gx job (a binary header and thumbnail before its G-code); export plain G-code",
     b"PK\x03\x04": "a ZIP archive (3MF project?), not G-code",
     b"\x89PNG": "a PNG image, not G-code",
     b"\xff\xd8\xff": "a JPEG image, not G-code",

@@ -49,6 +49,11 @@ _ACTION_SPLIT = re.compile(r"[;()]")
 _FIRST_WORD = re.compile(f"[^A-Za-z]*?((?:[A-Za-z]{_GAP})+)")
 
 
+def _excerpt_name(name: str) -> str:
+    """A subroutine name as a message shows it: at most 60 characters."""
+    return name if len(name) <= 60 else name[:57] + "..."
+
+
 def _visible(text: str) -> str:
     """``text`` without ignorable characters."""
     return _IGNORABLE_RUN.sub("", text)
@@ -254,7 +259,7 @@ class HostRunsProgram(_SecurityRule):
         " src/emc/rs274ngc/interp_convert.cc convert_comment, interp_read.cc read_semicolon (;py,),"
         ' docs/src/remap/remap.adoc "Executing Python statements from the interpreter"'
     )
-    codes = (*ACTION_CODES, *PAUSE_CODES, "RUN_SHELL_COMMAND")
+    codes = (*ACTION_CODES, *PAUSE_CODES, "RUN_SHELL_COMMAND", "O")
     on_comment = True  # (LinuxCNC's Python comments)
     comment_hint = staticmethod(linuxcnc.may_be_active)
     active_comments = linuxcnc.CODE_RUNS
@@ -268,6 +273,24 @@ class HostRunsProgram(_SecurityRule):
         if not any(c.code in self.codes for c in line.parsed.commands):
             for code, end in _codes_anywhere(line.raw, (*ACTION_CODES, *PAUSE_CODES)):
                 self.inspect(line, code, line.raw[end:], end + 1, None)
+
+    def check(self, line: Line, cmd: Command) -> None:
+        if cmd.code != "O":
+            super().check(line, cmd)
+            return
+        # (every O-word of a line) A subroutine not defined in the job is looked for as a file, and LinuxCNC
+        # hands its name to wordexp(3) with no flags first (rs274ngc_pre.cc find_ngc_file), which runs "$(...)"
+        # and "`...`" through the shell: "o<$(reboot)> call" runs reboot.
+        name = linuxcnc.subroutine_name(cmd)
+        keyword = (cmd.params.get("keyword") or "").lower()
+        if keyword == "call" and name is not None and linuxcnc.SHELL_EXPANSION.search(name):
+            self.report_masked(
+                line,
+                f"o<{_excerpt_name(name)}> call: LinuxCNC/Machinekit pass the name of a subroutine the job does not"
+                " define to the shell's word expansion to find its file, which runs the commands in $(...) and"
+                " `...` and expands $VARIABLES on the machine's computer: a job file must not run programs",
+                cmd.column,
+            )
 
     def inspect(self, line: Line, code: str, rest: str, column: int, cmd: Command | None) -> None:
         if code == "RUN_SHELL_COMMAND":

@@ -96,6 +96,12 @@ class RunsFile(_SecurityRule):
         (research/firmware_codes.md section 6).  So M98 in a RepRapFirmware system or macro file (a `.g`
         file, or a file in a `sys/` or `macros/` folder, checked as RepRapFirmware) is not reported: it
         runs another part of the same configuration.  A job that calls a macro still is.
+
+        M100 to M199, in a job read as Machinekit/LinuxCNC, run the external program of that name from the
+        machine's program folder ("M100-M199 User Defined Commands" in LinuxCNC's M-code documentation), or
+        the subroutine the machine's INI file remaps the code to; the codes Machinekit's FDM configuration
+        defines (M104, M106, M109, M140, M190...) are not reported, nor in other dialects the codes they have
+        (Marlin's M150 sets LED colours).
     """
     example_bad = 'M98 P"0:/macros/prime.g"'
     example_good = """
@@ -111,7 +117,7 @@ class RunsFile(_SecurityRule):
         ' LinuxCNC docs/src/gcode/o-code.adoc "Calling Files" and src/emc/rs274ngc/interp_o_word.cc'
         " control_back_to (o<name> call of a subroutine not defined before the call: the file name.ngc)"
     )
-    codes = ("M98", "M98.1", "M32", "M23", "SDCARD_PRINT_FILE", "O", "M99")
+    codes = ("M98", "M98.1", "M32", "M23", "SDCARD_PRINT_FILE", "O", "M99", *(f"M{n}" for n in range(100, 200)))
 
     # Subroutine names remembered per file: a job that defines more is read as if it defined none after them
     # (its later calls are reported), so memory stays bounded.
@@ -122,7 +128,9 @@ class RunsFile(_SecurityRule):
         self.configuration = macro_file(ctx)
         self._subroutines: set[str] = set()  # the O-word subroutines defined so far (LinuxCNC's offset map)
         self._blocks: list[tuple[str, str]] = []  # the O-word blocks open: (label, keyword)
+        self._open: dict[tuple[str, str], int] = {}  # how many of each are open
         self._fanuc = False  # within a Fanuc-style subprogram ("O100" ... M99)
+        self._joined_tail = 0  # the last line LinuxCNC reads joined to lines before it (check_joined)
 
     def check(self, line: Line, cmd: Command) -> None:
         if cmd.code == "O":
@@ -137,15 +145,27 @@ class RunsFile(_SecurityRule):
         keyword = (cmd.params.get("keyword") or "").lower()
         name = linuxcnc.subroutine_name(cmd)
         if keyword != "call":
-            # (what the job defines: read on the lines as written, not on a firmware's view of one, and not on a
-            # line ending in a bare carriage return, which LinuxCNC reads with the next: check_joined)
-            if self._view is None and line.ending != "\r":
-                self._define(keyword, name, cmd)
+            # (what the job defines: read on the lines as written, not on a firmware's view of one, and not on
+            # lines LinuxCNC reads with another (a line ending in a bare carriage return, and the line after
+            # such lines: check_joined); a definition on a block-delete line ("/o<x> sub") counts only when
+            # the operator's block-delete switch is off, which is not known before the job runs)
+            if self._view is None and line.ending != "\r" and line.number != self._joined_tail:
+                self._define(keyword, name, cmd, counts=line.parsed.block_delete is None)
             return
-        if name in self._subroutines:
+        if name is not None and linuxcnc.looked_up(name) in self._subroutines:
             return
         label = (cmd.params.get("label") or "")[:60]
-        if name is not None:
+        if name is not None and linuxcnc.SHELL_EXPANSION.search(name):
+            what = (
+                "names no subroutine defined above the call, so LinuxCNC/Machinekit hand the name to the shell's"
+                " word expansion to find its file (SC001 reports what that runs)"
+            )
+        elif name is not None and name[:1] in "/~":
+            what = (
+                f"runs the file {_quote(name + '.ngc', 60)} (a path on the machine's computer) when one is there:"
+                " LinuxCNC/Machinekit look for it first, since no subroutine of that name is defined above the call"
+            )
+        elif name is not None:
             what = (
                 f"runs the file {_quote(name + '.ngc', 60)} from the machine's program or subroutine folders when one"
                 " is there: LinuxCNC/Machinekit look for it first, since no subroutine of that name is defined"
@@ -163,34 +183,69 @@ class RunsFile(_SecurityRule):
     _OPENS = frozenset({"sub", "if", "do", "while", "repeat"})
     _CLOSES = {"endsub": "sub", "endif": "if", "endwhile": "while", "endrepeat": "repeat"}
 
-    def _define(self, keyword: str, name: str | None, cmd: Command) -> None:
+    def check_joined(self, line: Line, text: str, first: int) -> None:
+        self._joined_tail = line.number  # (the engine calls this before the line's own commands are read)
+        super().check_joined(line, text, first)
+
+    def _define(self, keyword: str, name: str | None, cmd: Command, counts: bool = True) -> None:
         """Follow the job's O-word blocks; a subroutine counts as defined above a call only where it is defined at
         the top level: in LinuxCNC a definition inside an ``if`` not taken, a loop or another subroutine's
         body is skipped with it (interp_o_word.cc: the lines of a block not run are skipped to its end), and
-        whether the block runs is not known before the job runs."""
-        label = "".join((cmd.params.get("label") or "").split()).lower()
+        whether the block runs is not known before the job runs.  A definition that may be skipped (``counts``
+        False: a block-delete line) opens its block but defines nothing."""
+        label = linuxcnc.as_linuxcnc_reads(cmd.params.get("label") or "")
         blocks = self._blocks
         if keyword == "while" and blocks and blocks[-1] == (label, "do"):
-            blocks.pop()
+            self._close((label, "do"))
             return
         if keyword in self._CLOSES:
-            if blocks and blocks[-1] == (label, self._CLOSES[keyword]):
-                blocks.pop()
-            elif (label, self._CLOSES[keyword]) in blocks:  # (a block left open inside it)
-                del blocks[blocks.index((label, self._CLOSES[keyword])) :]
+            self._close((label, self._CLOSES[keyword]))
             return
         top = not blocks and not self._fanuc
         if keyword in self._OPENS:
-            if keyword == "sub" and top and name is not None and len(self._subroutines) < self.SUBROUTINES_KEPT:
+            kept = len(self._subroutines) < self.SUBROUTINES_KEPT
+            if keyword == "sub" and top and counts and name is not None and kept:
                 self._subroutines.add(name)
-            if len(blocks) < self.SUBROUTINES_KEPT:
-                blocks.append((label, keyword))
+            blocks.append((label, keyword))
+            self._open[(label, keyword)] = self._open.get((label, keyword), 0) + 1
         elif keyword == "" and label.isdigit():
             # "O100" alone starts a Fanuc-style subprogram (called by M98 P100), which M99 ends (o-code.adoc,
             # "Fanuc-Style Numbered Programs")
-            if top and name is not None and len(self._subroutines) < self.SUBROUTINES_KEPT:
+            if top and counts and name is not None and len(self._subroutines) < self.SUBROUTINES_KEPT:
                 self._subroutines.add(name)
             self._fanuc = True
+
+    def _close(self, block: tuple[str, str]) -> None:
+        """Close the innermost open ``block`` and the blocks left open inside it; nothing when none is open.
+        (Each block is opened once and closed once, so following a job's blocks takes linear time.)"""
+        if not self._open.get(block):
+            return
+        while True:
+            closed = self._blocks.pop()
+            self._open[closed] -= 1
+            if closed == block:
+                return
+
+    def _user_m_code(self, line: Line, code: str, column: int) -> None:
+        """M100-M199 under the LinuxCNC interpreter, where the dialect has no code of its own by that number: the
+        external program named M1nn in the machine's program folder runs ("M100-M199 User Defined Commands" in
+        LinuxCNC's M-code documentation, https://linuxcnc.org/docs/html/gcode/m-code.html#mcode:m100-m199).
+        A machine's INI may remap the code instead, to a subroutine file: code outside the job either way.  In
+        other dialects the codes they do not have are reported too: the dialect is read from the job, which may
+        run on a LinuxCNC machine whatever it looks like; so are all of them in a ".ngc" file (LinuxCNC's own
+        program extension)."""
+        dialect = self.ctx.dialect
+        if dialect.semantics.user_programs:
+            runs = code not in dialect.codes
+        else:
+            runs = not dialect.knows(code) or str(self.ctx.path or "").lower().endswith(".ngc")
+        if runs:
+            self.report_masked(
+                line,
+                f"{code} runs the program named {code} from the machine's program folder (a LinuxCNC/Machinekit user"
+                " M-code), or the subroutine its INI file remaps it to: code outside this job",
+                column,
+            )
 
     def inspect(self, line: Line, code: str, rest: str, column: int, cmd: Command | None) -> None:
         if code == "M99":
@@ -198,6 +253,9 @@ class RunsFile(_SecurityRule):
                 self._fanuc = False
             return
         if not _starts_line(line, cmd) or (code == "M98" and self.configuration):
+            return
+        if code not in ("M98", "M98.1", "M32", "M23", "SDCARD_PRINT_FILE"):
+            self._user_m_code(line, code, column)
             return
         if code == "SDCARD_PRINT_FILE":
             name = cmd.params.get("FILENAME") if cmd is not None else None
@@ -252,6 +310,20 @@ _CONFIG_OVERRIDE = {
 }
 
 
+# RepRapFirmware codes whose P names a file written, or asks for the firmware to be erased (_rrf_file_word)
+_RRF_FILE_WORDS = ("G29", "M374", "M999")
+
+
+def _parameter(rest: str, cmd: Command | None, letter: str) -> str | None:
+    """The raw value of parameter ``letter`` of a command (a quoted string kept whole), read from ``cmd`` when
+    the grammar read a value, else from its text ``rest``, in either case of the letter."""
+    if cmd is not None and cmd.words and cmd.raw(letter):
+        return cmd.raw(letter)
+    # (not read as a value: an unquoted name, "Pconfig.g", which the grammar reads as flags)
+    m = re.search(rf"""(?i)(?<![A-Z]){letter}[ \t]*+("[^"]*+"?|[^ \t;(]++)""", _strip_comment(rest))
+    return m.group(1) if m is not None else None
+
+
 # Codes that replace the printer's firmware (research/firmware_codes.md: section 1 Prusa Buddy M997 firmware
 # update; section 5 Marlin M997 firmware update, M936 OTA update; section 6 RepRapFirmware M997 firmware update).
 _FIRMWARE_UPDATE = {
@@ -269,7 +341,8 @@ class ChangesPrinterFiles(_SecurityRule):
     summary = (
         "The job deletes, writes or renames files on the printer, or replaces its firmware (M30 <file>, M28, M471,"
         " M472, M559, M560, echo >file, M928/M929 into a non-log file, M500/M502/M504, M505, M997, M936, Klipper"
-        " SAVE_CONFIG and SAVE_VARIABLE, LinuxCNC (LOGOPEN,file), (LOGAPPEND,file), (LOG,text), (PROBEOPEN file))"
+        ' SAVE_CONFIG and SAVE_VARIABLE, G29 S3 P<file>, M374 P<file>, M999 P"ERASE", LinuxCNC (LOGOPEN,file),'
+        " (LOGAPPEND,file), (LOG,text), (PROBEOPEN file))"
     )
     explanation = """
         In Marlin and RepRapFirmware "M30 file" deletes that file from the SD card, M28 writes the
@@ -287,7 +360,9 @@ class ChangesPrinterFiles(_SecurityRule):
         writes a variable to disk.  Marlin's M928 logs the commands that follow into a named file on the SD
         card (a .txt or .log file is not reported, as for M929); RepRapFirmware's M505 makes another folder
         the system folder, so the printer reads its config.g from there; M997 (Marlin, Prusa, RepRapFirmware)
-        and M936 (Marlin) update the firmware.
+        and M936 (Marlin) update the firmware.  RepRapFirmware's "G29 S3 P"file"" and "M374 P"file"" save
+        the height map into the file named (P"config.g" replaces the configuration), and "M999 P"ERASE""
+        erases the firmware as the printer restarts.
 
         LinuxCNC and Machinekit act on comments (interp_convert.cc convert_comment, in every dialect):
         "(LOGOPEN,file)" truncates a file on the controller PC and "(LOGAPPEND,file)" appends to one, and
@@ -320,7 +395,8 @@ class ChangesPrinterFiles(_SecurityRule):
         " update), 8 (several G/M words on one line are split at each G/M); Marlin src/gcode/parser.cpp"
         " GCodeParser::parse (M23, M28, M30: the rest of the line is the file name); LinuxCNC"
         " src/emc/rs274ngc/interp_convert.cc convert_comment, src/emc/task/emccanon.cc COMMENT (PROBEOPEN),"
-        ' docs/src/gcode/overview.adoc "Comments", "Logging", "Probe Logging"'
+        ' docs/src/gcode/overview.adoc "Comments", "Logging", "Probe Logging"; RepRapFirmware'
+        ' src/GCodes/GCodes2.cpp (G29 S3 and M374 save the height map to the file P names; M999 P"ERASE")'
     )
     on_comment = True  # (LinuxCNC's logging comments)
     comment_hint = staticmethod(linuxcnc.may_be_active)
@@ -343,6 +419,9 @@ class ChangesPrinterFiles(_SecurityRule):
         "M505",
         "M997",
         "M936",
+        "G29",
+        "M374",
+        "M999",
     )
 
     def __init__(self, ctx) -> None:
@@ -372,6 +451,9 @@ class ChangesPrinterFiles(_SecurityRule):
             return
         if code in _FIRMWARE_UPDATE:
             self.report_masked(line, f"{code} {_FIRMWARE_UPDATE[code]}{_excerpt(rest)}", column)
+            return
+        if code in _RRF_FILE_WORDS:
+            self._rrf_file_word(line, code, rest, column, cmd)
             return
         if code in _CONFIG_OVERRIDE:
             if not self.settings_in_eeprom:
@@ -421,6 +503,37 @@ class ChangesPrinterFiles(_SecurityRule):
             "M560": "uploads a web file",
         }[code]
         self.report_masked(line, f"{code} {action} on the printer{_excerpt(argument)}", column)
+
+    def _rrf_file_word(self, line: Line, code: str, rest: str, column: int, cmd: Command | None) -> None:
+        """RepRapFirmware's height map saved into a file the job names (G29 S3 P"file", M374 P"file":
+        GCodes2.cpp case 29 "save height map to names file" and case 374, GCodes6.cpp SaveHeightMap), which
+        replaces what the file held ("config.g"), and M999 P"ERASE", which erases the firmware (GCodes2.cpp
+        case 999, ExceptionHandlers.cpp SoftwareReset).  Read in any case, quoted or not."""
+        p = _parameter(rest, cmd, "P")
+        if p is None:
+            return
+        value = p.strip('"')
+        if code == "M999":
+            if value.upper() == "ERASE":
+                self.report_masked(
+                    line,
+                    f"M999 P{p} erases the firmware of a RepRapFirmware printer as it restarts: the printer has none"
+                    " until it is flashed again",
+                    column,
+                )
+            return
+        if not value or _NUMBER.fullmatch(value):
+            return  # (Marlin's G29 P1 is a phase number, not a file)
+        if code == "G29":
+            s_value = _parameter(rest, cmd, "S")
+            if s_value is None or not _NUMBER.fullmatch(s_value) or float(s_value) != 3:
+                return
+        self.report_masked(
+            line,
+            f"{code} writes the height map into the file {_quote(value)} on a RepRapFirmware printer, replacing what"
+            " it held",
+            column,
+        )
 
     def check_issues(self, line: Line) -> None:
         super().check_issues(line)

@@ -117,12 +117,42 @@ def comments_in(raw: str) -> list[tuple[int, str]]:
     return out
 
 
+def as_linuxcnc_reads(text: str) -> str:
+    """``text`` as interp_internal.cc ``close_and_downcase`` leaves it: outside a "(...)" comment the blanks
+    (space, tab, carriage return) dropped and the letters lower-cased; inside one, everything kept as written
+    (so "o<$(REBOOT)>" names "$(REBOOT)", and "o<foo(A B)>" names "foo(A B)")."""
+    out = []
+    comment = False
+    for char in text:
+        if comment:
+            out.append(char)
+            comment = char != ")"
+        elif char == "(":
+            comment = True
+            out.append(char)
+        elif char not in " \t\r":
+            out.append(char.lower() if "A" <= char <= "Z" else char)
+    return "".join(out)
+
+
 def subroutine_name(cmd: Command) -> str | None:
     """The subroutine an O-word names as LinuxCNC reads it, or None when an expression or a parameter
-    computes it ("o[#2 * 10] call", "o#<sub> call").  interp_internal.cc ``close_and_downcase`` drops the
-    blanks outside comments and lower-cases the letters; interp_read.cc ``read_o`` reads "o<name>" as
-    "name" and "o0100" as the number 100 (as "M98 P100" is)."""
-    label = "".join((cmd.params.get("label") or "").split()).lower()
+    computes it ("o[#2 * 10] call", "o#<sub> call").  ``as_linuxcnc_reads``, then interp_read.cc ``read_o``
+    reads "o<name>" as "name" and "o0100" as the number 100 (as "M98 P100" is)."""
+    label = as_linuxcnc_reads(cmd.params.get("label") or "")
     if label[:1] == "<" and label[-1:] == ">" and len(label) > 2:
         return label[1:-1]
     return str(int(label)) if label.isdigit() else None
+
+
+def looked_up(name: str) -> str:
+    """The name a call looks its subroutine up by: interp_o_word.cc ``control_back_to`` finds
+    ``basename(o_name)`` in the subroutines defined so far (a definition is kept under its whole name, so a
+    name with a "/" never matches one)."""
+    return name.rpartition("/")[2]
+
+
+# What the shell expands when LinuxCNC looks for the file of a subroutine it has not defined: rs274ngc_pre.cc
+# ``find_ngc_file`` passes the name to wordexp(3) with no flags, which runs "$(...)" and "`...`" through the
+# shell (WRDE_NOCMD would refuse them) and expands "$NAME" from the controller's environment.
+SHELL_EXPANSION = re.compile(r"[$`]")

@@ -33,7 +33,9 @@ _DROPPABLE = re.compile("[\x00-\x08\x0b-\x1f\x7f\udc80-\udcff]")
 # an M code after the first two characters of its code (Smoothieware splits the line there; no SC rule
 # listens to a G code).
 # (Multi-line and within a line, for the engine's runs of comment lines: rules.base.Rule.on_line_matching.)
-_VIEW_TRIGGER = re.compile("(?m)[^\t\n\r\x20-\x7e]|^[^;(\n\r]{2}[^;(\n\r]*?M[ \t]*+[0-9]")
+_VIEW_TRIGGER = re.compile(
+    "(?m)[^\t\n\r\x20-\x7e]|^[^;(\n\r]{2}[^;(\n\r]*?M[ \t]*+[0-9]|[Mm][ \t]*+81[0-9][^;\n\r]*?\\|"
+)
 # Smoothieware's GcodeDispatch: comments start at the first ";" or "(", and the rest is cut before each "G"
 # and "M" from its third character on ("find_first_of("GM", 2)"); M117 and M1000 take the rest of the line.
 _SMOOTHIE_COMMENT = re.compile("[;(]")
@@ -41,11 +43,16 @@ _SMOOTHIE_SPLIT = re.compile("[GM]")
 _SMOOTHIE_CODE = re.compile("M[ \t]*+[0-9]")  # (the segments the SC rules listen to: M codes)
 _SMOOTHIE_WHOLE = re.compile("M0*+(?:117|1000)(?![0-9])")
 _KLIPPER_COMMENT = ";"
+# Marlin's G-code macros: "M810 G28|M30 file" stores the commands separated by "|" and "M810" runs them
+# (https://github.com/MarlinFirmware/Marlin/blob/bugfix-2.1.x/Marlin/src/gcode/feature/macro/M810-M819.cpp:
+# "Set Macro 0 to the given commands, separated by the pipe character"); the text before ";" is the macro.
+_MARLIN_MACRO = re.compile(r"[ \t]*+(?:[Nn][ \t]*+\d++[ \t]*+)?[Mm][ \t]*+81[0-9](?![0-9.])")
 
 MARLIN_VIEW = "read as Marlin reads backspaces (src/gcode/queue.cpp process_stream_char)"
 TRIMMED_VIEW = "read trimmed as Klipper trims it (Python's str.strip() drops these spaces and controls)"
 KLIPPER_VIEW = 'read as Klipper reads it (klippy/gcode.py: str.strip(), the text before ";", str.upper())'
 SMOOTHIE_VIEW = "read as Smoothieware (Carvera) splits the line at each G and M (GcodeDispatch)"
+MACRO_VIEW = "read as the commands a Marlin M810-M819 macro stores (separated by |)"
 # What other firmwares do with control characters is not in gclint's sources: the two readings a firmware
 # may have are both read (and say so).
 ERASED_VIEW = "read with each backspace or DEL erasing the character before it, comments included (a firmware may)"
@@ -139,6 +146,7 @@ def firmware_views(raw: str) -> list[tuple[str, str, int]]:
     * Klipper: trimmed, cut at ``;`` and upper-cased with Python's ``str.upper()`` (U+017F to S, U+0131
       to I, U+FB01 to FI...), where the command part holds a character that is not ASCII.
     * Windows-1252, where the line is not ASCII (``_as_windows_1252``).
+    * Marlin's macros: each command "M810 G28|M30 file" stores (``_MARLIN_MACRO``).
     * Smoothieware: each G or M after the first command of the line, of ``raw`` and of the views above
       (but Klipper's, which does not split).
     """
@@ -182,6 +190,10 @@ def _views(raw: str) -> tuple[list[tuple[str, str, int]], bool]:
         add(KLIPPER_VIEW, command.upper(), len(raw) - len(raw.lstrip()))
     if not raw.isascii() and _M_CODE.search(raw) is not None:
         add(WINDOWS_1252_VIEW, _as_windows_1252(raw), 0)
+    macro = _MARLIN_MACRO.match(raw)
+    if macro is not None and "|" in raw:
+        for piece in raw[macro.end() :].split(";", 1)[0].split("|"):
+            add(MACRO_VIEW, piece.strip(" \t"), 0)
     for how, text, offset in [(None, raw, 0), *views]:
         if how == KLIPPER_VIEW:
             continue

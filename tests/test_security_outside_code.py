@@ -1,0 +1,93 @@
+"""The gate (issue 25, a third attack): names LinuxCNC hands to the shell, subroutine look-ups by base name,
+definitions that may not run, RepRapFirmware codes that write files or erase the firmware, Marlin's stored macros
+and LinuxCNC's user M-codes."""
+
+from __future__ import annotations
+
+import pytest
+
+from gclint.engine import Linter, Options
+
+
+def _found(text: str, dialect: str = "machinekit", path: str = "job.ngc") -> list[tuple[int, str, str]]:
+    result = Linter(Options(dialect=dialect, select=["SC"])).check_text(text, path)
+    return [(f.line, f.code, f.severity.name.lower()) for f in result.findings]
+
+
+@pytest.mark.parametrize("dialect", ["machinekit", "marlin", "hyrel", "auto"])
+@pytest.mark.parametrize("name", ["$(reboot)", "`id`", "${HOME}/x", "$(curl x|sh)", "a$(b)c"])
+def test_a_called_name_the_shell_expands_runs_a_program(name, dialect):
+    # rs274ngc_pre.cc find_ngc_file: wordexp(name, &result, 0) runs "$(...)" and "`...`"
+    found = _found(f"G0 X0\no<{name}> call\nM2\n", dialect)
+    assert (2, "SC001", "error") in found
+    assert (2, "SC004", "warning") in found
+
+
+def test_a_plain_name_is_not_a_program():
+    assert [f for f in _found("o<prime> call\nM2\n") if f[1] == "SC001"] == []
+
+
+def test_a_call_finds_a_subroutine_by_its_base_name():
+    # interp_o_word.cc control_back_to looks up basename(o_name)
+    sub = "o<x> sub\nG0 X1\no<x> endsub\n"
+    assert _found(sub + "o<dir/x> call\nM2\n") == []
+    assert _found("o<a/x> sub\nG0 X1\no<a/x> endsub\no<a/x> call\nM2\n") == [(4, "SC004", "warning")]
+
+
+def test_a_definition_on_a_block_delete_line_may_not_run():
+    text = "/o<y> sub\nG0 X1\no<y> endsub\no<y> call\nM2\n"
+    assert _found(text) == [(4, "SC004", "warning")]
+
+
+def test_a_definition_read_with_a_comment_line_is_no_definition():
+    # LinuxCNC reads "; note\ro<z> sub" as one line: a comment
+    text = "; note\ro<z> sub\nG0 X1\no<z> endsub\no<z> call\nM2\n"
+    assert (5, "SC004", "warning") in _found(text)
+
+
+def test_a_path_is_named_as_a_path():
+    result = Linter(Options(dialect="machinekit", select=["SC004"])).check_text("o<~/evil> call\n", "job.ngc")
+    assert "a path on the machine's computer" in result.findings[0].message
+
+
+@pytest.mark.parametrize(
+    "line",
+    [
+        'G29 S3 P"0:/sys/config.g"',
+        'g29 s3 p"config.g"',
+        'M374 P"config.g"',
+        "M374 Pconfig.g",
+        'M999 P"ERASE"',
+        'm999 p"erase"',
+        '!! M999 P"ERASE"',
+    ],
+)
+def test_reprapfirmware_codes_that_write_files_or_erase_the_firmware(line):
+    found = _found(f"G28\n{line}\n", "reprap", "job.gcode")
+    assert [(n, code) for n, code, _ in found] == [(2, "SC005")]
+
+
+@pytest.mark.parametrize("line", ["G29 S3", "G29 S0", "G29 P3", "G29 S3 P1", "M374", "M999", 'M999 P"x"'])
+def test_ordinary_height_map_and_reset_codes_pass(line):
+    assert _found(f"G28\n{line}\n", "reprap", "job.gcode") == []
+
+
+@pytest.mark.parametrize(
+    "line",
+    ["M810 G28|M30 config.g", "m811 g28|m30 abc", "M812 G0 X1|M997 ; note", "N5 M819 G28 | M28 /sys/config.g"],
+)
+def test_each_command_of_a_marlin_macro_is_read(line):
+    found = _found(f"G28\n{line}\n", "marlin", "job.gcode")
+    assert [(n, code) for n, code, _ in found] == [(2, "SC005")]
+
+
+def test_a_marlin_macro_of_plain_commands_passes():
+    assert _found("M810 G28|G0 X10 Y10\nM810\n", "marlin", "job.gcode") == []
+
+
+def test_linuxcnc_user_m_codes_run_programs():
+    found = _found("M150 P1\nM104 P200\nM199\nM200\n", "machinekit")
+    assert [(n, code) for n, code, _ in found] == [(1, "SC004"), (3, "SC004")]
+    assert _found("M150 P1\n", "marlin", "job.gcode") == []  # (Marlin's M150 sets LED colours)
+    # a LinuxCNC job read as another dialect: the codes that dialect does not have still run programs
+    assert [(n, code) for n, code, _ in _found("G21\nM101 P1 Q2\nM2\n", "reprap")] == [(2, "SC004")]
