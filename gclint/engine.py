@@ -411,7 +411,9 @@ class Linter:
         arcs = plain is not None and self._plain_arcs(build, interpreter)
         run_filters = rule_run_filters(build, arcs) if plain is not None else None
         runs = Runs(
-            run_pattern(arcs, shortest_long) if plain is not None else None,
+            run_pattern(arcs, shortest_long)
+            if plain is not None and (RUNS_IN_SMALL_FILES or not source.head_is_whole)
+            else None,
             interpreter,
             comment_tests(rules, view_patterns),
             together=all(wants.__self__.flags & re.MULTILINE for wants in view_patterns),
@@ -596,6 +598,11 @@ class Linter:
                 return None
             out[code[1]] = (code, filters)
         return out
+
+
+# A file shorter than the head read at opening (64 KiB) is read line by line, without runs: compiling the runs'
+# pattern costs more than it saves there, and it was most of a one-file check's time.  (Tests of runs set this.)
+RUNS_IN_SMALL_FILES = False
 
 
 class _Joined:

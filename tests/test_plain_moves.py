@@ -13,6 +13,7 @@ import pytest
 from hypothesis import given
 from hypothesis import strategies as st
 
+import gclint.engine
 import gclint.machine.interpreter
 import gclint.runs
 from gclint.engine import Linter, Options
@@ -21,6 +22,15 @@ from gclint.syntax.fastpath import PLAIN_MOVE
 from gclint.syntax.source import Source
 from tests.conftest import CORPUS, corpus_job, needs_corpus
 from tests.strategies import DIALECTS, any_line, numbers
+
+
+@pytest.fixture(autouse=True, scope="module")
+def _runs_in_small_files():
+    # (the engine reads a file under 64 KiB line by line; these tests read runs in small texts)
+    with pytest.MonkeyPatch.context() as patch:
+        patch.setattr(gclint.engine, "RUNS_IN_SMALL_FILES", True)
+        yield
+
 
 FOLDER_DIALECT = {"hyrel": "hyrel-v4", "linuxcnc": "machinekit"}
 

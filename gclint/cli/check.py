@@ -159,7 +159,8 @@ def check(
     if quiet:
         _QUIET.append(True)
     from gclint import runner
-    from gclint.reports import MACHINE_FORMATS, ReportContext, formats, reports
+    from gclint.reports import FORMATS, MACHINE_FORMATS, ReportContext, report_class
+    from gclint.reports import writer as write_with
 
     if os.environ.get("PRE_COMMIT") == "1" and paths and "--" not in sys.argv[1:]:
         # pre-commit appends file names after the hook's args: without "--", a committed file named
@@ -168,9 +169,8 @@ def check(
             "as a pre-commit hook, gclint needs '--' before the file names: end the hook's args with '--'"
             " (args: [--printer, 30m, --]) so that a file name is never read as an option"
         )
-    writers = formats()
-    if fmt not in writers:
-        _fail(f"unknown format {fmt!r} (known: {', '.join(sorted(writers))})")
+    if fmt not in FORMATS:
+        _fail(f"unknown format {fmt!r} (known: {', '.join(sorted(FORMATS))})")
     overrides: dict = {}
     if dialect is not None:
         overrides["dialect"] = _check_dialect(dialect)
@@ -293,7 +293,8 @@ def check(
     }
     if not (fix or show_diff or add_noqa):  # file by file: memory does not grow with the run
         ctx = ReportContext(tool_version=__version__, group=not no_group, configuration=configuration)
-        report = reports(statistics)[fmt]
+        report = report_class(fmt, statistics)
+        assert report is not None  # (--statistics with a format that has no table was refused above)
         with _checking(bar):
             checked = runner.results(files, Options(), overrides, **run_options)
             tally, slim = _report(report, ctx, output, problems, checked, bar)
@@ -336,7 +337,7 @@ def check(
         if r.error:
             _error(r.error)
     ctx = ReportContext(tool_version=__version__, fixed=fixed, group=not no_group, configuration=configuration)
-    writer = writers[fmt]
+    writer = write_with(fmt)
     if statistics:  # the counts instead of the findings, as ruff does (JSON with --format json)
         from gclint.reports import json_report, text
 

@@ -29,42 +29,56 @@ class ReportContext:
 Writer = Callable[[list[FileResult], TextIO, ReportContext], None]
 
 
-def formats() -> dict[str, Writer]:
-    from gclint.reports import github, html, json_report, junit, sarif, text
+# The formats: ``--format`` name -> (module in gclint.reports, its writer of a whole list, its file-by-file
+# ``Report`` class).  One registry; a format's module is imported only when it is used (html brings jinja2).
+FORMATS: dict[str, tuple[str, str, str]] = {
+    "text": ("text", "write", "TextReport"),
+    "concise": ("text", "write", "TextReport"),
+    "full": ("text", "write_full", "FullReport"),
+    "grouped": ("text", "write_grouped", "GroupedReport"),
+    "json": ("json_report", "write", "JsonReport"),
+    "sarif": ("sarif", "write", "SarifReport"),
+    "github": ("github", "write", "GithubReport"),
+    "junit": ("junit", "write", "JunitReport"),
+    "html": ("html", "write", "HtmlReport"),
+}
+# The formats that have a --statistics report: the table (text) in the text formats and github, JSON with json.
+_STATISTICS = {name: ("text", "StatisticsReport") for name in ("text", "concise", "full", "grouped", "github")} | {
+    "json": ("json_report", "JsonStatisticsReport")
+}
 
-    return {
-        "text": text.write,
-        "concise": text.write,
-        "full": text.write_full,
-        "grouped": text.write_grouped,
-        "json": json_report.write,
-        "sarif": sarif.write,
-        "github": github.write,
-        "junit": junit.write,
-        "html": html.write,
-    }
+
+def _load(module: str, name: str):
+    from importlib import import_module
+
+    return getattr(import_module(f"gclint.reports.{module}"), name)
+
+
+def writer(fmt: str) -> Writer:
+    """The writer of format ``fmt`` (a name in ``FORMATS``)."""
+    module, name, _ = FORMATS[fmt]
+    return _load(module, name)
+
+
+def report_class(fmt: str, statistics: bool = False) -> type | None:
+    """The ``Report`` class of format ``fmt`` (``gclint.reports.stream``): written file by file.  With
+    ``statistics``, its ``--statistics`` report, None when the format has none."""
+    if statistics:
+        found = _STATISTICS.get(fmt)
+        return _load(*found) if found is not None else None
+    module, _, name = FORMATS[fmt]
+    return _load(module, name)
+
+
+def formats() -> dict[str, Writer]:
+    """Every format's writer (imports every format's module: for tools that list them all)."""
+    return {fmt: writer(fmt) for fmt in FORMATS}
 
 
 def reports(statistics: bool = False) -> dict[str, type]:
-    """The ``Report`` class of each format (``gclint.reports.stream``): written file by file.  With
-    ``statistics``, the ``--statistics`` report of the formats that have one (text formats and json)."""
-    from gclint.reports import github, html, json_report, junit, sarif, text
-
-    if statistics:  # the table (text) in every format that allows --statistics, JSON with json
-        return {name: text.StatisticsReport for name in ("text", "concise", "full", "grouped", "github")} | {
-            "json": json_report.JsonStatisticsReport
-        }
-    return {
-        "text": text.TextReport,
-        "concise": text.TextReport,
-        "full": text.FullReport,
-        "grouped": text.GroupedReport,
-        "json": json_report.JsonReport,
-        "sarif": sarif.SarifReport,
-        "github": github.GithubReport,
-        "junit": junit.JunitReport,
-        "html": html.HtmlReport,
-    }
+    """The ``Report`` class of each format (with ``statistics``, of those that have a --statistics report)."""
+    names = _STATISTICS if statistics else FORMATS
+    return {fmt: cls for fmt in names if (cls := report_class(fmt, statistics)) is not None}
 
 
 # Formats read by programs: no progress bar, nothing but the report on stdout.
