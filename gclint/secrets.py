@@ -79,8 +79,17 @@ _AUTH = re.compile(
 )
 # RepRapFirmware commands whose P is a password: M551 (the machine's), M587 (a WiFi network's), M589 (the
 # access point's).  Their words are read one by one (a P inside another word's quoted string is not the P).
-_PASSWORD_CODE = re.compile(r"(?i)(?<![A-Za-z0-9])M0{0,4}+(551|58[79])(?![\d.])")
-_PASSWORD_KIND = {"551": "password", "587": "WiFi password", "589": "WiFi password"}
+# Marlin's password feature: M511 P<passcode> unlocks the machine, M512 P<old> S<new> sets the passcode
+# (https://github.com/MarlinFirmware/Marlin/blob/bugfix-2.1.x/Marlin/src/gcode/feature/password/M510-M512.cpp).
+_PASSWORD_CODE = re.compile(r"(?i)(?<![A-Za-z0-9])M0{0,4}+(551|58[79]|51[12])(?![\d.])")
+_PASSWORD_KIND = {
+    "551": "password",
+    "587": "WiFi password",
+    "589": "WiFi password",
+    "511": "Marlin passcode",
+    "512": "Marlin passcode",
+}
+_PASSWORD_LETTERS = {"512": "PpSs"}  # (the words that hold one; P for the others)
 # One word: a letter, then a value "..." (RepRapFirmware writes a quote inside as ""), '...', either with
 # its closing quote missing (the value runs to the end of the line), or unquoted (to a blank or ";").
 _WORD = re.compile(r"""[ \t]*+([A-Za-z])[ \t]*+("(?:[^"\r\n]|"")*+"?|'[^'\r\n]*+'?|[^\s;"']*+)""")
@@ -115,6 +124,7 @@ def _hinted(text: str) -> bool:
         or "587" in t  # (M587, M589, M551: not "58" alone, a common digit pair)
         or "589" in t
         or "551" in t
+        or "m51" in t  # (Marlin's M511/M512 passcodes)
         or "auth" in t
     )
 
@@ -214,7 +224,7 @@ def find(text: str) -> list[Secret]:
                 group = m.lastindex or 3
                 if not _placeholder(m.group(group)):
                     found.append(Secret(m.start(group), m.end(group), "credentials"))
-        if "587" in text or "589" in text or "551" in text:
+        if "587" in text or "589" in text or "551" in text or "51" in text:
             found.extend(_command_passwords(text))
     if len(found) <= 1:
         return found
@@ -231,7 +241,8 @@ def find(text: str) -> list[Secret]:
 
 
 def _command_passwords(text: str) -> list[Secret]:
-    """The ``P`` values of ``M551``/``M587``/``M589`` in ``text`` (in a comment too: a copy is as secret)."""
+    """The ``P`` values of ``M551``/``M587``/``M589``/``M511``, and ``P`` and ``S`` of ``M512``, in ``text`` (in a
+    comment too: a copy is as secret)."""
     found = []
     pos = 0
     while (m := _PASSWORD_CODE.search(text, pos)) is not None:
@@ -241,7 +252,7 @@ def _command_passwords(text: str) -> list[Secret]:
             if word is None or word.end() == pos:
                 break  # a comment, a checksum, the end of the line
             pos = word.end()
-            if word.group(1) not in "Pp":
+            if word.group(1) not in _PASSWORD_LETTERS.get(m.group(1), "Pp"):
                 continue
             value, start = word.group(2), word.start(2)
             if value[:1] in ("'", '"'):

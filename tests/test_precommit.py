@@ -186,3 +186,18 @@ def test_file_names_are_never_options_through_real_pre_commit(tmp_path, hook_rep
     output = proc.stdout.decode() + proc.stderr.decode()
     assert proc.returncode == 1 and "SC001" in output, output
     assert (repo / "good.gcode").read_text() == GOOD
+
+
+def test_the_hooks_take_every_file_a_walk_takes():
+    # (one list of job extensions: gclint.runner; the hooks' and the README's file patterns follow it)
+    import re as _re
+
+    from gclint.runner import GCODE_EXTENSIONS, PACKAGE_EXTENSIONS
+
+    root = Path(__file__).resolve().parent.parent
+    for text in ((root / ".pre-commit-hooks.yaml").read_text(), (root / "README.md").read_text()):
+        patterns = _re.findall(r"files: '([^']+)'", text)
+        assert patterns
+        for pattern in patterns:
+            for extension in GCODE_EXTENSIONS + PACKAGE_EXTENSIONS:
+                assert _re.search(pattern, f"jobs/part{extension}"), (pattern, extension)

@@ -91,3 +91,74 @@ def test_linuxcnc_user_m_codes_run_programs():
     assert _found("M150 P1\n", "marlin", "job.gcode") == []  # (Marlin's M150 sets LED colours)
     # a LinuxCNC job read as another dialect: the codes that dialect does not have still run programs
     assert [(n, code) for n, code, _ in _found("G21\nM101 P1 Q2\nM2\n", "reprap")] == [(2, "SC004")]
+
+
+# -- the fourth attack ----------------------------------------------------------------------------------------
+
+
+@pytest.mark.parametrize(
+    "text,code",
+    [
+        ('G28\n; hi\0echo >"0:/sys/config.g" "M112"\nG1 X10\n', "SC005"),
+        ("G28\nG1 X1 ; hi\0M586 P2 S1\nG1 X10\n", "SC007"),
+        ('G28\n; hi\0M30 "0:/sys/config.g"\nG1 X10\n', "SC005"),
+        ("G28\nM117 hi\0M586 P2 S1\nG1 X10\n", "SC007"),
+    ],
+)
+def test_a_nul_byte_ends_a_reprapfirmware_line(text, code):
+    # RepRapFirmware StringParser::Put: "if (c == 0 || c == '\n' || c == '\r') return LineFinished();"
+    assert code in {c for _, c, _ in _found(text, "auto", "job.gcode")}
+
+
+@pytest.mark.parametrize(
+    "line",
+    [
+        "G1 X10 ; color #M30 X1",
+        " ; comment #M30 X1",
+        "M117 Printing part 1:M30 X1",
+        "M117 Printing#M28 auto0.g",
+        "G1 X10 Y10 ; infill " + "-" * 75 + " M28 auto0.g",
+    ],
+)
+def test_sd_card_readers_end_commands_early(line):
+    # Prusa Firmware/cmdqueue.cpp ends an SD command at "#" and after 95 characters; Marlin 1.1 at "#" and ":"
+    # outside a ";" comment
+    found = _found(f";FLAVOR:Marlin\nM105\nG28\n{line}\nG1 X10\n", "auto", "job.gcode")
+    assert "SC005" in {code for _, code, _ in found}
+
+
+def test_ordinary_slicer_comments_with_colons_and_hashes_pass():
+    text = ";FLAVOR:Marlin\n;TYPE:WALL-OUTER\nM117 Layer 1: first\n; colour #FF8000\nG1 X10 ; note #1\nM105\n"
+    assert _found(text, "auto", "job.gcode") == []
+
+
+@pytest.mark.parametrize("line", ["o<evil> ca ll", "o100 c a l l", "o 1 0 0 c a l l", "o[100] c all"])
+def test_blanks_inside_call_are_nothing_to_linuxcnc(line):
+    # interp_internal.cc close_and_downcase drops blanks before read_o reads "call"
+    assert [(n, code) for n, code, _ in _found(f"G21\n{line}\nM2\n")] == [(2, "SC004")]
+
+
+def test_the_power_fail_script_is_read():
+    found = _found('M911 S22 R23 P"echo >""0:/sys/config.g"" ""M112"""\nM911 S21 P"m586 p2 s1"\n', "reprap", "a.gcode")
+    assert [(n, code) for n, code, _ in found] == [(1, "SC005"), (2, "SC007")]
+    assert _found('M911 S21 R22 P"M913 X0 Y0 G91 M83 G1 Z3 E-5 F1000"\n', "reprap", "a.gcode") == []
+
+
+def test_network_services_in_sys_files_other_than_start_up_ones_are_reported():
+    def codes(path: str) -> list[str]:
+        return [
+            f.code
+            for f in Linter(Options(dialect="reprap", select=["SC007"])).check_text("M586 P2 S1\n", path).findings
+        ]
+
+    assert codes("repo/sys/config.g") == []
+    assert codes("repo/sys/runonce.g") == []
+    assert codes("jobs/sys/part.g") == ["SC007"]
+
+
+def test_more_reprapfirmware_and_marlin_codes():
+    assert [c for _, c, _ in _found('G28\nM37 P"0:/gcodes/evil.g"\n', "reprap", "a.gcode")] == ["SC004"]
+    assert _found("M37 S1\nM37\n", "reprap", "a.gcode") == []
+    assert [c for _, c, _ in _found("M105\nM994\n", "marlin", "a.gcode")] == ["SC005"]
+    found = _found("M105\nM512 P1234 S5678\nM511 P1234\n", "marlin", "a.gcode")
+    assert [(n, c) for n, c, _ in found] == [(2, "SC006"), (2, "SC006"), (3, "SC006")]

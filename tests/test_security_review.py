@@ -384,7 +384,9 @@ def test_network_setup_in_the_configuration_is_not_reported() -> None:
     # only a .g file right in sys/ is a system file: a job placed there (or deeper) is a job
     assert _codes("M586 P2 S1\n", "reprap", "jobs/sys/print.gcode") == {"SC007"}
     assert _codes("M586 P2 S1\n", "reprap", "sys/jobs/print.g") == {"SC007"}
-    assert _codes("M586 P2 S1\n", "reprap", "printer/SYS/network.g") == set()
+    # (a change can add any file to a sys/ folder: only the files RepRapFirmware runs at start-up are exempt)
+    assert _codes("M586 P2 S1\n", "reprap", "printer/SYS/network.g") == {"SC007"}
+    assert _codes("M586 P2 S1\n", "reprap", "printer/SYS/runonce.g") == set()
 
 
 def test_the_machine_password_never_reaches_a_report() -> None:

@@ -281,8 +281,7 @@ class HostRunsProgram(_SecurityRule):
         # (every O-word of a line) A subroutine not defined in the job is looked for as a file, and LinuxCNC
         # hands its name to wordexp(3) with no flags first (rs274ngc_pre.cc find_ngc_file), which runs "$(...)"
         # and "`...`" through the shell: "o<$(reboot)> call" runs reboot.
-        name = linuxcnc.subroutine_name(cmd)
-        keyword = (cmd.params.get("keyword") or "").lower()
+        keyword, name = linuxcnc.oword(line.raw, cmd)
         if keyword == "call" and name is not None and linuxcnc.SHELL_EXPANSION.search(name):
             self.report_masked(
                 line,

@@ -19,7 +19,7 @@ def _file_argument(code: str, rest: str, cmd: Command | None) -> str | None:
     argument = _strip_comment(rest)
     if not argument:
         return None
-    if code == "M98":
+    if code in ("M98", "M37"):
         if cmd is not None and cmd.words:
             p = cmd.raw("P")
             if p is None:
@@ -72,7 +72,8 @@ class RunsFile(_SecurityRule):
         " Klipper SDCARD_PRINT_FILE)"
     )
     explanation = """
-        M98 P"file" (RepRapFirmware macros), M98 P1234 (Carvera: the file gcodes/macros/1234.cnc), M98.1
+        M98 P"file" (RepRapFirmware macros), M37 P"file" (RepRapFirmware simulates the file: its commands
+        run without moving, and file commands among them still act), M98 P1234 (Carvera: the file gcodes/macros/1234.cnc), M98.1
         {path} (Carvera), M32 (select and start a file), M23 (select a file for M24) and Klipper's
         SDCARD_PRINT_FILE FILENAME=... (load a file and start it) make the firmware run a file that is not
         in this job.  What runs is whatever that file holds on the machine at print time, which this check
@@ -100,8 +101,8 @@ class RunsFile(_SecurityRule):
         M100 to M199, in a job read as Machinekit/LinuxCNC, run the external program of that name from the
         machine's program folder ("M100-M199 User Defined Commands" in LinuxCNC's M-code documentation), or
         the subroutine the machine's INI file remaps the code to; the codes Machinekit's FDM configuration
-        defines (M104, M106, M109, M140, M190...) are not reported, nor in other dialects the codes they have
-        (Marlin's M150 sets LED colours).
+        defines (M104, M106, M109, M140, M190...) are not reported.  In other dialects they are not reported
+        (Marlin's M150 sets LED colours), but in a ".ngc" file, LinuxCNC's own extension, they are.
     """
     example_bad = 'M98 P"0:/macros/prime.g"'
     example_good = """
@@ -117,7 +118,7 @@ class RunsFile(_SecurityRule):
         ' LinuxCNC docs/src/gcode/o-code.adoc "Calling Files" and src/emc/rs274ngc/interp_o_word.cc'
         " control_back_to (o<name> call of a subroutine not defined before the call: the file name.ngc)"
     )
-    codes = ("M98", "M98.1", "M32", "M23", "SDCARD_PRINT_FILE", "O", "M99", *(f"M{n}" for n in range(100, 200)))
+    codes = ("M98", "M98.1", "M32", "M23", "M37", "SDCARD_PRINT_FILE", "O", "M99", *(f"M{n}" for n in range(100, 200)))
 
     # Subroutine names remembered per file: a job that defines more is read as if it defined none after them
     # (its later calls are reported), so memory stays bounded.
@@ -131,6 +132,7 @@ class RunsFile(_SecurityRule):
         self._open: dict[tuple[str, str], int] = {}  # how many of each are open
         self._fanuc = False  # within a Fanuc-style subprogram ("O100" ... M99)
         self._joined_tail = 0  # the last line LinuxCNC reads joined to lines before it (check_joined)
+        self._called: set[str] = set()  # the subroutines whose outside call was reported
 
     def check(self, line: Line, cmd: Command) -> None:
         if cmd.code == "O":
@@ -142,8 +144,7 @@ class RunsFile(_SecurityRule):
         # LinuxCNC runs a call from its table of subroutines defined so far, else from the file name.ngc if
         # there is one, else from further down the job (interp_o_word.cc control_back_to, "#1 already
         # defined", "#2 open the File"; https://github.com/LinuxCNC/linuxcnc/blob/master/src/emc/rs274ngc/)
-        keyword = (cmd.params.get("keyword") or "").lower()
-        name = linuxcnc.subroutine_name(cmd)
+        keyword, name = linuxcnc.oword(line.raw, cmd)
         if keyword != "call":
             # (what the job defines: read on the lines as written, not on a firmware's view of one, and not on
             # lines LinuxCNC reads with another (a line ending in a bare carriage return, and the line after
@@ -154,7 +155,8 @@ class RunsFile(_SecurityRule):
             return
         if name is not None and linuxcnc.looked_up(name) in self._subroutines:
             return
-        label = (cmd.params.get("label") or "")[:60]
+        label = (f"<{name}>" if not name.isdigit() else name) if name is not None else cmd.params.get("label") or ""
+        label = label[:60]
         if name is not None and linuxcnc.SHELL_EXPANSION.search(name):
             what = (
                 "names no subroutine defined above the call, so LinuxCNC/Machinekit hand the name to the shell's"
@@ -176,6 +178,10 @@ class RunsFile(_SecurityRule):
                 "names its subroutine by an expression: LinuxCNC/Machinekit run the file of that name from the"
                 " machine's program or subroutine folders unless the job defines it above the call"
             )
+        if label in self._called:
+            return  # (one finding per subroutine a job calls from outside it: the first call)
+        if len(self._called) < self.SUBROUTINES_KEPT:
+            self._called.add(label)
         self.report_masked(line, f"o{label} call {what}: code outside this job", cmd.column)
 
     # O-word blocks (LinuxCNC's o-code.adoc): what opens one, and what closes what ("while" closes a "do" of its
@@ -193,7 +199,7 @@ class RunsFile(_SecurityRule):
         body is skipped with it (interp_o_word.cc: the lines of a block not run are skipped to its end), and
         whether the block runs is not known before the job runs.  A definition that may be skipped (``counts``
         False: a block-delete line) opens its block but defines nothing."""
-        label = linuxcnc.as_linuxcnc_reads(cmd.params.get("label") or "")
+        label = name if name is not None else linuxcnc.as_linuxcnc_reads(cmd.params.get("label") or "")
         blocks = self._blocks
         if keyword == "while" and blocks and blocks[-1] == (label, "do"):
             self._close((label, "do"))
@@ -230,15 +236,13 @@ class RunsFile(_SecurityRule):
         """M100-M199 under the LinuxCNC interpreter, where the dialect has no code of its own by that number: the
         external program named M1nn in the machine's program folder runs ("M100-M199 User Defined Commands" in
         LinuxCNC's M-code documentation, https://linuxcnc.org/docs/html/gcode/m-code.html#mcode:m100-m199).
-        A machine's INI may remap the code instead, to a subroutine file: code outside the job either way.  In
-        other dialects the codes they do not have are reported too: the dialect is read from the job, which may
-        run on a LinuxCNC machine whatever it looks like; so are all of them in a ".ngc" file (LinuxCNC's own
-        program extension)."""
+        A machine's INI may remap the code instead, to a subroutine file: code outside the job either way.  In a
+        ".ngc" file (LinuxCNC's own program extension) read as another dialect, each is reported."""
         dialect = self.ctx.dialect
         if dialect.semantics.user_programs:
             runs = code not in dialect.codes
-        else:
-            runs = not dialect.knows(code) or str(self.ctx.path or "").lower().endswith(".ngc")
+        else:  # (a ".ngc" job, LinuxCNC's own extension, read as another dialect)
+            runs = str(self.ctx.path or "").lower().endswith(".ngc")
         if runs:
             self.report_masked(
                 line,
@@ -254,7 +258,7 @@ class RunsFile(_SecurityRule):
             return
         if not _starts_line(line, cmd) or (code == "M98" and self.configuration):
             return
-        if code not in ("M98", "M98.1", "M32", "M23", "SDCARD_PRINT_FILE"):
+        if code not in ("M98", "M98.1", "M32", "M23", "M37", "SDCARD_PRINT_FILE"):
             self._user_m_code(line, code, column)
             return
         if code == "SDCARD_PRINT_FILE":
@@ -287,7 +291,11 @@ class RunsFile(_SecurityRule):
                     column,
                 )
             return
-        verb = {"M23": "selects", "M32": "selects and starts"}.get(code, "runs")
+        # (RepRapFirmware's M37 P"file" simulates the file: its commands run without moving, file commands such as
+        # M28 and M30 included, and it then writes the simulated time into the file: GCodes2.cpp case 37)
+        verb = {"M23": "selects", "M32": "selects and starts", "M37": "simulates (runs without moving)"}.get(
+            code, "runs"
+        )
         self.report_masked(line, f"{code} {verb} the file {_quote(name)} on the printer: code outside this job", column)
 
 
@@ -330,6 +338,9 @@ _FIRMWARE_UPDATE = {
     "M997": "starts a firmware update (Marlin, Prusa Buddy, RepRapFirmware): a job must not replace the printer's"
     " firmware",
     "M936": "starts an over-the-air firmware update (Marlin)",
+    # (M994: Marlin src/gcode/gcode.h "M994: Load SPI Flash from SD"; M993, its backup, is Bambu's nozzle camera
+    # switch in Bambu jobs and writes only a backup file: not reported)
+    "M994": "writes a file from the SD card into the printer's SPI flash (Marlin: its settings, fonts and images)",
 }
 
 
@@ -419,6 +430,7 @@ class ChangesPrinterFiles(_SecurityRule):
         "M505",
         "M997",
         "M936",
+        "M994",
         "G29",
         "M374",
         "M999",
@@ -426,6 +438,7 @@ class ChangesPrinterFiles(_SecurityRule):
 
     def __init__(self, ctx) -> None:
         super().__init__(ctx)
+        self._echoed: set[tuple[str, str]] = set()  # the files an "echo >" was reported for (mode, file)
         # M500/M502/M504 are the EEPROM settings only where the dialect says Marlin and the user said so:
         # a job chooses what it is detected as, and on a Carvera M502 deletes the config override.
         self.settings_in_eeprom = (
@@ -548,6 +561,10 @@ class ChangesPrinterFiles(_SecurityRule):
             return
         mode = "appends its text to" if len(m.group(1)) > 1 else "writes its text into"
         target = f" {_quote(m.group(2).strip(chr(34)))}" if m.group(2).strip('"') else ""
+        if (mode, target) in self._echoed:
+            return  # (one finding per file a job writes or appends to: the first echo)
+        if len(self._echoed) < 1000:
+            self._echoed.add((mode, target))
         self.report_masked(
             line, f"echo {m.group(1)} {mode} the file{target} on a RepRapFirmware printer (3.4 and later)", column
         )

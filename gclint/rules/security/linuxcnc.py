@@ -135,14 +135,60 @@ def as_linuxcnc_reads(text: str) -> str:
     return "".join(out)
 
 
-def subroutine_name(cmd: Command) -> str | None:
-    """The subroutine an O-word names as LinuxCNC reads it, or None when an expression or a parameter
-    computes it ("o[#2 * 10] call", "o#<sub> call").  ``as_linuxcnc_reads``, then interp_read.cc ``read_o``
-    reads "o<name>" as "name" and "o0100" as the number 100 (as "M98 P100" is)."""
+# The O-word keywords (interp_read.cc ``read_o``), longest first where one starts another
+_KEYWORDS = (
+    "endsub", "endif", "endwhile", "endrepeat", "elseif", "else", "call", "sub", "return", "if", "do", "while",
+    "break", "continue", "repeat",
+)  # fmt: skip
+_LINE_NUMBER = re.compile(r"/?(?:n[0-9.]*)?")
+
+
+def read_oword(text: str) -> tuple[str, str | None] | None:
+    """The keyword of the O-word ``text`` starts with and the subroutine it names, as LinuxCNC reads them; None
+    when ``text`` is no O-word to LinuxCNC.  ``as_linuxcnc_reads`` first, so blanks count for nothing ("o 1 0 0
+    c a l l" calls 100); then interp_read.cc ``read_o`` reads "o<name>" as "name" and "o0100" as the number 100
+    (as "M98 P100" is); a name computed by an expression or a parameter ("o[#2 * 10] call", "o#<sub> call") is
+    None."""
+    s = as_linuxcnc_reads(text)
+    s = s[_LINE_NUMBER.match(s).end() :]  # (the pattern matches "" too)
+    if s[:1] != "o":
+        return None
+    i, name = 1, None
+    if s[1:2] == "<":
+        end = s.find(">", 1)
+        if end < 0:
+            return None
+        name, i = s[2:end], end + 1
+    elif s[1:2] == "[":
+        depth = 0
+        for i in range(1, len(s)):
+            depth += {"[": 1, "]": -1}.get(s[i], 0)
+            if depth == 0:
+                break
+        i += 1
+    elif s[1:2] == "#":
+        end = s.find(">", 2) + 1 if s[2:3] == "<" else 2 + len(s[2:]) - len(s[2:].lstrip("0123456789"))
+        i = max(end, 2)
+    else:
+        digits = len(s) - 1 - len(s[1:].lstrip("0123456789"))
+        if digits == 0:
+            return None
+        name, i = str(int(s[1 : 1 + digits])), 1 + digits
+    keyword = next((k for k in _KEYWORDS if s.startswith(k, i)), "")
+    return keyword, (name or None)
+
+
+def oword(line_text: str, cmd: Command) -> tuple[str, str | None]:
+    """The keyword and subroutine name of the O-word command ``cmd`` of a line as LinuxCNC reads them
+    (``read_oword`` on the line from the command on; the grammar's reading where LinuxCNC would read none)."""
+    found = read_oword(line_text[max(cmd.column - 1, 0) :])
+    if found is not None:
+        return found
     label = as_linuxcnc_reads(cmd.params.get("label") or "")
-    if label[:1] == "<" and label[-1:] == ">" and len(label) > 2:
-        return label[1:-1]
-    return str(int(label)) if label.isdigit() else None
+    name = label[1:-1] if label[:1] == "<" and label[-1:] == ">" and len(label) > 2 else None
+    if label.isdigit():
+        name = str(int(label))
+    return (cmd.params.get("keyword") or "").lower(), name
 
 
 def looked_up(name: str) -> str:

@@ -24,6 +24,13 @@ _PROTOCOLS = {
 }
 
 
+STARTUP_FILES = frozenset({"config.g", "config-override.g", "runonce.g"})
+
+
+def _name(path: str | None) -> str:
+    return str(path or "").replace("\\", "/").rpartition("/")[2].lower()
+
+
 @register
 class OpensNetworkService(_SecurityRule):
     code = "SC007"
@@ -35,8 +42,10 @@ class OpensNetworkService(_SecurityRule):
         P1 FTP, P2 Telnet.  FTP reads and writes every file on the SD card and Telnet is a G-code console,
         both protected only by the M551 password (if one is set).  A job that turns them on leaves the
         machine open to anyone on its network after the print.  The network belongs in the printer's
-        configuration: M586 in a `.g` file right in a RepRapFirmware `sys/` folder (config.g and the files
-        it runs, checked as RepRapFirmware) is not reported; a job placed in such a folder is.  Switching a service off (S0) is not reported.
+        configuration: M586 in the files RepRapFirmware runs at start-up, right in a `sys/` folder (config.g,
+        config-override.g, runonce.g, checked as RepRapFirmware), is not reported; in any other file it is
+        (a change can add a file of any name to a `sys/` folder; silence a macro that config.g runs with
+        per-file-ignores in a configuration the CI names).  Switching a service off (S0) is not reported.
     """
     example_bad = "M586 P2 S1"
     example_good = "M586 P2 S0"
@@ -48,7 +57,10 @@ class OpensNetworkService(_SecurityRule):
 
     def __init__(self, ctx) -> None:
         super().__init__(ctx)
-        self.configuration = system_file(ctx)
+        # (only the files RepRapFirmware runs at start-up set up its network: src/GCodes/GCodes.h CONFIG_FILE
+        # "config.g", CONFIG_OVERRIDE_G "config-override.g", RUNONCE_G "runonce.g"; a job's repository can
+        # name any other file sys/x.g)
+        self.configuration = system_file(ctx) and _name(ctx.path) in STARTUP_FILES
 
     def inspect(self, line: Line, code: str, rest: str, column: int, cmd: Command | None) -> None:
         if self.configuration or not _starts_line(line, cmd):

@@ -33,8 +33,11 @@ _DROPPABLE = re.compile("[\x00-\x08\x0b-\x1f\x7f\udc80-\udcff]")
 # an M code after the first two characters of its code (Smoothieware splits the line there; no SC rule
 # listens to a G code).
 # (Multi-line and within a line, for the engine's runs of comment lines: rules.base.Rule.on_line_matching.)
+# Also a line where an SD-card reader ends a command early (``_sd_card_commands``): a "#" before a letter, a ":"
+# before a letter outside a ";" comment, or more than SD_COMMAND_SIZE characters after a first one that is not ";".
 _VIEW_TRIGGER = re.compile(
     "(?m)[^\t\n\r\x20-\x7e]|^[^;(\n\r]{2}[^;(\n\r]*?M[ \t]*+[0-9]|[Mm][ \t]*+81[0-9][^;\n\r]*?\\|"
+    "|#[ \t]*+[A-Za-z]|^[^;\n\r]*?:[ \t]*+[A-Za-z]|^[^;\n\r][^\n\r]{95}|[Mm][ \t]*+0*+911[^;\n\r]*?[Pp]"
 )
 # Smoothieware's GcodeDispatch: comments start at the first ";" or "(", and the rest is cut before each "G"
 # and "M" from its third character on ("find_first_of("GM", 2)"); M117 and M1000 take the rest of the line.
@@ -53,6 +56,26 @@ TRIMMED_VIEW = "read trimmed as Klipper trims it (Python's str.strip() drops the
 KLIPPER_VIEW = 'read as Klipper reads it (klippy/gcode.py: str.strip(), the text before ";", str.upper())'
 SMOOTHIE_VIEW = "read as Smoothieware (Carvera) splits the line at each G and M (GcodeDispatch)"
 MACRO_VIEW = "read as the commands a Marlin M810-M819 macro stores (separated by |)"
+NUL_VIEW = "read as RepRapFirmware reads a NUL byte: the end of a line (StringParser::Put)"
+SD_SPLIT_VIEW = (
+    'read as Prusa and Marlin 1.1 firmware read a job from the SD card: "#" (and, outside a ";" comment, ":") ends'
+    " a command"
+)
+SD_CUT_VIEW = "read as Prusa firmware reads a job from the SD card: a command ends after 95 characters"
+
+# Prusa firmware (Firmware/cmdqueue.cpp, reading from the SD card) ends a command at "#", and after
+# SD_COMMAND_SIZE characters (MAX_CMD_SIZE 96, less one), dropping the character that ended it; it skips only
+# lines that start with ";", and does not track a ";" comment within a line.  Marlin 1.1 (Marlin_main.cpp
+# get_sdcard_commands) ends a command at "#" or ":" outside a ";" comment.
+SD_COMMAND_SIZE = 95
+POWER_FAIL_VIEW = "read as the commands RepRapFirmware runs when the power fails (the M911 P script)"
+# RepRapFirmware's M911 P"..." stores commands that it runs when the supply voltage drops during a print
+# (src/GCodes/GCodes2.cpp case 911, powerFailScript; a quote inside is written "").
+_POWER_FAIL = re.compile(
+    r"""(?i)[ \t]*+(?:N[ \t]*+\d++[ \t]*+)?M[ \t]*+0*+911(?![0-9.])[^;"]*?P[ \t]*+"((?:[^"\r\n]|"")*+)"?"""
+)
+_SD_SPLIT = re.compile("#")
+_SD_SPLIT_OUTSIDE_COMMENT = re.compile("[#:]")
 # What other firmwares do with control characters is not in gclint's sources: the two readings a firmware
 # may have are both read (and say so).
 ERASED_VIEW = "read with each backspace or DEL erasing the character before it, comments included (a firmware may)"
@@ -147,6 +170,9 @@ def firmware_views(raw: str) -> list[tuple[str, str, int]]:
       to I, U+FB01 to FI...), where the command part holds a character that is not ASCII.
     * Windows-1252, where the line is not ASCII (``_as_windows_1252``).
     * Marlin's macros: each command "M810 G28|M30 file" stores (``_MARLIN_MACRO``).
+    * RepRapFirmware: each NUL ends a line; Prusa and Marlin 1.1 reading from the SD card: "#", ":" outside a
+      comment and the 95th character end a command (``_sd_card_commands``); the commands of its power-fail
+      script (M911 P"...").
     * Smoothieware: each G or M after the first command of the line, of ``raw`` and of the views above
       (but Klipper's, which does not split).
     """
@@ -190,6 +216,15 @@ def _views(raw: str) -> tuple[list[tuple[str, str, int]], bool]:
         add(KLIPPER_VIEW, command.upper(), len(raw) - len(raw.lstrip()))
     if not raw.isascii() and _M_CODE.search(raw) is not None:
         add(WINDOWS_1252_VIEW, _as_windows_1252(raw), 0)
+    if "\x00" in raw:  # (RepRapFirmware: each NUL ends a line, and what follows is the next one)
+        at = raw.find("\x00")
+        while at >= 0:
+            nxt = raw.find("\x00", at + 1)
+            add(NUL_VIEW, raw[at + 1 : nxt if nxt >= 0 else len(raw)], at + 1)
+            at = nxt
+    script = _POWER_FAIL.match(raw)
+    if script is not None:
+        add(POWER_FAIL_VIEW, script.group(1).replace('""', '"'), 0)
     macro = _MARLIN_MACRO.match(raw)
     if macro is not None and "|" in raw:
         for piece in raw[macro.end() :].split(";", 1)[0].split("|"):
@@ -202,7 +237,30 @@ def _views(raw: str) -> tuple[list[tuple[str, str, int]], bool]:
         for segment, start in segments:
             label = SMOOTHIE_VIEW if how is None else f"{how}, then as Smoothieware splits it at each G and M"
             add(label, segment, offset + start if how is None or offset else 0)
+    if raw[:1] != ";":  # (Prusa and Marlin 1.1 read the SD card without Smoothieware's split: after it)
+        for text, start in _sd_card_commands(raw):
+            add(SD_CUT_VIEW if start < 0 else SD_SPLIT_VIEW, text, max(start, 0))
     return views, more
+
+
+def _sd_card_commands(raw: str) -> list[tuple[str, int]]:
+    """The commands after the first that an SD-card reader of Prusa or Marlin 1.1 firmware makes of ``raw`` (a
+    line that does not start with ";"), with their offsets: those after each "#", and each ":" before the first
+    ";"; and, for a line longer than SD_COMMAND_SIZE, each SD_COMMAND_SIZE characters after the first ones, as
+    the character that ended the command before is kept or dropped (offset -1: they do not line up)."""
+    out: list[tuple[str, int]] = []
+    comment = raw.find(";")
+    cuts = [m.start() for m in _SD_SPLIT.finditer(raw)]
+    cuts += [m.start() for m in _SD_SPLIT_OUTSIDE_COMMENT.finditer(raw, 0, comment if comment >= 0 else len(raw))]
+    cuts = sorted(set(cuts))
+    for index, at in enumerate(cuts):
+        end = cuts[index + 1] if index + 1 < len(cuts) else len(raw)
+        out.append((raw[at + 1 : end], at + 1))
+    if len(raw) > SD_COMMAND_SIZE:
+        for step in (SD_COMMAND_SIZE, SD_COMMAND_SIZE + 1):
+            for start in range(step, len(raw), step):
+                out.append((raw[start : start + SD_COMMAND_SIZE], -1))
+    return out
 
 
 _local = threading.local()
