@@ -16,6 +16,7 @@ from __future__ import annotations
 import os
 import stat
 
+from gclint import bgcode
 from gclint.engine import FileResult, Linter
 from gclint.syntax.source import CHUNK, UTF8_BOM, Source, SourceError
 
@@ -88,6 +89,8 @@ def scan(path: str, linter: Linter, reason: str) -> FileResult:
     try:
         head = raw.read(4)
         raw.seek(0)
+        if head == bgcode.MAGIC:  # (a firmware reads a binary G-code file by its blocks, never as text)
+            return _scan_bgcode(path, raw, linter, error)
         if head.startswith(_DECODED_BOMS):
             stream = raw
         else:
@@ -97,6 +100,30 @@ def scan(path: str, linter: Linter, reason: str) -> FileResult:
     except SourceError as exc:
         raw.close()
         return FileResult(path, error=f"{reason}; {exc}", not_gcode=True)
+    result.error = error if result.error is None else f"{error}; {result.error}"
+    result.not_gcode = True
+    return result
+
+
+def _scan_bgcode(path: str, raw, linter: Linter, error: str) -> FileResult:
+    """The SC findings of the G-code blocks of a binary G-code file that gclint can decode (``gclint.bgcode``),
+    with an error naming the blocks it could not read."""
+    try:
+        data = raw.read(bgcode.MAX_FILE + 1)
+    finally:
+        raw.close()
+    try:
+        text, unread = bgcode.decode(data[: bgcode.MAX_FILE])
+    except ValueError:
+        text, unread = b"", 1
+    if unread or len(data) > bgcode.MAX_FILE:
+        count = max(unread, 1)
+        blocks = "1 G-code block is" if count == 1 else f"{count} G-code blocks are"
+        error += f"; {blocks} compressed or encoded in a way gclint cannot read (heatshrink, MeatPack)"
+    try:
+        result = linter.check_source(Source.from_bytes(text, path, cut_long_lines=True), sniff=False)
+    except SourceError as exc:
+        return FileResult(path, error=f"{error}; {exc}", not_gcode=True)
     result.error = error if result.error is None else f"{error}; {result.error}"
     result.not_gcode = True
     return result
