@@ -400,3 +400,13 @@ def test_rule_links_in_any_install(tmp_path, monkeypatch):
         assert ruledocs.rule_url("SX002") == "https://docs.example/rules.md#sx002"
     finally:
         ruledocs.reference.cache_clear()
+
+
+def test_a_document_that_is_not_gcode_is_an_error_result_not_an_internal_error():
+    from gclint.server.protocol import _dialect_for
+
+    text = "\0\0\0\0binary\0\0\0\nG1 X1\n"
+    result = analysis.check_text(text, "bin.gcode", Options())
+    assert result.error and "internal error" not in result.error and "NUL" in result.error
+    dialect, _ = _dialect_for(None, Options(), Snapshot(text), "bin.gcode")
+    assert dialect.name

@@ -210,3 +210,11 @@ def test_foreign_source_to_v4_is_v5_renumbered() -> None:
         "M107 T12",
         "M30",
     ]
+
+
+def test_a_dialect_directive_names_the_version_the_job_is_renumbered_for():
+    text = b"; gclint: dialect=hyrel\nM6 T0 O1 X0 Y0 Z0\nM109 T0 S215\nT0\nG1 X10 E1 F1200\nM30\n"
+    out, _ = _translate(text, "hyrel", "hyrel-v4")
+    assert out.splitlines()[0] == b"; gclint: dialect=hyrel-v4"
+    assert Linter(Options()).check_text(out.decode(), "job.gcode").dialect == "hyrel-v4"
+    assert _translate(out, "hyrel-v4", "hyrel")[0] == text

@@ -25,7 +25,7 @@ from gclint.context.model import CONFIGURATION, DIRECTIVE, EXPLICIT, OPTION, Con
 from gclint.context.score import rank
 from gclint.dialects.base import HeadScan
 
-_DIRECTIVE = re.compile(r"(?im)^[^\n]*[;(]\s*gclint:\s*dialect\s*=\s*([^\s;)]+)")
+DIRECTIVE_LINE = re.compile(r"(?im)^[^\n]*[;(]\s*gclint:\s*dialect\s*=\s*([^\s;)]+)")
 
 
 def infer(
@@ -162,7 +162,7 @@ def _directive(scan: HeadScan) -> tuple[str | None, str | None]:
     """(the dialect a ``; gclint: dialect=NAME`` line names, the name when it names none)."""
     if "gclint" not in scan.lowered:
         return None, None
-    m = _DIRECTIVE.search(scan.head)
+    m = DIRECTIVE_LINE.search(scan.head)
     if m is None:
         return None, None
     try:

@@ -26,7 +26,7 @@ from gclint.server.text import Snapshot, clean_surrogates
 from gclint.syntax.fastpath import PLAIN_MOVE
 from gclint.syntax.nodes import Line
 from gclint.syntax.parse import parse_line
-from gclint.syntax.source import Source
+from gclint.syntax.source import Source, SourceError
 
 # -- settings from the client ---------------------------------------------------------------------------
 
@@ -196,8 +196,10 @@ def check_text(text: str, path: str, options: Options, cancel: threading.Event |
         result = linter.check_source(source)
     except Cancelled:
         raise
-    except Exception as exc:  # Source refusing binary text is an error result too (SourceError)
-        detail = str(exc) if type(exc).__name__ == "SourceError" else f"internal error ({type(exc).__name__}: {exc})"
+    except SourceError as exc:  # (binary text, not G-code: an error result, as gclint check reports it)
+        return FileResult(path, error=str(exc).splitlines()[0][:300] if str(exc) else type(exc).__name__)
+    except Exception as exc:
+        detail = f"internal error ({type(exc).__name__}: {exc})"
         return FileResult(path, error=detail.splitlines()[0][:300] if detail else type(exc).__name__)
     if cancel is not None and cancel.is_set():
         raise Cancelled()

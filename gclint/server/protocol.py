@@ -51,7 +51,7 @@ from gclint.server.jsonrpc import (
     range_of,
 )
 from gclint.server.text import UTF8, UTF16, UTF32, Snapshot, clean_surrogates, units_to_char
-from gclint.syntax.source import Source
+from gclint.syntax.source import Source, SourceError
 
 logger = logging.getLogger("gclint.server")
 
@@ -531,7 +531,13 @@ def _dialect_for(
             return dialects.get(done.result.dialect), done.result.dialect_reason
         except dialects.UnknownDialect:
             pass
-    context = linter_for(options).context_of(Source.from_text(clean_surrogates(snapshot.text[:65536]), name))
+    try:
+        context = linter_for(options).context_of(Source.from_text(clean_surrogates(snapshot.text[:65536]), name))
+    except SourceError:  # (not G-code: its check says so; hover reads it as the options' dialect)
+        try:
+            return dialects.get(options.dialect), ""
+        except dialects.UnknownDialect:  # ("auto")
+            return dialects.get("hyrel"), ""
     return dialects.reading(context.dialect, context.flavor), context.why()
 
 

@@ -28,6 +28,7 @@ from gclint.dialects.addressing import (
     V5_TO_V4_VARIABLE_INFERRED,
     renumberings,
 )
+from gclint.context.decide import DIRECTIVE_LINE
 from gclint.dialects.base import Dialect
 from gclint.rules.base import Finding
 from gclint.rules.translation import TR_NAME, TR_SEVERITY
@@ -56,6 +57,13 @@ class Renumber(Translator):
         if line.ending and self.default_ending != line.ending:
             self.default_ending = line.ending
         commands = line.parsed.commands
+        directive = DIRECTIVE_LINE.match(line.raw) if "gclint" in line.raw else None
+        if directive is not None and directive.group(1) != self.target.name:
+            # ("; gclint: dialect=hyrel" names v5: the renumbered job names the version it is now written for)
+            if self.count:
+                result.lines_changed += 1
+            raw = line.raw[: directive.start(1)] + self.target.name + line.raw[directive.end(1) :]
+            return (raw + (line.ending or self.default_ending),)  # type: ignore[return-value]
         if not commands:
             return (line.raw + line.ending,)  # type: ignore[return-value]
         edit: LineEdit | None = None
