@@ -16,6 +16,7 @@ from __future__ import annotations
 import re
 from collections.abc import Iterator
 
+from gclint.context.decide import DIRECTIVE_LINE
 from gclint.dialects.addressing import (
     SQUAD_CODES,
     V4_TO_V5_COMMAND,
@@ -28,7 +29,6 @@ from gclint.dialects.addressing import (
     V5_TO_V4_VARIABLE_INFERRED,
     renumberings,
 )
-from gclint.context.decide import DIRECTIVE_LINE
 from gclint.dialects.base import Dialect
 from gclint.rules.base import Finding
 from gclint.rules.translation import TR_NAME, TR_SEVERITY
