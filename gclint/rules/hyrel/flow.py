@@ -159,12 +159,14 @@ class FanRangeValue(ParamTableRule):
 class EModeWithoutM229(Rule):
     code = "HY013"
     name = "e-mode-without-m229"
-    severity = Severity.WARNING
+    severity = Severity.INFO
     summary = "M82/M83 while E values are not enabled (M229 E1)"
     explanation = """
         M82 and M83 choose absolute or relative E values: "Note, this only works on v4 and later, when E
         values are enabled via M229."  In native flow the E amounts are ignored, so M82/M83 there changes
-        nothing.  Enable E values first (`M229 E1 D1`), or drop the line.
+        nothing: info, as an ignored command changes nothing the printer does.  A native-flow job (E1 on
+        its printing moves) can drop the line; a job whose E words are amounts needs `M229 E1 D1` first
+        (the rules on its moves say so).
     """
     example_bad = "M83"
     example_good = """
@@ -177,7 +179,10 @@ class EModeWithoutM229(Rule):
 
     def check(self, line: Line, cmd: Command) -> None:
         if not self.state.e_values():
-            message = f"{cmd.code} has no effect: E values are not enabled (put M229 E1 D1 before it)"
+            message = (
+                f"{cmd.code} has no effect: E values are not enabled (M229 E1 D1 enables them; a native-flow job can"
+                " drop the line)"
+            )
             self.report(line, message, node=cmd)
 
 
