@@ -355,7 +355,9 @@ class Linter:
                 handlers.extend(unknown)
             always, filtered = [], []
             for handler in handlers:
-                letters = getattr(handler, "__self__").trigger_letters(code)  # noqa: B009 (typed as a plain callable) if code is not None else None
+                # (a command with no code, words alone, reaches a rule only as an unknown code: every such rule
+                # looks at it; trigger_letters takes a code)
+                letters = getattr(handler, "__self__").trigger_letters(code) if code is not None else None  # noqa: B009 (typed as a plain callable)
                 if letters is None:
                     always.append(handler)
                 elif letters:
