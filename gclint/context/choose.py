@@ -93,7 +93,7 @@ def decide(ranking: Ranking) -> Decision:
         strength = STRONG if margin >= CLOSE else WEAK
         # the other dialects' best readings: what sets the winner above all of them is said first
         field = tuple(
-            ranking.best(scores, c.dialect.name)  # type: ignore[misc]
+            ranking.best(scores, c.dialect.name)
             for c in ranking.pool
             if c.known and c.flavor is None and c.dialect.name != dialect
         )

@@ -280,18 +280,18 @@ def _read_command(reading: ContentReading, cmd: Command, number: int, raw: str, 
     if kind not in _GENERAL_BY_KIND:
         _GENERAL_BY_KIND[kind] = _of_kind(kind, _GENERAL)
         _FLAVOR_BY_KIND[kind] = _of_kind(kind, _FLAVOR_GENERAL)
-    for owner, clue in _BY_CODE.get(code, ()) if code is not None else ():  # type: ignore[arg-type]
+    for owner, clue in _BY_CODE.get(code, ()) if code is not None else ():
         seen = _match(reading.clues, owner, clue, cmd, number, raw, seen)
     for owner, clue in _GENERAL_BY_KIND[kind]:
         needs = clue.contains
         if not needs or needs[0] in raw or needs[-1] in raw:
             seen = _match(reading.clues, owner, clue, cmd, number, raw, seen)
-    for owner, clue in _FLAVOR_BY_CODE.get(code, ()) if code is not None else ():  # type: ignore[arg-type]
+    for owner, clue in _FLAVOR_BY_CODE.get(code, ()) if code is not None else ():
         seen = _match(reading.flavor_clues, owner, clue, cmd, number, raw, seen)
     for owner, clue in _FLAVOR_BY_KIND[kind]:
         seen = _match(reading.flavor_clues, owner, clue, cmd, number, raw, seen)
     habitual = False  # another firmware's habit: its T is that firmware's (an extruder index), no address
-    for owner, habit in _HABITS_BY_CODE.get(code, ()) if code is not None else ():  # type: ignore[arg-type]
+    for owner, habit in _HABITS_BY_CODE.get(code, ()) if code is not None else ():
         try:
             hit = habit.matches(cmd, reading)
         except (TypeError, ValueError, AttributeError):  # a habit never stops the reading

@@ -220,7 +220,7 @@ def _codes(reading: ContentReading, known: tuple[Candidate, ...], add, machine: 
         if not deltas:
             continue
         owners = [c.dialect.name for c in known if c.flavor is None and c.has(code)]
-        owners = owners or [c.flavor.name for c in known if c.flavor is not None and c.has(code)]  # type: ignore[union-attr]
+        owners = owners or [c.flavor.name for c in known if c.flavor is not None and c.has(code)]
         if not owners:
             text = f"{seen}: no known dialect has {code}"
         elif len(owners) == 1:
@@ -280,7 +280,7 @@ def _kinds(reading: ContentReading, known: tuple[Candidate, ...], add) -> None:
     for kind, lacking in first.items():
         seen = min(lacking.values(), key=lambda s: s.line or 1 << 40)  # type: ignore[attr-defined]
         text = f"{seen}: {_KIND_TEXT.get(kind, kind)} (not in {_owners(sorted({k.split('/')[0] for k in lacking}))})"
-        add(Item(text, seen.line, CONTENT, {k: -MISFIT for k in lacking}))  # type: ignore[attr-defined]
+        add(Item(text, seen.line, CONTENT, {k: -MISFIT for k in lacking}))
 
 
 def _e_words(reading: ContentReading, known: tuple[Candidate, ...], add) -> None:

@@ -478,13 +478,13 @@ class Interpreter:
         head = self.target(cmd)
         # "M703 adds a single head to the Clone Squad we established with an M702" (T_v5): no M702, no squad
         if squad in self.state.squads and head is not None:
-            self.state.squads[squad].add(head)  # type: ignore[index]
+            self.state.squads[squad].add(head)
 
     def _m704(self, cmd: Command, line: Line) -> None:
         squad = _int(cmd.params.get("S"))
         head = self.target(cmd)
         if squad in self.state.squads and head is not None:
-            self.state.squads[squad].discard(head)  # type: ignore[index]
+            self.state.squads[squad].discard(head)
 
     # -- temperatures, fans, flow ----------------------------------------------------------------------
 

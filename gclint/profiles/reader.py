@@ -286,7 +286,7 @@ def _json_value(raw: object) -> Value:
     plain = jsontext.plain(raw)
     if isinstance(plain, list):
         items = [_json_value(v) for v in plain]
-        return items[0] if len(items) == 1 and not isinstance(items[0], (float, bool)) else items  # type: ignore[return-value]
+        return items[0] if len(items) == 1 and not isinstance(items[0], (float, bool)) else items
     if isinstance(plain, bool):
         return plain
     if isinstance(plain, (int, float)):

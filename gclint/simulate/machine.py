@@ -200,7 +200,7 @@ class Simulator:
                         f = number(cmd.params["F"])
                         if f is not None:
                             self.feed = f * self.scale
-                    handler = handlers.get(cmd.code)  # type: ignore[arg-type]
+                    handler = handlers.get(cmd.code)
                     if handler is not None:
                         move = handler(cmd, n)
                     else:
@@ -473,7 +473,7 @@ class Simulator:
             if i is None or (i < 2 and not xy):
                 continue
             try:
-                v = float(text)  # type: ignore[arg-type]
+                v = float(text)
             except (TypeError, ValueError):
                 new[i] = None
                 continue
@@ -667,8 +667,8 @@ class Simulator:
             r = number(params.get("R")) if "R" in params else None
             if r is not None and self.pos[i_a] is not None and self.pos[i_b] is not None:
                 centre = _centre_from_radius(
-                    self.pos[i_a] - sa,  # type: ignore[operator]
-                    self.pos[i_b] - sb,  # type: ignore[operator]
+                    self.pos[i_a] - sa,
+                    self.pos[i_b] - sb,
                     r * self.scale,
                     cmd.code == "G2",
                 )

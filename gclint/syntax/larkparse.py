@@ -67,7 +67,7 @@ def _plugins() -> dict:
     """lark-cython, when installed, about doubles the speed of this fallback parser (measured in
     bench/bench_parser.py); the trees are the same."""
     try:
-        import lark_cython  # type: ignore[import-not-found]
+        import lark_cython
     except ImportError:  # pragma: no cover - optional accelerator
         return {}
     return {"_plugins": lark_cython.plugins}

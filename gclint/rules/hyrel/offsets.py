@@ -232,7 +232,7 @@ class ToolHeightRegister(ParamTableRule):
         elif code == "M660":
             super().check(line, cmd)
             register = int_value(params.get("H"))
-            self.warned.discard(register)  # type: ignore[arg-type]
+            self.warned.discard(register)
         elif code == "M30":
             for register in self.state.tool_height_offsets:
                 self.reset_by_m30[register] = line.number
