@@ -82,21 +82,21 @@ class MoveChecks:
         if slot is not None:
             setattr(checks, slot, rule)
         own_codes = tuple(c for c in rule.codes if c not in _MOVES)
-        rule.codes = own_codes  # type: ignore[misc]
+        rule.codes = own_codes
         rule.move_checks = checks  # type: ignore[attr-defined]
         # (every member's: its checks of arcs in runs want what the members' moves want, wants_in_run)
-        rule.run_filter = checks.wants_in_run  # type: ignore[attr-defined]
+        rule.run_filter = checks.wants_in_run
         leader = checks.leader
         if leader is None or (not own_codes and not checks.direct):
             if leader is not None:  # hand over: the old leader goes back to its own codes and check
                 del leader.check
                 del leader.plain_filter
-                leader.codes = tuple(c for c in leader.codes if c not in _MOVES)  # type: ignore[misc]
+                leader.codes = tuple(c for c in leader.codes if c not in _MOVES)
             checks.leader = rule
             checks.direct = not own_codes
-            rule.codes = (*own_codes, *_MOVES)  # type: ignore[misc]
+            rule.codes = (*own_codes, *_MOVES)
             rule.check = MethodType(_listen if not own_codes else _listen_and_own, rule)  # type: ignore[method-assign]
-            rule.plain_filter = checks.wants_plain  # type: ignore[attr-defined]
+            rule.plain_filter = checks.wants_plain
         return checks
 
     def release(self) -> None:
