@@ -17,7 +17,7 @@ import os
 import stat
 
 from gclint.engine import FileResult, Linter
-from gclint.syntax.source import CHUNK, UTF8_BOM, Source, SourceError
+from gclint.syntax.source import CHUNK, UTF8_BOM, ByteStream, Source, SourceError
 
 _DECODED_BOMS = (b"\xff\xfe", b"\xfe\xff", b"\x00\x00\xfe\xff")  # UTF-16/32: Source decodes these itself
 _NONBLOCK = getattr(os, "O_NONBLOCK", 0)
@@ -88,9 +88,8 @@ def scan(path: str, linter: Linter, reason: str) -> FileResult:
     try:
         head = raw.read(4)
         raw.seek(0)
-        if head.startswith(_DECODED_BOMS):
-            stream = raw
-        else:
+        stream: ByteStream = raw
+        if not head.startswith(_DECODED_BOMS):
             stream = CutAtNul(raw, b"" if head.startswith(UTF8_BOM) else UTF8_BOM)
         source = Source(stream, path, close=True, cut_long_lines=True)
         result = linter.check_source(source, sniff=False)

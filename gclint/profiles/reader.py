@@ -212,12 +212,13 @@ def _json_profile(path: str, text: str) -> Profile:
         seen.add(os.path.basename(found))
         try:
             with open(found, encoding="utf-8-sig", errors="replace") as fh:
-                current = jsontext.load(fh.read(MAX_BYTES + 1))
+                loaded = jsontext.load(fh.read(MAX_BYTES + 1))
         except (OSError, ProfileError) as exc:
             notes.append(f"inherits {parent!r}: {os.path.basename(found)} could not be read ({exc})")
             break
-        if not isinstance(current, dict):
+        if not isinstance(loaded, dict):
             break
+        current = loaded
         chain.append(current)
     profile = _cura(path, chain) if cura else _orca(path, chain)
     profile.notes.extend(notes)

@@ -373,6 +373,7 @@ class MachinekitSimulator(CncSimulator):
                 self.set_frame(i, self.frame_label(i))
         if bare or "A" in params:
             self.e_pos = 0.0
+        return None
 
     def tool_change(self, cmd: Command, n: int) -> None:
         super().tool_change(cmd, n)

@@ -569,8 +569,9 @@ class Simulator:
                 # "Tools are driven using multiple values in the E field of G1 commands, each controlling the
                 # corresponding drive" (RepRap page, M563; M160): the move deposits every drive's amount
                 amounts = [number(part) for part in text.split(":")]
-                if all(a is not None for a in amounts):
-                    return sum(amounts) * self.e_scale()  # type: ignore[misc]
+                known = [a for a in amounts if a is not None]
+                if len(known) == len(amounts):
+                    return sum(known) * self.e_scale()
             return None
         v *= self.e_scale()
         if self.e_absolute:

@@ -30,7 +30,7 @@ import sys
 from collections.abc import Iterator
 from itertools import repeat
 from operator import itemgetter
-from typing import IO, BinaryIO, Self
+from typing import BinaryIO, Protocol, Self, runtime_checkable
 
 CHUNK = 1 << 20
 HEAD = 1 << 16
@@ -113,6 +113,27 @@ class Overlong(str):
         return obj
 
 
+class ByteStream(Protocol):
+    """What ``Source`` reads: a binary file, standard input, or a wrapper (``notgcode.CutAtNul``)."""
+
+    def read(self, size: int = -1, /) -> bytes: ...
+
+    def close(self) -> None: ...
+
+
+@runtime_checkable
+class _Seekable(Protocol):
+    """A stream whose end can be read before its middle (``Source.tail_text``)."""
+
+    def seekable(self) -> bool: ...
+
+    def tell(self) -> int: ...
+
+    def seek(self, offset: int, whence: int = 0, /) -> int: ...
+
+    def read(self, size: int = -1, /) -> bytes: ...
+
+
 class _Hashing:
     """A byte stream that hashes what is read from it (the cache key is the hash of the bytes checked)."""
 
@@ -142,9 +163,7 @@ class Source:
     UTF-16 variant found; ``bom`` is the byte order mark to write back (may be empty).
     """
 
-    def __init__(
-        self, stream: IO[bytes] | _Hashing, display: str, *, close: bool = False, cut_long_lines: bool = False
-    ) -> None:
+    def __init__(self, stream: ByteStream, display: str, *, close: bool = False, cut_long_lines: bool = False) -> None:
         self.display = display
         self._stream = stream
         self._close = close
@@ -245,6 +264,8 @@ class Source:
         if self._head_eof or self._consumed:
             return None
         stream = self._stream._stream if isinstance(self._stream, _Hashing) else self._stream
+        if not isinstance(stream, _Seekable):
+            return None
         try:
             if not stream.seekable():
                 return None
