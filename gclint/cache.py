@@ -107,7 +107,7 @@ _ROOT_NOTE = "project"  # in each project's cache folder: the project's path
 
 def projects_under(root: Path, top: Path) -> list[Path]:
     """The cache folders of every project at or below the folder ``top`` (their ``project`` notes)."""
-    out = []
+    out: list[Path] = []
     try:
         with os.scandir(root / "projects") as listing:
             folders = [Path(e.path) for e in listing if e.is_dir(follow_symlinks=False)]
@@ -383,7 +383,7 @@ def _read_entry(entry: Path) -> bytes | None:
         st = os.fstat(fd)
         if not stat.S_ISREG(st.st_mode) or st.st_size > MAX_ENTRY_BYTES:
             return None
-        chunks = []
+        chunks: list[bytes] = []
         size = 0
         while size <= MAX_ENTRY_BYTES:
             block = os.read(fd, 1 << 20)

@@ -304,7 +304,6 @@ def apply(options: Options, table: dict, path: Path) -> Options:
 
 _FOUND: dict[str, Path | None] = {}  # real folder -> its nearest configuration file, for the current run
 _BY_NAME: dict[str, Path | None] = {}  # the same, by the folder name as given
-_UNKNOWN = object()
 
 
 def find_config(directory: str) -> Path | None:
@@ -312,9 +311,8 @@ def find_config(directory: str) -> Path | None:
     a [tool.gclint] table).  Cached per folder, parents included (sibling folders share their
     parents' answer); ``runner.run`` clears the cache at the start of every run, so a configuration
     written between runs is seen."""
-    answer = _BY_NAME.get(directory, _UNKNOWN)
-    if answer is not _UNKNOWN:
-        return answer  # type: ignore[return-value]
+    if directory in _BY_NAME:
+        return _BY_NAME[directory]
     answer = _BY_NAME[directory] = _find_config(real_folder(directory))
     return answer
 
@@ -361,14 +359,13 @@ def _find_config(folder: str) -> Path | None:
     return found
 
 
-def _clear() -> None:
+def clear_found() -> None:
+    """Forget the configuration files found and read (``find_config``, ``real_folder``): a run starts
+    with this, so a configuration written since the last run is seen."""
     _FOUND.clear()
     _BY_NAME.clear()
     _LOADED.clear()
     _REAL.clear()
-
-
-find_config.cache_clear = _clear  # type: ignore[attr-defined]
 
 
 def _config_in(folder: str) -> Path | None:

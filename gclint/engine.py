@@ -295,7 +295,7 @@ class Linter:
         # (security rules: lines a firmware edits before it reads them, read again as it does; rules/security/views.py)
         views: dict = {}  # (one search per line for the rules that share a pattern)
         for r in rules:
-            if getattr(r, "on_line_matching", None) is not None:
+            if r.on_line_matching is not None:
                 views.setdefault(r.on_line_matching.search, []).append(r.check_view)
         view_hooks = tuple((wants, tuple(hooks)) for wants, hooks in views.items())
         # (lines ending in a bare carriage return, read with the next as LinuxCNC reads them: one line)
@@ -355,7 +355,9 @@ class Linter:
                 handlers.extend(unknown)
             always, filtered = [], []
             for handler in handlers:
-                letters = getattr(handler, "__self__").trigger_letters(code)  # noqa: B009 (typed as a plain callable) if code is not None else None
+                # (a command with no code, words alone, reaches a rule only as an unknown code: every such rule
+                # looks at it; trigger_letters takes a code)
+                letters = getattr(handler, "__self__").trigger_letters(code) if code is not None else None  # noqa: B009 (typed as a plain callable)
                 if letters is None:
                     always.append(handler)
                 elif letters:
@@ -517,11 +519,11 @@ class Linter:
                     ran = running(commands)
                     if len(ran) < len(commands):
                         for cmd in ignored(commands):
-                            for hook in ignored_hooks:
+                            for ignored_hook in ignored_hooks:
                                 try:
-                                    hook(line, cmd)
+                                    ignored_hook(line, cmd)
                                 except Exception as exc:
-                                    disable(hook, exc, number)
+                                    disable(ignored_hook, exc, number)
                     commands = ran
                 for cmd in commands:
                     entry = get(cmd.code)

@@ -142,9 +142,9 @@ def add_noqa(result: FileResult) -> FixOutcome:
         into = security if f.code.startswith(INLINE_UNSUPPRESSIBLE) else by_line
         if f.code not in into.setdefault(f.line, []):
             into[f.line].append(f.code)
-    for line, codes in sorted(security.items()):
+    for line, kept in sorted(security.items()):
         outcome.reverted.append(
-            f"{result.path}:{line}: {', '.join(codes)} not marked: a job cannot silence its own security"
+            f"{result.path}:{line}: {', '.join(kept)} not marked: a job cannot silence its own security"
             " findings (--ignore on the command line or a configuration named by --config can)"
         )
     if not by_line or result.error is not None:

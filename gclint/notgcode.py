@@ -18,7 +18,7 @@ import stat
 
 from gclint import bgcode
 from gclint.engine import FileResult, Linter
-from gclint.syntax.source import CHUNK, UTF8_BOM, Source, SourceError
+from gclint.syntax.source import CHUNK, UTF8_BOM, ByteStream, Source, SourceError
 
 _DECODED_BOMS = (b"\xff\xfe", b"\xfe\xff", b"\x00\x00\xfe\xff")  # UTF-16/32: Source decodes these itself
 _NONBLOCK = getattr(os, "O_NONBLOCK", 0)
@@ -91,9 +91,8 @@ def scan(path: str, linter: Linter, reason: str) -> FileResult:
         raw.seek(0)
         if head == bgcode.MAGIC:  # (a firmware reads a binary G-code file by its blocks, never as text)
             return _scan_bgcode(path, raw, linter, error)
-        if head.startswith(_DECODED_BOMS):
-            stream = raw
-        else:
+        stream: ByteStream = raw
+        if not head.startswith(_DECODED_BOMS):
             stream = CutAtNul(raw, b"" if head.startswith(UTF8_BOM) else UTF8_BOM)
         source = Source(stream, path, close=True, cut_long_lines=True)
         result = linter.check_source(source, sniff=False)

@@ -19,6 +19,7 @@ from __future__ import annotations
 
 import os
 import sys
+from collections.abc import Mapping
 from dataclasses import dataclass, field, replace
 from typing import TextIO
 
@@ -73,7 +74,7 @@ class Outcome:
         return 1 if worst is not None and worst >= threshold else 0
 
 
-def output_name(path: str, environ: dict[str, str] | None = None) -> str:
+def output_name(path: str, environ: Mapping[str, str] | None = None) -> str:
     """The name of the file the user will get: ``SLIC3R_PP_OUTPUT_NAME`` when the slicer gives it.
 
     For the ``File`` host it is the final full path; for print hosts it is the name on the host.
@@ -86,7 +87,7 @@ def output_name(path: str, environ: dict[str, str] | None = None) -> str:
     return path[:-3] if path.endswith(".pp") else path
 
 
-def report_path_for(path: str, environ: dict[str, str] | None = None) -> str:
+def report_path_for(path: str, environ: Mapping[str, str] | None = None) -> str:
     """Where the report goes: beside the final output when that folder exists, else beside ``path``."""
     final = output_name(path, environ)
     folder = os.path.dirname(final)
@@ -209,9 +210,8 @@ def write_report(outcome: Outcome, out: TextIO, fail_on: str, limit: int | None 
     else:
         out.write("no findings\n")
     threshold = FAIL_ON[fail_on]
-    if threshold is not None and (
-        outcome.translation_note or (outcome.worst() is not None and outcome.worst() >= threshold)
-    ):  # type: ignore[operator]
+    worst = outcome.worst()
+    if threshold is not None and (outcome.translation_note or (worst is not None and worst >= threshold)):
         out.write(f"export stopped by gclint (--fail-on {fail_on})\n")
 
 

@@ -11,10 +11,10 @@ from collections.abc import Callable, Collection, Iterable, Iterator
 from concurrent.futures import ProcessPoolExecutor
 from dataclasses import dataclass, replace
 from pathlib import Path
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, TypedDict
 
 from gclint.checkout import inside as _inside
-from gclint.config import ConfigError, apply, config_for, find_config, severities_above
+from gclint.config import ConfigError, apply, clear_found, config_for, severities_above
 from gclint.engine import FileResult, Linter, Options
 from gclint.excludes import TOOL_FOLDER, Excluder, Exclusion, LeftOut
 from gclint.machine.linuxcnc_ini import clear as _forget_machine_configs
@@ -31,6 +31,18 @@ GCODE_EXTENSIONS = (".gcode", ".gco", ".gc", ".g", ".nc", ".ngc", ".cnc", ".tap"
 # header and thumbnail): found by a walk so that the check says it cannot read them (exit 2), never passed in silence.
 PACKAGE_EXTENSIONS = (".ufp", ".gcode.3mf", ".bgcode", ".gx")
 _TRAILING = re.compile(r"[\s.]+\Z")
+
+
+class RunOptions(TypedDict, total=False):
+    """The keyword arguments ``run`` and ``results`` share (one run's settings, passed to either)."""
+
+    explicit_config: str | None
+    jobs: int
+    stdin_name: str
+    progress: Callable[[FileResult], None] | None
+    cache: ResultCache | None
+    security_only: Collection[str]
+    links: dict[str, str] | None
 
 
 def is_job_name(name: str) -> bool:
@@ -261,12 +273,12 @@ class _Walk:
     def _subfolder(self, path: str, parent: str, inherited: Exclusion | None) -> tuple[bool, Exclusion | None]:
         """Whether to enter the folder ``path``, and why it is excluded (None: it is walked as usual)."""
         own = self.excluder.why(path, True)
-        if own is None and inherited is None:
-            return True, None
         if inherited is None:
+            if own is None:
+                return True, None
             why = own
-            if own.by == TOOL_FOLDER and self._expected(parent):  # type: ignore[union-attr]
-                why = replace(own, quiet=True)  # type: ignore[arg-type]
+            if own.by == TOOL_FOLDER and self._expected(parent):
+                why = replace(own, quiet=True)
                 self.left_out.append(LeftOut(_shown(path), why, folder=True))  # for -v
         elif own is not None and own.by == TOOL_FOLDER:  # a tool folder in an excluded folder: not counted
             if inherited.chosen:
@@ -531,7 +543,7 @@ def results(
     """Check ``files``, giving each result as soon as it and those before it are known, in the order of
     ``files``.  Memory does not grow with the number of files: a few batches of files are checked ahead
     (read from the cache, or sent to the worker processes), not the whole run."""
-    find_config.cache_clear()
+    clear_found()
     _forget_machine_configs()
     links = links or {}
     items = _items(files, base, overrides, explicit_config, stdin_name, cache, frozenset(security_only), links)

@@ -61,7 +61,7 @@ class Runs:
         longest: int | None,
         alone: RunFilter | None = None,
         codes: CodeLines | None = None,
-        add: Callable[..., None] | None = None,
+        add: Callable[..., None],
     ) -> None:
         self.search = pattern.search if pattern is not None else None
         self.plain_run = interpreter.plain_run
@@ -84,7 +84,7 @@ class Runs:
         search = self.search
         try:
             for block in source.blocks():
-                if block.__class__ is list:
+                if not isinstance(block, str):
                     yield self.total, block
                     self.total += len(block)
                     continue
@@ -372,8 +372,8 @@ def combined(run_filters: tuple[RunFilter, ...]) -> RunFilter:
     one of them may want any, or fails: line by line, its rule's own filter or check fails and the rule
     is dropped)."""
 
-    def alone(text: str, start: int, end: int) -> list[int] | None:
-        found: list[int] = []
+    def alone(text: str, start: int, end: int) -> list[int | RunFinding] | None:
+        found: list[int | RunFinding] = []
         for run_filter in run_filters:
             try:
                 lines = run_filter(text, start, end)

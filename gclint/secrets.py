@@ -190,12 +190,12 @@ def find(text: str) -> list[Secret]:
     """The secrets in ``text``, in order, not overlapping."""
     found: list[Secret] = []
     if len(text) >= 32 and _HEX_RUN.search(text):
-        for m in _HEX_KEY.finditer(text):
-            found.append(Secret(m.start(), m.end(), "API key"))
+        for hex_key in _HEX_KEY.finditer(text):
+            found.append(Secret(hex_key.start(), hex_key.end(), "API key"))
     if _hinted(text):
         if "PRIVATE KEY-----" in text:
-            for m in _PRIVATE_KEY.finditer(text):
-                found.append(Secret(m.end(), len(text), "private key"))
+            for key in _PRIVATE_KEY.finditer(text):
+                found.append(Secret(key.end(), len(text), "private key"))
         pos = 0
         while True:
             k = _KEYWORDS.search(text, pos)

@@ -117,11 +117,13 @@ def security_suppressions(
             origin_of = origin if from_config else "the command line"
             out.append(Suppression(tuple(lowered), origin_of, "severity lowered", len(paths), from_config))
         for pattern, codes in options.per_file_ignores.items():
-            off = [c for c in security if any(c.startswith(s.strip().upper()) for s in codes)]
+            ignored = [c for c in security if any(c.startswith(s.strip().upper()) for s in codes)]
             single = Linter(replace(options, per_file_ignores={pattern: codes}, allow_file_writes=()))
-            matched = sum(1 for p in paths if _hit(single, p, off)) if off else 0
+            matched = sum(1 for p in paths if _hit(single, p, ignored)) if ignored else 0
             if matched:
-                out.append(Suppression(tuple(off), origin, f"per-file-ignores {pattern!r}", matched, key is not None))
+                out.append(
+                    Suppression(tuple(ignored), origin, f"per-file-ignores {pattern!r}", matched, key is not None)
+                )
         for pattern in options.allow_file_writes:
             single = Linter(replace(options, per_file_ignores={}, allow_file_writes=(pattern,)))
             matched = sum(1 for p in paths if _hit(single, p, ["SC005"]))

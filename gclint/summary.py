@@ -106,10 +106,10 @@ def summarize(source: Source, context: Context) -> JobSummary:
     count its events."""
     summary = JobSummary(source.display, context.label())
     dialect = dialects.reading(context.dialect, context.flavor)
-    head, tail = source.head_text(), source.tail_text()
-    summary.bed = _bed(head, tail)
-    settings = slicer_settings(head, tail)
-    stated = slicer_estimate(head, tail)
+    head_text, tail_text = source.head_text(), source.tail_text()
+    summary.bed = _bed(head_text, tail_text)
+    settings = slicer_settings(head_text, tail_text)
+    stated = slicer_estimate(head_text, tail_text)
     if stated is not None:
         summary.slicer_time_s = stated[0]
     machine = dialect.variant_of or dialect.name
@@ -127,7 +127,7 @@ def summarize(source: Source, context: Context) -> JobSummary:
     x_high = y_high = feed_high = -math.inf
     printing_mm = travel_mm = 0.0
     unmeasured = 0
-    head: HeadUse | None = None
+    head = HeadUse("")  # (never used: head_name is None until the first move with E sets it)
     head_name: str | None = None
     flat_z: float | None = None  # (the height of the last printing move that kept its height)
     last_feed: float | None = None  # (a rapid with no speed of its own: at the last feed, a lower bound)
@@ -135,19 +135,18 @@ def summarize(source: Source, context: Context) -> JobSummary:
     sqrt = math.sqrt
     move = planner.move
     for event in reader.events(source):
-        kind = type(event)
-        if kind is Move:
+        if type(event) is Move:
             e = event.e
             end = event.point
             if e is not None:
                 name = event.tool or ""
                 if name != head_name:
-                    head = heads.get(name)
-                    if head is None:
-                        head = heads[name] = HeadUse(name)
-                    head_name = name
+                    found = heads.get(name)
+                    if found is None:
+                        found = heads[name] = HeadUse(name)
+                    head, head_name = found, name
                 if e is not NATIVE:  # filament: the net E of every move (retractions included)
-                    head.extruded_mm += e  # type: ignore[union-attr]
+                    head.extruded_mm += e
             if not end:  # (a move the reader could not place)
                 continue
             start = event.origin
@@ -166,7 +165,7 @@ def summarize(source: Source, context: Context) -> JobSummary:
                 length = _arc_length(arc, dz)
             feed = event.feed
             if e is not None and (e is NATIVE or e > 0):  # printing (an unretraction in place too: it feeds)
-                head.printing_moves += 1  # type: ignore[union-attr]
+                head.printing_moves += 1
                 was_printing = True
                 if length is not None:
                     printing_mm += length
@@ -206,30 +205,30 @@ def summarize(source: Source, context: Context) -> JobSummary:
                 else:
                     into, out = _tangents(arc, dz, length)
                     move(dx, dy, dz, de, feed, length, into, out)
-        elif kind is Layer:
+        elif type(event) is Layer:
             if layers.mark(event) == 1:
                 planner.watch("layers begin")
             flat_z = None
-        elif kind is Limits:
+        elif type(event) is Limits:
             limits.update(event.values)
             planner.refresh()
             job_limits.update(event.values)
-        elif kind is Dwell:
+        elif type(event) is Dwell:
             planner.stop(event.seconds or 0.0)
             summary.dwell_s += event.seconds or 0.0
-        elif kind is ToolChange:
+        elif type(event) is ToolChange:
             if tool is not None and (loads or unloads):
                 change = _per_tool(unloads, tool) + _per_tool(loads, event.tool)
                 planner.stop(change)
                 summary.tool_change_s += change
             tool = event.tool
-        elif kind is Heat:
+        elif type(event) is Heat:
             if event.wait:
                 planner.stop()
             _temperature(summary, heads, event)
-        elif kind is Pause:
+        elif type(event) is Pause:
             planner.stop()
-        elif kind is Flow:
+        elif type(event) is Flow:
             mode = "E values (M229 E1)" if event.mode == "evalues" else "native"
             if flows[-1:] != [mode]:
                 flows.append(mode)
@@ -237,9 +236,9 @@ def summarize(source: Source, context: Context) -> JobSummary:
         planner.watch("printing ends")
     summary.printing_mm, summary.travel_mm, summary.unmeasured_moves = printing_mm, travel_mm, unmeasured
     summary.time_s = planner.finish()
-    begin, end = planner.watched.get("layers begin"), planner.watched.get("printing ends")
-    if begin is not None and end is not None and end >= begin:
-        summary.layers_time_s = end - begin
+    begin, until = planner.watched.get("layers begin"), planner.watched.get("printing ends")
+    if begin is not None and until is not None and until >= begin:
+        summary.layers_time_s = until - begin
     summary.lines = reader.line_count
     summary.heads = list(heads.values())
     summary.flow = " then ".join(flows) if flows else "E amounts (extruder position)"
@@ -447,10 +446,10 @@ def render(summary: JobSummary) -> str:
         waits = f"; waits for {', '.join(f'{t:g}' for t in dict.fromkeys(head.waits))}" if head.waits else ""
         extruded = f"; {head.extruded_mm:,.1f} mm of filament" if head.extruded_mm else ""
         out.append(f"  {head.head}: {temps}{waits}; {head.printing_moves:,} printing moves{extruded}")
-    for kind, temps in summary.devices.items():
-        waits = summary.waited_devices.get(kind, [])
-        waited = f"; waits for {', '.join(f'{t:g}' for t in dict.fromkeys(waits))}" if waits else ""
-        listed = _listed(temps, summary.more_device_set_points.get(kind, 0))
+    for kind, points in summary.devices.items():
+        device_waits = summary.waited_devices.get(kind, [])
+        waited = f"; waits for {', '.join(f'{t:g}' for t in dict.fromkeys(device_waits))}" if device_waits else ""
+        listed = _listed(points, summary.more_device_set_points.get(kind, 0))
         out.append(f"  {kind}: set-points {listed} °C{waited}")
     out.append(f"  flow: {summary.flow}")
     if summary.z_range:

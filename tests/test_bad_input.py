@@ -181,9 +181,9 @@ def _assert_clean(
 ) -> None:
     stderr = proc.stderr.decode("utf-8", "replace")
     assert "Traceback" not in stderr, f"{case.name} ({what}): traceback\n{stderr[-3000:]}"
-    assert proc.returncode in allowed, (
-        f"{case.name} ({what}): exit {proc.returncode}, expected {allowed}\n{stderr[-2000:]}"
-    )
+    assert (
+        proc.returncode in allowed
+    ), f"{case.name} ({what}): exit {proc.returncode}, expected {allowed}\n{stderr[-2000:]}"
     assert elapsed < LIMIT, f"{case.name} ({what}): {elapsed:.1f} s"
     if proc.returncode == 2:
         lines = [line for line in stderr.splitlines() if line.strip()]

@@ -95,9 +95,9 @@ def test_documentation_examples(code):
         if not _DIRECTIVE.search(text) and "gclint: dialect=" not in text:
             text = f"; gclint-test: dialect={dialect}\n" + text
         found = [f for f in findings_for(text, f"{code}-example") if f.code == code]
-        assert bool(found) == should, (
-            f"{code} example ({'bad' if should else 'good'}): {[(f.line, f.message) for f in found]}"
-        )
+        assert (
+            bool(found) == should
+        ), f"{code} example ({'bad' if should else 'good'}): {[(f.line, f.message) for f in found]}"
 
 
 def _example_dialect(rule) -> str:

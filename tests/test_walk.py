@@ -251,9 +251,9 @@ def test_deep_folders_cost_a_bounded_number_of_lookups_per_folder(tmp_path: Path
         top = tmp_path / f"t{depth}"
         top.mkdir()
         _deep(top, depth)
-        from gclint.config import find_config
+        from gclint.config import clear_found
 
-        find_config.cache_clear()
+        clear_found()
         calls[0] = 0
         files, problems = runner.collect([str(top)])
         assert len(files) == depth and problems == []

@@ -119,10 +119,12 @@ def _check_printer(name: str | None) -> str | None:
 def _stdout_safe() -> None:
     # File text may hold undecodable bytes (kept as surrogates); never crash while printing them.
     for stream in (sys.stdout, sys.stderr):
-        try:
-            stream.reconfigure(errors="backslashreplace")  # type: ignore[attr-defined]
-        except (AttributeError, ValueError):
-            pass
+        reconfigure = getattr(stream, "reconfigure", None)  # (a TextIOWrapper's; a test's capture may lack it)
+        if reconfigure is not None:
+            try:
+                reconfigure(errors="backslashreplace")
+            except ValueError:
+                pass
 
 
 @click.group(cls=_Main, context_settings={"help_option_names": ["-h", "--help"], "max_content_width": 110})

@@ -240,8 +240,8 @@ def check(
     for note in walk_notes:
         _note(note)
     _left_out_notes(left_out, verbose, nothing_left=not files and not problems)
-    if output not in (None, "-") and (checked := _same_file(output, files)) is not None:
-        _fail(f"{output}: is {checked}, one of the files to check: the report would overwrite it")
+    if output not in (None, "-") and (same := _same_file(output, files)) is not None:
+        _fail(f"{output}: is {same}, one of the files to check: the report would overwrite it")
     jobs = _cap_jobs(jobs)
     from gclint import settings
 
@@ -282,7 +282,7 @@ def check(
 
     bar = progress_bar.ProgressBar(files) if progress_bar.wanted(progress, fmt, files) else None
     cache = None if (no_cache or fix or show_diff or add_noqa) else ResultCache(cache_dir)
-    run_options = {  # (the same run, file by file for the reports or whole for the fixes)
+    run_options: runner.RunOptions = {  # (the same run, file by file for the reports or whole for the fixes)
         "explicit_config": config_file,
         "jobs": jobs or (runner.default_jobs() if len(files) > 1 else 1),
         "stdin_name": stdin_filename or "-",

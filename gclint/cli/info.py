@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import sys
+from collections.abc import Iterable
 
 import click
 
@@ -98,7 +99,7 @@ def summary(
                 stream.write("".join(human(line) + "\n" for line in render(s).splitlines()))
 
     if output in (None, "-"):
-        write(click.get_text_stream("stdout"))
+        write(sys.stdout)  # (as check writes its reports: click.get_text_stream is deprecated in click 8.5)
     else:
         from gclint.io import OutputError, write_text
 
@@ -211,7 +212,7 @@ def explain(file: str | None, expressions: tuple[str, ...], dialect: str | None,
     """Decode each command in the printer's own terms (FILE, - for stdin, or -e LINE)."""
     import json
 
-    from gclint.explain import explain_source, explain_text
+    from gclint.explain import Explanation, explain_source, explain_text
     from gclint.syntax.source import Source, SourceError
 
     if file and expressions:
@@ -221,6 +222,7 @@ def explain(file: str | None, expressions: tuple[str, ...], dialect: str | None,
     from gclint.context import infer, infer_source
 
     chosen = _check_dialect(dialect, allow_auto=True) or ("auto" if file else "hyrel")
+    items: Iterable[Explanation]
     if expressions:
         text = "\n".join(e.replace("\\n", "\n") for e in expressions)
         context = infer(text, dialect=chosen)

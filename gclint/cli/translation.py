@@ -172,7 +172,7 @@ def diff(
         return
     from gclint.textsafe import HumanStream
 
-    stderr, sys.stderr = sys.stderr, HumanStream(sys.stderr)  # type: ignore[assignment]
+    stderr, sys.stderr = sys.stderr, HumanStream(sys.stderr)
     try:  # (its error lines name the files: a name's escape sequences must not reach the terminal)
         code = run_diff(
             source_path,

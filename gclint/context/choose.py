@@ -74,7 +74,8 @@ def decide(ranking: Ranking) -> Decision:
     scores = ranking.scores()
     winner, rival, margin, _ = _pick(ranking)
     dialect = ranking.by_key[winner].dialect.name
-    own = ranking.best(scores, dialect)  # (the best reading of the winner's dialect: a flavour, perhaps)
+    own = ranking.best_of(scores, dialect)  # (the best reading of the winner's dialect: a flavour, perhaps)
+    reasons: tuple[str, ...]
     if not any(any(v for v in i.deltas.values()) for i in ranking.items):
         origin, strength, reasons = DEFAULT, NONE, ()
     else:
@@ -93,7 +94,7 @@ def decide(ranking: Ranking) -> Decision:
         strength = STRONG if margin >= CLOSE else WEAK
         # the other dialects' best readings: what sets the winner above all of them is said first
         field = tuple(
-            ranking.best(scores, c.dialect.name)  # type: ignore[misc]
+            ranking.best_of(scores, c.dialect.name)
             for c in ranking.pool
             if c.known and c.flavor is None and c.dialect.name != dialect
         )
@@ -120,7 +121,7 @@ def decide(ranking: Ranking) -> Decision:
 
     flavor = None
     flavor_reasons: tuple[str, ...] = ()
-    chosen = ranking.by_key[own]  # type: ignore[index]
+    chosen = ranking.by_key[own]
     if chosen.flavor is not None:
         plain = next((c.key for c in ranking.pool if c.dialect.name == dialect and c.flavor is None), None)
         tied = [
@@ -129,8 +130,8 @@ def decide(ranking: Ranking) -> Decision:
         if not tied:
             flavor = chosen.flavor.name
             # the slicer's settings first (they name the printer), then the content
-            flavor_reasons = ranking.reasons(own, plain, 2, (HEADER,))  # type: ignore[arg-type]
-            flavor_reasons = (flavor_reasons + ranking.reasons(own, plain, 2, (CONTENT,)))[:2]  # type: ignore[arg-type]
+            flavor_reasons = ranking.reasons(own, plain, 2, (HEADER,))
+            flavor_reasons = (flavor_reasons + ranking.reasons(own, plain, 2, (CONTENT,)))[:2]
     ordered = sorted(scores.items(), key=lambda kv: -kv[1])
     shown = tuple((key, round(value, 2)) for key, value in ordered)
     why = []

@@ -280,18 +280,18 @@ def _read_command(reading: ContentReading, cmd: Command, number: int, raw: str, 
     if kind not in _GENERAL_BY_KIND:
         _GENERAL_BY_KIND[kind] = _of_kind(kind, _GENERAL)
         _FLAVOR_BY_KIND[kind] = _of_kind(kind, _FLAVOR_GENERAL)
-    for owner, clue in _BY_CODE.get(code, ()) if code is not None else ():  # type: ignore[arg-type]
+    for owner, clue in _BY_CODE.get(code, ()) if code is not None else ():
         seen = _match(reading.clues, owner, clue, cmd, number, raw, seen)
     for owner, clue in _GENERAL_BY_KIND[kind]:
         needs = clue.contains
         if not needs or needs[0] in raw or needs[-1] in raw:
             seen = _match(reading.clues, owner, clue, cmd, number, raw, seen)
-    for owner, clue in _FLAVOR_BY_CODE.get(code, ()) if code is not None else ():  # type: ignore[arg-type]
+    for owner, clue in _FLAVOR_BY_CODE.get(code, ()) if code is not None else ():
         seen = _match(reading.flavor_clues, owner, clue, cmd, number, raw, seen)
     for owner, clue in _FLAVOR_BY_KIND[kind]:
         seen = _match(reading.flavor_clues, owner, clue, cmd, number, raw, seen)
     habitual = False  # another firmware's habit: its T is that firmware's (an extruder index), no address
-    for owner, habit in _HABITS_BY_CODE.get(code, ()) if code is not None else ():  # type: ignore[arg-type]
+    for owner, habit in _HABITS_BY_CODE.get(code, ()) if code is not None else ():
         try:
             hit = habit.matches(cmd, reading)
         except (TypeError, ValueError, AttributeError):  # a habit never stops the reading
@@ -322,7 +322,7 @@ def _read_command(reading: ContentReading, cmd: Command, number: int, raw: str, 
         return
     tables = _PARAM_TABLES.get(code) if code not in _MOVES else None  # (moves are read for E and axes only)
     if tables is not None and params:
-        _check_params(reading, cmd, tables, number, raw)
+        _check_params(reading, cmd, code, tables, number, raw)
     if code in _T_VARIABLE_CODES and not habitual:
         _address(reading, cmd, "T", number, raw, added)
         if code in ("M703", "M704"):
@@ -380,10 +380,10 @@ def _read_command(reading: ContentReading, cmd: Command, number: int, raw: str, 
         added.append(("axis",))
 
 
-def _check_params(reading: ContentReading, cmd: Command, tables: list, number: int, raw: str) -> None:
+def _check_params(reading: ContentReading, cmd: Command, code: str, tables: list, number: int, raw: str) -> None:
     """Record what each catalogued table says is wrong with ``cmd``'s words (a letter the code does not take,
-    a value outside its range), once per (code, letter); a word a habit reports is the habit's."""
-    code = cmd.code
+    a value outside its range), once per (code, letter: ``code`` is ``cmd``'s); a word a habit reports is the
+    habit's."""
     for owner, spec, habit_rules in tables:
         found = reading.params.get(owner)
         for letter in cmd.params:

@@ -68,6 +68,7 @@ def infer(
     directive, unknown = _directive(scan)
     notes = (f"'; gclint: dialect={unknown}' names no dialect: ignored",) if unknown else ()
     decision: Decision | None = None
+    reasons: tuple[str, ...]
     if dialect != "auto":  # the user's word beats the file's: a job does not choose how the gate reads it
         name, origin, reasons, strength, conflict = dialects.get(dialect).name, dialect_origin, (), EXPLICIT, ""
         if directive is not None and directive != name:
@@ -86,21 +87,39 @@ def infer(
     if declared is not None and declared.dialect != name:
         ignored = f"{told[0]} is a firmware for {declared.dialect} files, and this one is read as {name}: ignored"
         conflict = f"{conflict}; {ignored}" if conflict else ignored
-    scored = {"candidates": decision.candidates, "candidate_reasons": decision.candidate_reasons} if decision else {}
+    candidates = decision.candidates if decision is not None else ()
+    candidate_reasons = decision.candidate_reasons if decision is not None else ()
     chosen = dialects.get(name)
     if chosen.extras.get("firmware") is None:  # (no version and no printer model to decide)
+        found: str | None
+        flavor_reasons: tuple[str, ...]
         if declared is not None and declared.dialect == name:
             found, flavor_reasons = declared.name, told
         elif decision is not None:
             found, flavor_reasons = decision.flavor, decision.flavor_reasons
         else:
             found, flavor_reasons = _flavor(content(), scan, tail_scan, path, env_flavor, name)
-        return Context(name, origin, strength, reasons, conflict, flavor=found, flavor_reasons=flavor_reasons, **scored)
+        return Context(
+            name,
+            origin,
+            strength,
+            reasons,
+            conflict,
+            flavor=found,
+            flavor_reasons=flavor_reasons,
+            candidates=candidates,
+            candidate_reasons=candidate_reasons,
+        )
 
     # Hyrel: v4 or v5 (a variant of the dialect: its ``firmware``), then the model
     base = dialects.get(chosen.variant_of) if chosen.variant_of else chosen
     versions = {d.extras["firmware"]: d.name for d in dialects.all_dialects() if d is base or d.variant_of == base.name}
-    explicit = chosen.extras["firmware"] if origin in (OPTION, CONFIGURATION, DIRECTIVE) or chosen is not base else None
+    stated = chosen.extras["firmware"]  # (the version a Hyrel dialect reads: 4 or 5)
+    explicit = (
+        stated
+        if isinstance(stated, int) and (origin in (OPTION, CONFIGURATION, DIRECTIVE) or chosen is not base)
+        else None
+    )
     number, firmware_origin, firmware_reasons, evidence = hyrel_version.decide(content(), explicit, origin)
     name = versions.get(number, name)
     model, model_origin, model_reasons, fitting = printer_model.decide(content(), scan, number, printer, printer_origin)
@@ -118,7 +137,8 @@ def infer(
         printer_origin=model_origin,
         printer_reasons=model_reasons,
         printer_candidates=fitting,
-        **scored,
+        candidates=candidates,
+        candidate_reasons=candidate_reasons,
     )
 
 

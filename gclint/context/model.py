@@ -61,6 +61,7 @@ class Context:
     def __post_init__(self) -> None:
         for name in _EVIDENCE:
             value = getattr(self, name)
+            shown: str | tuple
             if isinstance(value, str):
                 shown = mask(value)
             elif isinstance(value, tuple):

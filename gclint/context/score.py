@@ -33,7 +33,7 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 
 from gclint.context.candidates import Candidate, candidates, having
-from gclint.context.content import ContentReading
+from gclint.context.content import ContentReading, Seen
 from gclint.context.header import ENV_WEIGHT, extension, found, slicer_flavor, tells
 from gclint.context.model import CONTENT, EXTENSION, HEADER
 from gclint.dialects.base import HeadScan
@@ -118,6 +118,13 @@ class Ranking:
         among equals the first in the candidates' order."""
         keys = [c.key for c in self.pool if dialect is None or (c.dialect.name == dialect) != other]
         return max(keys, key=lambda k: scores[k]) if keys else None
+
+    def best_of(self, scores: dict[str, float], dialect: str) -> str:
+        """``best`` of a dialect that has candidates (a KeyError for one that has none)."""
+        key = self.best(scores, dialect)
+        if key is None:
+            raise KeyError(dialect)
+        return key
 
     def reasons(
         self,
@@ -220,7 +227,7 @@ def _codes(reading: ContentReading, known: tuple[Candidate, ...], add, machine: 
         if not deltas:
             continue
         owners = [c.dialect.name for c in known if c.flavor is None and c.has(code)]
-        owners = owners or [c.flavor.name for c in known if c.flavor is not None and c.has(code)]  # type: ignore[union-attr]
+        owners = owners or [c.flavor.name for c in known if c.flavor is not None and c.has(code)]
         if not owners:
             text = f"{seen}: no known dialect has {code}"
         elif len(owners) == 1:
@@ -232,8 +239,8 @@ def _codes(reading: ContentReading, known: tuple[Candidate, ...], add, machine: 
 
 
 def _clues(reading: ContentReading, pool: tuple[Candidate, ...], add) -> None:
-    for dialect, found_clues in reading.clues.items():
-        members = [c.key for c in pool if c.dialect.name == dialect]
+    for name, found_clues in reading.clues.items():
+        members = [c.key for c in pool if c.dialect.name == name]
         if not members:
             continue
         for clue, seen in found_clues.items():
@@ -248,8 +255,8 @@ def _clues(reading: ContentReading, pool: tuple[Candidate, ...], add) -> None:
         members = [c.key for c in pool if c.dialect is dialect]
         habits = dict(reading.habits.get(dialect.name, {}))
         for habit in dialect.detection.habits:
-            if habit.fact is not None and (seen := reading.fact(habit.fact)) is not None:
-                habits[habit] = seen
+            if habit.fact is not None and (fact := reading.fact(habit.fact)) is not None:
+                habits[habit] = fact
         by_rule: dict[str, tuple] = {}  # (one rule, one finding's worth: the costliest habit it reports)
         for habit, seen in habits.items():
             if habit.rule not in by_rule or habit.cost > by_rule[habit.rule][0].cost:
@@ -272,15 +279,15 @@ def _clues(reading: ContentReading, pool: tuple[Candidate, ...], add) -> None:
 
 
 def _kinds(reading: ContentReading, known: tuple[Candidate, ...], add) -> None:
-    first: dict[str, dict[str, object]] = {}  # kind -> candidate key -> the first line of it the candidate lacks
+    first: dict[str, dict[str, Seen]] = {}  # kind -> candidate key -> the first line of it the candidate lacks
     for (kind, word), seen in reading.kinds.items():
         for c in known:
             if not c.accepts(kind, word):
                 first.setdefault(kind, {}).setdefault(c.key, seen)
     for kind, lacking in first.items():
-        seen = min(lacking.values(), key=lambda s: s.line or 1 << 40)  # type: ignore[attr-defined]
+        seen = min(lacking.values(), key=lambda s: s.line or 1 << 40)
         text = f"{seen}: {_KIND_TEXT.get(kind, kind)} (not in {_owners(sorted({k.split('/')[0] for k in lacking}))})"
-        add(Item(text, seen.line, CONTENT, {k: -MISFIT for k in lacking}))  # type: ignore[attr-defined]
+        add(Item(text, seen.line, CONTENT, {k: -MISFIT for k in lacking}))
 
 
 def _e_words(reading: ContentReading, known: tuple[Candidate, ...], add) -> None:

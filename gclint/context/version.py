@@ -104,12 +104,12 @@ def score(reading: ContentReading) -> tuple[dict[int, float], list[tuple[float, 
         numbers.setdefault(("tool", number), []).append(
             (seen, cost4, cost5, lines, ("a v4 tool number", "a v5 address"))
         )
-    for seen, what, key in (
+    for fact, what, key in (
         (reading.m116, "M116 exists from v5", "M116"),
         (reading.waits_w0, "W0 exists from v5", "W0"),
     ):
-        if seen is not None:
-            numbers[(what, 0)] = [(seen, V5_ONLY, 0.0, counts.get((key,), 1), ("", what))]
+        if fact is not None:
+            numbers[(what, 0)] = [(fact, V5_ONLY, 0.0, counts.get((key,), 1), ("", what))]
     uses: list[tuple[float, int, str]] = []
     for found in numbers.values():
         lines = sum(use[3] for use in found)

@@ -12,7 +12,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
-from gclint.syntax.nodes import is_number, to_number
+from gclint.syntax.nodes import Word, is_number, to_number
 
 # Kinds of address.
 HEAD = "head"
@@ -226,7 +226,7 @@ SQUAD_CODES = frozenset({"M702", "M703", "M704"})
 class Renumbering:
     """One number of a command in the other numbering (``renumberings``)."""
 
-    node: object  # the Word holding the number (the code word of a T command)
+    node: Word  # the Word holding the number (the code word of a T command)
     letter: str  # "T" or "S" (M702-M704)
     number: int
     new: int | None  # None: no certain counterpart (research/hyrel_v4.md confidence medium or low, or none)
@@ -239,8 +239,8 @@ class Renumbering:
     def text(self) -> str:
         """The word's text with the new number (``T12`` -> ``T1``; spaces inside the word kept)."""
         word = self.node
-        text: str = word.text  # type: ignore[attr-defined]
-        value = text[1:] if self.tool_command else word.value  # type: ignore[attr-defined]
+        text = word.text
+        value = text[1:] if self.tool_command else word.value
         if value and text.endswith(value):
             return text[: len(text) - len(value)] + str(self.new)
         return text[:1] + str(self.new)

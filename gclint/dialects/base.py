@@ -77,7 +77,7 @@ class Param:
     def reading(self, value: str | None) -> str:
         """What ``gclint explain`` says of this word written with ``value`` (as written, None for a letter
         alone): the phrase for that value, else ``says`` with the value in it."""
-        if self.values is not None and value in self.values:
+        if self.values is not None and value is not None and value in self.values:
             return self.values[value]
         return self.says.format(value=value)
 
@@ -129,9 +129,11 @@ def code(
     return Code(name, summary, table, supported, source, meanings, does, notes)
 
 
-def describe(
-    codes_table: dict[str, Code], descriptions: Mapping[str, str | tuple[str, Mapping[str, str]]]
-) -> dict[str, Code]:
+# code -> "summary", or ("summary", {"S": "meaning", ...}) (``describe``)
+Descriptions = Mapping[str, str | tuple[str, Mapping[str, str]]]
+
+
+def describe(codes_table: dict[str, Code], descriptions: Descriptions) -> dict[str, Code]:
     """Give codes of ``codes_table`` a summary and parameter meanings (what ``gclint explain`` prints).
 
     ``descriptions`` maps a code to ``"summary"`` or ``("summary", {"S": "meaning", ...})``.  Only codes
@@ -482,8 +484,8 @@ class Dialect:
     ) -> Dialect:
         """A new dialect that is this one plus ``add`` minus ``remove`` (codes), with other fields changed."""
         table = dict(self.codes)
-        for c in remove:
-            table.pop(c, None)
+        for removed in remove:
+            table.pop(removed, None)
         for c in add:
             table[c.code] = c
         return replace(self, name=name, title=title, codes=table, **changes)

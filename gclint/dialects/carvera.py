@@ -9,7 +9,7 @@ programs print their progress with ``echo``.
 
 from __future__ import annotations
 
-from gclint.dialects.base import Clue, Detection, Dialect, codes, describe, span, table
+from gclint.dialects.base import Clue, Descriptions, Detection, Dialect, codes, describe, span, table
 from gclint.dialects.machinekit import NGC_LANGUAGE_CLUES
 from gclint.dialects.semantics import DWELL_SECONDS_SUM, WORKSPACES, Semantics, effects
 from gclint.firmware.smoothieware import SMOOTHIEWARE
@@ -38,7 +38,7 @@ _MOVE = {
     "F": "feed rate, mm/min",
     "S": "laser power or spindle speed",
 }
-_DESCRIPTIONS = {
+_DESCRIPTIONS: Descriptions = {
     "G0": ("rapid move", _MOVE),
     "G1": ("linear move at feed rate", _MOVE),
     "G2": (

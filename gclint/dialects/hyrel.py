@@ -9,6 +9,7 @@ carry that rule's code (``rule="HY0nn"``); the others are reported by DL003.
 from __future__ import annotations
 
 from dataclasses import replace
+from typing import TypedDict
 
 from gclint.dialects.addressing import (
     resolve_v4_command,
@@ -32,8 +33,19 @@ from gclint.dialects.habits import HYREL_HABITS
 from gclint.dialects.semantics import DWELL_MS_S_SUM, WORKSPACES, Semantics, effects
 
 P = Param
-PCT = dict(minimum=0, maximum=100)  # "Sn is the percentage (0-100)"
-FLAG01 = dict(choices=(0, 1))
+
+
+class _Bounds(TypedDict):  # (Param keyword arguments shared by many parameters)
+    minimum: float
+    maximum: float
+
+
+class _Choices(TypedDict):
+    choices: tuple[float, ...]
+
+
+PCT = _Bounds(minimum=0, maximum=100)  # "Sn is the percentage (0-100)"
+FLAG01 = _Choices(choices=(0, 1))
 
 AXES = [P("X"), P("Y"), P("Z"), P("A"), P("B")]
 
@@ -1020,6 +1032,14 @@ HYREL_V5 = Dialect(
 )
 
 
+def _catalogued(name: str, letter: str) -> Param:
+    """The parameter ``letter`` of v5's ``name`` (a KeyError when it is not catalogued)."""
+    params = HYREL_CODES[name].params
+    if params is None:
+        raise KeyError(f"{name} has no parameter table")
+    return params[letter]
+
+
 HYREL_V4 = HYREL_V5.derive(
     "hyrel-v4",
     "Hyrel (Repetrel v4: T variables are device addresses T11-T15, T21-T25...)",
@@ -1032,8 +1052,8 @@ HYREL_V4 = HYREL_V5.derive(
             HYREL_CODES["M702"],
             summary="seed group S (50-57) with device T's settings (v4)",
             params={
-                "T": replace(HYREL_CODES["M702"].params["T"], meaning="device whose settings are copied"),
-                "S": replace(HYREL_CODES["M702"].params["S"], meaning="group number", minimum=50, maximum=57),
+                "T": replace(_catalogued("M702", "T"), meaning="device whose settings are copied"),
+                "S": replace(_catalogued("M702", "S"), meaning="group number", minimum=50, maximum=57),
             },
             source="T_v4 / hyrel_v4.md section 4",
         ),

@@ -7,7 +7,7 @@ language is LinuxCNC's RS274NGC: O-words, #parameters, [expressions], user M-cod
 
 from __future__ import annotations
 
-from gclint.dialects.base import Clue, Detection, Dialect, Param, code, codes, describe, span, table
+from gclint.dialects.base import Clue, Descriptions, Detection, Dialect, Param, code, codes, describe, span, table
 from gclint.dialects.semantics import DWELL_P_SECONDS, LINUXCNC_ORDER, WORKSPACES, Semantics, effects
 from gclint.firmware.linuxcnc import G_CODES, M_CODES
 from gclint.syntax.nodes import ASSIGNMENT, GCODE, IMPLICIT, OWORD
@@ -69,7 +69,7 @@ _FDM = [
 # What the common RS274NGC codes do, for ``gclint explain`` (LinuxCNC G-code and M-code references).
 _MOVE = {"X": "X", "Y": "Y", "Z": "Z", "A": "A axis", "B": "B axis", "C": "C axis", "F": "feed rate (G94: units/min)"}
 _CYCLE = {**_MOVE, "R": "retract plane", "P": "dwell at the bottom, s", "Q": "peck increment", "L": "repeats"}
-_DESCRIPTIONS = {
+_DESCRIPTIONS: Descriptions = {
     "G0": ("rapid move", _MOVE),
     "G1": ("linear move at feed rate", _MOVE),
     "G2": (

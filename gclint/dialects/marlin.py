@@ -10,7 +10,7 @@ Marlin and that firmware.
 
 from __future__ import annotations
 
-from gclint.dialects.base import Clue, Detection, Dialect, codes, describe, span, table
+from gclint.dialects.base import Clue, Descriptions, Detection, Dialect, codes, describe, span, table
 from gclint.dialects.semantics import DWELL_MS_S_WINS, WORKSPACES, Semantics, effects
 from gclint.syntax.nodes import EXTENDED
 
@@ -47,7 +47,7 @@ _MOVE = {
     "F": "feed rate, mm/min (modal)",
     "S": "laser power (laser mode)",
 }
-_DESCRIPTIONS = {
+_DESCRIPTIONS: Descriptions = {
     "G0": ("rapid move (Marlin treats G0 like G1)", _MOVE),
     "G1": ("linear move", _MOVE),
     "G2": (

@@ -8,7 +8,7 @@ a macro file for a code it does not know (sys/M<n>.g, sys/G<n>.g), so no G or M 
 
 from __future__ import annotations
 
-from gclint.dialects.base import Clue, Detection, Dialect, codes, describe, table
+from gclint.dialects.base import Clue, Descriptions, Detection, Dialect, codes, describe, table
 from gclint.dialects.marlin import MARLIN_SEMANTICS
 from gclint.firmware.reprapfirmware import REPRAPFIRMWARE
 from gclint.syntax.nodes import META, is_number
@@ -59,7 +59,7 @@ _MOVE = {
     "H": "H1: homing move that stops at the endstop, H2: move motors individually",
     "S": "S1: endstop-checking move (homing; the older form of H1)",
 }
-_DESCRIPTIONS = {
+_DESCRIPTIONS: Descriptions = {
     "G0": ("rapid move", _MOVE),
     "G1": ("linear move", _MOVE),
     "G2": ("clockwise arc", {**_MOVE, "I": "center X offset", "J": "center Y offset", "R": "radius"}),

@@ -260,7 +260,7 @@ class Semantics:
         return value, "T" if "T" in params else None
 
     def effect(self, code: str | None) -> Effect | None:
-        return self.effects.get(code) if code is not None else None  # type: ignore[arg-type]
+        return self.effects.get(code) if code is not None else None
 
     def codes_with(self, *effects: Effect) -> frozenset[str]:
         """The codes that have one of ``effects``."""

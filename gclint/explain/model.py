@@ -63,7 +63,7 @@ class Explanation:
                 text = text.replace(value, secrets.MASK_CHAR * len(value))
             return secrets.mask(text)
 
-        items = []
+        items: list[Item] = []
         for item in self.items:
             if item.word and item.word in hidden:
                 if not any(i.word == _HIDDEN.word for i in items):  # (one item: not even the words' lengths)

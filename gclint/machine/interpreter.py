@@ -45,6 +45,14 @@ def _last_word(text: str, letter: str, start: int, end: int, not_on: str = "") -
     return -1
 
 
+def _number_at(text: str, at: int) -> str:
+    """The number that starts at ``at`` in a run's text (the run's pattern found one there)."""
+    m = PLAIN_NUMBER.match(text, at)
+    if m is None:  # pragma: no cover - the run pattern and this reader out of step
+        raise ValueError(f"no number at {at}")
+    return m.group()
+
+
 class Interpreter:
     """Tracks ``state`` through the commands of one file."""
 
@@ -244,20 +252,20 @@ class Interpreter:
         f_at = _last_word(text, "F", start, end, "G0" if self.g0_feed_one_shot else "")  # (one-shot: no feed)
         if f_at >= 0 and not st.working_feed_set:
             return False
-        number = PLAIN_NUMBER.match
+        number = _number_at
         values = st.position.values
         for axis in "XYZ":
             at = _last_word(text, axis, start, end)
             if at >= 0:
-                values[axis] = number(text, at + 1).group()
+                values[axis] = number(text, at + 1)
         if f_at >= 0:
-            st.feed = float(number(text, f_at + 1).group())
+            st.feed = float(number(text, f_at + 1))
         last = text.rfind("\nG", start, end) + 1
         st.motion_mode = _RUN_MODES[text[last + 1 if last else start + 1]]
         st.moved = True
         if e_at >= 0:
             if st.e_absolute:
-                st.e_position = float(number(text, e_at + 1).group())
+                st.e_position = float(number(text, e_at + 1))
             elif st.e_position is not None:  # (summed in order, as one move after the other does)
                 pattern, at = run_amounts(text, start, end)
                 amounts = pattern.findall(text, at, end)
@@ -478,13 +486,13 @@ class Interpreter:
         head = self.target(cmd)
         # "M703 adds a single head to the Clone Squad we established with an M702" (T_v5): no M702, no squad
         if squad in self.state.squads and head is not None:
-            self.state.squads[squad].add(head)  # type: ignore[index]
+            self.state.squads[squad].add(head)
 
     def _m704(self, cmd: Command, line: Line) -> None:
         squad = _int(cmd.params.get("S"))
         head = self.target(cmd)
         if squad in self.state.squads and head is not None:
-            self.state.squads[squad].discard(head)  # type: ignore[index]
+            self.state.squads[squad].discard(head)
 
     # -- temperatures, fans, flow ----------------------------------------------------------------------
 

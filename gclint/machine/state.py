@@ -142,7 +142,7 @@ class MachineState:
         """True when the job's M6 T# O... lines give head ``position`` only zero offsets (so a head
         offset of 0 mm changes nothing for it); False when they give another value or none at all."""
         offsets = self.declared_offsets.get(position)
-        return bool(offsets) and all(value == 0 for value in offsets.values())
+        return offsets is not None and bool(offsets) and all(value == 0 for value in offsets.values())
 
     def head_loaded(self, position: int) -> bool | None:
         """Whether a head sits at ``position``; None when no one knows."""

@@ -491,8 +491,8 @@ class _Expression:
         token = self.take()
         kind, text = token
         if text in ("-", "+"):
-            value = _number(self.unary())
-            return -value if text == "-" else value
+            number = _number(self.unary())
+            return -number if text == "-" else number
         if text in ("!", "not"):
             return not _truth(self.unary())
         if text == "(":

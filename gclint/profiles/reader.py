@@ -212,12 +212,13 @@ def _json_profile(path: str, text: str) -> Profile:
         seen.add(os.path.basename(found))
         try:
             with open(found, encoding="utf-8-sig", errors="replace") as fh:
-                current = jsontext.load(fh.read(MAX_BYTES + 1))
+                loaded = jsontext.load(fh.read(MAX_BYTES + 1))
         except (OSError, ProfileError) as exc:
             notes.append(f"inherits {parent!r}: {os.path.basename(found)} could not be read ({exc})")
             break
-        if not isinstance(current, dict):
+        if not isinstance(loaded, dict):
             break
+        current = loaded
         chain.append(current)
     profile = _cura(path, chain) if cura else _orca(path, chain)
     profile.notes.extend(notes)
@@ -286,7 +287,7 @@ def _json_value(raw: object) -> Value:
     plain = jsontext.plain(raw)
     if isinstance(plain, list):
         items = [_json_value(v) for v in plain]
-        return items[0] if len(items) == 1 and not isinstance(items[0], (float, bool)) else items  # type: ignore[return-value]
+        return items[0] if len(items) == 1 and not isinstance(items[0], (float, bool)) else items
     if isinstance(plain, bool):
         return plain
     if isinstance(plain, (int, float)):

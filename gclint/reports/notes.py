@@ -5,7 +5,7 @@ the first target); ``-v`` gives the decision, its reasons and every reading's sc
 
 from __future__ import annotations
 
-from gclint.context.model import NONE, WEAK
+from gclint.context.model import NONE, WEAK, Context
 from gclint.engine import FileResult
 
 NAMED = 3  # files named in a summary note (-v lists every file)
@@ -14,7 +14,7 @@ NAMED = 3  # files named in a summary note (-v lists every file)
 def context_notes(results: list[FileResult], verbose: bool = False) -> list[str]:
     """The note lines (without the ``note:`` prefix's colour) for ``results``, in file order."""
     lines: list[str] = []
-    defaulted: list[tuple[str, object]] = []
+    defaulted: list[tuple[str, Context]] = []
     weak: list[tuple[str, str, str]] = []  # (path, checked as, why)
     conflicting = False
     for r in results:
@@ -54,8 +54,8 @@ def context_notes(results: list[FileResult], verbose: bool = False) -> list[str]
     # (each group names what its files were checked as, as the "Checked as" line does: the version and the
     # printer too, which a file's addresses may tell when nothing tells its dialect)
     groups: dict[str, list[str]] = {}
-    for path, c in defaulted:
-        groups.setdefault(c.dialect_label() + _printer_part(c), []).append(path)  # type: ignore[attr-defined]
+    for path, context in defaulted:
+        groups.setdefault(context.dialect_label() + _printer_part(context), []).append(path)
     for label, paths in groups.items():
         files = "1 file" if len(paths) == 1 else f"{len(paths)} files"
         lines.append(

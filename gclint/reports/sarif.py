@@ -15,7 +15,7 @@ import io
 import json
 import os
 from pathlib import PurePosixPath, PureWindowsPath
-from typing import TextIO
+from typing import Any, TextIO
 from urllib.parse import quote
 
 from gclint.engine import FileResult
@@ -66,7 +66,7 @@ def _rule_descriptor(code: str, doc: dict | None, name: str | None) -> dict:
     if doc["example_good"]:
         help_parts += ["", "Good:", doc["example_good"]]
         markdown += ["", "Good:", "", "```gcode", doc["example_good"], "```"]
-    descriptor = {
+    descriptor: dict[str, Any] = {
         "id": code,
         "name": _pascal(doc["name"]) if doc["name"] else code,
         "shortDescription": {"text": doc["summary"] or code},

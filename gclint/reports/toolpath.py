@@ -481,23 +481,22 @@ def read_toolpath(
     try:
         finite = math.isfinite
         for event in reader.events(Source.open(path)):
-            kind = type(event)
             line = event.line
-            if kind is LayerMark:  # (the slicer's mark that a layer begins: the reader finds them)
+            if type(event) is LayerMark:  # (the slicer's mark that a layer begins: the reader finds them)
                 marks = marks or event.marks
                 if event.marks == marks:
                     if not by_markers:
                         by_markers = True
                         build.prelude()
                         at_layer = 0
-                    at_layer += 1  # type: ignore[operator]
+                    at_layer = (at_layer or 0) + 1  # (0 from the first mark on)
                 continue
             if at < waits and waiting[at] < line:
                 mark(line - 1)
-            if kind is ToolChange:
+            if type(event) is ToolChange:
                 tool = event.tool
                 continue
-            if kind is not Move or not event.point:
+            if type(event) is not Move or not event.point:
                 continue
             point = event.point
             x, y = point[0], point[1]

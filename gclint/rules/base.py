@@ -136,7 +136,7 @@ def project_url(*labels: str) -> str | None:
         entries = metadata("gclint").get_all("Project-URL") or ()
     except (ImportError, PackageNotFoundError):
         return None
-    found = {}
+    found: dict[str, str] = {}
     for entry in entries:
         label, _, url = entry.partition(",")
         if url.strip():
@@ -177,7 +177,8 @@ class Rule:
     example_bad: ClassVar[str] = ""  # G-code that triggers the rule
     example_good: ClassVar[str] = ""  # the corrected G-code
     source: ClassVar[str] = ""  # the section of the seed documents the rule comes from
-    codes: ClassVar[tuple[str, ...]] = ()  # command codes to listen to (ANY_T for T commands)
+    # command codes to listen to (ANY_T for T commands); a rule may set its own in __init__
+    codes: tuple[str, ...] = ()
     families: ClassVar[tuple[str, ...] | None] = None  # dialect families it applies to; None = all
     dialects: ClassVar[tuple[str, ...] | None] = None  # or exact dialect names
     on_line: ClassVar[bool] = False  # call check_line for every line (use sparingly)
@@ -191,12 +192,12 @@ class Rule:
     # several comments joined by line breaks when it is true of one of them (a test for words, as
     # secrets.may_hold is): the engine tests the comment lines of a run of moves together.  None: every
     # comment is read.
-    comment_hint: ClassVar[Callable[[str], bool] | None] = None
+    comment_hint: ClassVar[staticmethod[[str], bool] | None] = None
     # call check_view for lines this pattern finds.  A multi-line pattern ((?m)) must find a match in lines
     # joined by line breaks when it finds one in one of them, and none that starts at a line break: then the
     # engine tests the comment lines of a run together, else one by one.
     on_line_matching: ClassVar[re.Pattern | None] = None
-    on_unknown_code: ClassVar[bool] = False  # call check for codes the dialect does not have
+    on_unknown_code: bool = False  # call check for codes the dialect does not have (a rule may set its own)
     # check's findings on a command depend only on the command's text and the file's settings (dialect,
     # options), never on the state or the line's number, and it keeps nothing: for an M-code line that
     # repeats in runs ("M204 S1000") the engine makes them once and repeats them (runs.CodeLines)
@@ -208,6 +209,14 @@ class Rule:
     # "safe" (--fix applies it), "unsafe" (--unsafe-fixes), or "sometimes" (depends on the finding)
     fix_applicability: ClassVar[str] = "safe"
     default_enabled: ClassVar[bool] = True
+
+    # Hooks some rules have and the engine looks up with getattr (declared here, never set: a rule without
+    # one has none): check_view (on_line_matching), check_joined (on_bare_cr: lines ending in a bare
+    # carriage return, read with the next), and the plain-move and run filters (docs/architecture.md)
+    check_view: Callable[[Line], None]
+    check_joined: Callable[[Line, str, int], None]
+    plain_filter: Callable[[str, str | None, str | None, str | None, str | None, str | None], bool]
+    run_filter: Callable[[str, int, int], list[int] | list[int | RunFinding] | None]
 
     def __init__(self, ctx: FileContext) -> None:
         self.ctx = ctx

@@ -24,7 +24,6 @@ from gclint.syntax.nodes import (
     to_number,
 )
 
-_UNSEEN = ("",)  # (a verdict not made yet)
 _ARC_LETTERS = frozenset("XYZIJEF")  # (the words of an arc of a run: fastpath.run_pattern)
 
 
@@ -68,8 +67,9 @@ class UnknownCode(Rule):
 
     def check(self, line: Line, cmd: Command) -> None:
         key = (cmd.kind, cmd.code)
-        verdict = self.verdicts.get(key, _UNSEEN)
-        if verdict is _UNSEEN:
+        try:
+            verdict = self.verdicts[key]
+        except KeyError:
             if len(self.verdicts) >= 4096:
                 self.verdicts.clear()
             verdict = self.verdicts[key] = self._verdict(cmd)
@@ -111,9 +111,11 @@ class UnknownCode(Rule):
         title = self.ctx.dialect.title.split(" (")[0]  # the name, without the description in brackets
         return title if self.flavor is None else f"{title} or {self.flavor.title}"
 
-    def _documented_elsewhere(self, code: str) -> str:
+    def _documented_elsewhere(self, code: str | None) -> str:
         """Names the firmware that has ``code`` (" (Prusa Buddy firmware has it)") when its files are read
         like this one's: the file may be for it (what its header would say, or extend-known-codes)."""
+        if code is None:
+            return ""
         related = self.ctx.dialect.related()
         others = [f.title for f in firmware.documenting(code, related) if f is not self.flavor]
         if not others:

@@ -14,7 +14,7 @@ from collections.abc import Iterator
 from dataclasses import dataclass, replace
 
 from gclint import dialects
-from gclint.config import ConfigError, find_config, parse_heads
+from gclint.config import ConfigError, clear_found, parse_heads
 from gclint.engine import FileResult, Options
 from gclint.explain import Explainer, Explanation
 from gclint.fixes import plan_fixes
@@ -139,7 +139,7 @@ def document_options(path: str | None, settings: Settings) -> tuple[Options, str
     overrides = settings.overrides()
     if path is None:
         return replace(Options(), **overrides), None
-    find_config.cache_clear()  # a configuration file written since the last check is seen
+    clear_found()  # a configuration file written since the last check is seen
     try:
         return options_for(path, Options(), overrides, None), None
     except ConfigError as exc:

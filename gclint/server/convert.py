@@ -110,7 +110,7 @@ def to_diagnostic(f: Finding, geo: Geometry) -> Diagnostic:
 
 
 def diagnostics(findings: Iterable[Finding], geo: Geometry, limit: int | None = None) -> list[Diagnostic]:
-    out = []
+    out: list[Diagnostic] = []
     for f in findings:
         if limit is not None and len(out) >= limit:
             break

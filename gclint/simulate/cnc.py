@@ -343,7 +343,7 @@ class MachinekitSimulator(CncSimulator):
         printing = layers is not None and move is not None and move.e is not None and not self.ve
         if printing and layers.printing(self.logical(2), self.line):  # type: ignore[union-attr]
             self.dirty()
-            move.look = self.look()  # type: ignore[union-attr]
+            move.look = self.look()
         return move
 
     def predefined(self, cmd: Command, n: int) -> Move | None:
@@ -373,6 +373,7 @@ class MachinekitSimulator(CncSimulator):
                 self.set_frame(i, self.frame_label(i))
         if bare or "A" in params:
             self.e_pos = 0.0
+        return None
 
     def tool_change(self, cmd: Command, n: int) -> None:
         super().tool_change(cmd, n)

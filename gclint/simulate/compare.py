@@ -35,8 +35,9 @@ import re
 import zlib
 from bisect import bisect_right
 from collections import deque
-from collections.abc import Iterable, Iterator
+from collections.abc import Callable, Iterable, Iterator
 from dataclasses import dataclass, field
+from typing import Any
 
 from gclint.simulate.trace import ASPECTS, LOOK_ASPECTS, NATIVE, PART_FAN, EndState, Move
 
@@ -215,7 +216,7 @@ def _plane_axes(plane: int) -> tuple[int, int]:
 def _arc_progress(point: tuple, move: Move, before: float) -> float | None:
     """How far round the source arc an output point is (radians from its start, in its direction), if it
     lies on the arc beyond ``before``; None if not (off the circle, backwards, or past the end)."""
-    plane, (cu, cv), r, clockwise, a0, turn = move.arc  # type: ignore[misc]
+    plane, (cu, cv), r, clockwise, a0, turn = move.arc
     u, v = _plane_axes(plane)
     pu, pv = point[u], point[v]
     if pu is None or pv is None or abs(math.hypot(pu - cu, pv - cv) - r) > CHORD_TOLERANCE + POSITION_TOLERANCE:
@@ -321,7 +322,7 @@ def _run(s: Move, out: _Peek) -> list[Move] | None:
 
 def _arc_done(point: tuple, move: Move, progress: float) -> bool:
     """Whether an output point at the arc's end point closes it (and is not the end of an earlier lap)."""
-    turn = move.arc[5]  # type: ignore[index]
+    turn = move.arc[5]
     return progress > turn - 2 * math.pi + 1e-6 or turn <= 2 * math.pi + 1e-6
 
 
@@ -422,7 +423,7 @@ def _primes(events: tuple) -> str:
     return ", ".join(f"{kind} {_head(head)}" for kind, head in events)
 
 
-_DESCRIBE = {
+_DESCRIBE: dict[str, Callable[[Any], str]] = {
     "head": _head,
     "temp": _temp,
     "fan": lambda v: f"{_num(v * 100, 1)} %",
@@ -687,35 +688,37 @@ class Diff:
         for aspect in list(self.open):
             self.close(aspect)
         # pauses, dwells, unprimes and primes after the last working move
-        for aspect, a, b, same, describe in (
+        trailing: tuple[tuple[str, Any, Any, Callable[[Any, Any], bool], Callable[[Any], str]], ...] = (
             ("pause", (source.pauses, source.trail), (output.pauses, output.trail), _same_pauses, _pause_trail),
             ("dwell", source.dwell, output.dwell, _same_dwell, _dwell),
             ("prime", source.primes, output.primes, lambda x, y: x == y, _primes),
-        ):
+        )
+        for aspect, a, b, same, describe in trailing:
             if same(a, b):
                 continue
             diff = Difference(aspect, source.line or None, output.line or None, describe(a), describe(b))
             if self.windows:
                 diff.explained_by = self.explanations.find(aspect, self.last_line, 1 << 62)  # type: ignore[union-attr]
             self.differences.append(diff)
-        for name, a, b in (
+        ends: tuple[tuple[str, dict, dict], ...] = (
             ("program", {"end": "ended"} if source.ended else {}, {"end": "ended"} if output.ended else {}),
             ("heaters", source.heaters, output.heaters),
             ("fans", source.fans, _fold_part_fan(source.fans, output.fans)),
             ("spindles", source.spindles, output.spindles),
             ("emitters", {k: "on" for k in source.emitters}, {k: "on" for k in output.emitters}),
             ("aux", source.aux, output.aux),
-        ):
-            if _same_end(a, b):
+        )
+        for name, end_a, end_b in ends:
+            if _same_end(end_a, end_b):
                 continue
             percent = name == "fans"
             if name == "program":
-                texts = tuple("an end of program (M30)" if x else "no end of program" for x in (a, b))
+                text_a, text_b = ("an end of program (M30)" if x else "no end of program" for x in (end_a, end_b))
             else:
-                texts = (f"{name}: {_end(a, percent)}", f"{name}: {_end(b, percent)}")
-            diff = Difference("end", source.line or None, output.line or None, *texts)
+                text_a, text_b = f"{name}: {_end(end_a, percent)}", f"{name}: {_end(end_b, percent)}"
+            diff = Difference("end", source.line or None, output.line or None, text_a, text_b)
             if self.windows:
-                diff.explained_by = self._explain_end(name, a, b, source.marks)
+                diff.explained_by = self._explain_end(name, end_a, end_b, source.marks)
             self.differences.append(diff)
         if self.explanations is not None and self.explanations.reference is not None:
             self._match(self.explanations.reference)

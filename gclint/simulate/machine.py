@@ -200,7 +200,7 @@ class Simulator:
                         f = number(cmd.params["F"])
                         if f is not None:
                             self.feed = f * self.scale
-                    handler = handlers.get(cmd.code)  # type: ignore[arg-type]
+                    handler = handlers.get(cmd.code)
                     if handler is not None:
                         move = handler(cmd, n)
                     else:
@@ -473,7 +473,7 @@ class Simulator:
             if i is None or (i < 2 and not xy):
                 continue
             try:
-                v = float(text)  # type: ignore[arg-type]
+                v = float(text)
             except (TypeError, ValueError):
                 new[i] = None
                 continue
@@ -569,8 +569,9 @@ class Simulator:
                 # "Tools are driven using multiple values in the E field of G1 commands, each controlling the
                 # corresponding drive" (RepRap page, M563; M160): the move deposits every drive's amount
                 amounts = [number(part) for part in text.split(":")]
-                if all(a is not None for a in amounts):
-                    return sum(amounts) * self.e_scale()  # type: ignore[misc]
+                known = [a for a in amounts if a is not None]
+                if len(known) == len(amounts):
+                    return sum(known) * self.e_scale()
             return None
         v *= self.e_scale()
         if self.e_absolute:
@@ -667,8 +668,8 @@ class Simulator:
             r = number(params.get("R")) if "R" in params else None
             if r is not None and self.pos[i_a] is not None and self.pos[i_b] is not None:
                 centre = _centre_from_radius(
-                    self.pos[i_a] - sa,  # type: ignore[operator]
-                    self.pos[i_b] - sb,  # type: ignore[operator]
+                    self.pos[i_a] - sa,
+                    self.pos[i_b] - sb,
                     r * self.scale,
                     cmd.code == "G2",
                 )

@@ -114,8 +114,9 @@ def exponents(cmd: Command) -> list[tuple[Word, Word, str]]:
     firmware (RepRapFirmware reads ``C7.06e-8`` as one number), so the rules of a dialect say whether to report
     it (HY067 on Hyrel, whose pages do not say)."""
     words = cmd.words
-    if cmd.word is not None:
-        words = (cmd.word, *words)
+    code_word = cmd.word
+    if isinstance(code_word, Word):  # (not a Name: SET_FAN_SPEED or o100 is no number)
+        words = (code_word, *words)
     found = []
     for previous, word in zip(words, words[1:], strict=False):
         number = _exponent_of(previous, word)

@@ -289,12 +289,12 @@ def _general(raw: str, body: str, comments: tuple[Comment, ...]) -> ParsedLine |
         value = m.group(2)
         pieces.append(Word(m.group(1).upper(), value, NUMBER, text, m.start() + 1))
     line_number = None
-    if pieces and pieces[0].letter == "N" and _LINENO_VALUE.fullmatch(pieces[0].value):  # type: ignore[arg-type]
+    if pieces and pieces[0].letter == "N" and _LINENO_VALUE.fullmatch(pieces[0].value):
         line_number = pieces.pop(0)
     if pieces and pieces[0].letter == "O":
         return None  # an O-word statement (LinuxCNC), see grammar.lark
     for piece in pieces:
-        if piece.letter in "GM" and normalize_code(piece.letter, piece.value) in TEXT_CODES:  # type: ignore[arg-type]
+        if piece.letter in "GM" and normalize_code(piece.letter, piece.value) in TEXT_CODES:
             return None
     pieces.extend(comments)
     return assemble(pieces, None, line_number)

@@ -67,7 +67,7 @@ def _plugins() -> dict:
     """lark-cython, when installed, about doubles the speed of this fallback parser (measured in
     bench/bench_parser.py); the trees are the same."""
     try:
-        import lark_cython  # type: ignore[import-not-found]
+        import lark_cython
     except ImportError:  # pragma: no cover - optional accelerator
         return {}
     return {"_plugins": lark_cython.plugins}
@@ -153,6 +153,21 @@ def _first_token(tree: Tree | Token) -> Token:
     return tree
 
 
+def _token(node: Tree | Token) -> Token:
+    """A child the grammar makes a token (a tree there: the grammar and the builder are out of step)."""
+    if isinstance(node, Tree):  # pragma: no cover
+        raise AssertionError(f"unexpected rule {node.data}")
+    return node
+
+
+def _column(node: Tree | Token) -> int:
+    """The column of a token (the grammar's tokens all have one: lark's ``propagate_positions``)."""
+    column = _token(node).column
+    if column is None:  # pragma: no cover
+        raise AssertionError(f"no column for {node!r}")
+    return column
+
+
 def split_letter(text: str) -> tuple[str, str]:
     """``"X -5"`` -> ``("X", "-5")``: the word letter (upper-cased) and the value's source text."""
     return text[0].upper(), text[1:].lstrip(" \t")
@@ -219,37 +234,37 @@ class _Builder:
                 tok = part.children[0]
                 letter, value = split_letter(str(tok))
                 kind = LIST if ":" in value else NUMBER
-                pieces.append(Word(letter, value, kind, str(tok), tok.column))
+                pieces.append(Word(letter, value, kind, str(tok), _column(tok)))
             elif data == "string_word":
                 tok = part.children[0]
                 letter, value = split_letter(str(tok))
-                pieces.append(Word(letter, value, STRING, str(tok), tok.column))
+                pieces.append(Word(letter, value, STRING, str(tok), _column(tok)))
             elif data == "query_word":
                 tok = part.children[0]
-                pieces.append(Word(str(tok)[0].upper(), "?", QUERY, str(tok), tok.column))
+                pieces.append(Word(str(tok)[0].upper(), "?", QUERY, str(tok), _column(tok)))
             elif data == "flag_word":
                 tok = part.children[0]
-                pieces.append(Word(str(tok).upper(), None, FLAG, str(tok), tok.column))
+                pieces.append(Word(str(tok).upper(), None, FLAG, str(tok), _column(tok)))
             elif data == "expr_word":
                 tok = part.children[0]
                 text = _text(part)
                 letter, value = split_letter(text)
                 value_kind = EXPRESSION if value.lstrip("+-")[:1] in "[{" else PARAMETER
-                pieces.append(Word(letter, value, value_kind, text, tok.column))
+                pieces.append(Word(letter, value, value_kind, text, _column(tok)))
             elif data == "text_command":
                 code_tok = part.children[0]
                 letter, value = split_letter(str(code_tok))
-                word = Word(letter, value, NUMBER, str(code_tok), code_tok.column)
+                word = Word(letter, value, NUMBER, str(code_tok), _column(code_tok))
                 arg = None
                 if len(part.children) > 1:
                     arg_tok = part.children[1]
-                    arg = Text(str(arg_tok), arg_tok.column)
+                    arg = Text(str(arg_tok), _column(arg_tok))
                 pieces.append(TextCommand(word, arg))
             elif data == "assignment":
                 first = _first_token(part)
                 text = _text(part)
                 target, _, value = text.partition("=")
-                pieces.append(Assignment(Text(text, first.column), target.strip(), value.strip()))
+                pieces.append(Assignment(Text(text, _column(first)), target.strip(), value.strip()))
             else:  # pragma: no cover
                 raise AssertionError(f"unexpected rule {data}")
         return pieces
@@ -280,11 +295,11 @@ class _Builder:
         name_tok = tree.children[0]
         args = None
         comments = []
-        for child in tree.children[1:]:
+        for child in map(_token, tree.children[1:]):
             if child.type in ("META_REST", "EXT_ARGS", "HOST_ARGS"):
-                args = Text(str(child), child.column)
+                args = Text(str(child), _column(child))
             else:
-                comments.append(Comment(str(child), child.column, str(child)[0]))
+                comments.append(Comment(str(child), _column(child), str(child)[0]))
         name = str(name_tok)
         if kind == EXTENDED:
             code = name.upper()
@@ -292,7 +307,9 @@ class _Builder:
         else:
             code = name
             params = {}
-        command = Command(code, kind, name_tok.column, params, word=Name(name, name_tok.column), words=(), args=args)
+        command = Command(
+            code, kind, _column(name_tok), params, word=Name(name, _column(name_tok)), words=(), args=args
+        )
         return ParsedLine(
             commands=(command,),
             comments=tuple(comments),
@@ -305,7 +322,7 @@ class _Builder:
         name_tok = tree.children[0]
         name = str(name_tok)
         rest = tree.children[1:]
-        if name_tok.type == "OWORD_OPEN":  # O[#2 * 10] call, o#<sub> call
+        if _token(name_tok).type == "OWORD_OPEN":  # O[#2 * 10] call, o#<sub> call
             name += _text(rest[0])
             rest = rest[1:]
         label = name[1:].strip(" \t")
@@ -327,13 +344,13 @@ class _Builder:
                     keyword = str(child).lower()
                 extra.append(Text(str(child), child.column))
             else:
-                extra.append(Text(_text(child), _first_token(child).column))
+                extra.append(Text(_text(child), _column(_first_token(child))))
         command = Command(
             "O",
             OWORD,
-            name_tok.column,
+            _column(name_tok),
             {"label": label, "keyword": keyword},
-            word=Name(name, name_tok.column),
+            word=Name(name, _column(name_tok)),
             words=(),
         )
         return ParsedLine(

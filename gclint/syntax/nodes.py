@@ -59,11 +59,7 @@ class Node:
         return self.column + len(self.text)
 
     def __eq__(self, other: object) -> bool:
-        return (
-            type(self) is type(other)
-            and self.text == other.text  # type: ignore[attr-defined]
-            and self.column == other.column  # type: ignore[attr-defined]
-        )
+        return type(self) is type(other) and self.text == other.text and self.column == other.column
 
     def __hash__(self) -> int:
         return hash((type(self).__name__, self.text, self.column))

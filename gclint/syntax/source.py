@@ -30,7 +30,7 @@ import sys
 from collections.abc import Iterator
 from itertools import repeat
 from operator import itemgetter
-from typing import BinaryIO
+from typing import BinaryIO, Protocol, Self, runtime_checkable
 
 CHUNK = 1 << 20
 HEAD = 1 << 16
@@ -113,6 +113,27 @@ class Overlong(str):
         return obj
 
 
+class ByteStream(Protocol):
+    """What ``Source`` reads: a binary file, standard input, or a wrapper (``notgcode.CutAtNul``)."""
+
+    def read(self, size: int = -1, /) -> bytes: ...
+
+    def close(self) -> None: ...
+
+
+@runtime_checkable
+class _Seekable(Protocol):
+    """A stream whose end can be read before its middle (``Source.tail_text``)."""
+
+    def seekable(self) -> bool: ...
+
+    def tell(self) -> int: ...
+
+    def seek(self, offset: int, whence: int = 0, /) -> int: ...
+
+    def read(self, size: int = -1, /) -> bytes: ...
+
+
 class _Hashing:
     """A byte stream that hashes what is read from it (the cache key is the hash of the bytes checked)."""
 
@@ -142,7 +163,7 @@ class Source:
     UTF-16 variant found; ``bom`` is the byte order mark to write back (may be empty).
     """
 
-    def __init__(self, stream: BinaryIO, display: str, *, close: bool = False, cut_long_lines: bool = False) -> None:
+    def __init__(self, stream: ByteStream, display: str, *, close: bool = False, cut_long_lines: bool = False) -> None:
         self.display = display
         self._stream = stream
         self._close = close
@@ -181,13 +202,13 @@ class Source:
         return self._hashing.hexdigest()
 
     @classmethod
-    def open(cls, path: str, *, digest: bool = False, cut_long_lines: bool = False) -> Source:
+    def open(cls, path: str, *, digest: bool = False, cut_long_lines: bool = False) -> Self:
         """Open a file path (``-`` for standard input).  With ``digest``, a regular file is hashed as it is
         read (``sha256``); pipes and devices are read once as a stream and never hashed."""
         if path == "-":
             return cls(stdin(), "-", cut_long_lines=cut_long_lines)
         try:
-            stream: BinaryIO = open(path, "rb")  # noqa: SIM115 - closed by Source.close / iteration end
+            file: BinaryIO = open(path, "rb")  # noqa: SIM115 - closed by Source.close / iteration end
         except FileNotFoundError:
             raise SourceError(f"{path}: no such file") from None
         except IsADirectoryError:
@@ -197,22 +218,21 @@ class Source:
         except OSError as exc:
             raise SourceError(f"{path}: cannot open: {exc.strerror or exc}") from None
         try:
-            if digest and stat.S_ISREG(os.fstat(stream.fileno()).st_mode):
-                stream = _Hashing(stream)  # type: ignore[assignment]
-            return cls(stream, path, close=True, cut_long_lines=cut_long_lines)
+            hashed = digest and stat.S_ISREG(os.fstat(file.fileno()).st_mode)
+            return cls(_Hashing(file) if hashed else file, path, close=True, cut_long_lines=cut_long_lines)
         except OSError as exc:
-            stream.close()
+            file.close()
             raise SourceError(f"{path}: cannot read: {exc.strerror or exc}") from None
         except BaseException:
-            stream.close()
+            file.close()
             raise
 
     @classmethod
-    def from_bytes(cls, data: bytes, display: str = "<bytes>", *, cut_long_lines: bool = False) -> Source:
+    def from_bytes(cls, data: bytes, display: str = "<bytes>", *, cut_long_lines: bool = False) -> Self:
         return cls(io.BytesIO(data), display, cut_long_lines=cut_long_lines)
 
     @classmethod
-    def from_text(cls, text: str, display: str = "<text>", *, cut_long_lines: bool = False) -> Source:
+    def from_text(cls, text: str, display: str = "<text>", *, cut_long_lines: bool = False) -> Self:
         return cls.from_bytes(text.encode("utf-8", "surrogateescape"), display, cut_long_lines=cut_long_lines)
 
     @property
@@ -244,6 +264,8 @@ class Source:
         if self._head_eof or self._consumed:
             return None
         stream = self._stream._stream if isinstance(self._stream, _Hashing) else self._stream
+        if not isinstance(stream, _Seekable):
+            return None
         try:
             if not stream.seekable():
                 return None
@@ -281,7 +303,7 @@ class Source:
     def chunks(self) -> Iterator[list[tuple[str, str]]]:
         """Yield lists of ``(text, ending)`` pairs, in file order, a chunk of the file at a time."""
         for block in self.blocks():
-            yield block if block.__class__ is list else split_lines(block)
+            yield split_lines(block) if isinstance(block, str) else block
 
     def blocks(self) -> Iterator[str | list[tuple[str, str]]]:
         """The chunks of ``chunks()``, each either a list of ``(text, ending)`` pairs or, most often, the

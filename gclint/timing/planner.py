@@ -199,10 +199,10 @@ class Planner:
                 junction = self._jerk_junction(cruise, (ix, iy, iz, ie), safe, prev_cruise)
             else:
                 junction = safe
-        elif self._deviation is not None:
+        elif (deviation := self._deviation) is not None:
             safe = 0.0
             if prev_cruise > 0.0001:
-                junction = self._deviation_junction(cruise, (ix, iy, iz, ie), accel, distance, prev_cruise)
+                junction = self._deviation_junction(cruise, (ix, iy, iz, ie), accel, distance, prev_cruise, deviation)
             else:
                 junction = 0.0
         else:  # no junction rule known: from rest (``from_rest``)
@@ -260,7 +260,7 @@ class Planner:
         return junction
 
     def _deviation_junction(
-        self, cruise: float, into: tuple, accel: float, distance: float, prev_cruise: float
+        self, cruise: float, into: tuple, accel: float, distance: float, prev_cruise: float, deviation: float
     ) -> float:
         """Marlin 2's junction deviation (planner.cpp, ``#if HAS_JUNCTION_DEVIATION``): the speed at which the
         corner's centripetal acceleration, on a circle ``deviation`` from the corner, is the acceleration."""
@@ -292,7 +292,7 @@ class Planner:
             if me and junction_accel * part > me:
                 junction_accel = me / part
         sin_half = _SQRT(0.5 * (1 - cos_theta))
-        v2 = junction_accel * self._deviation * sin_half / (1 - sin_half)
+        v2 = junction_accel * deviation * sin_half / (1 - sin_half)
         if distance < 1 and cos_theta < -0.7071067812:
             # a short segment of a curve: the curve's own radius (JD_HANDLE_SMALL_SEGMENTS)
             theta = math.acos(-cos_theta)

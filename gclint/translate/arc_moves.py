@@ -12,11 +12,12 @@ import math
 import gclint.translate.arcs as arcs
 from gclint.syntax.nodes import Command
 from gclint.translate.findings import TR_APPROX, TR_NOTE, TR_UNTRANSLATABLE
+from gclint.translate.mixin import TranslatorMixin
 from gclint.translate.output import fmt, rewrite
 from gclint.translate.words import INCH, num
 
 
-class ArcMoves:
+class ArcMoves(TranslatorMixin):
     def arc_mode(self, cmd: Command) -> None:
         """G90.1/G91.1 (LinuxCNC, "Arc Distance Mode"): I, J and K are the centre's coordinates, or offsets from
         the start.  Hyrel's are offsets: each arc under G90.1 is written with the offsets of its centre."""
@@ -95,12 +96,12 @@ class ArcMoves:
         add: tuple[str, ...] = ()
         values: dict[str, str | None] = dict(centre)
         if "R" in params:
-            centre = self._centre(cmd)
-            if centre is None:
+            ij = self._centre(cmd)
+            if ij is None:
                 return
             drop += "R"
             scale = INCH if self.inch else 1.0
-            values["I"], values["J"] = fmt(centre[0] * scale), fmt(centre[1] * scale)
+            values["I"], values["J"] = fmt(ij[0] * scale), fmt(ij[1] * scale)
             self.report(
                 TR_NOTE, "R-form arc written with its centre I/J (Hyrel's G2/G3 take no R)", key="arc-R", cmd=cmd
             )

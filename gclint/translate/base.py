@@ -22,7 +22,7 @@ plain moves), arc_moves.py (G2/G3), modal.py (units, positioning, G92, workspace
 from __future__ import annotations
 
 import re
-from collections.abc import Callable, Iterator
+from collections.abc import Callable, Iterable, Iterator
 from typing import ClassVar
 
 from gclint.dialects.base import Dialect
@@ -43,6 +43,7 @@ from gclint.translate.findings import (
     dropped_aspects,
 )
 from gclint.translate.heads import Heads
+from gclint.translate.mixin import TranslatorMixin
 from gclint.translate.modal import Modal
 from gclint.translate.motion import Motion
 from gclint.translate.options import TranslateOptions
@@ -116,7 +117,7 @@ class HyrelTranslator(LineWriter, Heads, Program, Motion, ArcMoves, Modal, Spind
         self.annotate = self.opts.annotate
         self.positions = frozenset(self.opts.printer.positions)
         # (the class's functions, called with the translator: bound methods here would make a reference cycle)
-        self.handlers: dict[str, Callable[[HyrelTranslator, Command], None]] = {}
+        self.handlers: dict[str | None, Callable[[TranslatorMixin, Command], None]] = {}
         for klass in reversed(type(self).__mro__):
             for code, name in getattr(klass, "HANDLERS", {}).items():
                 self.handlers[code] = getattr(type(self), name)
@@ -212,7 +213,7 @@ class HyrelTranslator(LineWriter, Heads, Program, Motion, ArcMoves, Modal, Spind
         self.edit = None
         return fitted
 
-    def translate_line(self, line: Line, result: TranslationResult) -> Iterator[str]:  # type: ignore[override]
+    def translate_line(self, line: Line, result: TranslationResult) -> Iterable[str]:
         """The output of one source line (text and line endings).  Every return point keeps the lines
         within Hyrel's 100 characters (``_fit``)."""
         ending = line.ending
@@ -237,10 +238,10 @@ class HyrelTranslator(LineWriter, Heads, Program, Motion, ArcMoves, Modal, Spind
                     )
                     return self.translate_line(short, result)
             if parsed.kind == "error" and self.TEXT_PAUSE is not None:
-                short = _pause_without_text(self.TEXT_PAUSE, line.raw)
-                if short is not None:
+                kept = _pause_without_text(self.TEXT_PAUSE, line.raw)
+                if kept is not None:
                     # the pause kept, its message (text the grammar cannot read) dropped
-                    pause = Line(line.number, short, ending, parse_line(short))
+                    pause = Line(line.number, kept, ending, parse_line(kept))
                     if pause.parsed.kind != "error":
                         self.line, self.edit, self.result = pause, None, result
                         self.report(
@@ -255,12 +256,12 @@ class HyrelTranslator(LineWriter, Heads, Program, Motion, ArcMoves, Modal, Spind
                 dropped = self.edit = LineEdit(line)
                 dropped.dropped = dropped.changed = True
                 self.report(TR_UNTRANSLATABLE, "the line could not be parsed; dropped", key="unparsed")
-                return self._checked(line, dropped.render(self.annotate, self.default_ending))  # type: ignore[return-value]
+                return self._checked(line, dropped.render(self.annotate, self.default_ending))
             if not self.evalues and parsed.comments:
                 self.layer_hint(line.raw)
             if len(line.raw) > LINE_LIMIT:
-                return self._fit(line, (line.raw, ending))  # type: ignore[return-value]
-            return (line.raw, ending)  # type: ignore[return-value]
+                return self._fit(line, (line.raw, ending))
+            return (line.raw, ending)
         self.line = line
         self.edit = None
         self.result = result
@@ -270,7 +271,7 @@ class HyrelTranslator(LineWriter, Heads, Program, Motion, ArcMoves, Modal, Spind
             # the common case: one command, no expressions possible (Marlin)
             cmd = commands[0]
             self.index = 0
-            handler = self.handlers.get(cmd.code)  # type: ignore[arg-type]
+            handler = self.handlers.get(cmd.code)
             if handler is None:
                 self.fallback(cmd)
             else:
@@ -320,7 +321,7 @@ class HyrelTranslator(LineWriter, Heads, Program, Motion, ArcMoves, Modal, Spind
                         )
                         self.replace(cmd, rewrite(cmd, drop="@^"))
                     if "F" in params:
-                        self.modal_feed(cmd)  # type: ignore[attr-defined]  (then the command's own handler)
+                        self.modal_feed(cmd)  # (then the command's own handler)
                 if check and (cmd.kind == GCODE or cmd.kind == IMPLICIT) and has_expression(cmd):
                     self.untranslatable(
                         cmd,
@@ -329,7 +330,7 @@ class HyrelTranslator(LineWriter, Heads, Program, Motion, ArcMoves, Modal, Spind
                         aspects=("*", "offsets") if cmd.code in LASTING_OFFSETS else None,
                     )
                 else:
-                    handler = handlers.get(cmd.code)  # type: ignore[arg-type]
+                    handler = handlers.get(cmd.code)
                     if handler is None:
                         self.fallback(cmd)
                     else:
@@ -342,15 +343,15 @@ class HyrelTranslator(LineWriter, Heads, Program, Motion, ArcMoves, Modal, Spind
         if edit is None:
             self.hy.wrote_command = True
             if len(line.raw) > LINE_LIMIT:
-                return self._fit(line, (line.raw, ending))  # type: ignore[return-value]
-            return (line.raw, ending)  # type: ignore[return-value]
+                return self._fit(line, (line.raw, ending))
+            return (line.raw, ending)
         if edit.changed:
             result.lines_changed += 1
         if not self.hy.wrote_command and (
             edit.before or edit.after or any(edit.replaced.get(i, True) for i in range(len(commands)))
         ):
             self.hy.wrote_command = True
-        return self._checked(line, edit.render(self.annotate, self.default_ending))  # type: ignore[return-value]
+        return self._checked(line, edit.render(self.annotate, self.default_ending))
 
     def finish(self, result: TranslationResult) -> Iterator[str]:
         footer = not self.hy.ended and self.hy.wrote_command
@@ -404,9 +405,9 @@ class HyrelTranslator(LineWriter, Heads, Program, Motion, ArcMoves, Modal, Spind
         if kind == IMPLICIT:
             self.implicit_move(cmd)
             return
-        entry = self.DROPPED.get(code)  # type: ignore[arg-type]
-        if entry is not None:
-            self.remove(cmd, entry[0], entry[1], key=code, aspects=dropped_aspects(code, entry[0]))  # type: ignore[arg-type]
+        if code is not None and code in self.DROPPED:
+            tr, reason = self.DROPPED[code]
+            self.remove(cmd, tr, reason, key=code, aspects=dropped_aspects(code, tr))
             return
         if kind == GCODE and code and code[0] == "T":
             self.tool_command(cmd)

@@ -95,7 +95,7 @@ class CarveraToHyrel(CncTranslator):
         self.laser_fire = False  # M3 in laser mode
         self.laser_power = 0.0  # percent, modal (S on moves)
         self.laser_power_written: float | None = None
-        self.optional_stop = False  # M334 turned optional stop mode on (M333 off)
+        self.m1_pauses = False  # M334 turned optional stop mode on (M333 off)
 
     def focus_address(self) -> int | None:
         return self.opts.spindle_address()
@@ -177,14 +177,14 @@ class CarveraToHyrel(CncTranslator):
         """M333 "Turn off optional stop mode", M334 "Turn on optional stop mode. See M01" (carvera-mcodes.md;
         the firmware's own test, corpus TEST_M01_M333_M334_OptionalStop.cnc: after M334 "The program should
         pause" at each M01).  Hyrel has no optional stop: the translator decides at each M1."""
-        self.optional_stop = cmd.code == "M334"
-        state = "on: the M1 after it become pauses (M0)" if self.optional_stop else "off: the M1 after it are dropped"
+        self.m1_pauses = cmd.code == "M334"
+        state = "on: the M1 after it become pauses (M0)" if self.m1_pauses else "off: the M1 after it are dropped"
         self.remove(cmd, TR_NOTE, f"optional stop mode {state}", key=("optional-stop", cmd.code))
 
     def optional_stop(self, cmd: Command) -> None:
         """M1 pauses when optional stop mode is on (M334), else it does nothing (carvera-mcodes.md M1, M333,
         M334)."""
-        if self.optional_stop:
+        if self.m1_pauses:
             self.pause_command(cmd, "M0 ; gclint: optional stop (M334)")
             self.report(
                 TR_NOTE,

@@ -6,12 +6,11 @@ the end of program codes.  research/dialects.md 2.2 and 2.3.
 from __future__ import annotations
 
 import re
+from abc import abstractmethod
 from typing import ClassVar
 
 from gclint.syntax.nodes import Command
 from gclint.translate.base import HyrelTranslator
-from gclint.translate.output import rewrite
-from gclint.translate.words import fast_float
 
 _TOOL_NUMBER = re.compile(r"-?[0-9]{1,6}")  # (ASCII digits: str.isdigit() also takes "²")
 # The rows Machinekit and Carvera share (the rows every source shares are HyrelTranslator.HANDLERS).
@@ -42,15 +41,13 @@ class CncTranslator(HyrelTranslator):
         super().__init__(source, target, options)
         self.prepared: int | None = None  # the tool a T word prepared for the next M6
 
-    def modal_feed(self, cmd: Command) -> None:
-        """An F word on a line with no motion (``G54 G18 G21 F400``): LinuxCNC and the Carvera set the feed
-        of later moves from it.  Hyrel's G1 feed is modal: the F is dropped here and written on the next
-        working move that needs it."""
-        f = fast_float(cmd.params.get("F"))
-        if f is None:
-            return
-        self.state.feed = f
-        self.replace(cmd, rewrite(cmd, drop="F"))
+    @abstractmethod
+    def spindle(self, cmd: Command) -> None:
+        """M3/M4 (``CNC_HANDLERS``): the source's spindle, in the source's speed unit."""
+
+    @abstractmethod
+    def tool_change(self, cmd: Command) -> None:
+        """M6 (``CNC_HANDLERS``): the change to the tool a T word prepared (``prepared``) or M6 T names."""
 
     def tool_command(self, cmd: Command) -> None:
         number = (cmd.code or "T")[1:]

@@ -7,7 +7,7 @@ from __future__ import annotations
 
 import re
 from array import array
-from collections.abc import Callable, Iterator
+from collections.abc import Callable, Iterable, Iterator
 from dataclasses import dataclass, field
 
 from gclint.dialects.base import Dialect
@@ -69,7 +69,7 @@ class Translator:
         the job's own lines, and a round trip gives back the job byte for byte)."""
         return None
 
-    def translate_line(self, line: Line, result: TranslationResult) -> Iterator[str]:
+    def translate_line(self, line: Line, result: TranslationResult) -> Iterable[str]:
         yield line.render()
 
     def finish(self, result: TranslationResult) -> Iterator[str]:

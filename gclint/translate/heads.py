@@ -15,12 +15,13 @@ from __future__ import annotations
 
 from gclint.syntax.nodes import Command
 from gclint.translate.findings import TR_APPROX, TR_LOST, TR_NO_TOOL, TR_NOTE
+from gclint.translate.mixin import TranslatorMixin
 from gclint.translate.options import ToolMapClash
 from gclint.translate.output import fmt
 from gclint.translate.words import num
 
 
-class Heads:
+class Heads(TranslatorMixin):
     # -- addresses -------------------------------------------------------------------------------------
 
     def head(self, index: int | None = None, what: str = "tool") -> int | None:
@@ -29,17 +30,19 @@ class Heads:
         the focused head's fan).  The active tool with no head of its own: the head that prints for it
         (the focused one; its T command was reported)."""
         if what == "fan":
-            address = self.opts.fan_map.get(index)  # type: ignore[arg-type]
+            if index is None:
+                return self.head(None)
+            address = self.opts.fan_map.get(index)
             if address is None:
-                if index == 0 or index is None:
+                if index == 0:
                     return self.head(None)
                 self._no_tool(what, index)
                 return None
-            return self._on_printer(address, what, index)  # type: ignore[arg-type]
+            return self._on_printer(address, what, index)
         active = index is None
-        if active:
+        if index is None:
             index = self.current_tool()
-        if self.single_nozzle:  # type: ignore[attr-defined]  (one nozzle and heater for every tool: base.read_job)
+        if self.single_nozzle:  # (one nozzle and heater for every tool: base.read_job)
             index = 0
         cache = self._head_cache
         if index in cache:
@@ -47,11 +50,11 @@ class Heads:
             if address is None:
                 if active and self.hy.focus is not None:
                     return self.hy.focus
-                self._no_tool(what, index, self.opts.tool(index))  # type: ignore[arg-type]
+                self._no_tool(what, index, self.opts.tool(index))
             return address
-        address = cache[index] = self._on_printer(self.opts.tool(index), what, index)  # type: ignore[arg-type]
+        address = cache[index] = self._on_printer(self.opts.tool(index), what, index)
         if address is not None:
-            self._head_user(index, address)  # type: ignore[arg-type]
+            self._head_user(index, address)
         if address is None and active and self.hy.focus is not None:
             return self.hy.focus
         return address
@@ -93,7 +96,7 @@ class Heads:
         )
         if what == "tool" and self.hy.focus is not None:
             message += f"; the head that was printing (T{self.hy.focus}) goes on printing for it"
-        elif what == "tool" and self.SPINDLE_FOLLOWS_TOOL:  # type: ignore[attr-defined]  (CNC: cnc.focus_address)
+        elif what == "tool" and self.SPINDLE_FOLLOWS_TOOL:  # (CNC: cnc.focus_address)
             message += f"; the spindle head (T{self.opts.spindle_address()}) works for it"
         self.report(TR_NO_TOOL, message, key=(what, index))
 
@@ -116,7 +119,7 @@ class Heads:
             self.consume(cmd)
             return
         old, self.hy.focus = self.hy.focus, address
-        self.spindle_to_head(old, address)  # type: ignore[attr-defined]  (spindle.Spindles)
+        self.spindle_to_head(old, address)
         text = f"T{address}"
         if cmd.code == text and not cmd.params:
             return
@@ -140,7 +143,7 @@ class Heads:
                 aspects=(),
             )
             return
-        if self.single_nozzle and number != "0":  # type: ignore[attr-defined]
+        if self.single_nozzle and number != "0":
             self.report(
                 TR_APPROX,
                 "single-nozzle multi-material (single_extruder_multi_material = 1): the tools are filaments through "

@@ -525,7 +525,7 @@ class MarlinToHyrel(HyrelTranslator):
             if address != self.hy.focus:
                 self.after(f"T{address}", note="RepRapFirmware's M109 T selects the tool")
                 old, self.hy.focus = self.hy.focus, address
-                self.spindle_to_head(old, address)  # type: ignore[attr-defined]  (spindle.Spindles)
+                self.spindle_to_head(old, address)
             if index != self.state.tool:
                 self.sync_due = True
             self.state.tool = index  # the source interpreter does not select it: the translator's view

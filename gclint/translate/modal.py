@@ -8,11 +8,12 @@ from __future__ import annotations
 
 from gclint.syntax.nodes import GCODE, Command
 from gclint.translate.findings import TR_APPROX, TR_DROPPED, TR_NOTE, TR_UNTRANSLATABLE
+from gclint.translate.mixin import TranslatorMixin
 from gclint.translate.output import fmt, rewrite
 from gclint.translate.words import INCH, num
 
 
-class Modal:
+class Modal(TranslatorMixin):
     def keep(self, cmd: Command) -> None:
         """Same code, same meaning."""
 

@@ -8,6 +8,7 @@ from __future__ import annotations
 
 from gclint.syntax.nodes import GCODE, Command
 from gclint.translate.findings import TR_APPROX, TR_LOST, TR_NOTE, TR_UNTRANSLATABLE
+from gclint.translate.mixin import TranslatorMixin
 from gclint.translate.output import fmt, rewrite
 from gclint.translate.words import INCH, SCALED, fast_float, num
 
@@ -15,7 +16,7 @@ from gclint.translate.words import INCH, SCALED, fast_float, num
 _HEIGHT_HINTS = (("HEIGHT:", True), ("LAYER_HEIGHT:", True), ("Layer height:", False), ("layer_height =", False))
 
 
-class Motion:
+class Motion(TranslatorMixin):
     def implicit_move(self, cmd: Command) -> None:
         """Words with no G code: modal motion (Hyrel gets the G code written out), or a lone F (feed) or
         S (spindle speed) word, which LinuxCNC and Carvera keep for the following commands."""
@@ -45,6 +46,16 @@ class Motion:
         if edit is None or self.index not in edit.replaced:
             self.replace(cmd, rewrite(cmd, code=mode))
             self._edit().changed = True
+
+    def modal_feed(self, cmd: Command) -> None:
+        """An F word on a line with no motion (``G54 G18 G21 F400``): LinuxCNC and the Carvera set the feed
+        of later moves from it (``FEED_ON_ANY_COMMAND``).  Hyrel's G1 feed is modal: the F is dropped here and
+        written on the next working move that needs it."""
+        f = fast_float(cmd.params.get("F"))
+        if f is None:
+            return
+        self.state.feed = f
+        self.replace(cmd, rewrite(cmd, drop="F"))
 
     def mixing_e(self, cmd: Command) -> bool:
         """An E word with one amount per drive (``E1:2``): "Tools are driven using multiple values in the E

@@ -153,7 +153,6 @@ class LineEdit:
             return [main, ending]
         glue = ending or default_ending
         out: list[str] = [text + glue for text in self.before]
-        main: str | None
         if self.dropped:
             main = None
         elif self.strip_comments:

@@ -11,11 +11,12 @@ from __future__ import annotations
 from gclint.rules.security import host_actions, shell_offsets
 from gclint.syntax.nodes import GCODE, Command
 from gclint.translate.findings import TR_ACTION, TR_APPROX, TR_NOTE
+from gclint.translate.mixin import TranslatorMixin
 from gclint.translate.output import fmt
 from gclint.translate.words import INCH
 
 
-class Program:
+class Program(TranslatorMixin):
     def rehome(self) -> None:
         """A move after M18/M84: "All axes with homes must be rehomed after an M18" (Hyrel Gcode page)."""
         self.hy.motors_off = False

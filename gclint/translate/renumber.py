@@ -14,7 +14,7 @@ comments and everything else stay byte for byte and v4 -> v5 -> v4 gives the fil
 from __future__ import annotations
 
 import re
-from collections.abc import Iterator
+from collections.abc import Iterable, Iterator
 
 from gclint.context.decide import DIRECTIVE_LINE
 from gclint.dialects.addressing import (
@@ -53,7 +53,7 @@ class Renumber(Translator):
         self.default_ending = "\n"
         self._reported: dict[tuple, list] = {}
 
-    def translate_line(self, line: Line, result: TranslationResult) -> Iterator[str]:  # type: ignore[override]
+    def translate_line(self, line: Line, result: TranslationResult) -> Iterable[str]:
         if line.ending and self.default_ending != line.ending:
             self.default_ending = line.ending
         commands = line.parsed.commands
@@ -65,7 +65,7 @@ class Renumber(Translator):
             raw = line.raw[: directive.start(1)] + self.target.name + line.raw[directive.end(1) :]
             return (raw + (line.ending or self.default_ending),)  # type: ignore[return-value]
         if not commands:
-            return (line.raw + line.ending,)  # type: ignore[return-value]
+            return (line.raw + line.ending,)
         edit: LineEdit | None = None
         for index, cmd in enumerate(commands):
             if cmd.kind != GCODE or not cmd.code:
@@ -77,7 +77,7 @@ class Renumber(Translator):
                 edit.replaced[index] = new
                 edit.changed = True
         if edit is None:
-            return (line.raw + line.ending,)  # type: ignore[return-value]
+            return (line.raw + line.ending,)
         if self.count:
             result.lines_changed += 1
         if self.annotate:
@@ -191,7 +191,7 @@ class Chain(Translator):
         yield from self._pipe(self.first.start(result), result)
         yield from self.second.start(result)
 
-    def translate_line(self, line: Line, result: TranslationResult) -> Iterator[str]:  # type: ignore[override]
+    def translate_line(self, line: Line, result: TranslationResult) -> Iterable[str]:
         self._number = line.number
         return self._pipe(self.first.translate_line(line, result), result)
 

@@ -14,11 +14,12 @@ from __future__ import annotations
 
 from gclint.syntax.nodes import Command
 from gclint.translate.findings import TR_APPROX, TR_NOTE
+from gclint.translate.mixin import TranslatorMixin
 from gclint.translate.output import fmt
 from gclint.translate.words import fast_float
 
 
-class Spindles:
+class Spindles(TranslatorMixin):
     SPINDLE_FOLLOWS_TOOL = False  # CNC sources: the spindle is on the active tool's head (see above)
     SPINDLE_STOPS_AT_TOOL_CHANGE = False  # the source stops the spindle for a tool change (Carvera)
 

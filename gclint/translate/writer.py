@@ -7,28 +7,18 @@ renders the output lines; a line with no edit is copied byte for byte.
 
 from __future__ import annotations
 
-from collections.abc import Iterable
-
 from gclint.rules.base import Finding, Severity
 from gclint.rules.translation import TR_NAME, TR_SEVERITY
-from gclint.syntax.nodes import ASSIGNMENT, GCODE, IMPLICIT, META, OWORD, TEXT, Command, Line
-from gclint.translate.engine import TranslationResult
+from gclint.syntax.nodes import ASSIGNMENT, GCODE, IMPLICIT, META, OWORD, TEXT, Command
 from gclint.translate.findings import TR_UNTRANSLATABLE
+from gclint.translate.mixin import Aspects, TranslatorMixin
 from gclint.translate.output import LineEdit
 
-Aspects = str | Iterable[str] | None
 ANY = frozenset(("*",))
 
 
-class LineWriter:
+class LineWriter(TranslatorMixin):
     """The edit operations on the line being translated (``line``, command ``index``)."""
-
-    line: Line | None
-    edit: LineEdit | None
-    index: int
-    result: TranslationResult | None
-    annotate: bool
-    _aggregate: dict[tuple, list]
 
     def _edit(self) -> LineEdit:
         edit = self.edit

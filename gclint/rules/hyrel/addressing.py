@@ -35,7 +35,7 @@ from gclint.dialects.base import Dialect, Param
 from gclint.rules.base import ANY_T, Edit, Fix, Rule, Severity, register
 from gclint.rules.dialect import ParamTableRule
 from gclint.rules.syntax import with_checksum
-from gclint.syntax.nodes import GCODE, Command, Line, Node, Word, is_number, to_number
+from gclint.syntax.nodes import GCODE, Command, Line, Word, is_number, to_number
 
 # -- helpers shared by the HY rules ------------------------------------------------------------------
 
@@ -235,7 +235,7 @@ class ToolBeyondModel(Rule):
 
     def __init__(self, ctx) -> None:
         super().__init__(ctx)
-        self.codes = (ANY_T, *t_variable_codes(ctx.dialect))  # type: ignore[misc]
+        self.codes = (ANY_T, *t_variable_codes(ctx.dialect))
 
     def check(self, line: Line, cmd: Command) -> None:
         interpreter = self.ctx.interpreter
@@ -265,7 +265,7 @@ class ToolBeyondModel(Rule):
                 node=node,
             )
 
-    def _second_bed(self, line: Line, node: Node | None, what: str, address: Address) -> None:
+    def _second_bed(self, line: Line, node: Command | Word | None, what: str, address: Address) -> None:
         """Bed2 (T25) on a model the pages give no second bed ("our Hydra models have room to have a second
         hotbed", Controlling Temperature)."""
         if not self.ctx.on_every_model(lambda p: not p.second_bed):
@@ -350,13 +350,13 @@ class V4AddressingInV5(Rule):
         self.active = reads_v4_numbers(ctx)
         if self.active:
             # every command: the fix converts the file as the translator does (any T word, T commands)
-            self.codes = (ANY_T, *ctx.dialect.codes)  # type: ignore[misc]
-            self.on_unknown_code = True  # type: ignore[misc]
+            self.codes = (ANY_T, *ctx.dialect.codes)
+            self.on_unknown_code = True
         else:
-            self.codes = ()  # type: ignore[misc]
+            self.codes = ()
         self.unparsable = False
         # reported at the end, when it is known whether the file parses and the whole conversion
-        self.found: list[tuple[Line, Node, str, int | None, bool]] = []
+        self.found: list[tuple[Line, Word, str, int | None, bool]] = []
         self.conversion: dict[int, tuple[Line, list[Renumbering]]] = {}  # line -> its renumbered words
         self.converted = 0  # words the conversion changes
         self.unsafe: bool = False  # some word of the conversion also means something in v5
@@ -456,7 +456,7 @@ class V4AddressingInV5(Rule):
         if r.changes and not safe:
             self.unsafe = True
         if len(self.found) < _MAX_KEPT:
-            self.found.append((line, r.node, message, r.new if r.changes else None, safe))  # type: ignore[arg-type]
+            self.found.append((line, r.node, message, r.new if r.changes else None, safe))
 
     def finish(self) -> None:
         if not self.v4_only:
@@ -486,7 +486,7 @@ class V4AddressingInV5(Rule):
             )
         edits: list[Edit] = []
         for line, words in self.conversion.values():
-            line_edits = [Edit(line.number, w.node.column, w.node.end_column, w.text()) for w in words]  # type: ignore[attr-defined]
+            line_edits = [Edit(line.number, w.node.column, w.node.end_column, w.text()) for w in words]
             edits.extend(with_checksum(line, line_edits))
         return tuple(edits), ""
 
@@ -541,7 +541,7 @@ class SquadNumberRange(ParamTableRule):
         super().__init__(ctx)
         self.v5 = is_v5(ctx)
         extra = ("M702", "M703", "M704") if self.v5 else ("M702",)
-        self.codes = tuple(dict.fromkeys((*self.codes, *(c for c in extra if c in ctx.dialect.codes))))  # type: ignore[misc]
+        self.codes = tuple(dict.fromkeys((*self.codes, *(c for c in extra if c in ctx.dialect.codes))))
 
     def check(self, line: Line, cmd: Command) -> None:
         super().check(line, cmd)
@@ -616,7 +616,7 @@ class NoHeadFocusBeforePrinting(Rule):
 
     def __init__(self, ctx) -> None:
         super().__init__(ctx)
-        self.codes = (ANY_T, *(c for c in _HEAD_CODES if c in ctx.dialect.codes))  # type: ignore[misc]
+        self.codes = (ANY_T, *(c for c in _HEAD_CODES if c in ctx.dialect.codes))
         self.heads: set[int] = set()
         self.first_t: int | None = None
 
@@ -690,7 +690,7 @@ class AddressOutOfTable(Rule):
 
     def __init__(self, ctx) -> None:
         super().__init__(ctx)
-        self.codes = (ANY_T, *t_variable_codes(ctx.dialect))  # type: ignore[misc]
+        self.codes = (ANY_T, *t_variable_codes(ctx.dialect))
 
     def check(self, line: Line, cmd: Command) -> None:
         interpreter = self.ctx.interpreter
@@ -798,7 +798,7 @@ class SquadNotEstablished(Rule):
     def __init__(self, ctx) -> None:
         super().__init__(ctx)
         others = tuple(c for c in t_variable_codes(ctx.dialect) if c not in ("M702", "M703", "M704"))
-        self.codes = (ANY_T, "M30", "M703", "M704", *others)  # type: ignore[misc]
+        self.codes = (ANY_T, "M30", "M703", "M704", *others)
         self.dissolved: dict[int, int] = {}  # squad -> line of the M30 that dissolved it
         self.reported: set[tuple[int, bool]] = set()
 

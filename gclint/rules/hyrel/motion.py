@@ -82,21 +82,21 @@ class MoveChecks:
         if slot is not None:
             setattr(checks, slot, rule)
         own_codes = tuple(c for c in rule.codes if c not in _MOVES)
-        rule.codes = own_codes  # type: ignore[misc]
+        rule.codes = own_codes
         rule.move_checks = checks  # type: ignore[attr-defined]
         # (every member's: its checks of arcs in runs want what the members' moves want, wants_in_run)
-        rule.run_filter = checks.wants_in_run  # type: ignore[attr-defined]
+        rule.run_filter = checks.wants_in_run
         leader = checks.leader
         if leader is None or (not own_codes and not checks.direct):
             if leader is not None:  # hand over: the old leader goes back to its own codes and check
                 del leader.check
                 del leader.plain_filter
-                leader.codes = tuple(c for c in leader.codes if c not in _MOVES)  # type: ignore[misc]
+                leader.codes = tuple(c for c in leader.codes if c not in _MOVES)
             checks.leader = rule
             checks.direct = not own_codes
-            rule.codes = (*own_codes, *_MOVES)  # type: ignore[misc]
+            rule.codes = (*own_codes, *_MOVES)
             rule.check = MethodType(_listen if not own_codes else _listen_and_own, rule)  # type: ignore[method-assign]
-            rule.plain_filter = checks.wants_plain  # type: ignore[attr-defined]
+            rule.plain_filter = checks.wants_plain
         return checks
 
     def release(self) -> None:
@@ -570,7 +570,7 @@ class AxisNotOnModel(MoveRule):
     def __init__(self, ctx) -> None:
         self.missing = tuple(a for a in ("A", "B") if ctx.on_every_model(lambda p, a=a: a not in p.axes))
         if not self.missing:
-            self.codes = ()  # type: ignore[misc,assignment]  # the model has A and B: nothing to check
+            self.codes = ()  # the model has A and B: nothing to check
         super().__init__(ctx)
         if not self.missing:
             self.moves.axis_on_model = None
@@ -829,7 +829,7 @@ class ProbeParameters(Rule):
         if "P" not in p or p["P"] is None:
             self.report(line, "G38 needs P (the probe connection)", node=cmd)
         else:
-            value = to_number(p["P"])  # type: ignore[arg-type]
+            value = to_number(p["P"])
             node = cmd.param("P") or cmd
             if value is None:
                 pass
@@ -843,6 +843,6 @@ class ProbeParameters(Rule):
                 self.report(line, f"G38 P{p['P']} is an unused probe connection", node=node, severity=Severity.WARNING)
         if "D" not in p or p["D"] is None:
             self.report(line, "G38 needs D1 (the only probing mode presently supported)", node=cmd)
-        elif to_number(p["D"]) != 1:  # type: ignore[arg-type]
+        elif to_number(p["D"]) != 1:
             message = f"G38 D{p['D']}: only D1 is presently supported"
             self.report(line, message, node=cmd.param("D") or cmd, severity=Severity.WARNING)

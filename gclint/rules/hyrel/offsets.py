@@ -189,7 +189,7 @@ class ToolHeightRegister(ParamTableRule):
 
     def __init__(self, ctx) -> None:
         super().__init__(ctx)
-        self.codes = (*self.codes, "M30")  # type: ignore[misc]
+        self.codes = (*self.codes, "M30")
         self.warned: set[int] = set()
         self.reset_by_m30: dict[int, int] = {}  # register -> M30 line that reset it
 
@@ -232,7 +232,7 @@ class ToolHeightRegister(ParamTableRule):
         elif code == "M660":
             super().check(line, cmd)
             register = int_value(params.get("H"))
-            self.warned.discard(register)  # type: ignore[arg-type]
+            self.warned.discard(register)
         elif code == "M30":
             for register in self.state.tool_height_offsets:
                 self.reset_by_m30[register] = line.number
@@ -412,16 +412,17 @@ class OffsetsClearedByG28(Rule):
         st = self.state
         printed = st.first_print_since_home_line
         worked = st.first_work_since_home_line  # (milling, pick and place: a G1 with no E is work too)
-        if printed is None and worked is None:
-            return  # no work after the G28 (the usual G28 at the end of a job)
-        if printed is not None and (worked is None or printed <= worked):
-            resumes = f"printing resumes at line {printed}"
-        else:
-            printed = worked
+        if worked is not None and (printed is None or printed > worked):
+            resumed = worked
             resumes = (
                 f"work resumes at line {worked} (G1 is 'a working move, during which you may be printing, "
                 "milling, lasering, or doing other active work')"
             )
+        elif printed is not None:
+            resumed = printed
+            resumes = f"printing resumes at line {printed}"
+        else:
+            return  # no work after the G28 (the usual G28 at the end of a job)
         again = dict(self.again)
         if st.applied_height_register is not None and st.applied_height_line is not None:
             again["H"] = st.applied_height_line
@@ -430,7 +431,7 @@ class OffsetsClearedByG28(Rule):
         lost = {}
         for kind, (what, set_line) in self.cleared.items():
             when = again.get(kind)
-            if when is None or when > printed:
+            if when is None or when > resumed:
                 lost[kind] = f"{what}{f' (line {set_line})' if set_line else ''}"
         if not lost:
             return

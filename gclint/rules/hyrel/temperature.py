@@ -378,7 +378,7 @@ class NegativeTemperature(ParamTableRule):
     def __init__(self, ctx) -> None:
         super().__init__(ctx)
         # below absolute zero no head, bed or chamber can go (physics, not a limit of the pages): an error
-        self.codes = tuple(dict.fromkeys((*self.codes, *(c for c in _BED_CODES if c in ctx.dialect.codes))))  # type: ignore[misc]
+        self.codes = tuple(dict.fromkeys((*self.codes, *(c for c in _BED_CODES if c in ctx.dialect.codes))))
 
     def trigger_letters(self, code: str) -> frozenset[str] | None:
         return frozenset("S")

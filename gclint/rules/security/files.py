@@ -480,11 +480,11 @@ class ChangesPrinterFiles(_SecurityRule):
             # https://github.com/MarlinFirmware/Marlin/blob/bugfix-2.1.x/Marlin/src/gcode/parser.cpp
             # GCodeParser::parse, "Only use string_arg for these M codes")
             action = "deletes" if code == "M30" else "writes the following lines into"
-            where = "on the printer"
+            printer = "on the printer"
             if code == "M30" and self.ctx.dialect.semantics.effect("M30") == "end-of-job":
                 # the dialect is read from the job, which an attacker writes: the gate does not rest on it
-                where = "on a Marlin or RepRapFirmware printer (on Hyrel, M30 ends the program and takes no file)"
-            self.report_masked(line, f"{code} {action} the file {_quote(argument.strip(chr(34)))} {where}", column)
+                printer = "on a Marlin or RepRapFirmware printer (on Hyrel, M30 ends the program and takes no file)"
+            self.report_masked(line, f"{code} {action} the file {_quote(argument.strip(chr(34)))} {printer}", column)
             return
         if code == "M929":
             self._logging(line, argument, column, cmd)
