@@ -63,7 +63,7 @@ class Renumber(Translator):
             if self.count:
                 result.lines_changed += 1
             raw = line.raw[: directive.start(1)] + self.target.name + line.raw[directive.end(1) :]
-            return (raw + (line.ending or self.default_ending),)  # type: ignore[return-value]
+            return (raw + (line.ending or self.default_ending),)
         if not commands:
             return (line.raw + line.ending,)
         edit: LineEdit | None = None

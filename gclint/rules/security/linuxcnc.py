@@ -150,7 +150,8 @@ def read_oword(text: str) -> tuple[str, str | None] | None:
     (as "M98 P100" is); a name computed by an expression or a parameter ("o[#2 * 10] call", "o#<sub> call") is
     None."""
     s = as_linuxcnc_reads(text)
-    s = s[_LINE_NUMBER.match(s).end() :]  # (the pattern matches "" too)
+    number = _LINE_NUMBER.match(s)
+    s = s[number.end() :] if number is not None else s
     if s[:1] != "o":
         return None
     i, name = 1, None
