@@ -75,7 +75,7 @@ def decide(ranking: Ranking) -> Decision:
     winner, rival, margin, _ = _pick(ranking)
     dialect = ranking.by_key[winner].dialect.name
     own = ranking.best(scores, dialect)  # (the best reading of the winner's dialect: a flavour, perhaps)
-    if not any(any(v for v in i.deltas.values()) for i in ranking.items):
+    if not any(any(v for v in i.deltas.values()) for i in ranking.items if not i.habit):  # (habits tell nothing)
         origin, strength, reasons = DEFAULT, NONE, ()
     else:
         by_content, _, _, content_lead = _pick(ranking, (CONTENT,))
