@@ -135,3 +135,16 @@ def test_no_dialect_wins_a_file_with_codes_or_words_it_lacks(path: str, dialect:
     context = infer(text, path)
     assert context.dialect == dialect, context.why()
     assert context.weak, context.why()
+
+
+def test_dl001_cites_no_historic_page_for_another_dialects_code_and_agrees_in_number() -> None:
+    # M229 is Hyrel's: the 2015 RepRap page's M229 is another command, so it is not cited
+    (m229,) = [f for f in _check_as("M84\nM229 E1 D1\n", "marlin") if f.code == "DL001"]
+    assert m229.message == "M229 is not a Marlin 2.x code", m229.message
+    # a code only that page lists: cited, and its firmwares "have" it
+    (m245,) = [f for f in _check_as("M84\nM245\n", "marlin") if f.code == "DL001"]
+    assert m245.message.endswith("(FiveD, Teacup, Sprinter) have it)"), m245.message
+
+
+def _check_as(text: str, dialect: str) -> list:
+    return Linter(Options(dialect=dialect)).check_text(text, "job.gcode").findings

@@ -152,6 +152,16 @@ def test_config_override_codes_are_eeprom_settings_on_marlin() -> None:
     assert _codes("M500\nM502\nM504\n", "marlin") == set()
 
 
+def test_config_override_codes_on_a_detected_marlin_job_say_what_they_do_there_first() -> None:
+    # a Bambu job's "M500 ; save cali data": EEPROM on its own firmware, config-override on a Carvera
+    bambu = "; BambuStudio 01.08.00\n; printer_model = Bambu Lab P1S\nM104 S220\nG28\nM500 ; save cali data\n"
+    (finding,) = [f for f in _findings(bambu) if f.code == "SC005"]
+    assert finding.message.startswith("M500 (marlin) saves the current settings to EEPROM"), finding.message
+    assert "on a Smoothieware (Carvera) controller it writes" in finding.message
+    (carvera,) = [f for f in _findings("M500\n", "carvera") if f.code == "SC005"]
+    assert "EEPROM" not in carvera.message and "on Smoothieware/Carvera" in carvera.message
+
+
 def test_bare_m471_m472_are_carvera_probe_codes() -> None:
     assert _codes("M471\nM472\n", "carvera") == set()
     assert _codes('M472 P"0:/sys/config.g"\n', "carvera") == {"SC005"}
