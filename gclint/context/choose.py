@@ -42,7 +42,7 @@ def _pick(ranking: Ranking, sources: tuple[str, ...] | None = None) -> tuple[str
     def fit(key: str) -> float:
         prior = ranking.by_key[key].prior
         return prior + sum(
-            v
+            v + i.relief.get(key, 0.0)
             for i in ranking.items
             if (sources is None or i.source in sources) and ((v := i.deltas.get(key, 0.0)) > 0 or not i.soft)
         )

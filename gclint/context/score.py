@@ -6,9 +6,9 @@ roughly a log-likelihood: a few points is a preference, eight is "nearly impossi
 
 * A G/M code a candidate's tables lack while another candidate's have it costs it ``UNLISTED``, the same for
   every dialect: whether a firmware skips such a code or stops on it, its own files rarely hold another
-  firmware's codes.  A code no known table has costs every known candidate ``NOBODY``, and ``UNLISTED_NOBODY``
-  those whose firmware runs codes it does not list (``Dialect.open_codes``: RepRapFirmware's macro files,
-  LinuxCNC's user M-codes).
+  firmware's codes.  A code no known table has costs every known candidate ``NOBODY``; against ``generic``,
+  only ``UNLISTED_NOBODY`` those whose firmware runs codes it does not list (``Dialect.open_codes``:
+  RepRapFirmware's macro files, LinuxCNC's user M-codes): it tells no known dialect from another.
 * A code only one dialect has counts for it (``UNIQUE``: the others' costs say the rest).
 * A kind of line a candidate's language lacks (an O-word in a Marlin file, a meta command in a Hyrel job, a
   Klipper command in a RepRapFirmware one): ``MISFIT``.
@@ -53,7 +53,7 @@ NOBODY = 4.0  # a code no known table has
 INI_POINTS = 4.0  # a LinuxCNC machine's INI beside the job defines codes (REMAP=): the job is that machine's
 # A code no firmware has that the candidate's firmware runs though it does not list it (a RepRapFirmware macro
 # file sys/M<n>.g, a LinuxCNC user M-code): the machine's own (MillenniumOS's M4000 macros)
-UNLISTED_NOBODY = 0.3
+UNLISTED_NOBODY = 0.3  # (what it costs that reading's fit against generic: the ranking counts NOBODY)
 LOOSELY = 3.0  # a code only a historic inventory lists (the 2015 RepRap page lists every firmware's numbers)
 UNIQUE = 1.0  # a code only one dialect has (the others' misfits say the rest)
 SHARED = 0.5
@@ -92,6 +92,9 @@ class Item:
     deltas: dict[str, float]
     soft: bool = False
     habit: bool = False
+    # what a reading's *fit* against ``generic`` gets back: a code no known table has that its firmware runs
+    # anyway (a macro) says nothing about which known dialect, only that this one can run the file
+    relief: dict[str, float] = field(default_factory=dict)
 
 
 @dataclass
@@ -214,6 +217,7 @@ def _codes(reading: ContentReading, known: tuple[Candidate, ...], add, machine: 
     for code, seen in reading.codes.items():
         has = having(code)
         deltas: dict[str, float] = {}
+        relief: dict[str, float] = {}
         for c in known:
             if code in machine and c.dialect.machine_ini:
                 continue  # (the machine's own code: its INI defines it)
@@ -229,7 +233,9 @@ def _codes(reading: ContentReading, known: tuple[Candidate, ...], add, machine: 
             elif has:
                 cost = UNLISTED
             else:
-                cost = UNLISTED_NOBODY if c.runs_unlisted(code) else NOBODY
+                cost = NOBODY
+                if c.runs_unlisted(code):
+                    relief[c.key] = NOBODY - UNLISTED_NOBODY
             deltas[c.key] = -cost
         if not deltas:
             continue
@@ -242,7 +248,7 @@ def _codes(reading: ContentReading, known: tuple[Candidate, ...], add, machine: 
         else:
             missing = [c.dialect.name for c in known if c.flavor is None and c.dialect.name not in has]
             text = f"{seen}: {code} is not a {' or '.join(missing)} code" if missing else f"{seen}: {code}"
-        add(Item(text, seen.line, CONTENT, deltas))
+        add(Item(text, seen.line, CONTENT, deltas, relief=relief))
 
 
 def _clues(reading: ContentReading, pool: tuple[Candidate, ...], add) -> None:
