@@ -151,7 +151,7 @@ def test_findings_are_annotated_and_shown(cura):
         ";LAYER:1\nG1 X5 Y5 E2\n",
     ]
     result = cura().execute(list(data))
-    assert result[0].startswith(";gclint: 1 error(s), 1 warning(s), 0 info\n")
+    assert result[0].startswith(";gclint: 1 error(s), 1 warning(s), 0 info\n"), result[0]
     saved = "".join(result).splitlines()
     assert ";gclint: line 9: SX002" in result[0]  # line 6 of the job, after the 3 comment lines
     assert saved[8] == "G1 X1 X2 Y1 E1" and saved[5] == "M9999" and ";gclint: line 6: DL001" in result[0]

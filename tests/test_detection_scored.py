@@ -185,3 +185,25 @@ def test_verbose_scores_name_every_reading() -> None:
     assert names[0] == "hyrel" and {"marlin", "reprap", "machinekit", "carvera", "generic"} <= set(names)
     assert context.scores_text().startswith("scores hyrel ")
     assert Context.from_dict(context.to_dict()) == context
+
+
+@pytest.mark.parametrize(
+    "comment,head,model",
+    [
+        ("; job for our 30M", "T4", "30m"),  # a fifth slot: the 30M has four
+        ("; Hydra 16A single yoke", "T7", "16a"),  # the second yoke's T7: a single-yoke 16A lacks it
+    ],
+)
+def test_a_comment_naming_the_printer_is_kept_and_the_lines_it_lacks_are_findings(
+    comment: str, head: str, model: str
+) -> None:
+    job = f"{comment}\nM6 {head} O1 X0 Y0 Z0\nG28 X0 Y0\nM109 {head} S200\n{head}\nG1 X10 Y10 E1 F1200\nM30\n"
+    result = Linter(Options()).check_text(job, "a.gcode")
+    context = result.context
+    assert context.printer == model, context.why()
+    assert f"a {model} lacks" in context.why() and "the comment '" in context.why()
+    hy007 = [f for f in result.findings if f.code == "HY007"]
+    assert hy007 and all("from the comment '" in f.message for f in hy007), result.findings
+    # the same lines with no comment read the model they need, with no finding
+    plain = Linter(Options()).check_text(job.split("\n", 1)[1], "a.gcode")
+    assert plain.context.printer != model and not [f for f in plain.findings if f.code == "HY007"]

@@ -17,7 +17,7 @@ import pytest
 
 from .conftest import run_cli
 
-CLEAN = "G28\nG1 X10 Y10 F3000\n"
+CLEAN = ";FLAVOR:Marlin\nG28\nG1 X10 Y10 F3000\n"  # (a bare G28 alone would be a Hyrel job's HY025)
 
 
 def install_plugin(root: Path, dist: str, modules: dict[str, str], entry_points: dict[str, dict[str, str]]) -> Path:

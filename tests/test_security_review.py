@@ -69,8 +69,21 @@ CONSOLE_LINES = [
 @pytest.mark.parametrize("dialect", ALL_DIALECTS)
 @pytest.mark.parametrize("line", CONSOLE_LINES)
 def test_console_lines_are_sc003_errors_in_every_dialect(line: str, dialect: str) -> None:
+    if line.startswith("$") and dialect == "auto":
+        pytest.skip("a GRBL system command makes the file generic: information (the test below)")
     found = [f for f in _findings(f"G21\n{line}\n", dialect) if f.code == "SC003"]
     assert found and found[0].severity.label == "error" and found[0].column == 1, (line, dialect)
+
+
+@pytest.mark.parametrize("dialect", ["auto", "generic"])
+def test_a_grbl_job_read_as_generic_passes_and_its_other_console_lines_do_not(dialect: str) -> None:
+    # $H, $X, $J= are the GRBL machine's own commands (what makes the file generic): information only
+    grbl = "$H\n$X\nM3 S1000\nG1 X10 F500\n$J=G91 X10 F100\nM5\nM2\n"
+    found = [f for f in _findings(grbl, dialect) if f.code == "SC003"]
+    assert [(f.line, f.severity.label) for f in found] == [(1, "info"), (2, "info"), (5, "info")]
+    assert "GRBL system command" in found[0].message
+    found = [f for f in _findings(grbl + "rm /sd/config.txt\n", dialect) if f.severity.label == "error"]
+    assert [(f.line, f.code) for f in found] == [(8, "SC003")]
 
 
 @pytest.mark.parametrize(
@@ -137,6 +150,16 @@ def test_config_override_codes(code: str, dialect: str) -> None:
 
 def test_config_override_codes_are_eeprom_settings_on_marlin() -> None:
     assert _codes("M500\nM502\nM504\n", "marlin") == set()
+
+
+def test_config_override_codes_on_a_detected_marlin_job_say_what_they_do_there_first() -> None:
+    # a Bambu job's "M500 ; save cali data": EEPROM on its own firmware, config-override on a Carvera
+    bambu = "; BambuStudio 01.08.00\n; printer_model = Bambu Lab P1S\nM104 S220\nG28\nM500 ; save cali data\n"
+    (finding,) = [f for f in _findings(bambu) if f.code == "SC005"]
+    assert finding.message.startswith("M500 (marlin) saves the current settings to EEPROM"), finding.message
+    assert "on a Smoothieware (Carvera) controller it writes" in finding.message
+    (carvera,) = [f for f in _findings("M500\n", "carvera") if f.code == "SC005"]
+    assert "EEPROM" not in carvera.message and "on Smoothieware/Carvera" in carvera.message
 
 
 def test_bare_m471_m472_are_carvera_probe_codes() -> None:

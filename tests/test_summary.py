@@ -89,9 +89,7 @@ def test_html_report_has_the_summary_and_counts_in_words(tmp_path: Path) -> None
     assert re.search(r"1 finding in 1 file", html)
 
 
-MARLIN_TWO_TOOLS = (
-    "M104 S215\nM109 S215\nG28\nG92 E0\nG1 X10 Y10 E1 F1500\nT1\nM109 S220\nG1 X30 Y10 E2\nM104 S0\nM84\n"
-)
+MARLIN_TWO_TOOLS = ";FLAVOR:Marlin\nM104 S215\nM109 S215\nG28\nG92 E0\nG1 X10 Y10 E1 F1500\nT1\nM109 S220\nG1 X30 Y10 E2\nM104 S0\nM84\n"
 HYREL_TWO_HEADS = (
     "M6 T0 O1 X0 Y0 Z0\nM6 T1 O2 X20 Y0 Z0\nT0\nM104 S200\nG1 X10 Y10 E1 F1200\n"
     "T1\nM109 S230\nG1 X20 Y10 E1\nM104 S0\nM30\n"
@@ -130,7 +128,7 @@ def test_hyrel_temperatures_without_t_go_to_the_focused_head_and_a_first_move_co
 
 def test_a_head_with_no_set_point_is_said_in_words(tmp_path: Path) -> None:
     job = tmp_path / "job.gcode"
-    job.write_text("M104 S215\nG28\nG92 E0\nG1 X10 Y10 E1 F1500\nT1\nG1 X30 Y10 E2\n")
+    job.write_text(";FLAVOR:Marlin\nM104 S215\nG28\nG92 E0\nG1 X10 Y10 E1 F1500\nT1\nG1 X30 Y10 E2\n")
     out = run_cli("summary", str(job)).stdout.decode()
     assert "extruder 1: no set-point in the job; 1 printing moves" in out
     assert "none set in the job °C" not in out
@@ -191,7 +189,7 @@ def test_multi_tool_prusaslicer_jobs_against_hand_counts(name: str) -> None:
 def test_a_marlin_g0_that_extrudes_prints(tmp_path: Path) -> None:
     # Marlin: G0 is an alias of G1, "E allowed (extrudes)" (research/dialects.md): a slicer's purge line
     job = tmp_path / "purge.gcode"
-    job.write_text("G28\nM83\nG0 X10 Y0 E5 F500 ; purge\nG0 X20 Y0\nG1 X30 Y0 E1\n")
+    job.write_text(";FLAVOR:Marlin\nG28\nM83\nG0 X10 Y0 E5 F500 ; purge\nG0 X20 Y0\nG1 X30 Y0 E1\n")
     s = summarize_path(str(job))
     [head] = s.heads
     assert head.printing_moves == 2 and head.extruded_mm == pytest.approx(6)
@@ -276,7 +274,7 @@ def test_the_time_of_the_layers_leaves_out_the_start_and_end_sequences(tmp_path:
 
 
 def test_the_jobs_own_acceleration_and_tool_change_times_count(tmp_path: Path) -> None:
-    moves = "G28\nM83\n" + "".join(f"G1 X{100 * (i % 2)} Y{i} E1 F6000\n" for i in range(1, 21))
+    moves = ";FLAVOR:Marlin\nG28\nM83\n" + "".join(f"G1 X{100 * (i % 2)} Y{i} E1 F6000\n" for i in range(1, 21))
     fast = summarize_path(_job(tmp_path, "M204 P5000 T5000\n" + moves, "fast.gcode"))
     slow = summarize_path(_job(tmp_path, "M204 P200 T200\n" + moves, "slow.gcode"))
     assert fast.time_limits.startswith("the job's own commands") and slow.time_s > 1.3 * fast.time_s

@@ -42,7 +42,7 @@ def _pick(ranking: Ranking, sources: tuple[str, ...] | None = None) -> tuple[str
     def fit(key: str) -> float:
         prior = ranking.by_key[key].prior
         return prior + sum(
-            v
+            v + i.relief.get(key, 0.0)
             for i in ranking.items
             if (sources is None or i.source in sources) and ((v := i.deltas.get(key, 0.0)) > 0 or not i.soft)
         )
@@ -76,7 +76,7 @@ def decide(ranking: Ranking) -> Decision:
     dialect = ranking.by_key[winner].dialect.name
     own = ranking.best_of(scores, dialect)  # (the best reading of the winner's dialect: a flavour, perhaps)
     reasons: tuple[str, ...]
-    if not any(any(v for v in i.deltas.values()) for i in ranking.items):
+    if not any(any(v for v in i.deltas.values()) for i in ranking.items if not i.habit):  # (habits tell nothing)
         origin, strength, reasons = DEFAULT, NONE, ()
     else:
         by_content, _, _, content_lead = _pick(ranking, (CONTENT,))

@@ -32,6 +32,7 @@ _LINE_LIMIT = 2000  # longer lines are not read for clues (they are reported by 
 _KINDS = frozenset({EXTENDED, META, OWORD, ASSIGNMENT})  # kinds of line a dialect's language may lack
 _MAX_KINDS = 64  # distinct (kind, word) pairs kept (a Klipper file may call many macros)
 _AMOUNTS = 3  # printing moves with amounts read before the moves can tell nothing more
+_SLICED = 2  # printing moves with amounts (and nothing native flow computes from) that make a job sliced
 
 
 @dataclass(frozen=True)
@@ -59,6 +60,8 @@ class ContentReading:
     kinds: dict[tuple[str, str], Seen] = field(default_factory=dict)  # (kind, WORD) of extended/meta/O-word lines
     # dialect -> (code, letter) -> (first use, what is wrong): a letter its table lacks, a value out of range
     params: dict[str, dict[tuple[str, str], tuple[Seen, str]]] = field(default_factory=dict)
+    # dialect -> (code, letter) -> (first use, why): a word its firmware rejects (``Param.forbidden``)
+    rejected: dict[str, dict[tuple[str, str], tuple[Seen, str]]] = field(default_factory=dict)
     # Hyrel: (code, letter, number) of each T variable (and M703/M704 S) -> first use
     addresses: dict[tuple[str, str, int], Seen] = field(default_factory=dict)
     tool_commands: dict[int, Seen] = field(default_factory=dict)  # T<n> lines
@@ -92,12 +95,15 @@ class ContentReading:
     def m229_e1(self) -> bool:
         return self.e_values
 
+    @property
+    def e_sliced(self) -> Seen | None:
+        """The first E amount, when amounts are on two printing moves or more and nothing says native flow (no
+        M229 E1, no M756 or M221 W/Z/P): a job sliced for a firmware that meters E."""
+        sliced = self.e_amount_moves >= _SLICED and not self.e_values and self.native_flow is None
+        return self.e_amounts if sliced else None
+
     def fact(self, name: str) -> Seen | None:
-        """A fact of the whole reading a habit names (``e_amounts``, ``e_retract``, ``e_on_g0``, ``e_sliced``:
-        amounts on several printing moves and no native-flow settings)."""
-        if name == "e_sliced":
-            sliced = self.e_amount_moves >= _AMOUNTS and not self.e_values and self.native_flow is None
-            return self.e_amounts if sliced else None
+        """A fact of the whole reading a habit names (``e_amounts``, ``e_retract``, ``e_on_g0``)."""
         value = getattr(self, name, None)
         return value if isinstance(value, Seen) else None
 
@@ -108,6 +114,7 @@ _T_VARIABLE_CODES = frozenset(c for c, spec in _HYREL.codes.items() if spec.para
 # Codes whose A and B are axes on Hyrel (Gcode page: G0/G1 note on axes; G28, G92, M203, G54-G59, M6; G38)
 _AXIS_CODES = frozenset({"G0", "G1", "G2", "G3", "G28", "G92", "M203", "M6", "G38", *(f"G{n}" for n in range(54, 60))})
 _MOVES = frozenset({"G0", "G1", "G2", "G3"})
+_LINEAR = frozenset({"G0", "G1"})
 _MODEL_AUX = frozenset(f"M{n}" for n in range(670, 690))
 
 
@@ -320,7 +327,7 @@ def _read_command(reading: ContentReading, cmd: Command, number: int, raw: str, 
                 reading.tool_commands[n] = _seen(cmd, number, raw)
             added.append(("tool", n))
         return
-    tables = _PARAM_TABLES.get(code) if code not in _MOVES else None  # (moves are read for E and axes only)
+    tables = _PARAM_TABLES.get(code) if code not in _LINEAR else None  # (lines are read for E and axes only)
     if tables is not None and params:
         _check_params(reading, cmd, code, tables, number, raw)
     if code in _T_VARIABLE_CODES and not habitual:
@@ -382,12 +389,11 @@ def _read_command(reading: ContentReading, cmd: Command, number: int, raw: str, 
 
 def _check_params(reading: ContentReading, cmd: Command, code: str, tables: list, number: int, raw: str) -> None:
     """Record what each catalogued table says is wrong with ``cmd``'s words (a letter the code does not take,
-    a value outside its range), once per (code, letter: ``code`` is ``cmd``'s); a word a habit reports is the
-    habit's."""
+    a value outside its range; a word the firmware rejects apart), once per (code, letter: ``code`` is
+    ``cmd``'s); a word a habit reports is the habit's."""
     for owner, spec, habit_rules in tables:
-        found = reading.params.get(owner)
         for letter in cmd.params:
-            if found is not None and (code, letter) in found:
+            if (code, letter) in reading.params.get(owner, ()) or (code, letter) in reading.rejected.get(owner, ()):
                 continue
             param = spec.params.get(letter)
             if param is None:
@@ -398,9 +404,8 @@ def _check_params(reading: ContentReading, cmd: Command, code: str, tables: list
                 problem = param.problem(cmd.get(letter))
                 if problem is None:
                     continue
-            if found is None:
-                found = reading.params[owner] = {}
-            found[(code, letter)] = (_seen(cmd, number, raw), problem)
+            found = reading.rejected if param is not None and param.forbidden else reading.params
+            found.setdefault(owner, {})[(code, letter)] = (_seen(cmd, number, raw), problem)
 
 
 def _match(table: dict, owner: str, item: Clue, cmd: Command, number: int, raw: str, seen: Seen | None):

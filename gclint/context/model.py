@@ -134,7 +134,7 @@ class Context:
             return ""
         if self.printer_origin == DEFAULT:
             return f" (printer assumed: {self.printer}, the default; set it with --printer)"
-        told = self.printer_reasons[0].split(": ")[0] if self.printer_reasons else "the job"
+        told = self.printer_reasons[0].split(": ")[0].removesuffix(" names it") if self.printer_reasons else "the job"
         return f" (printer assumed: {self.printer}, from {told}; set it with --printer)"
 
     @property

@@ -13,7 +13,9 @@ Each model (gclint.machine.profiles) is scored on what the job uses:
 * ``M660`` after ``G28 Z0`` is the EHR's header ("By default, this is ONLY used on the EHR", "You MUST have a
   G28 Z0 in your header to run this M660 on the EHR": Gcode page, "M660 Assign Tool Height Offset"): an
   ``M660`` with no ``G28 Z0`` before it tells nothing (an EHR job would be missing its G28 Z0: HY005);
-* a comment that names a model (``; Hyrel Engine SR``) is weak evidence for it.
+* a comment that names a model (``; job for our 30M``, ``; Hyrel Engine SR``) is the job's own word for its
+  printer: a named model is read whatever the lines say (among several named, the best), and the lines it
+  cannot explain are the job's mistakes, which the HY rules report and the reasons name.
 
 So a lone line that disagrees with the rest does not flip the model: it is reported by the HY rules that
 rest on the model (HY007, HY042, HY041, HY043).  Where nothing tells, the model is the default, ``30m``;
@@ -108,15 +110,17 @@ def decide(
     if ehr is not None:
         points = {n: EHR_HEADER for n in MODEL_ORDER if PROFILES[n].needs_z_home_for_m660}
         s.favour(points, ehr.line, f"{ehr} after G28 Z0: the EHR header (M660 is ONLY used on the EHR)")
+    named: list[str] = []  # the models a comment names: the job's own word for its printer
     if scan is not None:
         for name in MODEL_ORDER:
-            named = PROFILES[name].named
-            text = scan.found(rf"(?im)[;(][^\n]*?(?:{named})") if named else None
+            pattern = PROFILES[name].named
+            text = scan.found(rf"(?im)[;(][^\n]*?(?:{pattern})") if pattern else None
             if text is not None:
-                s.favour({name: NAMED}, 0, f"a comment names it: {text}")
+                named.append(name)
+                s.favour({name: NAMED}, 0, f"the comment '{text.replace(': ', ' - ')}' names it")
     if not s.evidence:
         return MODEL_ORDER[0], DEFAULT, (), (MODEL_ORDER[0],)
-    best = max(MODEL_ORDER, key=lambda n: s.total[n])
+    best = max(named or MODEL_ORDER, key=lambda n: s.total[n])
     runner = max((n for n in MODEL_ORDER if n != best), key=lambda n: s.total[n])
     fitting = tuple(
         sorted(
@@ -137,9 +141,13 @@ def decide(
     if s.misfits[best]:
         n = len(s.misfits[best])
         worst = max(s.misfits[best])[2]
-        reasons += (
-            f"{n} use{'s' if n != 1 else ''} no model fits with the rest ({worst}): the HY rules report {'them' if n != 1 else 'it'}",
-        )
+        uses = f"{n} use{'s' if n != 1 else ''}"
+        them = "them" if n != 1 else "it"
+        if named and s.total[best] < max(s.total.values()):  # (the lines alone would read another model)
+            disagree = f"{uses} a {best} lacks ({worst}): the comment's model is kept and the HY rules report {them}"
+        else:
+            disagree = f"{uses} no model fits with the rest ({worst}): the HY rules report {them}"
+        reasons = (*reasons[:1], disagree)
     return best, CONTENT, reasons, fitting
 
 

@@ -4,20 +4,28 @@ Each candidate (gclint.context.candidates) starts from its prior (``Detection.pr
 target wins where the evidence ties) and every piece of evidence moves some candidates' scores.  The scale is
 roughly a log-likelihood: a few points is a preference, eight is "nearly impossible".
 
-* A G/M code a candidate's tables lack while another candidate's have it: ``Detection.unlisted`` (8, nearly
-  impossible, where the firmware rejects it or stops; less for Marlin, whose forks add codes, and Carvera,
-  whose Smoothieware skips them), ``UNLISTED`` where the firmware runs it anyway (RepRapFirmware's macro
-  files, LinuxCNC's user M-codes).  A code no known table has costs every known candidate (``NOBODY``).
+* A G/M code a candidate's tables lack while another candidate's have it costs it ``UNLISTED``, the same for
+  every dialect: whether a firmware skips such a code or stops on it, its own files rarely hold another
+  firmware's codes.  A code no known table has costs every known candidate ``NOBODY``; against ``generic``,
+  only ``UNLISTED_NOBODY`` those whose firmware runs codes it does not list (``Dialect.open_codes``:
+  RepRapFirmware's macro files, LinuxCNC's user M-codes): it tells no known dialect from another.
 * A code only one dialect has counts for it (``UNIQUE``: the others' costs say the rest).
 * A kind of line a candidate's language lacks (an O-word in a Marlin file, a meta command in a Hyrel job, a
   Klipper command in a RepRapFirmware one): ``MISFIT``.
 * A dialect's clues (gclint.dialects ``Clue``: ``M6 T# O#``, ``M109 H``...) and line marks add their weight
   to it; a flavour's clues to that flavour.
-* *Soft* costs, which tell known dialects apart but never make a file ``generic``: a dialect's habits
-  (gclint.dialects.habits: a bare ``G28`` in a Hyrel job; ``Habit.cost``), which are no evidence for the
-  firmware the habit comes from; a parameter a catalogued table does not take or a value out of its range
-  (``PARAM``); E1 marks on every printing move under a firmware whose E is an amount (``E_MARKS``).  The k-th
-  soft cost of a reading counts 1/k: one author's habits come together.
+* A dialect's habits (gclint.dialects.habits: a bare ``G28`` or ``M106 S255`` in a Hyrel job) are no evidence
+  for the firmware the habit comes from: each costs its dialect's reading ``HABIT``, less for each further one,
+  and all of them together at most ``HABITS_AT_MOST``, less than Hyrel's lead as the prior (a test holds it):
+  habits alone never take a file from Hyrel, and they never give a reason for another reading.
+* How the job uses E, against the readings whose firmware reads E the other way (``E_USE``): E1 marks on every
+  printing move and no amount (Hyrel's native flow) where E is an amount; amounts on every printing move with
+  nothing native flow computes from (no ``M229 E1``, ``M756``, ``M221 W``) where E is native flow's mark.
+* *Soft* costs, which tell known dialects apart but never make a file ``generic``: the habits, how E is used,
+  a parameter a catalogued table does not take or a value out of its range (``PARAM``).  The k-th soft cost
+  of a reading counts 1/k: one author's habits come together.
+* A word a dialect's firmware rejects (``Param.forbidden``: Hyrel's arcs take no R or K) is a misfit as a code
+  it lacks is (``UNLISTED``): that reading cannot run the file.
 * E words on the moves of a machine with no extruder (``NO_EXTRUDER``) or whose moves have no E (Machinekit:
   ``MISFIT``).
 * The slicer header, ``SLIC3R_GCODE_FLAVOR`` (``HEADER_SCALE``) and the extension (``EXTENSION_POINTS``) are
@@ -40,21 +48,24 @@ from gclint.dialects.base import HeadScan
 from gclint.syntax.nodes import ASSIGNMENT, EXTENDED, META, OWORD
 
 MISFIT = 8.0  # a kind of line a language lacks; an E word on a machine whose moves have none
-NOBODY = 4.0  # a code no known table has (at most what the dialect's ``Detection.unlisted`` says)
+UNLISTED = 3.0  # a code the candidate lacks and another has: the same for every dialect
+NOBODY = 4.0  # a code no known table has
 INI_POINTS = 4.0  # a LinuxCNC machine's INI beside the job defines codes (REMAP=): the job is that machine's
-# A code the firmware runs though it does not list it (a RepRapFirmware macro file sys/M<n>.g, a LinuxCNC user
-# M-code): where no firmware has the number it is the machine's own (MillenniumOS's M4000 macros), where another
-# firmware has it the file more likely comes from that firmware
-UNLISTED = 4.0
-UNLISTED_NOBODY = 0.3
+# A code no firmware has that the candidate's firmware runs though it does not list it (a RepRapFirmware macro
+# file sys/M<n>.g, a LinuxCNC user M-code): the machine's own (MillenniumOS's M4000 macros)
+UNLISTED_NOBODY = 0.3  # (what it costs that reading's fit against generic: the ranking counts NOBODY)
 LOOSELY = 3.0  # a code only a historic inventory lists (the 2015 RepRap page lists every firmware's numbers)
 UNIQUE = 1.0  # a code only one dialect has (the others' misfits say the rest)
 SHARED = 0.5
 PARAM = 0.5
-E_MARKS = 3.0
+# a habit, and all of a reading's habits together: "a little", below Hyrel's lead as the prior (1.0 over
+# Marlin's 0.5: gclint.dialects Detection.prior), so habits alone never take a file from Hyrel
+HABIT = 0.25
+HABITS_AT_MOST = 0.4
+E_USE = 4.5  # E words used the way another firmware reads them, on every printing move: more than a header
 E_MARKS_LINES = 3  # printing moves with E1 (or with amounts) before they count as the job's way of using E
 NO_EXTRUDER = 4.0
-HEADER_SCALE = 0.3  # a ";FLAVOR:Marlin" line (10) is worth 3 points: less than one code a dialect lacks
+HEADER_SCALE = 0.3  # a ";FLAVOR:Marlin" line (10) is worth 3 points: less than a code only one dialect has
 EXTENSION_POINTS = 2.0
 FOREIGN = 7.0  # a comment naming a GRBL sender or CAM, Mach3's torch-height codes: against every known dialect
 CLOSE = 5.0  # a lead smaller than this over another dialect is a weak decision
@@ -72,13 +83,18 @@ class Item:
     """One piece of evidence: what it is (shown to the user), where, of which kind (``content``, ``header``,
     ``extension``), and how it moves each candidate's score (by candidate key).  ``soft``: a known mistake or
     an odd use (a habit, a parameter, how E is used), which tells known dialects apart but does not make a
-    file ``generic``: a Hyrel job with five Marlin habits is a Hyrel job with five findings."""
+    file ``generic``: a Hyrel job with five Marlin habits is a Hyrel job with five findings.  ``habit``: a
+    habit of another firmware (capped, and never a reason for another reading)."""
 
     text: str
     line: int
     source: str
     deltas: dict[str, float]
     soft: bool = False
+    habit: bool = False
+    # what a reading's *fit* against ``generic`` gets back: a code no known table has that its firmware runs
+    # anyway (a macro) says nothing about which known dialect, only that this one can run the file
+    relief: dict[str, float] = field(default_factory=dict)
 
 
 @dataclass
@@ -96,7 +112,8 @@ class Ranking:
         less, the largest first (the k-th counts 1/k): one author's habits come together, and each further
         one says less about which firmware the file is for."""
         total = self.by_key[key].prior if prior else 0.0
-        soft = []
+        soft: list[float] = []
+        habits: list[float] = []
         for item in self.items:
             if sources is not None and item.source not in sources:
                 continue
@@ -104,11 +121,11 @@ class Ranking:
             if not value:
                 continue
             if item.soft and value < 0:
-                soft.append(value)
+                (habits if item.habit else soft).append(value)
             else:
                 total += value
-        soft.sort()
-        return total + sum(value / k for k, value in enumerate(soft, 1))
+        total += _diminishing(soft)
+        return total + max(-HABITS_AT_MOST, _diminishing(habits))
 
     def scores(self, sources: tuple[str, ...] | None = None) -> dict[str, float]:
         return {c.key: self.score(c.key, sources) for c in self.pool}
@@ -138,8 +155,8 @@ class Ranking:
         file's tail last); what puts it above every reading of ``field`` (the other dialects') comes first."""
         ranked = []
         for item in self.items:
-            if sources is not None and item.source not in sources:
-                continue
+            if item.habit or sources is not None and item.source not in sources:
+                continue  # (a habit is no evidence for the firmware it comes from)
             mine = item.deltas.get(winner, 0.0)
             lead = mine - (item.deltas.get(loser, 0.0) if loser else 0.0)
             if lead > 0:
@@ -154,6 +171,11 @@ class Ranking:
             ((i.deltas[key], i.line or 1 << 40, i.text) for i in self.items if i.deltas.get(key, 0.0) < 0),
         )
         return tuple(dict.fromkeys(text for _, _, text in ranked))[:count]
+
+
+def _diminishing(costs: list[float]) -> float:
+    """The sum of ``costs`` with the k-th largest counting 1/k."""
+    return sum(value / k for k, value in enumerate(sorted(costs), 1))
 
 
 def rank(
@@ -202,6 +224,7 @@ def _codes(reading: ContentReading, known: tuple[Candidate, ...], add, machine: 
     for code, seen in reading.codes.items():
         has = having(code)
         deltas: dict[str, float] = {}
+        relief: dict[str, float] = {}
         for c in known:
             if code in machine and c.dialect.machine_ini:
                 continue  # (the machine's own code: its INI defines it)
@@ -212,17 +235,14 @@ def _codes(reading: ContentReading, known: tuple[Candidate, ...], add, machine: 
                 if bonus:
                     deltas[c.key] = bonus
                 continue
-            unlisted = c.dialect.detection.unlisted
-            if has:
-                cost = UNLISTED if c.runs_unlisted(code) else LOOSELY if c.lists_loosely(code) else unlisted
+            if c.lists_loosely(code):
+                cost = LOOSELY
+            elif has:
+                cost = UNLISTED
             else:
-                cost = (
-                    UNLISTED_NOBODY
-                    if c.runs_unlisted(code)
-                    else LOOSELY
-                    if c.lists_loosely(code)
-                    else min(NOBODY, unlisted)
-                )
+                cost = NOBODY
+                if c.runs_unlisted(code):
+                    relief[c.key] = NOBODY - UNLISTED_NOBODY
             deltas[c.key] = -cost
         if not deltas:
             continue
@@ -235,7 +255,7 @@ def _codes(reading: ContentReading, known: tuple[Candidate, ...], add, machine: 
         else:
             missing = [c.dialect.name for c in known if c.flavor is None and c.dialect.name not in has]
             text = f"{seen}: {code} is not a {' or '.join(missing)} code" if missing else f"{seen}: {code}"
-        add(Item(text, seen.line, CONTENT, deltas))
+        add(Item(text, seen.line, CONTENT, deltas, relief=relief))
 
 
 def _clues(reading: ContentReading, pool: tuple[Candidate, ...], add) -> None:
@@ -257,13 +277,16 @@ def _clues(reading: ContentReading, pool: tuple[Candidate, ...], add) -> None:
         for habit in dialect.detection.habits:
             if habit.fact is not None and (fact := reading.fact(habit.fact)) is not None:
                 habits[habit] = fact
-        by_rule: dict[str, tuple] = {}  # (one rule, one finding's worth: the costliest habit it reports)
-        for habit, seen in habits.items():
-            if habit.rule not in by_rule or habit.cost > by_rule[habit.rule][0].cost:
-                by_rule[habit.rule] = (habit, seen)
+        by_rule: dict[str, tuple] = {}  # (one rule, one finding's worth: the first habit it reports)
+        for habit, seen in sorted(habits.items(), key=lambda hs: hs[1].line or 1 << 40):
+            by_rule.setdefault(habit.rule, (habit, seen))
         for habit, seen in by_rule.values():
-            text = f"{seen}: {habit.says} ({habit.rule} reports it)"
-            add(Item(text, seen.line, CONTENT, {k: -habit.cost for k in members}, soft=True))
+            text = f"{seen}: {habit.says} ({habit.rule} reports it on {dialect.name})"
+            add(Item(text, seen.line, CONTENT, {k: -HABIT for k in members}, soft=True, habit=True))
+        for seen, problem in reading.rejected.get(dialect.name, {}).values():
+            # a word the firmware rejects: the file cannot run there, as with a code it lacks
+            cost = UNLISTED
+            add(Item(f"{seen}: {problem} on {dialect.name}", seen.line, CONTENT, {k: -cost for k in members}))
         for seen, problem in reading.params.get(dialect.name, {}).values():
             add(
                 Item(
@@ -294,6 +317,7 @@ def _e_words(reading: ContentReading, known: tuple[Candidate, ...], add) -> None
     moves = reading.e_moves
     if moves is None:
         return
+    by_key = {c.key: c for c in known}
     no_e = {c.key: -MISFIT for c in known if "E" in c.dialect.not_move_words}
     if no_e:
         add(
@@ -307,18 +331,20 @@ def _e_words(reading: ContentReading, known: tuple[Candidate, ...], add) -> None
     no_extruder = {c.key: -NO_EXTRUDER for c in known if c.dialect.semantics.extruder is None and c.key not in no_e}
     if no_extruder:
         add(Item(f"{moves}: an E word on a move (a machine with no extruder)", moves.line, CONTENT, no_extruder))
+    amount = {c.key for c in known if c.dialect.semantics.extruder == "E" and c.key not in no_e}
+    native = {k for k in amount if by_key[k].dialect.semantics.e_values == "native"}
     if reading.e_flags >= E_MARKS_LINES and reading.e_amounts is None and not reading.e_values:
         # Hyrel native flow: "E will trigger a working or printing move" whatever its value (Hyrel wiki, Gcode
         # page, "G1 Working Move"); where E is an amount, E1 on every move feeds nothing after the first
         # (absolute E) or the same length whatever the move's (relative)
-        deltas = {
-            c.key: -E_MARKS
-            for c in known
-            if c.dialect.semantics.extruder == "E" and c.dialect.semantics.e_values == "amount" and c.key not in no_e
-        }
-        if deltas:
-            text = f"E1 on {reading.e_flags} printing moves and no E amount (native flow's marks of a printing move)"
-            add(Item(text, 0, CONTENT, deltas, soft=True))
+        text = f"E1 on {reading.e_flags} printing moves and no E amount (native flow's marks of a printing move)"
+        add(Item(text, 0, CONTENT, {k: -E_USE for k in amount - native}, soft=True))
+    if (sliced := reading.e_sliced) is not None and native:
+        # "In native mode ... the value of Extrusion rate E will be ignored" (G1 Working Move): amounts on every
+        # printing move and nothing native flow computes from (M756 layer heights, M221 widths) were sliced for
+        # a firmware that meters E; Hyrel's own slicer header enables the amounts ("M229 E1 D1")
+        text = f"{sliced}: E amounts on every printing move with neither M229 E1 nor native-flow settings"
+        add(Item(text, sliced.line, CONTENT, {k: -E_USE for k in native}, soft=True))
 
 
 def _header(scan: HeadScan, tail: HeadScan | None, env_flavor: str | None, pool, known, add) -> None:

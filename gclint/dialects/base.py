@@ -327,7 +327,6 @@ class Habit:
     kind: str | None = None
     test: Callable[[Any, Any], bool] | None = None
     fact: str | None = None
-    cost: float = 1.5  # what it costs the dialect's reading (gclint.context.score: "a little")
 
     def matches(self, cmd: Any, state: Any) -> bool:
         if self.fact is not None:
@@ -360,11 +359,11 @@ class Detection:
     * ``habits``: known mistakes in this dialect's files (see ``Habit``);
     * ``line_marks``: raw lines only this dialect has (``generic``: GRBL's ``$H``);
     * ``extensions``: file extensions typical of the dialect, used only to break a tie;
-    * ``prior``: the score the dialect starts from before any evidence (Hyrel, the first target, highest:
-      it wins where the evidence ties; a firmware flavour below its dialect: it needs evidence);
-    * ``unlisted``: what a G/M code the dialect's tables lack (and do not run as a macro: ``open_codes``)
-      costs its reading: nearly impossible (8) where the firmware rejects it or stops, less where it skips
-      it and goes on and forks add codes of their own.
+    * ``prior``: the score the dialect starts from before any evidence (Hyrel highest: it wins where the
+      evidence ties; a firmware flavour below its dialect: it needs evidence).
+
+    What a code the dialect's tables lack costs is the same for every dialect (gclint.context.score), apart
+    from the codes its firmware runs without listing them (``Dialect.open_codes``).
     """
 
     patterns: tuple[tuple[str, int], ...] = ()
@@ -374,7 +373,6 @@ class Detection:
     habits: tuple[Habit, ...] = ()
     line_marks: tuple[LineMark, ...] = ()
     prior: float = 0.0
-    unlisted: float = 8.0
 
     def header(self, scan: HeadScan) -> tuple[int, list[str]]:
         """The total weight of the header patterns found in the head, and the texts they matched."""

@@ -170,10 +170,6 @@ CARVERA = Dialect(
             (r"(?im)^[;(][^\n]*\bsmoothieware\b", 5),
         ),
         extensions=(".nc", ".cnc", ".tap"),
-        # Smoothieware skips a code no module takes, and its switch modules take any G or M number a machine's
-        # configuration assigns (M106/M107 for a fan: gclint/firmware/smoothieware.py), so a code the table
-        # lacks (CAM preambles' G40, LightBurn's M106 air assist) says little
-        unlisted=0.5,
         clues=(*NGC_LANGUAGE_CLUES, Clue("an echo command (RepRapFirmware or Carvera console)", "echo", weight=1)),
     ),
     owords=True,

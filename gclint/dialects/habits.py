@@ -95,15 +95,6 @@ HYREL_HABITS = (
     # "In native mode ... the value of Extrusion rate E will be ignored, but E will trigger a working or
     # printing move" (G1 Working Move): sliced amounts and retracts with no M229 E1
     Habit("E amounts with no M229 E1 (native flow ignores them)", "HY060", fact="e_amounts"),
-    # ... on every printing move, and nothing native flow computes from either (M756 layer heights, M221 widths:
-    # "M221 Set Flow Rate", "M756 Set Height for Flow"): a sliced job with no flow at all on Hyrel, where
-    # Hyrel's own slicer header enables the amounts ("M229 E1 D1 ; enable E-values"): costs more
-    Habit(
-        "E amounts on every printing move with neither M229 E1 nor native-flow settings (M756, M221 W/Z)",
-        "HY060",
-        fact="e_sliced",
-        cost=4.5,
-    ),
     Habit("a G1 with a zero or negative E (a retract; on native flow it prints)", "HY031", fact="e_retract"),
     # "G0 Rapid Move": a rapid never prints (Marlin's G0 is G1 and extrudes)
     Habit("E on a G0 rapid move", "HY030", fact="e_on_g0"),

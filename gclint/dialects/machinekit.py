@@ -201,7 +201,13 @@ MACHINEKIT_CLUES = (
     # a C axis: five-axis LinuxCNC machines (Carvera's 4th axis is A, Hyrel's rotary axes A and B; but an
     # E3D tool changer on RepRapFirmware locks tools with C: weak)
     *(Clue(f"{c} C#: a C axis", c, test=lambda c: "C" in c.params, weight=1) for c in ("G0", "G1")),
-    # (weak, less than the first target's prior: Carvera's 4th axis and Hyrel's A/B axes move A too)
+    # "G41 D- ... D - tool number" (LinuxCNC documentation, gcode/g-code.adoc, "G41, G42 Cutter Compensation"):
+    # Marlin's G42 is a move to a mesh point, "G42 [F] [I] [J]" (marlinfw.org/docs/gcode/G042.html)
+    *(
+        Clue(f"{c} D#: cutter compensation by a tool's diameter", c, test=lambda c: "D" in c.params, weight=1)
+        for c in ("G41", "G42")
+    ),
+    # (weak, less than Hyrel's prior: Carvera's 4th axis and Hyrel's A/B axes move A too)
     Clue("G1 A#: extrusion on the A axis", "G1", test=lambda c: "A" in c.params and "E" not in c.params, weight=0.5),
 )
 
@@ -273,9 +279,6 @@ MACHINEKIT = Dialect(
         extensions=(".ngc",),
         clues=MACHINEKIT_CLUES,
         prior=0.05,  # an RS274NGC program Carvera runs as well is more often LinuxCNC's (it shares Carvera's clues)
-        # the interpreter stops on a code it does not have, unless the machine's INI remaps it (REMAP=), as
-        # LinuxCNC configurations often do
-        unlisted=4.0,
     ),
     owords=True,
     not_move_words="E",  # research/dialects.md 1.1 (G1, Machinekit: A = extruder) and 1.8 [MK]

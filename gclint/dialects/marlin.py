@@ -253,9 +253,6 @@ MARLIN = Dialect(
         extensions=(".gcode", ".gco"),
         clues=MARLIN_CLUES,
         prior=0.5,  # between Marlin and RepRapFirmware, a .gcode file with nothing else leans Marlin
-        # Marlin echoes "Unknown command" and goes on (research/anchors.md, Marlin), and the Marlin-flavour files
-        # this dialect reads come from forks that add codes of their own (FABtotum's M728, Creality's...)
-        unlisted=3.0,
     ),
     extended_commands=True,
     open_codes=_open,

@@ -36,6 +36,7 @@ class Firmware:
     detection: Detection = Detection()
     source: str = ""
     marks_dialect: bool = True  # its codes count as the dialect's when gclint.context weighs a file
+    plural: bool = False  # the title names several firmwares ("RepRap firmwares of ...": "have it")
     extended_commands: bool = False  # runs Klipper-style NAME KEY=VALUE commands (and macros named so)
     # what this firmware does otherwise than its dialect says (gclint.dialects.semantics field -> value): a file
     # read as written for it is read with these (``gclint.dialects.reading``)

@@ -26,6 +26,7 @@ _M = (
 REPRAP_2015 = Firmware(
     name="reprap-2015",
     title="RepRap firmwares of the 2015 RepRap G-code page (FiveD, Teacup, Sprinter)",
+    plural=True,
     codes=code_set(_G, _M),
     dialect="marlin",
     flavor=True,

@@ -1,7 +1,7 @@
 """Notes for people about how files were read (the way ruff prints warnings on stderr), summarised once per
 run: the files read on weak or conflicting evidence share one note (one file: its reasons; more: how many,
 as what, the first few names), and so do the files where nothing told the dialect (read as ``hyrel``,
-the first target); ``-v`` gives the decision, its reasons and every reading's score for every file."""
+gclint's default, with how to choose another); ``-v`` gives the decision, its reasons and every reading's score for every file."""
 
 from __future__ import annotations
 
@@ -59,8 +59,10 @@ def context_notes(results: list[FileResult], verbose: bool = False) -> list[str]
     for label, paths in groups.items():
         files = "1 file" if len(paths) == 1 else f"{len(paths)} files"
         lines.append(
-            f"nothing in {files} tells the dialect ({_named(paths)}): checked as {label}; "
-            "set --dialect, dialect = ... in gclint.toml or '; gclint: dialect=NAME' in the file"
+            f"nothing in {files} tells the dialect ({_named(paths)}): checked as {label}, as gclint checks "
+            "every file that does not say which firmware it is for; for another, give --dialect NAME (marlin, "
+            "reprap, machinekit, carvera, generic), dialect = NAME in gclint.toml or '; gclint: dialect=NAME' "
+            "in the file"
         )
     return lines
 
@@ -71,8 +73,7 @@ def _named(paths) -> str:
 
 
 def _printer_part(c) -> str:
-    """``, the first target`` and, when the job tells the printer, which one."""
-    text = ", the first target"
+    """When the job tells the printer: which one."""
     if c.printer is not None and c.printer_origin == "content":
-        text += f" (printer {c.printer}, from the job)"
-    return text
+        return f" (printer {c.printer}, from the job)"
+    return ""

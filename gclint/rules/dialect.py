@@ -7,7 +7,7 @@ in the Hyrel table subclass it, so the range lives once, as data.
 
 from __future__ import annotations
 
-from gclint import firmware
+from gclint import dialects, firmware
 from gclint.dialects.base import Param
 from gclint.rules.base import Rule, Severity, register
 from gclint.syntax.nodes import (
@@ -117,10 +117,16 @@ class UnknownCode(Rule):
         if code is None:
             return ""
         related = self.ctx.dialect.related()
-        others = [f.title for f in firmware.documenting(code, related) if f is not self.flavor]
-        if not others:
+        found = [f for f in firmware.documenting(code, related) if f is not self.flavor]
+        if any(code in d.codes for d in dialects.known_dialects() if d.name not in related):
+            # another dialect's code: an inventory that lists every firmware's numbers (the 2015 RepRap page,
+            # ``marks_dialect`` False) is not cited, its entry of that number may be another command (its M229
+            # is no Hyrel M229)
+            found = [f for f in found if f.marks_dialect]
+        if not found:
             return ""
-        return f" ({' and '.join(others)} {'has' if len(others) == 1 else 'have'} it)"
+        verb = "has" if len(found) == 1 and not found[0].plural else "have"
+        return f" ({' and '.join(f.title for f in found)} {verb} it)"
 
 
 class ParamTableRule(Rule):

@@ -120,7 +120,9 @@ class ShellPassThrough(_SecurityRule):
         on a Carvera can claim any flavour), with these exceptions, where the dialect documents the line
         as something else: RepRapFirmware's meta commands ("if", "while", "var", "set", "abort",
         "break"...) in a job read as RepRapFirmware, and lower-case G-code words, "n" line numbers, O-words
-        and parameter assignments in a job read as Machinekit/LinuxCNC (which reads words in any case).
+        and parameter assignments in a job read as Machinekit/LinuxCNC (which reads words in any case).  GRBL's
+        system commands ("$H", "$X", "$J=") in a job read as generic (they are what made it so: a GRBL
+        machine's own commands) are information only: a normal GRBL job passes the gate.
         "echo" is not
         reported: both firmwares only print its text (RepRapFirmware's "echo >file" writes a file:
         SC005).  Note that "break" and "abort" do something else on a Carvera (stop in the debugger, abort
@@ -157,6 +159,18 @@ class ShellPassThrough(_SecurityRule):
             # a word the shell has no command for does nothing there ("command not found"): a Klipper macro
             # (print_start), a lower-case line number (n0080), a word; only what the tables say acts is reported
             return
+        raw = line.raw
+        if any(m.contains in raw and re.search(m.pattern, raw) for m in self.ctx.dialect.detection.line_marks):
+            # a line of the machines the reading describes (GRBL's $H, $X, $J= in a job read as generic): their
+            # own command, which only a Carvera would run as its console's
+            self.report_masked(
+                line,
+                f"{_quote(token, 40)} is a GRBL system command here; a Smoothieware (Carvera) controller would"
+                f" run it as a console command (it {what})",
+                1,
+                Severity.INFO,
+            )
+            return
         self.report_masked(
             line,
             f"Smoothieware (Carvera) runs this line as the console command {_quote(token, 40)}: it {what};"
@@ -165,11 +179,11 @@ class ShellPassThrough(_SecurityRule):
         )
 
     def _documented_otherwise(self, line: Line, token: str) -> bool:
+        dialect = self.ctx.dialect
         parsed = line.parsed
         commands = parsed.commands
         if parsed.issues:
             return False
-        dialect = self.ctx.dialect
         if dialect.meta_keywords:  # (RepRapFirmware's meta commands)
             return bool(commands) and commands[0].kind == META and token in dialect.meta_keywords
         if dialect.owords and not dialect.console:  # (LinuxCNC's language: $ spindles, N-numbered comments)

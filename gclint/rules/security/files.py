@@ -310,11 +310,17 @@ _LOG_FILE = re.compile(r"(?i)\.(?:txt|log)$")
 # named file; seeds/carvera-mcodes.md M502 "deletes config-override"), RepRapFirmware writes
 # config-override.g (section 6: M500-M503 config-override); Marlin keeps them in EEPROM (sections 1 and 5:
 # save / load / defaults / report / validate settings), so a job read as Marlin is not reported.
-_CONFIG_OVERRIDE = {
-    "M500": "writes the machine's settings into its config-override file (Smoothieware/Carvera config-override,"
-    " RepRapFirmware config-override.g)",
-    "M502": "deletes the config-override file on Smoothieware/Carvera (the machine falls back to config.txt)",
-    "M504": "writes the machine's settings into a named config-override file on Smoothieware/Carvera",
+_CONFIG_OVERRIDE = {  # what each does on Smoothieware/Carvera
+    "M500": "writes the machine's settings into its config-override file",
+    "M502": "deletes the config-override file (the machine falls back to config.txt)",
+    "M504": "writes the machine's settings into a named config-override file",
+}
+# ... and on Marlin, by the dialect's effect (Marlin G-code reference: M500 Save Settings, M502 Factory Reset,
+# M504 Validate EEPROM contents)
+_EEPROM = {
+    "save-settings": "saves the current settings to EEPROM, where they outlive the job",
+    "factory-settings": "resets the settings to the firmware's defaults (for the next job too, once saved)",
+    "validate-settings": "only validates the stored settings",
 }
 
 
@@ -470,7 +476,7 @@ class ChangesPrinterFiles(_SecurityRule):
             return
         if code in _CONFIG_OVERRIDE:
             if not self.settings_in_eeprom:
-                self.report_masked(line, f"{code} {_CONFIG_OVERRIDE[code]}", column)
+                self.report_masked(line, self._settings_message(code), column)
             return
         argument = re.sub(r"\*\d+\s*$", "", _strip_comment(rest))  # (a "*99" checksum is no file name)
         if code in ("M30", "M28"):
@@ -554,6 +560,16 @@ class ChangesPrinterFiles(_SecurityRule):
             return  # already seen by check()
         if "echo" in line.raw:
             self._echo(line, 1)
+
+    def _settings_message(self, code: str) -> str:
+        """What ``code`` does: on the reading's own firmware first where it keeps its settings in EEPROM
+        (Marlin), then on Smoothieware/Carvera, which a job read as Marlin may still run on."""
+        own = _EEPROM.get(self.ctx.dialect.semantics.effect(code) or "")
+        carvera = _CONFIG_OVERRIDE[code]
+        if own is not None:
+            return f"{code} ({self.ctx.dialect.name}) {own}; on a Smoothieware (Carvera) controller it {carvera}"
+        rrf = " (RepRapFirmware: config-override.g)" if code == "M500" else ""
+        return f"{code} {carvera} on Smoothieware/Carvera{rrf}"
 
     def _echo(self, line: Line, column: int) -> None:
         m = _ECHO_REDIRECT.match(line.raw)
