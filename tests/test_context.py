@@ -89,7 +89,9 @@ def test_valid_marlin_codes_file_is_marlin() -> None:
     result = Linter(Options()).check_path(str(path))
     assert result.dialect == "marlin"
     assert not [f for f in result.findings if f.code == "DL001"], result.findings[:5]
-    assert len(result.findings) < 20  # was 282 when it was read as Carvera
+    # (was 282 when it was read as Carvera; what is left is the security rules on the file's examples of
+    # M28/M30/M500/M997 and Marlin passcodes, true in a job, and one repeated word)
+    assert len(result.findings) < 25
 
 
 def test_v5_job_with_w0_m116_and_v5_addresses_is_v5() -> None:

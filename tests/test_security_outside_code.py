@@ -90,7 +90,7 @@ def test_linuxcnc_user_m_codes_run_programs():
     assert [(n, code) for n, code, _ in found] == [(1, "SC004"), (3, "SC004")]
     assert _found("M150 P1\n", "marlin", "job.gcode") == []  # (Marlin's M150 sets LED colours)
     # a LinuxCNC job read as another dialect: the codes that dialect does not have still run programs
-    assert [(n, code) for n, code, _ in _found("G21\nM101 P1 Q2\nM2\n", "reprap")] == [(2, "SC004")]
+    assert [(n, code) for n, code, _ in _found("G21\nM199 P1 Q2\nM2\n", "reprap")] == [(2, "SC004")]
 
 
 # -- the fourth attack ----------------------------------------------------------------------------------------

@@ -102,7 +102,8 @@ class RunsFile(_SecurityRule):
         machine's program folder ("M100-M199 User Defined Commands" in LinuxCNC's M-code documentation), or
         the subroutine the machine's INI file remaps the code to; the codes Machinekit's FDM configuration
         defines (M104, M106, M109, M140, M190...) are not reported.  In other dialects they are not reported
-        (Marlin's M150 sets LED colours), but in a ".ngc" file, LinuxCNC's own extension, they are.
+        (Marlin's M150 sets LED colours), but in a ".ngc" file, LinuxCNC's own extension, those the dialect does
+        not have are.
     """
     example_bad = 'M98 P"0:/macros/prime.g"'
     example_good = """
@@ -237,12 +238,13 @@ class RunsFile(_SecurityRule):
         external program named M1nn in the machine's program folder runs ("M100-M199 User Defined Commands" in
         LinuxCNC's M-code documentation, https://linuxcnc.org/docs/html/gcode/m-code.html#mcode:m100-m199).
         A machine's INI may remap the code instead, to a subroutine file: code outside the job either way.  In a
-        ".ngc" file (LinuxCNC's own program extension) read as another dialect, each is reported."""
+        ".ngc" file (LinuxCNC's own program extension) read as another dialect, those it does not have are
+        reported."""
         dialect = self.ctx.dialect
         if dialect.semantics.user_programs:
             runs = code not in dialect.codes
-        else:  # (a ".ngc" job, LinuxCNC's own extension, read as another dialect)
-            runs = str(self.ctx.path or "").lower().endswith(".ngc")
+        else:  # (a ".ngc" job, LinuxCNC's own extension, read as another dialect: a code that dialect lacks)
+            runs = str(self.ctx.path or "").lower().endswith(".ngc") and code not in dialect.codes
         if runs:
             self.report_masked(
                 line,
