@@ -220,7 +220,7 @@ def test_explicit_printer_is_not_second_guessed_and_assumed_models_are_named() -
     assert fifth.context.printer == "ehr" and not [f for f in fifth.findings if f.code == "HY007"]
     # a lone line that disagrees with the rest of the job is reported, and says which model it rests on
     assumed = [f for f in check("M229 E1 D1\nM677 S100\nT0\nT4\nM30\n").findings if f.code == "HY007"]
-    assert assumed and "printer assumed: 30m, from M677 S100 at line 2; set it with --printer" in assumed[0].message
+    assert assumed and "printer 30m, from M677 S100 at line 2; set another with --printer" in assumed[0].message
 
 
 # -- the decision is visible ---------------------------------------------------------------------------

@@ -135,7 +135,7 @@ class Context:
         if self.printer_origin == DEFAULT:
             return f" (printer assumed: {self.printer}, the default; set it with --printer)"
         told = self.printer_reasons[0].split(": ")[0].removesuffix(" names it") if self.printer_reasons else "the job"
-        return f" (printer assumed: {self.printer}, from {told}; set it with --printer)"
+        return f" (printer {self.printer}, from {told}; set another with --printer)"
 
     @property
     def printer_from(self) -> str:
