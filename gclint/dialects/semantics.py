@@ -39,6 +39,7 @@ The facts and where each comes from:
 
 from __future__ import annotations
 
+import re
 from collections.abc import Mapping
 from dataclasses import dataclass, field, replace
 from typing import Literal
@@ -55,6 +56,26 @@ def number(text: str | None) -> float | None:
     except ValueError:
         return None
     return value if value - value == 0 else None
+
+
+# LinuxCNC's unary functions ("G-code Functions": ATAN[arg]/[arg], ABS, ACOS, ASIN, COS, EXP, FIX, FUP, ROUND, LN,
+# SIN, SQRT, TAN, EXISTS; https://linuxcnc.org/docs/html/gcode/overview.html#gcode:functions): a word's value
+# may start with one (``X SIN[30]``), as it may with ``[`` (an expression) or ``#`` (a parameter)
+FUNCTIONS = frozenset("ATAN ABS ACOS ASIN COS EXP FIX FUP ROUND LN SIN SQRT TAN EXISTS".split())
+_FUNCTION = re.compile(r"([A-Za-z]+)[ \t]*\[")
+
+
+def computed(text: str | None) -> bool:
+    """True when a word's value is computed when the line runs rather than written as a number: an expression
+    (``[1+2]``, ``{...}``), a parameter (``#1``, ``#<_x>``) or a function (``SIN[30]``, ``ABS[-4]``,
+    ``EXISTS[#<_foo>]``), with or without a sign.  A flag (None), a literal number or a quoted string is not."""
+    if not text or text[0] == '"':
+        return False
+    body = text.lstrip("+-")
+    if body[:1] in ("[", "{", "#"):
+        return True
+    m = _FUNCTION.match(body)
+    return m is not None and m.group(1).upper() in FUNCTIONS
 
 
 @dataclass(frozen=True)

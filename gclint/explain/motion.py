@@ -5,6 +5,7 @@ the M660 registers stored); what its words mean is the dialect table's."""
 from __future__ import annotations
 
 from gclint.dialects.base import Code
+from gclint.dialects.semantics import computed
 from gclint.explain.generic import does, generic, reading
 from gclint.explain.job import Decoder, Job
 from gclint.explain.model import Explanation, Item, fmt, number
@@ -16,6 +17,8 @@ def axis_text(job: Job, letter: str, value: str | None) -> str:
     unit = "in" if job.state.units == "inch" else "mm"
     if value is None:
         return f"{letter} with no value"
+    if computed(value):
+        return f"{letter} from {value}, a value computed when the line runs (expression, parameter or function; not evaluated here)"
     if job.state.absolute:
         return f"to {letter}{value}"
     n = number(value)
