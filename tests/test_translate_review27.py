@@ -8,11 +8,9 @@ import pytest
 
 from gclint import dialects
 from gclint.explain import explain_text
-
 from gclint.syntax.parse import parse_line
 from gclint.translate.words import has_expression
 
-from .test_diff import translate_and_diff
 from .test_translate_tables import translate
 
 
