@@ -11,6 +11,7 @@ from gclint.explain import explain_text
 from gclint.syntax.parse import parse_line
 from gclint.translate.words import has_expression
 
+from .test_diff import translate_and_diff
 from .test_translate_tables import translate
 
 
@@ -57,3 +58,39 @@ def test_what_counts_as_a_computed_value() -> None:
     assert has_expression(parse_line("G0 X EXISTS[#<_foo>]").commands[0])
     assert not has_expression(parse_line('M118 S"a #1 b"').commands[0])
     assert not has_expression(parse_line("G1 X-2.5 Y.5").commands[0])
+
+
+# -- B: LinuxCNC ignores blanks anywhere on a line ------------------------------------------------------------------
+
+CUT6 = "G21 G90 G54\nM3 S6000\nG0 X0 Y0 Z1\nG1 Z-1 F100\nG1 X 2 0 Y 5\nG1 X1 0 0\nG0X +0. 12 34Y 7\nG0 Z5\nM2\n"
+
+
+def test_blanks_inside_numbers_read_as_linuxcnc_reads_them() -> None:
+    out, result = translate("machinekit", CUT6, spindle_max_rpm="10000")
+    lines = out.splitlines()
+    assert "G1 X20 Y5" in lines and "G1 X100" in lines and "G0 X+0.1234 Y7" in lines
+    assert not any(" 2 0" in text or "X1 0 0" in text for text in lines)
+    assert "TR004" in codes_on(result, 5)
+    # the diff reads the source as LinuxCNC does: the translation agrees, the source's text kept does not
+    text, _, diff = translate_and_diff("machinekit", CUT6, spindle_max_rpm="10000")
+    assert not diff.unexplained(), [d.to_dict() for d in diff.unexplained()]
+    from gclint.simulate import Explanations, Mapping, diff_sources
+    from gclint.syntax.source import Source
+
+    kept = text.replace("G1 X20 Y5", "G1 X 2 0 Y 5")
+    again = diff_sources(
+        Source.from_text(CUT6, "s"),
+        Source.from_text(kept, "o"),
+        dialects.get("machinekit"),
+        dialects.get("hyrel"),
+        Mapping(),
+        Explanations(),
+    )
+    assert again.unexplained()
+    assert "X20 (to X20)" in explained("G1 X 2 0 Y 5 F100", "machinekit")
+
+
+def test_blanks_are_not_squeezed_where_they_do_not_change_the_reading() -> None:
+    out, result = translate("machinekit", "G21 G90\nG1 X 5 Y 2 F100\nM2\n")
+    assert "G1 X 5 Y 2 F100" in out.splitlines() or "G1 X 5 Y 2" in out
+    assert not any("blanks" in f.message for f in result.findings)

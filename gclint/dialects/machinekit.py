@@ -227,6 +227,7 @@ MACHINEKIT_SEMANTICS = Semantics(
     heat_words="remap",
     feed_on_any_command=True,
     default_workspace="G54",
+    blanks_ignored=True,
     effects=effects(
         WORKSPACES,
         {f"G59.{n}": "workspace" for n in (1, 2, 3)},

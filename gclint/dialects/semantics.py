@@ -44,6 +44,9 @@ from collections.abc import Mapping
 from dataclasses import dataclass, field, replace
 from typing import Literal
 
+from gclint.syntax.nodes import ParsedLine
+from gclint.syntax.parse import parse_line, read_blanks_ignored
+
 # -- dwell --------------------------------------------------------------------------------------------------
 
 
@@ -235,6 +238,9 @@ class Semantics:
       "M109 Wait for Temp (Head)"), None (no R).  ``heat_words``: which words carry a set-point and the tool it
       is for: ``"S"`` (S, and T the tool) or ``"remap"`` (Machinekit FDM: the README's ``M104 P<index> S<temp>``,
       else the remap's ``M104 P<temp> T<index>``: research/dialects.md 1.8 [MK]).
+    * ``blanks_ignored``: spaces and tabs outside comments do not count, even inside a number (LinuxCNC: "Spaces
+      and tabs are allowed anywhere on a line of code ... 'G0X +0. 12 34Y 7' is equivalent to 'G0 x+0.1234 Y7'",
+      https://linuxcnc.org/docs/html/gcode/overview.html#_format_of_a_line).
     * ``effects``: code -> effect (``COMMON_EFFECTS`` and the dialect's own).
     """
 
@@ -260,7 +266,12 @@ class Semantics:
     fan_scale: Literal["range", "255", "255-or-fraction"] = "255"
     wait_r: Literal["target", "tolerance"] | None = "target"
     heat_words: Literal["S", "remap"] = "S"
+    blanks_ignored: bool = False
     effects: Mapping[str, Effect] = field(default_factory=lambda: dict(COMMON_EFFECTS))
+
+    def parse(self, raw: str) -> ParsedLine:
+        """One line as this dialect's machine reads it (``blanks_ignored``: ``X 2 0`` is X20)."""
+        return read_blanks_ignored(raw) if self.blanks_ignored else parse_line(raw)
 
     def set_point(self, params: Mapping[str, str | None], wait: bool) -> tuple[float | None, str | None]:
         """The temperature a set or wait command gives (°C, None: none) and the word that names its tool

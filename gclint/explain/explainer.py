@@ -17,7 +17,6 @@ from gclint.machine.state import MachineState
 from gclint.rules.hyrel.jobflow import exponent_message
 from gclint.syntax.build import exponents
 from gclint.syntax.nodes import ASSIGNMENT, EXTENDED, GCODE, HOST, IMPLICIT, META, OWORD, PERCENT, TEXT, Command, Line
-from gclint.syntax.parse import parse_line
 from gclint.syntax.source import Source
 
 # One module per topic; each says which codes it decodes for a job's dialect (``decoders(job)``: by the codes'
@@ -212,8 +211,9 @@ def explain_lines(
 ) -> Iterator[Explanation]:
     """Explanations of ``(text, ending)`` lines, in order."""
     explainer = Explainer(dialect, state)
+    read = dialect.semantics.parse  # (LinuxCNC ignores blanks: X 2 0 is X20)
     for number, (raw, ending) in enumerate(lines, start=1):
-        yield from explainer.explain_line(Line(number, raw, ending, parse_line(raw)))
+        yield from explainer.explain_line(Line(number, raw, ending, read(raw)))
 
 
 def explain_text(text: str, dialect: Dialect, state: MachineState | None = None) -> list[Explanation]:

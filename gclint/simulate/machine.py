@@ -24,7 +24,7 @@ from gclint.simulate.events import LAYER_MARKS, Dwell, Event, Heat, Ignored, Lay
 from gclint.simulate.trace import NATIVE, EndState, Look, Mapping, Move, Trace
 from gclint.syntax.fastpath import PLAIN_MOVE
 from gclint.syntax.nodes import ASSIGNMENT, GCODE, IMPLICIT, META, OWORD, Command
-from gclint.syntax.parse import PARSE_LIMIT, code_before_long_comment, parse_line
+from gclint.syntax.parse import PARSE_LIMIT, code_before_long_comment
 from gclint.syntax.source import Source
 
 INCH = 25.4
@@ -185,7 +185,7 @@ class Simulator:
                         continue
                 if len(raw) > PARSE_LIMIT:  # one trailing comment made it too long: its commands run
                     raw = code_before_long_comment(raw) or raw
-                written = parse_line(raw).commands
+                written = facts.parse(raw).commands  # (LinuxCNC ignores blanks: X 2 0 is X20)
                 commands = facts.running(written)
                 if len(commands) < len(written) and self.listening:
                     for cmd in facts.ignored(written):

@@ -29,7 +29,7 @@ from gclint.dialects.base import Dialect
 from gclint.machine.interpreter import Interpreter
 from gclint.machine.job_settings import read_settings
 from gclint.syntax.nodes import ASSIGNMENT, EXTENDED, GCODE, HOST, IMPLICIT, META, OWORD, Command, Line
-from gclint.syntax.parse import PARSE_LIMIT, code_before_long_comment, parse_line
+from gclint.syntax.parse import PARSE_LIMIT, canonical_text, code_before_long_comment, parse_line
 from gclint.translate.arc_moves import ArcMoves
 from gclint.translate.engine import PlainMove, TranslationResult, Translator
 from gclint.translate.findings import (
@@ -221,6 +221,14 @@ class HyrelTranslator(LineWriter, Heads, Program, Motion, ArcMoves, Modal, Spind
             self.default_ending = ending
             self._ending_known = True
         parsed = line.parsed
+        blanks = None
+        if parsed.extra and self.source.semantics.blanks_ignored:
+            read = self.source.semantics.parse(line.raw)
+            if read is not parsed:
+                # the source machine ignores blanks (LinuxCNC: X 2 0 is X20): the line as it reads it, written plainly
+                blanks = canonical_text(read)
+                line = Line(line.number, blanks, ending, parse_line(blanks))
+                parsed = line.parsed
         commands = parsed.commands
         if not commands:
             if parsed.kind == "error" and len(line.raw) > PARSE_LIMIT:
@@ -264,6 +272,14 @@ class HyrelTranslator(LineWriter, Heads, Program, Motion, ArcMoves, Modal, Spind
         self.line = line
         self.edit = None
         self.result = result
+        if blanks is not None:
+            self.report(
+                TR_NOTE,
+                "blanks inside a number: the source machine ignores blanks anywhere on a line (LinuxCNC: 'X 2 0' is "
+                f"X20); written as {blanks}",
+                key="blanks",
+            )
+            self._edit().changed = True
         if self.hy.ended:
             self._after_end(commands)
         elif len(commands) == 1 and not self.CHECK_EXPRESSIONS:
