@@ -94,3 +94,35 @@ def test_blanks_are_not_squeezed_where_they_do_not_change_the_reading() -> None:
     out, result = translate("machinekit", "G21 G90\nG1 X 5 Y 2 F100\nM2\n")
     assert "G1 X 5 Y 2 F100" in out.splitlines() or "G1 X 5 Y 2" in out
     assert not any("blanks" in f.message for f in result.findings)
+
+
+# -- C: LinuxCNC's M6 stops the spindle -------------------------------------------------------------------------------
+
+TOOLS = "G21 G90 G54\nT1 M6\nM3 S6000\nG0 X0 Y0 Z1\nG1 Z-1 F100\nG1 X10\nT2 M6\nG1 X20\nG0 Z5\nM2\n"
+
+
+@pytest.mark.parametrize("tools", ["", "1=T1,2=T2", "1=T1"])
+def test_m6_stops_the_spindle_and_nothing_restarts_it(tools: str) -> None:
+    settings = {"spindle_max_rpm": "15000", **({"tool_map": tools} if tools else {})}
+    text, result, diff = translate_and_diff("machinekit", TOOLS, **settings)
+    assert not diff.unexplained(), [d.to_dict() for d in diff.unexplained()]
+    lines = text.splitlines()
+    after = lines[lines.index("G1 X10") + 1 : lines.index("G1 X20")]
+    assert any(t.startswith("M5 T") for t in after) and not any(t.startswith(("M3", "M4")) for t in after), after
+    message = " ".join(f.message for f in result.findings if f.line == 7)
+    assert "stops the spindle" in message and "runs on" not in message
+    # a translation that restarts it differs from the source
+    from gclint.simulate import Mapping, diff_sources
+    from gclint.simulate.translation import explanations_from
+    from gclint.syntax.source import Source
+
+    wrong = text.replace("G1 X20", "M3 T2 S40\nG1 X20")
+    again = diff_sources(
+        Source.from_text(TOOLS, "s"),
+        Source.from_text(wrong, "o"),
+        dialects.get("machinekit"),
+        dialects.get("hyrel"),
+        Mapping(spindle_max_rpm=15000.0),
+        explanations_from(result),
+    )
+    assert any(d.aspect == "spindle" for d in again.unexplained())

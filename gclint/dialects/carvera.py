@@ -126,6 +126,7 @@ CARVERA_SEMANTICS = Semantics(
     wait_r=None,
     feed_on_any_command=True,
     default_workspace="G54",
+    tool_change_stops_spindle=True,
     effects=effects(
         WORKSPACES,
         {

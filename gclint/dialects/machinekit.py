@@ -228,6 +228,7 @@ MACHINEKIT_SEMANTICS = Semantics(
     feed_on_any_command=True,
     default_workspace="G54",
     blanks_ignored=True,
+    tool_change_stops_spindle=True,
     effects=effects(
         WORKSPACES,
         {f"G59.{n}": "workspace" for n in (1, 2, 3)},

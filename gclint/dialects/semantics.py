@@ -241,6 +241,10 @@ class Semantics:
     * ``blanks_ignored``: spaces and tabs outside comments do not count, even inside a number (LinuxCNC: "Spaces
       and tabs are allowed anywhere on a line of code ... 'G0X +0. 12 34Y 7' is equivalent to 'G0 x+0.1234 Y7'",
       https://linuxcnc.org/docs/html/gcode/overview.html#_format_of_a_line).
+    * ``tool_change_stops_spindle``: the tool change (M6) leaves the spindle stopped, and only a later M3/M4 starts
+      it (LinuxCNC: "When the tool change is complete: The spindle will be stopped", M-codes, "M6 Tool Change",
+      https://linuxcnc.org/docs/html/gcode/m-code.html#mcode:m6; Carvera: "M6 | Auto tool change", the ATC
+      swaps the tool in a stopped spindle: https://carvera-community.gitbook.io/docs/firmware/supported-commands/mcodes).
     * ``effects``: code -> effect (``COMMON_EFFECTS`` and the dialect's own).
     """
 
@@ -267,6 +271,7 @@ class Semantics:
     wait_r: Literal["target", "tolerance"] | None = "target"
     heat_words: Literal["S", "remap"] = "S"
     blanks_ignored: bool = False
+    tool_change_stops_spindle: bool = False
     effects: Mapping[str, Effect] = field(default_factory=lambda: dict(COMMON_EFFECTS))
 
     def parse(self, raw: str) -> ParsedLine:

@@ -159,9 +159,14 @@ class CncSimulator(DeviceModel):
         value = number(cmd.params.get("T"))
         tool = int(value) if value is not None else self.prepared
         if tool is None:
+            if self.facts.tool_change_stops_spindle:
+                self.spindle = None
+                self.dirty()
             return
         # the dialect's "no tool" number empties the spindle (LinuxCNC: "T0 gets special handling: no tool")
         self.tool = None if tool == self.facts.no_tool else tool
+        if self.facts.tool_change_stops_spindle:  # (LinuxCNC M6: "The spindle will be stopped"; the Carvera's ATC)
+            self.spindle = None
         self.dirty()
 
     def tool_label(self, tool: int | None) -> str:
@@ -553,9 +558,7 @@ class CarveraSimulator(CncSimulator):
         super().spindle_off(cmd, n)
 
     def tool_change(self, cmd: Command, n: int) -> None:
-        super().tool_change(cmd, n)
-        self.spindle = None  # the spindle stops for a tool change
-        self.dirty()
+        super().tool_change(cmd, n)  # (the spindle stops for it: Semantics.tool_change_stops_spindle)
 
     def working_head(self) -> int | str | None:
         tool = self.tool
