@@ -126,3 +126,39 @@ def test_m6_stops_the_spindle_and_nothing_restarts_it(tools: str) -> None:
         explanations_from(result),
     )
     assert any(d.aspect == "spindle" for d in again.unexplained())
+
+
+# -- D: LinuxCNC sets the feed (step 3) before the units (step 12) ------------------------------------------------------
+
+UNITS = "G21 G90 G54\nG0 X0 Y0 Z1\nS1000 M3\nG20 G1 X1 F10\nG1 Y1\nG21 G1 X50 F250\nG1 Y50\nM2\n"
+
+
+def test_f_on_a_line_with_g20_or_g21_is_read_in_the_units_before_it() -> None:
+    """overview.adoc "G-code Order of Execution": "Set feed rate (F)" before "Set length units (G20, G21)";
+    interp_convert.cc convert_length_units keeps the feed's speed ("settings->feed_rate = GET_EXTERNAL_FEED_RATE()")."""
+    text, result, diff = translate_and_diff("machinekit", UNITS, spindle_max_rpm="15000")
+    assert not diff.unexplained(), [d.to_dict() for d in diff.unexplained()]
+    lines = text.splitlines()
+    assert "G1 X25.4 F10" in lines  # 10 mm/min: G21 was in force when F was read
+    assert "G1 Y25.4" in lines  # the same 10 mm/min
+    assert "G1 X50 F6350" in lines  # 250 in/min: G20 was in force
+    assert "G1 Y50" in lines
+    from gclint.simulate import Mapping, diff_sources
+    from gclint.simulate.translation import explanations_from
+    from gclint.syntax.source import Source
+
+    wrong = text.replace("G1 X25.4 F10", "G1 X25.4 F254")
+    again = diff_sources(
+        Source.from_text(UNITS, "s"),
+        Source.from_text(wrong, "o"),
+        dialects.get("machinekit"),
+        dialects.get("hyrel"),
+        Mapping(spindle_max_rpm=15000.0),
+        explanations_from(result),
+    )
+    assert any(d.aspect == "feed" for d in again.unexplained())
+
+
+def test_marlin_reads_f_in_the_units_of_its_own_line() -> None:
+    out, _ = translate("marlin", "G21\nG20\nG1 X1 F10\n")
+    assert "G1 X25.4 F254" in out.splitlines()

@@ -95,6 +95,11 @@ class Simulator:
         self.frame: tuple[str | None, ...] = (None,) * 5
         self.anchor: list[int] = [0] * 5
         self.scale = 1.0  # 25.4 in inches
+        # what F words count in: the units in force, except where the dialect reads a line's F before its G20/G21 run
+        # (``Semantics.words_first``: LinuxCNC's "Set feed rate (F)" comes before "Set length units"): the units in
+        # force before the line, until the line is done
+        self.feed_scale = 1.0
+        self._feed_first = "F" in facts.words_first
         self.absolute = True
         self.e_absolute = True
         self.e_pos: float | None = 0.0
@@ -199,7 +204,7 @@ class Simulator:
                     if self.feed_on_any and "F" in cmd.params and cmd.code not in _MOTION:
                         f = number(cmd.params["F"])
                         if f is not None:
-                            self.feed = f * self.scale
+                            self.feed = f * self.feed_scale
                     handler = handlers.get(cmd.code)  # type: ignore[arg-type]
                     if handler is not None:
                         move = handler(cmd, n)
@@ -221,6 +226,7 @@ class Simulator:
                     if pending:
                         yield from pending
                         pending.clear()
+                self.feed_scale = self.scale
         self.line_count = n
         end = self.end_state()
         if end is not self.trace.end:
@@ -238,7 +244,7 @@ class Simulator:
             if "F" in params and cmd.code not in _MOTION:
                 f = number(params["F"])
                 if f is not None:
-                    self.feed = f * self.scale
+                    self.feed = f * self.feed_scale
 
     def emit(self, event: Event) -> None:
         """An event for ``events`` (not for ``run``: the diff reads the moves and the trace)."""
@@ -340,7 +346,7 @@ class Simulator:
             f = f_first
         scale = self.scale
         if f is not None:
-            self.feed = float(f) * scale
+            self.feed = float(f) * self.feed_scale
         pos = self.pos
         start = tuple(pos)
         if x is not None or y is not None or z is not None:
@@ -389,7 +395,7 @@ class Simulator:
         if "F" in params and not any(a in params for a in "XYZAB"):
             f = number(params["F"])
             if f is not None:
-                self.feed = f * self.scale
+                self.feed = f * self.feed_scale
             return None
         if self.motion_mode is None or not any(a in params for a in "XYZAB"):
             return None
@@ -521,6 +527,8 @@ class Simulator:
 
     def units(self, cmd: Command, n: int) -> None:
         self.scale = INCH if cmd.code == "G20" else 1.0
+        if not self._feed_first:
+            self.feed_scale = self.scale  # (else when the line is done: ``_read``)
         if cmd.code == "G20":
             self.inch_used = True
 
@@ -602,7 +610,7 @@ class Simulator:
         feed = self.feed
         if f is not None:
             value = number(f)
-            value = value * self.scale if value is not None else None
+            value = value * self.feed_scale if value is not None else None
             if not rapid or self.g0_feed == "modal":
                 self.feed = feed = value
             elif self.g0_feed == "one-shot":
@@ -656,7 +664,7 @@ class Simulator:
         f = params.get("F")
         if f is not None:
             value = number(f)
-            self.feed = value * self.scale if value is not None else None
+            self.feed = value * self.feed_scale if value is not None else None
         start = self.machine()
         self.pos = self.target(params)
         delta = self.extrusion(params, False)

@@ -51,7 +51,7 @@ from gclint.translate.program import Program
 from gclint.translate.spindle import Spindles
 from gclint.translate.state import HyrelSide
 from gclint.translate.tools import SourceTools
-from gclint.translate.words import has_expression, num
+from gclint.translate.words import INCH, has_expression, num
 from gclint.translate.writer import LineWriter
 
 WORKSPACES = {f"G{n}": "workspace" for n in range(54, 60)}  # G54-G59: the same codes on Hyrel
@@ -112,6 +112,10 @@ class HyrelTranslator(LineWriter, Heads, Program, Motion, ArcMoves, Modal, Spind
         self.state = self.interp.state
         self.evalues = self.opts.flow == "evalues"
         self.inch = False  # the source is in inches (G20): lengths and feeds are converted
+        # the units the current line's F words are read in, where the source reads them before the line's G20/G21
+        # (LinuxCNC, "G-code Order of Execution": "Set feed rate (F)" before "Set length units (G20, G21)"); None:
+        # the units in force (``Motion.feed_inches``)
+        self.line_feed_inch: bool | None = None
         self.extra_always = False  # call move_extra on every move (Carvera laser mode)
         self.annotate = self.opts.annotate
         self.positions = frozenset(self.opts.printer.positions)
@@ -313,6 +317,9 @@ class HyrelTranslator(LineWriter, Heads, Program, Motion, ArcMoves, Modal, Spind
             order = tuple(index_of[id(cmd)] for cmd in running)
             if order != tuple(range(len(order))):
                 self._edit().order = order
+            feeds = [cmd.params["F"] for cmd in commands if "F" in cmd.params] if "F" in facts.words_first else []
+            if feeds:
+                self.line_feed_inch = self.inch
             if "S" in facts.words_first and hasattr(self, "rpm"):
                 # LinuxCNC sets the spindle speed of any S word on the line before the line's commands run
                 # ("G-code Order of Execution": "Set spindle speed (S)" comes before "Spindle on or off")
@@ -351,6 +358,13 @@ class HyrelTranslator(LineWriter, Heads, Program, Motion, ArcMoves, Modal, Spind
                     else:
                         handler(self, cmd)
                 apply(cmd, line)
+            if feeds:
+                # LinuxCNC keeps the feed's speed across the line's change of units (convert_length_units:
+                # "settings->feed_rate = GET_EXTERNAL_FEED_RATE()"): the F read in the old units, in the new ones
+                f = num(feeds[-1])
+                if f is not None and self.line_feed_inch != self.inch:
+                    self.state.feed = f / INCH if self.inch else f * INCH
+                self.line_feed_inch = None
         edit = self.edit
         if edit is None and len(commands) > 1 and not self.hy.ended:
             edit = self._edit()  # several commands: one a line, as the Hyrel pages show (output.LineEdit)
