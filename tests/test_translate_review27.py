@@ -162,3 +162,17 @@ def test_f_on_a_line_with_g20_or_g21_is_read_in_the_units_before_it() -> None:
 def test_marlin_reads_f_in_the_units_of_its_own_line() -> None:
     out, _ = translate("marlin", "G21\nG20\nG1 X1 F10\n")
     assert "G1 X25.4 F254" in out.splitlines()
+
+
+# -- E: Marlin G20 with absolute E ------------------------------------------------------------------------------------
+
+M8 = "M104 S200\nM109 S200\nG92 E0\nG1 X10 Y10 Z0.3 F1200\nG1 X20 E8\nG20\nG1 X2 E8\nG1 X3 E8.5\nG21\nG1 X80 E216.9\n"
+
+
+def test_absolute_e_under_g20_is_compared_in_the_same_units() -> None:
+    text, _, diff = translate_and_diff("marlin", M8)
+    assert not diff.unexplained(), [d.to_dict() for d in diff.unexplained()]
+    lines = text.splitlines()
+    assert "G1 X50.8 E203.2" in lines  # E8 in inches is 203.2 mm, from the E position 8 mm
+    assert "G1 X76.2 E215.9" in lines
+    assert "G1 X80 E216.9" in lines  # back in mm: 1 mm more

@@ -24,6 +24,11 @@ class Modal:
             # the modal feed keeps its speed across a change of units (Marlin keeps it in mm/min; LinuxCNC
             # converts it): in the new unit it is another number
             self.state.feed = feed / INCH if inch else feed * INCH
+        e = self.state.e_position
+        if e is not None and inch != self.inch and self.E_LINEAR:  # type: ignore[attr-defined]
+            # an absolute E compares with the E position in the same units: G20 makes E inches too (X10: "multiply
+            # X Y Z I J K R F (and linear E) by 25.4"), so the position the source reached is another number there
+            self.state.e_position = e / INCH if inch else e * INCH
         self.inch = inch
         if cmd.code == "G20":
             self.replace(cmd, "G21")
