@@ -176,3 +176,16 @@ def test_absolute_e_under_g20_is_compared_in_the_same_units() -> None:
     assert "G1 X50.8 E203.2" in lines  # E8 in inches is 203.2 mm, from the E position 8 mm
     assert "G1 X76.2 E215.9" in lines
     assert "G1 X80 E216.9" in lines  # back in mm: 1 mm more
+
+
+# -- F: Machinekit G91 and a move on one line: the E mode before the move ---------------------------------------------
+
+
+@pytest.mark.parametrize("line", ["G91 G1 X10 A0.5", "G1 X10 A0.5 G91"])
+def test_relative_e_is_written_before_the_move_of_its_line(line: str) -> None:
+    source = f"G21 G90\nM104 P0 S210\nM109 P0 S210\nG92 A0\nG1 Z0.3 F1200\nG1 X10 Y10 A1.5 F1800\n{line}\nG90\nG1 X30 A3\nM2\n"
+    text, _, diff = translate_and_diff("machinekit", source)
+    assert not diff.unexplained(), [d.to_dict() for d in diff.unexplained()]
+    lines = text.splitlines()
+    g91 = lines.index("G91")
+    assert lines[g91 + 1 : g91 + 3] == ["M83", "G1 X10 E0.5"], lines

@@ -145,7 +145,15 @@ class Modal:
         note = self.E_MODE_FOLLOWS_POSITIONING
         if note is None or not self.evalues or not self.hy.m229_written or self.hy.e_mode_written == absolute:
             return
-        self.after("M82" if absolute else "M83", note=note)
+        mode = "M82" if absolute else "M83"
+        line = self.line  # type: ignore[attr-defined]
+        if line is not None and len(line.parsed.commands) > 1:
+            # other commands on the line (G91 G1 X10 A0.5): the E mode right after G90/G91, before the move that
+            # the source runs after it (written one command a line, in the order the source runs them)
+            glue = line.ending or self.default_ending  # type: ignore[attr-defined]
+            self.replace(cmd, f"{rewrite(cmd)}{glue}{mode}", note=note)
+        else:
+            self.after(mode, note=note)
         self.hy.e_mode_written = absolute
 
     def set_position(self, cmd: Command) -> None:
