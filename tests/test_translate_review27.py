@@ -189,3 +189,31 @@ def test_relative_e_is_written_before_the_move_of_its_line(line: str) -> None:
     lines = text.splitlines()
     g91 = lines.index("G91")
     assert lines[g91 + 1 : g91 + 3] == ["M83", "G1 X10 E0.5"], lines
+
+
+# -- review24 1.4: LinuxCNC G4 P1 S5000 changes the spindle speed -------------------------------------------------------
+
+L8 = "G21 G90\nT1 M6\nG0 X0 Y0 Z5\nM3 S10000\nG1 Z-1 F100\nG1 X10\nG4 P1 S5000\nG1 X20\nG1 X30\nM5\nM2\n"
+
+
+def test_s_on_a_dwell_line_is_a_spindle_speed_change() -> None:
+    text, result, diff = translate_and_diff("machinekit", L8, spindle_max_rpm="15000")
+    assert not diff.unexplained(), [d.to_dict() for d in diff.unexplained()]
+    lines = text.splitlines()
+    assert lines[lines.index("G4 S1") - 1] == "M3 T1 S33.3", lines
+    from gclint.simulate import Mapping, diff_sources
+    from gclint.simulate.translation import explanations_from
+    from gclint.syntax.source import Source
+
+    kept = text.replace("M3 T1 S33.3\n", "")
+    again = diff_sources(
+        Source.from_text(L8, "s"),
+        Source.from_text(kept, "o"),
+        dialects.get("machinekit"),
+        dialects.get("hyrel"),
+        Mapping(spindle_max_rpm=15000.0),
+        explanations_from(result),
+    )
+    assert any(d.aspect == "spindle" for d in again.unexplained())
+    text = explained("G4 P1 S5000", "machinekit")
+    assert "spindle speed 5000 rpm" in text and "pause for 1 s" in text

@@ -27,6 +27,22 @@ def axis_text(job: Job, letter: str, value: str | None) -> str:
     return f"{'+' if n >= 0 else ''}{fmt(n)} {unit} in {letter}"
 
 
+def spindle_speed(job: Job, exp: Explanation, cmd: Command) -> bool:
+    """S where the dialect sets a line's S before its commands, whatever they are (LinuxCNC, "G-code Order of
+    Execution": "Set spindle speed (S)"): the spindle speed, a change of speed if the spindle runs.  False when S
+    means something else there (the caller reads it)."""
+    word = cmd.param("S")
+    if word is None or "S" not in job.facts.words_first:
+        return False
+    value = word.value
+    what = f"{value} rpm" if number(value) is not None else f"the value {value}"
+    exp.add(
+        word.text.strip(),
+        f"spindle speed {what}, set before the line's other commands run; a running spindle changes speed",
+    )
+    return True
+
+
 def move(job: Job, exp: Explanation, cmd: Command, spec: Code | None, mode: str) -> None:
     """A G0 or G1 (or axis words under modal ``mode``).  ``spec`` is the mode's; what the words of a
     straight move mean is read from G0's or G1's."""
@@ -88,7 +104,9 @@ def move(job: Job, exp: Explanation, cmd: Command, spec: Code | None, mode: str)
         else:
             _height_register(job, exp, h.text.strip(), h.value, line)
     s = cmd.param("S")
-    if s is not None:
+    if s is not None and spindle_speed(job, exp, cmd):
+        pass
+    elif s is not None:
         s_param = spec.param("S") if spec is not None else None
         if mode == "G1" and s_param is not None and (s_param.says or s_param.values):
             exp.add(s.text.strip(), reading(spec, "S", s.value))
@@ -122,6 +140,8 @@ def dwell(job: Job, exp: Explanation, cmd: Command, spec: Code | None) -> None:
             continue
         unit = rule.unit(letter)
         if unit is None:
+            if letter == "S" and spindle_speed(job, exp, cmd):
+                continue
             exp.add(word.text.strip(), f"{(spec.meaning(letter) if spec else None) or letter}: not a dwell time")
         else:
             exp.add(word.text.strip(), f"{cmd.raw(letter)} {unit}")

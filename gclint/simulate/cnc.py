@@ -91,6 +91,16 @@ class CncSimulator(DeviceModel):
             self.rpm = rpm
             self.dirty()
 
+    def line_words(self, commands: tuple, n: int) -> None:
+        """The S words of a line where the dialect sets the spindle speed before the line's commands (LinuxCNC: "Set
+        spindle speed (S)", G-code Order of Execution): ``G4 P1 S5000`` changes the speed (not a dwell word there)."""
+        super().line_words(commands, n)
+        if "S" not in self.facts.words_first:
+            return
+        for cmd in commands:
+            if "S" in cmd.params and (cmd.code != "G4" or self.facts.dwell.unit("S") is None):
+                self.speed(number(cmd.params["S"]))
+
     G53_NEXT_LINE = False  # Carvera: a G53 alone on its line puts the next G0/G1 in machine coordinates
 
     def g53(self, cmd: Command, n: int) -> Move | None:

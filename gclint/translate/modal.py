@@ -209,8 +209,10 @@ class Modal:
         idle = [letter for letter in "PS" if letter in params and source.unit(letter) is None]
         if not idle and seconds == hyrel.seconds(params):
             return
-        if "S" in idle and hasattr(self, "rpm"):
-            self.rpm = num(params.get("S"))  # LinuxCNC: the S word of any line is the spindle speed
+        if "S" in idle and hasattr(self, "speed_word"):
+            # LinuxCNC: the S word of any line is the spindle speed, set before the dwell ("G-code Order of
+            # Execution"): a running spindle changes speed here
+            self.speed_word(cmd)
         name = self.source.title.split(" (")[0]
         if seconds is None:
             self.replace(cmd, rewrite(cmd, drop="PS"))

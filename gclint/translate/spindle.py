@@ -78,7 +78,10 @@ class Spindles:
         address = self.spindle_head()
         running = self.hy.spindles_on.get(address)
         line = self.line
-        if line is not None and any(c.code in ("M3", "M4") for c in line.parsed.commands[self.index + 1 :]):
+        # (where the source sets a line's S before its commands, LinuxCNC, an M3/M4 anywhere on the line runs after it)
+        first = "S" in self.source.semantics.words_first
+        rest = () if line is None else line.parsed.commands if first else line.parsed.commands[self.index + 1 :]
+        if any(c.code in ("M3", "M4") for c in rest):
             return  # the M3/M4 on this line carries the speed
         if running is not None:
             self.spindle_percent = self.rpm_percent(s, self.MAX_RPM)
