@@ -30,7 +30,7 @@ from gclint import dialects
 from gclint.context import Context
 from gclint.engine import Linter, Options
 from gclint.simulate import simulator_for
-from gclint.simulate.events import Dwell, Flow, Heat, Layer, Limits, Move, Pause, ToolChange
+from gclint.simulate.events import Dwell, Flow, Heat, Layer, Limits, Move, Pause, Stop, ToolChange
 from gclint.simulate.trace import NATIVE
 from gclint.syntax.source import Source
 from gclint.timing import Planner, limits_for, slicer_estimate, slicer_settings
@@ -82,6 +82,7 @@ class JobSummary:
     time_leaves_out: str = ""  # what the time does not count, in words
     slicer_time_s: float | None = None  # the slicer's own estimate, when the job states one
     layers_time_s: float | None = None  # of the time, from the first layer mark to the last printing move
+    stopped: str = ""  # the line the machine refuses, stopping the program there (an interpreter error), and why
 
     def to_dict(self) -> dict:
         return asdict(self)
@@ -206,6 +207,8 @@ def summarize(source: Source, context: Context) -> JobSummary:
                 else:
                     into, out = _tangents(arc, dz, length)
                     move(dx, dy, dz, de, feed, length, into, out)
+        elif kind is Stop:
+            summary.stopped = f"line {event.line}: {event.why}"
         elif kind is Layer:
             if layers.mark(event) == 1:
                 planner.watch("layers begin")
@@ -475,6 +478,8 @@ def render(summary: JobSummary) -> str:
         n = summary.unmeasured_moves
         moves += f" (and {n:,} move{'s' if n != 1 else ''} from an unknown position, not measured)"
     out.append(moves)
+    if summary.stopped:
+        out.append(f"  stops at {summary.stopped}; nothing after it runs (the rest is not counted)")
     out.append(f"  estimated time: {_duration(summary.time_s)} ({_time_model(summary)})")
     if summary.layers_time_s is not None:
         out.append(

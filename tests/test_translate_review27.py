@@ -11,6 +11,7 @@ from gclint.explain import explain_text
 from gclint.syntax.parse import parse_line
 from gclint.translate.words import has_expression
 
+from .conftest import run_cli
 from .test_diff import translate_and_diff
 from .test_translate_tables import translate
 
@@ -217,3 +218,26 @@ def test_s_on_a_dwell_line_is_a_spindle_speed_change() -> None:
     assert any(d.aspect == "spindle" for d in again.unexplained())
     text = explained("G4 P1 S5000", "machinekit")
     assert "spindle speed 5000 rpm" in text and "pause for 1 s" in text
+
+
+# -- review24 1.9: LinuxCNC refuses G4 without P ------------------------------------------------------------------------
+
+G4S = "G21 G90\nG0 X0 Y0\nG4 S3\nG1 X10 F100\nG4 P1 S2\nM2\n"
+
+
+def test_g4_without_p_is_an_error_in_translate_and_explain() -> None:
+    out, result = translate("machinekit", G4S)
+    assert "TR005" in codes_on(result, 3) and "G4 S3" not in out.splitlines() and "G4" in out
+    text = explained("G4 S3", "machinekit")
+    assert "refuses this line and stops the program" in text
+    assert "G4 P1 S2" not in out  # (the good one is translated: S is the spindle speed)
+
+
+def test_check_reports_g4_without_p(tmp_path) -> None:
+    job = tmp_path / "j.ngc"
+    job.write_text(G4S)
+    proc = run_cli("check", "--dialect", "machinekit", str(job))
+    assert b"j.ngc:3:1: DL004" in proc.stdout and b"G4 needs P" in proc.stdout
+    assert b":5:" not in proc.stdout
+    summary = run_cli("summary", "--dialect", "machinekit", str(job))
+    assert b"stops at line 3" in summary.stdout

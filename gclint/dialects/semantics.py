@@ -84,11 +84,17 @@ def computed(text: str | None) -> bool:
 @dataclass(frozen=True)
 class Dwell:
     """How G4 counts time: seconds per unit of ``P`` and of ``S`` (None: the letter is not a dwell word),
-    and which counts when both are written (``"s"``: S alone; ``"sum"``: they add up)."""
+    and which counts when both are written (``"s"``: S alone; ``"sum"``: they add up).  ``required``: the word a G4
+    must have, else the interpreter refuses the line and stops the program."""
+
+    def refused(self, params: Mapping[str, str | None]) -> bool:
+        """True when the machine refuses this G4 and stops the program (the ``required`` word is missing)."""
+        return self.required is not None and self.required not in params
 
     p_seconds: float | None
     s_seconds: float | None
     both: Literal["s", "sum"] = "sum"
+    required: str | None = None  # the word without which G4 is an error that stops the program (LinuxCNC: P)
 
     def seconds(self, params: Mapping[str, str | None]) -> float | None:
         """The dwell's length in seconds (never negative), or None when the line gives no time."""
@@ -362,6 +368,8 @@ def effects(*tables: Mapping[str, Effect | None]) -> dict[str, Effect]:
 # The dwells (sources in the module docstring).
 DWELL_MS_S_WINS = Dwell(p_seconds=0.001, s_seconds=1.0, both="s")  # Marlin, RepRapFirmware
 DWELL_MS_S_SUM = Dwell(p_seconds=0.001, s_seconds=1.0, both="sum")  # Hyrel
-DWELL_P_SECONDS = Dwell(p_seconds=1.0, s_seconds=None)  # LinuxCNC, Machinekit
+# LinuxCNC, Machinekit: "It is an error if: the P number is negative or not specified" (g-code.adoc, "G4 Dwell",
+# https://linuxcnc.org/docs/html/gcode/g-code.html#gcode:g4; interp_check.cc: NCE_DWELL_TIME_MISSING_WITH_G4)
+DWELL_P_SECONDS = Dwell(p_seconds=1.0, s_seconds=None, required="P")
 DWELL_SECONDS_SUM = Dwell(p_seconds=1.0, s_seconds=1.0, both="sum")  # Smoothieware in grbl mode (Carvera)
 DWELL_UNKNOWN = Dwell(p_seconds=None, s_seconds=None)  # a dialect whose G4 the project does not know (generic)

@@ -147,7 +147,12 @@ def dwell(job: Job, exp: Explanation, cmd: Command, spec: Code | None) -> None:
             exp.add(word.text.strip(), f"{cmd.raw(letter)} {unit}")
             timed.append(letter)
     seconds = exp.seconds = rule.seconds(cmd.params)
-    if rule.p_seconds is None and rule.s_seconds is None:
+    if rule.refused(cmd.params):
+        exp.warn(
+            f'G4 without {rule.required}: the machine refuses this line and stops the program (LinuxCNC: "Dwell time '
+            'missing with g4"); nothing after it runs'
+        )
+    elif rule.p_seconds is None and rule.s_seconds is None:
         exp.note("how long this dialect dwells is not known")
     elif seconds is None:
         exp.note("no dwell time given: no pause")

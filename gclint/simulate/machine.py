@@ -20,7 +20,7 @@ from collections.abc import Callable, Iterator
 
 from gclint.dialects.base import Dialect
 from gclint.dialects.semantics import number
-from gclint.simulate.events import LAYER_MARKS, Dwell, Event, Heat, Ignored, Layer, Pause, ProgramEnd, ToolChange
+from gclint.simulate.events import LAYER_MARKS, Dwell, Event, Heat, Ignored, Layer, Pause, ProgramEnd, Stop, ToolChange
 from gclint.simulate.trace import NATIVE, EndState, Look, Mapping, Move, Trace
 from gclint.syntax.fastpath import PLAIN_MOVE
 from gclint.syntax.nodes import ASSIGNMENT, GCODE, IMPLICIT, META, OWORD, Command
@@ -440,7 +440,15 @@ class Simulator:
 
     def g4(self, cmd: Command, n: int) -> None:
         # the dialect says what P and S count (gclint.dialects.semantics.Dwell)
-        seconds = self.facts.dwell.seconds(cmd.params)
+        rule = self.facts.dwell
+        if rule.refused(cmd.params):
+            # the interpreter refuses the line ("Dwell time missing with g4", LinuxCNC): the program stops here
+            self.emit(
+                Stop(n, "G4", f"G4 without {rule.required}: the interpreter refuses the line and stops the program")
+            )
+            self.end_program(cmd, n)
+            return
+        seconds = rule.seconds(cmd.params)
         self.add_dwell(seconds)
         self.emit(Dwell(n, seconds))
 

@@ -205,6 +205,16 @@ class Modal:
         Hyrel reads the same time from the same words."""
         params = cmd.params
         source, hyrel = self.source.semantics.dwell, self.target.semantics.dwell
+        if source.refused(params):
+            name = self.source.title.split(" (")[0]
+            self.untranslatable(
+                cmd,
+                f'G4 without {source.required}: {name} refuses the line and stops the program ("Dwell time missing '
+                'with g4"); nothing after it would run there',
+                key="G4-refused",
+                aspects=("*",),
+            )
+            return
         seconds = source.seconds(params)
         idle = [letter for letter in "PS" if letter in params and source.unit(letter) is None]
         if not idle and seconds == hyrel.seconds(params):
