@@ -241,3 +241,20 @@ def test_check_reports_g4_without_p(tmp_path) -> None:
     assert b":5:" not in proc.stdout
     summary = run_cli("summary", "--dialect", "machinekit", str(job))
     assert b"stops at line 3" in summary.stdout
+
+
+# -- review24 1.5: explain reads LinuxCNC lines as the translator does ------------------------------------------------
+
+ARCS = "G21 G17 G90\nG90.1\nT1 M6\nG0 X50 Y50 Z5\nS10000 M3\nG1 Z-1 F100 S3000\nG2 X70 Y50 I60 J50 F300\nG91.1\nG2 X50 Y50 I-10 J0\nM2\n"
+
+
+def test_explain_reads_arc_centre_modes_and_spindle_words() -> None:
+    text = explained(ARCS, "machinekit")
+    assert "a machinekit command" not in text
+    assert "I, J and K are the centre's absolute coordinates" in text
+    assert "I60 (centre at X60, absolute under G90.1)" in text and "J50 (centre at Y50, absolute under G90.1)" in text
+    assert "I-10 (centre -10 from the start in X, an offset under G91.1)" in text
+    assert "modal G0" not in text and "S10000 (spindle speed 10000 rpm" in text
+    assert "S3000 (spindle speed 3000 rpm" in text
+    out, _ = translate("machinekit", ARCS)
+    assert "G2 X70 Y50 I10 J0 F300" in out.splitlines()  # the translator reads the same centre

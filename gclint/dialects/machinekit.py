@@ -136,6 +136,8 @@ _DESCRIPTIONS = {
     "G58": "use coordinate system 5",
     "G59": "use coordinate system 6",
     "G61": "exact path mode",
+    "G90.1": "arc centres absolute: I J K are coordinates",
+    "G91.1": "arc centres incremental: I J K are offsets from the start",
     "G64": ("path blending", {"P": "path tolerance", "Q": "naive cam tolerance"}),
     "G80": "cancel canned cycle",
     "G81": ("drilling cycle", _CYCLE),

@@ -329,7 +329,10 @@ class Semantics:
 
     def _step(self, cmd) -> int:
         code = cmd.code
-        if code is None:  # axis words alone: the modal motion
+        if code is None:  # axis words alone: the modal motion; words that are set first alone (S10000 M3): first
+            params = cmd.params
+            if params and all(letter in self.words_first for letter in params):
+                return -1
             return _MOTION_STEP
         if code[0] == "T":
             code = "T"

@@ -90,6 +90,17 @@ class Explainer(Job):
         kind = cmd.kind
         if kind == IMPLICIT:
             mode = self.state.motion_mode
+            params = cmd.params
+            if params and all(letter in self.facts.words_first for letter in params):
+                # words with no command that the machine sets before the line's commands (LinuxCNC's F, S, T:
+                # "S10000 M3"): modal values, no motion
+                exp = Explanation(line.number, line.raw, None, "words with no command: they set modal values")
+                motion.spindle_speed(self, exp, cmd)
+                f = cmd.param("F")
+                if f is not None:
+                    exp.add(f.text.strip(), f"the feed of later moves: {f.value} mm/min")
+                generic(self.dialect, exp, cmd, None, skip="SF")
+                return exp
             if mode is None:
                 exp = Explanation(
                     line.number, line.raw, None, "axis words with no motion code: no modal motion is active"
