@@ -258,3 +258,17 @@ def test_explain_reads_arc_centre_modes_and_spindle_words() -> None:
     assert "S3000 (spindle speed 3000 rpm" in text
     out, _ = translate("machinekit", ARCS)
     assert "G2 X70 Y50 I10 J0 F300" in out.splitlines()  # the translator reads the same centre
+
+
+# -- review24 1.6: Carvera M6 T0 (wireless probe) and M6 T-1 (no tool) ------------------------------------------------
+
+
+def test_carvera_probe_and_no_tool_in_explain_and_diff() -> None:
+    source = "G21 G90\nM6 T1\nM3 S10000\nG1 X10 F300\nM5\nM6 T0\nG4 P1.5\nM6 T-1\nM2\n"
+    text = explained(source, "carvera")
+    assert "T0 (change to the probe: T0 is the machine's wireless probe" in text
+    assert "T-1 (no tool: the spindle is emptied)" in text
+    assert "change to tool 0" not in text and "change to tool -1" not in text
+    out, result, diff = translate_and_diff("carvera", source, spindle_max_rpm="15000")
+    assert not diff.unexplained(), [d.to_dict() for d in diff.unexplained()]
+    assert {"TR002"} <= set(codes_on(result, 6)) and {"TR002"} <= set(codes_on(result, 8))

@@ -234,7 +234,9 @@ class Semantics:
       axes' zero: Machinekit FDM's remap).  ``g30``: ``"predefined"`` or None.
     * ``tool_select``: what ``T<n>`` does: ``"address"`` (focuses the head at that address: Hyrel),
       ``"extruder"`` (changes to tool n), ``"prepare"`` (prepares tool n for the next tool change).
-      ``no_tool``: the T number that means "no tool".
+      ``no_tool``: the T number that means "no tool"; ``probe_tool``: the T number of the machine's probe (Carvera:
+      "M6 | Auto tool change, T0 indicates wireless probe, T-1 indicates None",
+      https://carvera-community.gitbook.io/docs/firmware/supported-commands/mcodes).
     * ``feed_on_any_command``: an F word sets the feed whatever the line's code (LinuxCNC, Carvera).
       ``default_workspace``: the workspace in force at the start.
     * ``fan_scale``: what M106 S counts: ``"255"`` (0-255, Marlin), ``"255-or-fraction"`` (RepRapFirmware:
@@ -271,6 +273,7 @@ class Semantics:
     g30: Literal["predefined"] | None = None
     tool_select: Literal["address", "extruder", "prepare"] = "extruder"
     no_tool: int | None = None
+    probe_tool: int | None = None  # the T number of the machine's probe (Carvera: T0, the wireless probe)
     feed_on_any_command: bool = False
     default_workspace: str | None = None
     fan_scale: Literal["range", "255", "255-or-fraction"] = "255"

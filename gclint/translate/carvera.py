@@ -241,8 +241,9 @@ class CarveraToHyrel(CncTranslator):
         if tool is None:
             self.remove(cmd, TR_LOST, "tool change with no tool", key="M6", aspects=("head", "spindle"))
             return
-        if tool <= 0:
-            what = "the wireless probe (T0)" if tool == 0 else "no tool (T-1)"
+        facts = self.source.semantics
+        if tool in (facts.probe_tool, facts.no_tool) or tool < 0:
+            what = f"the wireless probe (T{tool})" if tool == facts.probe_tool else f"no tool (T{tool})"
             self.remove(
                 cmd,
                 TR_LOST,
