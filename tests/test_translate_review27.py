@@ -272,3 +272,31 @@ def test_carvera_probe_and_no_tool_in_explain_and_diff() -> None:
     out, result, diff = translate_and_diff("carvera", source, spindle_max_rpm="15000")
     assert not diff.unexplained(), [d.to_dict() for d in diff.unexplained()]
     assert {"TR002"} <= set(codes_on(result, 6)) and {"TR002"} <= set(codes_on(result, 8))
+
+
+# -- review24 sections 2 and 3: explain says what check says ----------------------------------------------------------
+
+
+def test_explain_m6_and_m109_r_as_check_reports_them() -> None:
+    text = explained("M6", "hyrel")
+    assert "all future T# or M6 commands" not in text and "does nothing on Hyrel" in text
+    assert "M6 T1 looks like a tool change" in explained("M6 T1", "hyrel")
+    assert "looks like a tool change" not in explained("M6 T1 O2 X0 Y0 Z0", "hyrel")
+    assert "warning: M109 R215 is a Marlin-style target" in explained("M109 R215", "hyrel")
+    assert "warning" not in explained("M109 T0 S215 R5", "hyrel")
+
+
+def test_one_reading_of_a_native_flow_e_only_move() -> None:
+    text = explained("M229 E0 D0\nT0\nG1 X10 Y10 E1 F1200\nG1 E-0.5 F1800\n", "hyrel")
+    assert "while extruding" not in text.split("E-0.5 (")[1]
+    assert "nothing is dispensed" in text and "G1 with only E does nothing in native flow" in text
+    from gclint.dialects.habits import HYREL_HABITS
+
+    says = [habit.says for habit in HYREL_HABITS if habit.rule == "HY031"]
+    assert says and all("E-only G1 does nothing" in text for text in says)
+
+
+def test_linuxcnc_rapids_ignore_f_in_explain() -> None:
+    text = explained("G1 X1 F300\nG0 X5\nG0 X6 F50\n", "machinekit")
+    assert "previously set F" not in text.split("X5 (to X5)")[1]
+    assert "G0 ignores the feed rate F" in text and "this rapid ignores it" in text

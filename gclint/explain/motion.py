@@ -10,6 +10,7 @@ from gclint.explain.generic import does, generic, reading
 from gclint.explain.job import Decoder, Job
 from gclint.explain.model import Explanation, Item, fmt, number
 from gclint.machine.state import EVALUES
+from gclint.rules.hyrel.motion import native_e_message
 from gclint.syntax.nodes import Command
 
 
@@ -69,7 +70,13 @@ def move(job: Job, exp: Explanation, cmd: Command, spec: Code | None, mode: str)
                 Item(e.text.strip(), "E on a G0 does nothing: G0 never works", job.facts.e_values == "native")
             )
         elif job.facts.e_values == "native" and job.state.flow_mode != EVALUES:
-            exp.add(e.text.strip(), reading(line, "E", e.value))
+            message = native_e_message(p, job.state.e_absolute, job.state.e_position) if mode == "G1" else None
+            if message is not None and not any(a in p for a in "XYZAB"):
+                exp.add(e.text.strip(), "no motion: native flow dispenses by move length, so nothing is dispensed")
+            else:
+                exp.add(e.text.strip(), reading(line, "E", e.value))
+            if message is not None:
+                exp.warn(message)  # (as HY031 reports it)
         elif job.state.e_absolute:
             exp.add(e.text.strip(), f"extrude until the E position is {e.value}")
         else:
@@ -80,7 +87,12 @@ def move(job: Job, exp: Explanation, cmd: Command, spec: Code | None, mode: str)
                 else f"E by {e.value} (retract)",
             )
     f = cmd.param("F")
-    if f is not None:
+    rapid_ignores_f = mode == "G0" and job.facts.g0_feed == "rapid"  # (LinuxCNC: G0 at the machine's rapid rate)
+    if f is not None and rapid_ignores_f:
+        exp.add(f.text.strip(), f"the feed of later feed moves, {f.value} mm/min; this rapid ignores it")
+    elif rapid_ignores_f:
+        exp.note("at the machine's rapid rate: G0 ignores the feed rate F")
+    elif f is not None:
         if mode == "G0" and job.interpreter.g0_feed_one_shot:
             exp.add(f.text.strip(), f"one-time speed of {f.value} mm/min, not persistent")
         else:
