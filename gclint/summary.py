@@ -82,6 +82,8 @@ class JobSummary:
     time_leaves_out: str = ""  # what the time does not count, in words
     slicer_time_s: float | None = None  # the slicer's own estimate, when the job states one
     layers_time_s: float | None = None  # of the time, from the first layer mark to the last printing move
+    cutting_mm: float = 0.0  # of the travel, feed moves of a machine whose feed moves cut (Semantics.working)
+    cnc: bool = False  # a job of such a machine that prints nothing (a mill, a lathe): no flow, no printing
     stopped: str = ""  # the line the machine refuses, stopping the program there (an interpreter error), and why
 
     def to_dict(self) -> dict:
@@ -123,6 +125,8 @@ def summarize(source: Source, context: Context) -> JobSummary:
     heads: dict[str, HeadUse] = {}
     layers = _Layers()
     hyrel_flow = dialect.semantics.e_values == "native"
+    cuts = dialect.semantics.working == "feeds"
+    cutting_mm = 0.0
     flows: list[str] = ["native"] if hyrel_flow else []
     x_low = y_low = feed_low = math.inf
     x_high = y_high = feed_high = -math.inf
@@ -196,6 +200,8 @@ def summarize(source: Source, context: Context) -> JobSummary:
                     was_printing = False
                 if length is not None and start != end:
                     travel_mm += length
+                    if cuts and not event.rapid:
+                        cutting_mm += length  # (a CNC machine: every feed move cuts)
             if feed:
                 last_feed = feed
             elif event.rapid:
@@ -239,6 +245,8 @@ def summarize(source: Source, context: Context) -> JobSummary:
     if was_printing:
         planner.watch("printing ends")
     summary.printing_mm, summary.travel_mm, summary.unmeasured_moves = printing_mm, travel_mm, unmeasured
+    summary.cutting_mm = cutting_mm
+    summary.cnc = cuts and not printing_mm and not any(h.printing_moves for h in heads.values())
     summary.time_s = planner.finish()
     begin, end = planner.watched.get("layers begin"), planner.watched.get("printing ends")
     if begin is not None and end is not None and end >= begin:
@@ -455,7 +463,8 @@ def render(summary: JobSummary) -> str:
         waited = f"; waits for {', '.join(f'{t:g}' for t in dict.fromkeys(waits))}" if waits else ""
         listed = _listed(temps, summary.more_device_set_points.get(kind, 0))
         out.append(f"  {kind}: set-points {listed} °C{waited}")
-    out.append(f"  flow: {summary.flow}")
+    if not summary.cnc:
+        out.append(f"  flow: {summary.flow}")
     if summary.z_range:
         by = " (the slicer's layer marks)" if summary.layer_marks else ""
         out.append(f"  layers: {summary.layers:,}, Z {summary.z_range[0]:g} to {summary.z_range[1]:g} mm{by}")
@@ -473,7 +482,11 @@ def render(summary: JobSummary) -> str:
         out.append(extent)
     if summary.feed_range:
         out.append(f"  feed: {summary.feed_range[0]:g} to {summary.feed_range[1]:g} mm/min on printing moves")
-    moves = f"  moves: {summary.printing_mm / 1000:,.2f} m printing, {summary.travel_mm / 1000:,.2f} m travel"
+    if summary.cnc:
+        rapid = summary.travel_mm - summary.cutting_mm
+        moves = f"  moves: {summary.cutting_mm / 1000:,.2f} m at feed (cutting), {rapid / 1000:,.2f} m rapid"
+    else:
+        moves = f"  moves: {summary.printing_mm / 1000:,.2f} m printing, {summary.travel_mm / 1000:,.2f} m travel"
     if summary.unmeasured_moves:
         n = summary.unmeasured_moves
         moves += f" (and {n:,} move{'s' if n != 1 else ''} from an unknown position, not measured)"

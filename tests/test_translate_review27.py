@@ -300,3 +300,11 @@ def test_linuxcnc_rapids_ignore_f_in_explain() -> None:
     text = explained("G1 X1 F300\nG0 X5\nG0 X6 F50\n", "machinekit")
     assert "previously set F" not in text.split("X5 (to X5)")[1]
     assert "G0 ignores the feed rate F" in text and "this rapid ignores it" in text
+
+
+def test_summary_of_a_milling_job_counts_cutting_not_printing(tmp_path) -> None:
+    job = tmp_path / "mill.ngc"
+    job.write_text("G21 G90\nT1 M6\nG0 X0 Y0 Z5\nM3 S10000\nG1 Z-1 F100\nG1 X10\nG0 Z5\nM5\nM2\n")
+    out = run_cli("summary", "--dialect", "machinekit", str(job)).stdout.decode()
+    assert "flow:" not in out and "printing" not in out
+    assert "0.02 m at feed (cutting)" in out, out
