@@ -30,7 +30,7 @@ from gclint import dialects
 from gclint.context import Context
 from gclint.engine import Linter, Options
 from gclint.simulate import simulator_for
-from gclint.simulate.events import Dwell, Flow, Heat, Layer, Limits, Move, Pause, ToolChange
+from gclint.simulate.events import Dwell, Flow, Heat, Layer, Limits, Move, Pause, Stop, ToolChange
 from gclint.simulate.trace import NATIVE
 from gclint.syntax.source import Source
 from gclint.timing import Planner, limits_for, slicer_estimate, slicer_settings
@@ -82,6 +82,9 @@ class JobSummary:
     time_leaves_out: str = ""  # what the time does not count, in words
     slicer_time_s: float | None = None  # the slicer's own estimate, when the job states one
     layers_time_s: float | None = None  # of the time, from the first layer mark to the last printing move
+    cutting_mm: float = 0.0  # of the travel, feed moves of a machine whose feed moves cut (Semantics.working)
+    cnc: bool = False  # a job of such a machine that prints nothing (a mill, a lathe): no flow, no printing
+    stopped: str = ""  # the line the machine refuses, stopping the program there (an interpreter error), and why
 
     def to_dict(self) -> dict:
         return asdict(self)
@@ -122,6 +125,8 @@ def summarize(source: Source, context: Context) -> JobSummary:
     heads: dict[str, HeadUse] = {}
     layers = _Layers()
     hyrel_flow = dialect.semantics.e_values == "native"
+    cuts = dialect.semantics.working == "feeds"
+    cutting_mm = 0.0
     flows: list[str] = ["native"] if hyrel_flow else []
     x_low = y_low = feed_low = math.inf
     x_high = y_high = feed_high = -math.inf
@@ -194,6 +199,8 @@ def summarize(source: Source, context: Context) -> JobSummary:
                     was_printing = False
                 if length is not None and start != end:
                     travel_mm += length
+                    if cuts and not event.rapid:
+                        cutting_mm += length  # (a CNC machine: every feed move cuts)
             if feed:
                 last_feed = feed
             elif event.rapid:
@@ -205,6 +212,8 @@ def summarize(source: Source, context: Context) -> JobSummary:
                 else:
                     into, out = _tangents(arc, dz, length)
                     move(dx, dy, dz, de, feed, length, into, out)
+        elif type(event) is Stop:
+            summary.stopped = f"line {event.line}: {event.why}"
         elif type(event) is Layer:
             if layers.mark(event) == 1:
                 planner.watch("layers begin")
@@ -235,6 +244,8 @@ def summarize(source: Source, context: Context) -> JobSummary:
     if was_printing:
         planner.watch("printing ends")
     summary.printing_mm, summary.travel_mm, summary.unmeasured_moves = printing_mm, travel_mm, unmeasured
+    summary.cutting_mm = cutting_mm
+    summary.cnc = cuts and not printing_mm and not any(h.printing_moves for h in heads.values())
     summary.time_s = planner.finish()
     begin, until = planner.watched.get("layers begin"), planner.watched.get("printing ends")
     if begin is not None and until is not None and until >= begin:
@@ -451,7 +462,8 @@ def render(summary: JobSummary) -> str:
         waited = f"; waits for {', '.join(f'{t:g}' for t in dict.fromkeys(device_waits))}" if device_waits else ""
         listed = _listed(points, summary.more_device_set_points.get(kind, 0))
         out.append(f"  {kind}: set-points {listed} °C{waited}")
-    out.append(f"  flow: {summary.flow}")
+    if not summary.cnc:
+        out.append(f"  flow: {summary.flow}")
     if summary.z_range:
         by = " (the slicer's layer marks)" if summary.layer_marks else ""
         out.append(f"  layers: {summary.layers:,}, Z {summary.z_range[0]:g} to {summary.z_range[1]:g} mm{by}")
@@ -469,11 +481,17 @@ def render(summary: JobSummary) -> str:
         out.append(extent)
     if summary.feed_range:
         out.append(f"  feed: {summary.feed_range[0]:g} to {summary.feed_range[1]:g} mm/min on printing moves")
-    moves = f"  moves: {summary.printing_mm / 1000:,.2f} m printing, {summary.travel_mm / 1000:,.2f} m travel"
+    if summary.cnc:
+        rapid = summary.travel_mm - summary.cutting_mm
+        moves = f"  moves: {summary.cutting_mm / 1000:,.2f} m at feed (cutting), {rapid / 1000:,.2f} m rapid"
+    else:
+        moves = f"  moves: {summary.printing_mm / 1000:,.2f} m printing, {summary.travel_mm / 1000:,.2f} m travel"
     if summary.unmeasured_moves:
         n = summary.unmeasured_moves
         moves += f" (and {n:,} move{'s' if n != 1 else ''} from an unknown position, not measured)"
     out.append(moves)
+    if summary.stopped:
+        out.append(f"  stops at {summary.stopped}; nothing after it runs (the rest is not counted)")
     out.append(f"  estimated time: {_duration(summary.time_s)} ({_time_model(summary)})")
     if summary.layers_time_s is not None:
         out.append(

@@ -66,7 +66,7 @@ CARVERA = [
         "2.3 M6 with a running spindle",
         "M3 S6000\nM6 T2",
         "M3 T0 S25\nM5 T0\nM0 ; gclint: change to tool 2",
-        "TR003",
+        "TR003 TR004",  # (TR004: the tool change stops the spindle)
         settings={"spindle_max_rpm": "24000"},
     ),
     Row("2.3 M6 T with the tool map", "M6 T2", "T1", settings={"tool_map": "2=T1"}),

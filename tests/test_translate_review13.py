@@ -54,25 +54,26 @@ def test_3_spindle_runs_on_the_mapped_head(dialect: str) -> None:
     lines = out.splitlines()
     assert "M3 T3 S66.7" in lines and "M3 T1 S66.7" in lines and "M3 T0 S66.7" not in lines
     t1 = lines.index("T1")
-    assert lines[t1 + 1] == "M5 T3"  # the spindle stops on the head the tool left
+    assert lines[t1 - 1] == "M5 T3"  # the tool change stops the spindle, on the head the tool left
     assert "M5 T1" in lines and "M5 T0" not in lines
 
 
-def test_3_machinekit_spindle_follows_the_tool_to_its_head() -> None:
+def test_3_machinekit_spindle_stops_at_the_tool_change() -> None:
+    """LinuxCNC M6: "When the tool change is complete: The spindle will be stopped" (m-code.adoc; review27 C)."""
     out, result = translate(
         "machinekit", "G21 G90\nT7 M6\nM3 S10000\nG1 X10 F100\nT3 M6\nG1 X20\nM2\n", tool_map="7=T3,3=T1"
     )
     lines = out.splitlines()
     t1 = lines.index("T1")
-    assert lines[t1 + 1 : t1 + 3] == ["M5 T3", "M3 T1 S66.7"]  # LinuxCNC's one spindle keeps running
-    assert any("T1" in m for m in _codes(result, "TR004"))
+    assert lines[t1 - 1 : t1 + 2] == ["M5 T3", "T1", "G1 X20"] and "M3 T1" not in out
+    assert any("stops the spindle" in m for m in _codes(result, "TR004"))
 
 
 def test_3_carvera_spindle_stops_for_the_tool_change() -> None:
     out, _ = translate("carvera", "G21 G90\nM6 T7\nM3 S10000\nG1 X10 F100\nM6 T3\nG1 X20\nM2\n", tool_map="7=T3,3=T1")
     lines = out.splitlines()
     t1 = lines.index("T1")
-    assert lines[t1 + 1] == "M5 T3" and "M3 T1" not in out
+    assert lines[t1 - 1] == "M5 T3" and "M3 T1" not in out
 
 
 def test_3_the_spindle_setting_still_wins() -> None:
@@ -193,7 +194,7 @@ def test_10_diff_names_an_unsupported_pair_in_words(tmp_path) -> None:
     assert proc.returncode == 2 and b"UnsupportedPair" not in proc.stderr and b"not supported" in proc.stderr
 
 
-def test_3_a_spindle_started_before_any_head_follows_the_first_tool_change() -> None:
+def test_3_a_spindle_started_before_any_head_stops_at_the_first_tool_change() -> None:
     out, _ = translate("machinekit", "G21 G90\nM3 S10000\nT3 M6\nG1 X10 F100\nM2\n", tool_map="3=T1")
     lines = out.splitlines()
-    assert lines[lines.index("T1") + 1 : lines.index("T1") + 3] == ["M5 T0", "M3 T1 S66.7"], lines
+    assert lines[lines.index("T1") - 1] == "M5 T0" and "M3 T1" not in out, lines

@@ -95,7 +95,11 @@ HYREL_HABITS = (
     # "In native mode ... the value of Extrusion rate E will be ignored, but E will trigger a working or
     # printing move" (G1 Working Move): sliced amounts and retracts with no M229 E1
     Habit("E amounts with no M229 E1 (native flow ignores them)", "HY060", fact="e_amounts"),
-    Habit("a G1 with a zero or negative E (a retract; on native flow it prints)", "HY031", fact="e_retract"),
+    Habit(
+        "a G1 with a zero or negative E (a retract: in native flow an E-only G1 does nothing, and on a move it prints)",
+        "HY031",
+        fact="e_retract",
+    ),
     # "G0 Rapid Move": a rapid never prints (Marlin's G0 is G1 and extrudes)
     Habit("E on a G0 rapid move", "HY030", fact="e_on_g0"),
 )

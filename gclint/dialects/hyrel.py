@@ -595,7 +595,8 @@ HYREL_CODES = table(
     code(
         "M6",
         "declare head offsets (not a tool change)",
-        P("T", "head", absent="all future T# or M6 commands"),
+        # (the page decodes a T-less M6 only in its K1 example, "(all future T# or M6 commands)", which is about K)
+        P("T", "head", absent="no T: no head is named (only the page's M6 K1 example has no T: K for all future M6)"),
         P(
             "O",
             "offset register",

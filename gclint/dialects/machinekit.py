@@ -64,6 +64,16 @@ _FDM = [
     code("M207", "retraction length and speed", P("P", "length, mm"), P("Q", "speed, mm/s")),
     code("M221", "extrusion scale factor", P("P", "factor (0.96 = 96 %)")),
     *codes("G22 G23 G28 G29 G29.1 G29.2 G30 M226 M280 M300 M400 M420 M700 M701 M702 M710 M600 M601 M306"),
+    # LinuxCNC refuses a G4 with no P: "Dwell time missing with g4" (src/emc/rs274ngc/interp_check.cc,
+    # NCE_DWELL_TIME_MISSING_WITH_G4; g-code.adoc "G4 Dwell": "It is an error if: the P number is negative or not
+    # specified", https://linuxcnc.org/docs/html/gcode/g-code.html#gcode:g4): the program stops there
+    code(
+        "G4",
+        "dwell",
+        P("P", "seconds to dwell", required=True, minimum=0),
+        P("S", "spindle speed (set before the dwell)"),
+        source="LinuxCNC g-code.adoc, interp_check.cc",
+    ),
 ]
 
 # What the common RS274NGC codes do, for ``gclint explain`` (LinuxCNC G-code and M-code references).
@@ -126,6 +136,8 @@ _DESCRIPTIONS: Descriptions = {
     "G58": "use coordinate system 5",
     "G59": "use coordinate system 6",
     "G61": "exact path mode",
+    "G90.1": "arc centres absolute: I J K are coordinates",
+    "G91.1": "arc centres incremental: I J K are offsets from the start",
     "G64": ("path blending", {"P": "path tolerance", "Q": "naive cam tolerance"}),
     "G80": "cancel canned cycle",
     "G81": ("drilling cycle", _CYCLE),
@@ -234,6 +246,8 @@ MACHINEKIT_SEMANTICS = Semantics(
     feed_on_any_command=True,
     default_workspace="G54",
     user_programs=True,
+    blanks_ignored=True,
+    tool_change_stops_spindle=True,
     effects=effects(
         WORKSPACES,
         {f"G59.{n}": "workspace" for n in (1, 2, 3)},

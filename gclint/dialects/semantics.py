@@ -39,9 +39,13 @@ The facts and where each comes from:
 
 from __future__ import annotations
 
+import re
 from collections.abc import Mapping
 from dataclasses import dataclass, field, replace
 from typing import Literal
+
+from gclint.syntax.nodes import ParsedLine
+from gclint.syntax.parse import parse_line, read_blanks_ignored
 
 # -- dwell --------------------------------------------------------------------------------------------------
 
@@ -57,14 +61,40 @@ def number(text: str | None) -> float | None:
     return value if value - value == 0 else None
 
 
+# LinuxCNC's unary functions ("G-code Functions": ATAN[arg]/[arg], ABS, ACOS, ASIN, COS, EXP, FIX, FUP, ROUND, LN,
+# SIN, SQRT, TAN, EXISTS; https://linuxcnc.org/docs/html/gcode/overview.html#gcode:functions): a word's value
+# may start with one (``X SIN[30]``), as it may with ``[`` (an expression) or ``#`` (a parameter)
+FUNCTIONS = frozenset("ATAN ABS ACOS ASIN COS EXP FIX FUP ROUND LN SIN SQRT TAN EXISTS".split())
+_FUNCTION = re.compile(r"([A-Za-z]+)[ \t]*\[")
+
+
+def computed(text: str | None) -> bool:
+    """True when a word's value is computed when the line runs rather than written as a number: an expression
+    (``[1+2]``, ``{...}``), a parameter (``#1``, ``#<_x>``) or a function (``SIN[30]``, ``ABS[-4]``,
+    ``EXISTS[#<_foo>]``), with or without a sign.  A flag (None), a literal number or a quoted string is not."""
+    if not text or text[0] == '"':
+        return False
+    body = text.lstrip("+-")
+    if body[:1] in ("[", "{", "#"):
+        return True
+    m = _FUNCTION.match(body)
+    return m is not None and m.group(1).upper() in FUNCTIONS
+
+
 @dataclass(frozen=True)
 class Dwell:
     """How G4 counts time: seconds per unit of ``P`` and of ``S`` (None: the letter is not a dwell word),
-    and which counts when both are written (``"s"``: S alone; ``"sum"``: they add up)."""
+    and which counts when both are written (``"s"``: S alone; ``"sum"``: they add up).  ``required``: the word a G4
+    must have, else the interpreter refuses the line and stops the program."""
+
+    def refused(self, params: Mapping[str, str | None]) -> bool:
+        """True when the machine refuses this G4 and stops the program (the ``required`` word is missing)."""
+        return self.required is not None and self.required not in params
 
     p_seconds: float | None
     s_seconds: float | None
     both: Literal["s", "sum"] = "sum"
+    required: str | None = None  # the word without which G4 is an error that stops the program (LinuxCNC: P)
 
     def seconds(self, params: Mapping[str, str | None]) -> float | None:
         """The dwell's length in seconds (never negative), or None when the line gives no time."""
@@ -204,7 +234,9 @@ class Semantics:
       axes' zero: Machinekit FDM's remap).  ``g30``: ``"predefined"`` or None.
     * ``tool_select``: what ``T<n>`` does: ``"address"`` (focuses the head at that address: Hyrel),
       ``"extruder"`` (changes to tool n), ``"prepare"`` (prepares tool n for the next tool change).
-      ``no_tool``: the T number that means "no tool".
+      ``no_tool``: the T number that means "no tool"; ``probe_tool``: the T number of the machine's probe (Carvera:
+      "M6 | Auto tool change, T0 indicates wireless probe, T-1 indicates None",
+      https://carvera-community.gitbook.io/docs/firmware/supported-commands/mcodes).
     * ``feed_on_any_command``: an F word sets the feed whatever the line's code (LinuxCNC, Carvera).
       ``default_workspace``: the workspace in force at the start.
     * ``fan_scale``: what M106 S counts: ``"255"`` (0-255, Marlin), ``"255-or-fraction"`` (RepRapFirmware:
@@ -216,6 +248,13 @@ class Semantics:
       else the remap's ``M104 P<temp> T<index>``: research/dialects.md 1.8 [MK]).
     * ``user_programs``: M100-M199 run the external program of that name where the dialect has no code of its
       own by that number (LinuxCNC's M-code documentation, "M100-M199 User Defined Commands").
+    * ``blanks_ignored``: spaces and tabs outside comments do not count, even inside a number (LinuxCNC: "Spaces
+      and tabs are allowed anywhere on a line of code ... 'G0X +0. 12 34Y 7' is equivalent to 'G0 x+0.1234 Y7'",
+      https://linuxcnc.org/docs/html/gcode/overview.html#_format_of_a_line).
+    * ``tool_change_stops_spindle``: the tool change (M6) leaves the spindle stopped, and only a later M3/M4 starts
+      it (LinuxCNC: "When the tool change is complete: The spindle will be stopped", M-codes, "M6 Tool Change",
+      https://linuxcnc.org/docs/html/gcode/m-code.html#mcode:m6; Carvera: "M6 | Auto tool change", the ATC
+      swaps the tool in a stopped spindle: https://carvera-community.gitbook.io/docs/firmware/supported-commands/mcodes).
     * ``effects``: code -> effect (``COMMON_EFFECTS`` and the dialect's own).
     """
 
@@ -236,13 +275,20 @@ class Semantics:
     g30: Literal["predefined"] | None = None
     tool_select: Literal["address", "extruder", "prepare"] = "extruder"
     no_tool: int | None = None
+    probe_tool: int | None = None  # the T number of the machine's probe (Carvera: T0, the wireless probe)
     feed_on_any_command: bool = False
     default_workspace: str | None = None
     fan_scale: Literal["range", "255", "255-or-fraction"] = "255"
     wait_r: Literal["target", "tolerance"] | None = "target"
     heat_words: Literal["S", "remap"] = "S"
     user_programs: bool = False
+    blanks_ignored: bool = False
+    tool_change_stops_spindle: bool = False
     effects: Mapping[str, Effect] = field(default_factory=lambda: dict(COMMON_EFFECTS))
+
+    def parse(self, raw: str) -> ParsedLine:
+        """One line as this dialect's machine reads it (``blanks_ignored``: ``X 2 0`` is X20)."""
+        return read_blanks_ignored(raw) if self.blanks_ignored else parse_line(raw)
 
     def set_point(self, params: Mapping[str, str | None], wait: bool) -> tuple[float | None, str | None]:
         """The temperature a set or wait command gives (°C, None: none) and the word that names its tool
@@ -289,7 +335,10 @@ class Semantics:
 
     def _step(self, cmd) -> int:
         code = cmd.code
-        if code is None:  # axis words alone: the modal motion
+        if code is None:  # axis words alone: the modal motion; words that are set first alone (S10000 M3): first
+            params = cmd.params
+            if params and all(letter in self.words_first for letter in params):
+                return -1
             return _MOTION_STEP
         if code[0] == "T":
             code = "T"
@@ -328,6 +377,8 @@ def effects(*tables: Mapping[str, Effect | None]) -> dict[str, Effect]:
 # The dwells (sources in the module docstring).
 DWELL_MS_S_WINS = Dwell(p_seconds=0.001, s_seconds=1.0, both="s")  # Marlin, RepRapFirmware
 DWELL_MS_S_SUM = Dwell(p_seconds=0.001, s_seconds=1.0, both="sum")  # Hyrel
-DWELL_P_SECONDS = Dwell(p_seconds=1.0, s_seconds=None)  # LinuxCNC, Machinekit
+# LinuxCNC, Machinekit: "It is an error if: the P number is negative or not specified" (g-code.adoc, "G4 Dwell",
+# https://linuxcnc.org/docs/html/gcode/g-code.html#gcode:g4; interp_check.cc: NCE_DWELL_TIME_MISSING_WITH_G4)
+DWELL_P_SECONDS = Dwell(p_seconds=1.0, s_seconds=None, required="P")
 DWELL_SECONDS_SUM = Dwell(p_seconds=1.0, s_seconds=1.0, both="sum")  # Smoothieware in grbl mode (Carvera)
 DWELL_UNKNOWN = Dwell(p_seconds=None, s_seconds=None)  # a dialect whose G4 the project does not know (generic)

@@ -83,10 +83,56 @@ def arc3(job: Job, exp: Explanation, cmd: Command, spec: Code | None) -> None:
     generic(job.dialect, exp, cmd, spec, skip="S")
 
 
+def centre_mode(job: Job, exp: Explanation, cmd: Command, spec: Code | None) -> None:
+    """G90.1 / G91.1 (LinuxCNC, "G90.1, G91.1 Arc Distance Mode": https://linuxcnc.org/docs/html/gcode/g-code.html#gcode:g90.1-g91.1)."""
+    if job.facts.effect(cmd.code) == "arc-absolute":
+        exp.note("arc centres from here on: I, J and K are the centre's absolute coordinates")
+    else:
+        exp.note("arc centres from here on: I, J and K are offsets from the arc's start point")
+    generic(job.dialect, exp, cmd, spec)
+
+
+def centre_arc(job: Job, exp: Explanation, cmd: Command, spec: Code | None) -> None:
+    """G2/G3 where the dialect switches the arc-centre mode (``Semantics.arc_centre_modes``): I J K read in the mode
+    in force, P as the dialect counts turns, S as the spindle speed where it is one."""
+    from gclint.explain.motion import spindle_speed
+
+    does(exp, spec)
+    for letter in "XYZ":
+        word = cmd.param(letter)
+        if word is not None:
+            exp.add(word.text.strip(), axis_text(job, letter, word.value))
+    absolute = job.state.arc_absolute
+    for letter, axis in (("I", "X"), ("J", "Y"), ("K", "Z")):
+        word = cmd.param(letter)
+        if word is None:
+            continue
+        if absolute:
+            exp.add(word.text.strip(), f"centre at {axis}{word.value}, absolute under G90.1")
+        else:
+            exp.add(word.text.strip(), f"centre {word.value} from the start in {axis}, an offset under G91.1")
+    r = cmd.param("R")
+    if r is not None:
+        exp.add(r.text.strip(), f"radius {r.value}")
+    p = cmd.param("P")
+    if p is not None:
+        turns = "turns (P1 is the arc itself)" if job.facts.arc_turns == "turns" else "extra full circles"
+        exp.add(p.text.strip(), f"{p.value} {turns}")
+    f = cmd.param("F")
+    if f is not None:
+        exp.add(f.text.strip(), f"moving at {f.value} mm/min")
+    spindle_speed(job, exp, cmd)
+    generic(job.dialect, exp, cmd, spec, skip="XYZIJKRPFS")
+
+
 def decoders(job: Job) -> dict[str, Decoder]:
     """The arcs whose words the dialect's table catalogues (Hyrel's G2/G3 S, the spirals, the 3-space arcs):
     others are read from the table alone."""
     table: dict[str, Decoder] = {}
+    if job.facts.arc_centre_modes:
+        table.update(dict.fromkeys(job.facts.codes_with("arc-absolute", "arc-relative"), centre_mode))
+        table.update(dict.fromkeys(job.facts.codes_with("arc"), centre_arc))
+        return table
     for code in job.facts.codes_with("arc", "spiral-in-place"):
         spec = job.dialect.spec(code)
         if spec is None or spec.params is None:

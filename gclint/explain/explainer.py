@@ -17,7 +17,6 @@ from gclint.machine.state import MachineState
 from gclint.rules.hyrel.jobflow import exponent_message
 from gclint.syntax.build import exponents
 from gclint.syntax.nodes import ASSIGNMENT, EXTENDED, GCODE, HOST, IMPLICIT, META, OWORD, PERCENT, TEXT, Command, Line
-from gclint.syntax.parse import parse_line
 from gclint.syntax.source import Source
 
 # One module per topic; each says which codes it decodes for a job's dialect (``decoders(job)``: by the codes'
@@ -91,6 +90,17 @@ class Explainer(Job):
         kind = cmd.kind
         if kind == IMPLICIT:
             mode = self.state.motion_mode
+            params = cmd.params
+            if params and all(letter in self.facts.words_first for letter in params):
+                # words with no command that the machine sets before the line's commands (LinuxCNC's F, S, T:
+                # "S10000 M3"): modal values, no motion
+                exp = Explanation(line.number, line.raw, None, "words with no command: they set modal values")
+                motion.spindle_speed(self, exp, cmd)
+                f = cmd.param("F")
+                if f is not None:
+                    exp.add(f.text.strip(), f"the feed of later moves: {f.value} mm/min")
+                generic(self.dialect, exp, cmd, None, skip="SF")
+                return exp
             if mode is None:
                 exp = Explanation(
                     line.number, line.raw, None, "axis words with no motion code: no modal motion is active"
@@ -212,8 +222,9 @@ def explain_lines(
 ) -> Iterator[Explanation]:
     """Explanations of ``(text, ending)`` lines, in order."""
     explainer = Explainer(dialect, state)
+    read = dialect.semantics.parse  # (LinuxCNC ignores blanks: X 2 0 is X20)
     for number, (raw, ending) in enumerate(lines, start=1):
-        yield from explainer.explain_line(Line(number, raw, ending, parse_line(raw)))
+        yield from explainer.explain_line(Line(number, raw, ending, read(raw)))
 
 
 def explain_text(text: str, dialect: Dialect, state: MachineState | None = None) -> list[Explanation]:

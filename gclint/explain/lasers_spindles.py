@@ -85,7 +85,13 @@ def tool_change(job: Job, exp: Explanation, cmd: Command, spec: Code | None) -> 
     """M6 on LinuxCNC and Carvera: change to the tool T names (or the one the last T selected)."""
     t = cmd.param("T")
     prepared = job.state.prepared_tool
-    if t is not None:
+    facts = job.facts
+    named = number(t.value) if t is not None else None
+    if t is not None and named is not None and named == facts.no_tool:
+        exp.add(t.text.strip(), "no tool: the spindle is emptied")
+    elif t is not None and named is not None and named == facts.probe_tool:
+        exp.add(t.text.strip(), f"change to the probe: T{t.value} is the machine's wireless probe, not a cutting tool")
+    elif t is not None:
         exp.add(t.text.strip(), f"change to tool {t.value}")
     elif prepared is not None and prepared == job.facts.no_tool:
         exp.note(f"T{prepared} was selected: no tool, the spindle is emptied")
@@ -93,6 +99,8 @@ def tool_change(job: Job, exp: Explanation, cmd: Command, spec: Code | None) -> 
         exp.note(f"change to the tool selected by T (T{prepared})")
     else:
         exp.note("change to the tool selected by T")
+    if facts.tool_change_stops_spindle:
+        exp.note("the spindle is stopped by the tool change; it runs again only at the next M3/M4")
     generic(job.dialect, exp, cmd, spec, skip="T")
 
 

@@ -5,10 +5,12 @@ the M660 registers stored); what its words mean is the dialect table's."""
 from __future__ import annotations
 
 from gclint.dialects.base import Code
+from gclint.dialects.semantics import computed
 from gclint.explain.generic import does, generic, reading
 from gclint.explain.job import Decoder, Job
 from gclint.explain.model import Explanation, Item, fmt, number
 from gclint.machine.state import EVALUES
+from gclint.rules.hyrel.motion import native_e_message
 from gclint.syntax.nodes import Command
 
 
@@ -16,12 +18,30 @@ def axis_text(job: Job, letter: str, value: str | None) -> str:
     unit = "in" if job.state.units == "inch" else "mm"
     if value is None:
         return f"{letter} with no value"
+    if computed(value):
+        return f"{letter} from {value}, a value computed when the line runs (expression, parameter or function; not evaluated here)"
     if job.state.absolute:
         return f"to {letter}{value}"
     n = number(value)
     if n is None:
         return f"by {value} {unit} in {letter}"
     return f"{'+' if n >= 0 else ''}{fmt(n)} {unit} in {letter}"
+
+
+def spindle_speed(job: Job, exp: Explanation, cmd: Command) -> bool:
+    """S where the dialect sets a line's S before its commands, whatever they are (LinuxCNC, "G-code Order of
+    Execution": "Set spindle speed (S)"): the spindle speed, a change of speed if the spindle runs.  False when S
+    means something else there (the caller reads it)."""
+    word = cmd.param("S")
+    if word is None or "S" not in job.facts.words_first:
+        return False
+    value = word.value
+    what = f"{value} rpm" if number(value) is not None else f"the value {value}"
+    exp.add(
+        word.text.strip(),
+        f"spindle speed {what}, set before the line's other commands run; a running spindle changes speed",
+    )
+    return True
 
 
 def move(job: Job, exp: Explanation, cmd: Command, spec: Code | None, mode: str) -> None:
@@ -50,7 +70,13 @@ def move(job: Job, exp: Explanation, cmd: Command, spec: Code | None, mode: str)
                 Item(e.text.strip(), "E on a G0 does nothing: G0 never works", job.facts.e_values == "native")
             )
         elif job.facts.e_values == "native" and job.state.flow_mode != EVALUES:
-            exp.add(e.text.strip(), reading(line, "E", e.value))
+            message = native_e_message(p, job.state.e_absolute, job.state.e_position) if mode == "G1" else None
+            if message is not None and not any(a in p for a in "XYZAB"):
+                exp.add(e.text.strip(), "no motion: native flow dispenses by move length, so nothing is dispensed")
+            else:
+                exp.add(e.text.strip(), reading(line, "E", e.value))
+            if message is not None:
+                exp.warn(message)  # (as HY031 reports it)
         elif job.state.e_absolute:
             exp.add(e.text.strip(), f"extrude until the E position is {e.value}")
         else:
@@ -61,7 +87,12 @@ def move(job: Job, exp: Explanation, cmd: Command, spec: Code | None, mode: str)
                 else f"E by {e.value} (retract)",
             )
     f = cmd.param("F")
-    if f is not None:
+    rapid_ignores_f = mode == "G0" and job.facts.g0_feed == "rapid"  # (LinuxCNC: G0 at the machine's rapid rate)
+    if f is not None and rapid_ignores_f:
+        exp.add(f.text.strip(), f"the feed of later feed moves, {f.value} mm/min; this rapid ignores it")
+    elif rapid_ignores_f:
+        exp.note("at the machine's rapid rate: G0 ignores the feed rate F")
+    elif f is not None:
         if mode == "G0" and job.interpreter.g0_feed_one_shot:
             exp.add(f.text.strip(), f"one-time speed of {f.value} mm/min, not persistent")
         else:
@@ -85,7 +116,9 @@ def move(job: Job, exp: Explanation, cmd: Command, spec: Code | None, mode: str)
         else:
             _height_register(job, exp, h.text.strip(), h.value, line)
     s = cmd.param("S")
-    if s is not None:
+    if s is not None and spindle_speed(job, exp, cmd):
+        pass
+    elif s is not None:
         s_param = spec.param("S") if spec is not None else None
         if mode == "G1" and s_param is not None and (s_param.says or s_param.values):
             exp.add(s.text.strip(), reading(spec, "S", s.value))
@@ -119,12 +152,19 @@ def dwell(job: Job, exp: Explanation, cmd: Command, spec: Code | None) -> None:
             continue
         unit = rule.unit(letter)
         if unit is None:
+            if letter == "S" and spindle_speed(job, exp, cmd):
+                continue
             exp.add(word.text.strip(), f"{(spec.meaning(letter) if spec else None) or letter}: not a dwell time")
         else:
             exp.add(word.text.strip(), f"{cmd.raw(letter)} {unit}")
             timed.append(letter)
     seconds = exp.seconds = rule.seconds(cmd.params)
-    if rule.p_seconds is None and rule.s_seconds is None:
+    if rule.refused(cmd.params):
+        exp.warn(
+            f'G4 without {rule.required}: the machine refuses this line and stops the program (LinuxCNC: "Dwell time '
+            'missing with g4"); nothing after it runs'
+        )
+    elif rule.p_seconds is None and rule.s_seconds is None:
         exp.note("how long this dialect dwells is not known")
     elif seconds is None:
         exp.note("no dwell time given: no pause")

@@ -8,6 +8,7 @@ from gclint.explain.addressing import target
 from gclint.explain.generic import absent, does, generic, notes, read, reading
 from gclint.explain.job import Decoder, Job
 from gclint.explain.model import Explanation, number
+from gclint.rules.hyrel.offsets import m6_message
 from gclint.syntax.nodes import Command
 
 
@@ -65,6 +66,9 @@ def set_position(job: Job, exp: Explanation, cmd: Command, spec: Code | None) ->
 def declare_offsets(job: Job, exp: Explanation, cmd: Command, spec: Code | None) -> None:
     # "M6 T# O..." is the header line that declares the head: it is loaded from this line on
     target(job, exp, cmd, spec, declares="O" in cmd.params)
+    message = m6_message(cmd.params)
+    if message is not None:
+        exp.warn(message)  # (as HY038 reports it)
     if read(exp, cmd, spec, "O") is None and any(axis in cmd.params for axis in "XYZAB"):
         exp.warn(absent(spec, "O"))  # M6 K1: "(no offset registers, so ignore all offsets)"
     for axis in "XYZAB":

@@ -9,6 +9,7 @@ from gclint.explain.addressing import target
 from gclint.explain.generic import absent, does, generic, reading
 from gclint.explain.job import Decoder, Job
 from gclint.explain.model import DEG, Explanation, Item, fmt, number
+from gclint.rules.hyrel.temperature import r_target_message
 from gclint.syntax.nodes import Command
 
 # The address of the primary bed and chamber: "T24 Bed1 / Chamber1" (T_v5 Chart of Addresses)
@@ -52,6 +53,9 @@ def wait_temperature(job: Job, exp: Explanation, cmd: Command, spec: Code | None
         s = known
     low, high = _window(exp, cmd, spec, s)
     _mixed_window(exp, cmd)
+    message = r_target_message(cmd)
+    if message is not None:
+        exp.warn(message)  # (as HY035 reports it)
     if low is not None and high is not None:
         exp.note(f"the wait ends when the temperature is anywhere between {fmt(low)}{DEG} and {fmt(high)}{DEG}")
     elif low is not None:

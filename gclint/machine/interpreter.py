@@ -657,6 +657,8 @@ _BY_EFFECT: dict[str, Entry] = {
     "clear-g92": "_clear_g92",
     "home": "_g28",
     "home-reset-offsets": "_home_and_reset",
+    "arc-absolute": _sets("arc_absolute", True),
+    "arc-relative": _sets("arc_absolute", False),
     "e-absolute": _sets("e_absolute", True),
     "e-relative": _sets("e_absolute", False),
     "set-head-temperature": "_set_temp",

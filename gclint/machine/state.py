@@ -58,6 +58,7 @@ class MachineState:
     # positioning and units
     units: str = "mm"  # G21 / G20
     absolute: bool = True  # G90 / G91 (X Y Z A B)
+    arc_absolute: bool = False  # G90.1 / G91.1: arc centres I J K absolute, or offsets from the start (LinuxCNC)
     e_absolute: bool = True  # M82 / M83 (and G90/G91 on Marlin)
     plane: int = 17  # G16 (Hyrel "any"), G17, G18, G19
     motion_mode: str | None = None  # modal G0/G1/G2/G3 for lines with axis words only (LinuxCNC)

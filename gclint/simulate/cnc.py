@@ -91,6 +91,16 @@ class CncSimulator(DeviceModel):
             self.rpm = rpm
             self.dirty()
 
+    def line_words(self, commands: tuple, n: int) -> None:
+        """The S words of a line where the dialect sets the spindle speed before the line's commands (LinuxCNC: "Set
+        spindle speed (S)", G-code Order of Execution): ``G4 P1 S5000`` changes the speed (not a dwell word there)."""
+        super().line_words(commands, n)
+        if "S" not in self.facts.words_first:
+            return
+        for cmd in commands:
+            if "S" in cmd.params and (cmd.code != "G4" or self.facts.dwell.unit("S") is None):
+                self.speed(number(cmd.params["S"]))
+
     G53_NEXT_LINE = False  # Carvera: a G53 alone on its line puts the next G0/G1 in machine coordinates
 
     def g53(self, cmd: Command, n: int) -> Move | None:
@@ -159,9 +169,14 @@ class CncSimulator(DeviceModel):
         value = number(cmd.params.get("T"))
         tool = int(value) if value is not None else self.prepared
         if tool is None:
+            if self.facts.tool_change_stops_spindle:
+                self.spindle = None
+                self.dirty()
             return
         # the dialect's "no tool" number empties the spindle (LinuxCNC: "T0 gets special handling: no tool")
         self.tool = None if tool == self.facts.no_tool else tool
+        if self.facts.tool_change_stops_spindle:  # (LinuxCNC M6: "The spindle will be stopped"; the Carvera's ATC)
+            self.spindle = None
         self.dirty()
 
     def tool_label(self, tool: int | None) -> str:
@@ -554,9 +569,7 @@ class CarveraSimulator(CncSimulator):
         super().spindle_off(cmd, n)
 
     def tool_change(self, cmd: Command, n: int) -> None:
-        super().tool_change(cmd, n)
-        self.spindle = None  # the spindle stops for a tool change
-        self.dirty()
+        super().tool_change(cmd, n)  # (the spindle stops for it: Semantics.tool_change_stops_spindle)
 
     def working_head(self) -> int | str | None:
         tool = self.tool

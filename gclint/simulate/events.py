@@ -84,6 +84,15 @@ class Ignored:
 
 
 @dataclass(frozen=True, slots=True)
+class Stop:
+    """A line the machine refuses (an interpreter error): the program stops there, and nothing after it runs."""
+
+    line: int
+    code: str | None
+    why: str
+
+
+@dataclass(frozen=True, slots=True)
 class ProgramEnd:
     """The end of the file; ``ended``: a program end ran (what follows it does not run)."""
 
@@ -91,7 +100,7 @@ class ProgramEnd:
     ended: bool
 
 
-Event = Move | Dwell | Pause | Heat | Flow | ToolChange | Layer | Limits | Ignored | ProgramEnd
+Event = Move | Dwell | Pause | Heat | Flow | ToolChange | Layer | Limits | Ignored | Stop | ProgramEnd
 
 # The motion limits a ``Limits`` event may set (units: mm, s): the largest acceleration of each axis (M201), the
 # largest speed of each axis (M203) and of the head (Klipper's VELOCITY), the acceleration of printing, travel and retraction moves (M204 P, T, R;

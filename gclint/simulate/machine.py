@@ -20,11 +20,11 @@ from collections.abc import Callable, Iterator
 
 from gclint.dialects.base import Dialect
 from gclint.dialects.semantics import number
-from gclint.simulate.events import LAYER_MARKS, Dwell, Event, Heat, Ignored, Layer, Pause, ProgramEnd, ToolChange
+from gclint.simulate.events import LAYER_MARKS, Dwell, Event, Heat, Ignored, Layer, Pause, ProgramEnd, Stop, ToolChange
 from gclint.simulate.trace import NATIVE, EndState, Look, Mapping, Move, Trace
 from gclint.syntax.fastpath import PLAIN_MOVE
 from gclint.syntax.nodes import ASSIGNMENT, GCODE, IMPLICIT, META, OWORD, Command
-from gclint.syntax.parse import PARSE_LIMIT, code_before_long_comment, parse_line
+from gclint.syntax.parse import PARSE_LIMIT, code_before_long_comment
 from gclint.syntax.source import Source
 
 INCH = 25.4
@@ -95,6 +95,11 @@ class Simulator:
         self.frame: tuple[str | None, ...] = (None,) * 5
         self.anchor: list[int] = [0] * 5
         self.scale = 1.0  # 25.4 in inches
+        # what F words count in: the units in force, except where the dialect reads a line's F before its G20/G21 run
+        # (``Semantics.words_first``: LinuxCNC's "Set feed rate (F)" comes before "Set length units"): the units in
+        # force before the line, until the line is done
+        self.feed_scale = 1.0
+        self._feed_first = "F" in facts.words_first
         self.absolute = True
         self.e_absolute = True
         self.e_pos: float | None = 0.0
@@ -185,7 +190,7 @@ class Simulator:
                         continue
                 if len(raw) > PARSE_LIMIT:  # one trailing comment made it too long: its commands run
                     raw = code_before_long_comment(raw) or raw
-                written = parse_line(raw).commands
+                written = facts.parse(raw).commands  # (LinuxCNC ignores blanks: X 2 0 is X20)
                 commands = facts.running(written)
                 if len(commands) < len(written) and self.listening:
                     for cmd in facts.ignored(written):
@@ -199,7 +204,7 @@ class Simulator:
                     if self.feed_on_any and "F" in cmd.params and cmd.code not in _MOTION:
                         f = number(cmd.params["F"])
                         if f is not None:
-                            self.feed = f * self.scale
+                            self.feed = f * self.feed_scale
                     handler = handlers.get(cmd.code)
                     if handler is not None:
                         move = handler(cmd, n)
@@ -221,6 +226,7 @@ class Simulator:
                     if pending:
                         yield from pending
                         pending.clear()
+                self.feed_scale = self.scale
         self.line_count = n
         end = self.end_state()
         if end is not self.trace.end:
@@ -238,7 +244,7 @@ class Simulator:
             if "F" in params and cmd.code not in _MOTION:
                 f = number(params["F"])
                 if f is not None:
-                    self.feed = f * self.scale
+                    self.feed = f * self.feed_scale
 
     def emit(self, event: Event) -> None:
         """An event for ``events`` (not for ``run``: the diff reads the moves and the trace)."""
@@ -340,7 +346,7 @@ class Simulator:
             f = f_first
         scale = self.scale
         if f is not None:
-            self.feed = float(f) * scale
+            self.feed = float(f) * self.feed_scale
         pos = self.pos
         start = tuple(pos)
         if x is not None or y is not None or z is not None:
@@ -389,7 +395,7 @@ class Simulator:
         if "F" in params and not any(a in params for a in "XYZAB"):
             f = number(params["F"])
             if f is not None:
-                self.feed = f * self.scale
+                self.feed = f * self.feed_scale
             return None
         if self.motion_mode is None or not any(a in params for a in "XYZAB"):
             return None
@@ -434,7 +440,15 @@ class Simulator:
 
     def g4(self, cmd: Command, n: int) -> None:
         # the dialect says what P and S count (gclint.dialects.semantics.Dwell)
-        seconds = self.facts.dwell.seconds(cmd.params)
+        rule = self.facts.dwell
+        if rule.refused(cmd.params):
+            # the interpreter refuses the line ("Dwell time missing with g4", LinuxCNC): the program stops here
+            self.emit(
+                Stop(n, "G4", f"G4 without {rule.required}: the interpreter refuses the line and stops the program")
+            )
+            self.end_program(cmd, n)
+            return
+        seconds = rule.seconds(cmd.params)
         self.add_dwell(seconds)
         self.emit(Dwell(n, seconds))
 
@@ -521,6 +535,8 @@ class Simulator:
 
     def units(self, cmd: Command, n: int) -> None:
         self.scale = INCH if cmd.code == "G20" else 1.0
+        if not self._feed_first:
+            self.feed_scale = self.scale  # (else when the line is done: ``_read``)
         if cmd.code == "G20":
             self.inch_used = True
 
@@ -603,7 +619,7 @@ class Simulator:
         feed = self.feed
         if f is not None:
             value = number(f)
-            value = value * self.scale if value is not None else None
+            value = value * self.feed_scale if value is not None else None
             if not rapid or self.g0_feed == "modal":
                 self.feed = feed = value
             elif self.g0_feed == "one-shot":
@@ -657,7 +673,7 @@ class Simulator:
         f = params.get("F")
         if f is not None:
             value = number(f)
-            self.feed = value * self.scale if value is not None else None
+            self.feed = value * self.feed_scale if value is not None else None
         start = self.machine()
         self.pos = self.target(params)
         delta = self.extrusion(params, False)

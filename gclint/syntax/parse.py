@@ -7,7 +7,7 @@ sliced job: retractions, fan and temperature commands, comment banners) share on
 from __future__ import annotations
 
 from gclint.syntax.fastpath import parse_fast
-from gclint.syntax.nodes import ParsedLine
+from gclint.syntax.nodes import ParsedLine, Stray
 
 _CACHE: dict[str, ParsedLine] = {}
 _CACHE_LIMIT = 8192
@@ -32,6 +32,54 @@ def parse_line(raw: str) -> ParsedLine:
             _CACHE.clear()
         _CACHE[raw] = parsed
     return parsed
+
+
+def without_blanks(raw: str) -> str:
+    """``raw`` with the spaces and tabs outside its comments removed: how a machine that ignores blanks reads a line
+    (LinuxCNC: "Spaces and tabs are allowed anywhere on a line of code and do not change the meaning of the line,
+    except inside comments. ... The line 'G0X +0. 12 34Y 7' is equivalent to 'G0 x+0.1234 Y7'", G-code overview,
+    "Format of a line": https://linuxcnc.org/docs/html/gcode/overview.html#_format_of_a_line)."""
+    out = []
+    depth = 0
+    for i, ch in enumerate(raw):
+        if depth == 0 and ch == ";":
+            out.append(raw[i:])
+            break
+        if ch == "(":
+            depth = 1
+        elif ch == ")" and depth:
+            depth = 0
+            out.append(ch)
+            continue
+        if depth or (ch != " " and ch != "\t"):
+            out.append(ch)
+    return "".join(out)
+
+
+def read_blanks_ignored(raw: str) -> ParsedLine:
+    """The parse of ``raw`` as a machine that ignores blanks reads it (``without_blanks``): the plain parse unless a
+    value lost its word letter to a blank (``X 2 0`` is X20), which only a blank can do."""
+    parsed = parse_line(raw)
+    if not parsed.extra or not any(type(node) is Stray for node in parsed.extra):
+        return parsed
+    squeezed = parse_line(without_blanks(raw))
+    return squeezed if squeezed.kind != "error" else parsed
+
+
+def canonical_text(parsed: ParsedLine) -> str:
+    """One line's text written plainly: block delete, N, each command as its code and words separated by one blank,
+    then the comments (what a reader that does not ignore blanks reads the same way)."""
+    parts = []
+    if parsed.block_delete is not None:
+        parts.append("/")
+    if parsed.line_number is not None:
+        parts.append(parsed.line_number.text.strip())
+    for cmd in parsed.commands:
+        words = [cmd.code] if cmd.code else []
+        words += [w.text.replace(" ", "").replace("\t", "") for w in cmd.words]
+        parts.append(" ".join(words))
+    parts += [c.text for c in parsed.comments]
+    return " ".join(p for p in parts if p)
 
 
 def code_before_long_comment(raw: str) -> str | None:

@@ -129,7 +129,7 @@ class ArcMoves(TranslatorMixin):
                         values[letter] = fmt(v * INCH)
         if "F" in params:
             f = num(params["F"])
-            if f is not None and self.inch:
+            if f is not None and self.feed_inches():
                 f *= INCH
                 values["F"] = fmt(f, 2)
             self.hy.feed = f
@@ -289,8 +289,9 @@ class ArcMoves(TranslatorMixin):
         if "F" in params:
             f = num(params["F"])
             if f is not None:
-                feed_word = "F" + fmt(f * scale, 2)
-                self.hy.feed = f * scale
+                f_scale = INCH if self.feed_inches() else 1.0
+                feed_word = "F" + fmt(f * f_scale, 2)
+                self.hy.feed = f * f_scale
         else:
             feed = self.source_feed()
             if feed is not None and feed != self.hy.feed:

@@ -29,7 +29,7 @@ from gclint.dialects.base import Dialect
 from gclint.machine.interpreter import Interpreter
 from gclint.machine.job_settings import read_settings
 from gclint.syntax.nodes import ASSIGNMENT, EXTENDED, GCODE, HOST, IMPLICIT, META, OWORD, Command, Line
-from gclint.syntax.parse import PARSE_LIMIT, code_before_long_comment, parse_line
+from gclint.syntax.parse import PARSE_LIMIT, canonical_text, code_before_long_comment, parse_line
 from gclint.translate.arc_moves import ArcMoves
 from gclint.translate.engine import PlainMove, TranslationResult, Translator
 from gclint.translate.findings import (
@@ -52,7 +52,7 @@ from gclint.translate.program import Program
 from gclint.translate.spindle import Spindles
 from gclint.translate.state import HyrelSide
 from gclint.translate.tools import SourceTools
-from gclint.translate.words import has_expression, num
+from gclint.translate.words import INCH, has_expression, num
 from gclint.translate.writer import LineWriter
 
 WORKSPACES = {f"G{n}": "workspace" for n in range(54, 60)}  # G54-G59: the same codes on Hyrel
@@ -113,6 +113,10 @@ class HyrelTranslator(LineWriter, Heads, Program, Motion, ArcMoves, Modal, Spind
         self.state = self.interp.state
         self.evalues = self.opts.flow == "evalues"
         self.inch = False  # the source is in inches (G20): lengths and feeds are converted
+        # the units the current line's F words are read in, where the source reads them before the line's G20/G21
+        # (LinuxCNC, "G-code Order of Execution": "Set feed rate (F)" before "Set length units (G20, G21)"); None:
+        # the units in force (``Motion.feed_inches``)
+        self.line_feed_inch: bool | None = None
         self.extra_always = False  # call move_extra on every move (Carvera laser mode)
         self.annotate = self.opts.annotate
         self.positions = frozenset(self.opts.printer.positions)
@@ -222,6 +226,14 @@ class HyrelTranslator(LineWriter, Heads, Program, Motion, ArcMoves, Modal, Spind
             self.default_ending = ending
             self._ending_known = True
         parsed = line.parsed
+        blanks = None
+        if parsed.extra and self.source.semantics.blanks_ignored:
+            read = self.source.semantics.parse(line.raw)
+            if read is not parsed:
+                # the source machine ignores blanks (LinuxCNC: X 2 0 is X20): the line as it reads it, written plainly
+                blanks = canonical_text(read)
+                line = Line(line.number, blanks, ending, parse_line(blanks))
+                parsed = line.parsed
         commands = parsed.commands
         if not commands:
             if parsed.kind == "error" and len(line.raw) > PARSE_LIMIT:
@@ -265,6 +277,14 @@ class HyrelTranslator(LineWriter, Heads, Program, Motion, ArcMoves, Modal, Spind
         self.line = line
         self.edit = None
         self.result = result
+        if blanks is not None:
+            self.report(
+                TR_NOTE,
+                "blanks inside a number: the source machine ignores blanks anywhere on a line (LinuxCNC: 'X 2 0' is "
+                f"X20); written as {blanks}",
+                key="blanks",
+            )
+            self._edit().changed = True
         if self.hy.ended:
             self._after_end(commands)
         elif len(commands) == 1 and not self.CHECK_EXPRESSIONS:
@@ -298,6 +318,9 @@ class HyrelTranslator(LineWriter, Heads, Program, Motion, ArcMoves, Modal, Spind
             order = tuple(index_of[id(cmd)] for cmd in running)
             if order != tuple(range(len(order))):
                 self._edit().order = order
+            feeds = [cmd.params["F"] for cmd in commands if "F" in cmd.params] if "F" in facts.words_first else []
+            if feeds:
+                self.line_feed_inch = self.inch
             if "S" in facts.words_first and hasattr(self, "rpm"):
                 # LinuxCNC sets the spindle speed of any S word on the line before the line's commands run
                 # ("G-code Order of Execution": "Set spindle speed (S)" comes before "Spindle on or off")
@@ -336,6 +359,13 @@ class HyrelTranslator(LineWriter, Heads, Program, Motion, ArcMoves, Modal, Spind
                     else:
                         handler(self, cmd)
                 apply(cmd, line)
+            if feeds:
+                # LinuxCNC keeps the feed's speed across the line's change of units (convert_length_units:
+                # "settings->feed_rate = GET_EXTERNAL_FEED_RATE()"): the F read in the old units, in the new ones
+                f = num(feeds[-1])
+                if f is not None and self.line_feed_inch != self.inch:
+                    self.state.feed = f / INCH if self.inch else f * INCH
+                self.line_feed_inch = None
         edit = self.edit
         if edit is None and len(commands) > 1 and not self.hy.ended:
             edit = self._edit()  # several commands: one a line, as the Hyrel pages show (output.LineEdit)

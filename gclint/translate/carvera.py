@@ -26,7 +26,6 @@ class CarveraToHyrel(CncTranslator):
     MACHINE = "the Carvera's"
     G53_ALONE = "next"  # "Must be on a line by itself OR the first G code on a line, the directly following G0/G1
     # will be executed in MCS" (research/dialects.md 1.1 G53)
-    SPINDLE_STOPS_AT_TOOL_CHANGE = True  # "M6 Auto tool change" (carvera-mcodes seed): the spindle stops
     END_CODES: ClassVar[frozenset[str]] = frozenset({"M2"})  # "M30 End of the program, no action on the Carvera"
     HANDLERS: ClassVar[dict[str, str]] = {  # besides cnc.CNC_HANDLERS
         "M30": "m30",
@@ -236,13 +235,15 @@ class CarveraToHyrel(CncTranslator):
         self.spindle_off(cmd)
 
     def tool_change(self, cmd: Command) -> None:
+        self.tool_change_stops(cmd)  # (the automatic tool change stops the spindle)
         index = num(cmd.params.get("T"))
         tool = int(index) if index is not None else self.prepared
         if tool is None:
             self.remove(cmd, TR_LOST, "tool change with no tool", key="M6", aspects=("head", "spindle"))
             return
-        if tool <= 0:
-            what = "the wireless probe (T0)" if tool == 0 else "no tool (T-1)"
+        facts = self.source.semantics
+        if tool in (facts.probe_tool, facts.no_tool) or tool < 0:
+            what = f"the wireless probe (T{tool})" if tool == facts.probe_tool else f"no tool (T{tool})"
             self.remove(
                 cmd,
                 TR_LOST,
@@ -278,7 +279,7 @@ class CarveraToHyrel(CncTranslator):
         running = sorted(self.hy.spindles_on)
         if running:
             # M321: "The machine will drop the current tool automatically" (carvera-mcodes.md): the spindle
-            # stops with it, as at an ATC change (SPINDLE_STOPS_AT_TOOL_CHANGE)
+            # stops with it, as at an ATC change (Semantics.tool_change_stops_spindle)
             self.before(*(f"M5 T{a}" for a in running), note="laser mode drops the tool: the spindle stops")
             self.hy.spindles_on.clear()
             self.report(

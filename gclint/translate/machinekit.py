@@ -358,6 +358,7 @@ class MachinekitToHyrel(CncTranslator):
         self.spindle_on(cmd, self.rpm_percent(self.rpm) if self.rpm is not None else None)
 
     def tool_change(self, cmd: Command) -> None:
+        self.tool_change_stops(cmd)  # (M6 stops the spindle, whatever tool it loads)
         index = num(cmd.params.get("T"))
         tool = int(index) if index is not None else self.prepared
         if tool is None or tool < 0:

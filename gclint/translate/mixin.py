@@ -67,6 +67,7 @@ class TranslatorMixin(ABC):
     _head_users: dict[int, int]
     # the line being translated
     line: Line | None
+    line_feed_inch: bool | None  # the units the line's F is in, where they differ from the line's (Motion)
     edit: LineEdit | None
     index: int
     result: TranslationResult | None
@@ -87,6 +88,9 @@ class TranslatorMixin(ABC):
     # -- writer.LineWriter -------------------------------------------------------------------------------
     @abstractmethod
     def _edit(self) -> LineEdit: ...
+
+    @abstractmethod
+    def feed_inches(self) -> bool: ...
 
     @abstractmethod
     def replace(self, cmd: Command, text: str, note: str | None = None) -> None: ...

@@ -25,6 +25,11 @@ class Modal(TranslatorMixin):
             # the modal feed keeps its speed across a change of units (Marlin keeps it in mm/min; LinuxCNC
             # converts it): in the new unit it is another number
             self.state.feed = feed / INCH if inch else feed * INCH
+        e = self.state.e_position
+        if e is not None and inch != self.inch and self.E_LINEAR:
+            # an absolute E compares with the E position in the same units: G20 makes E inches too (X10: "multiply
+            # X Y Z I J K R F (and linear E) by 25.4"), so the position the source reached is another number there
+            self.state.e_position = e / INCH if inch else e * INCH
         self.inch = inch
         if cmd.code == "G20":
             self.replace(cmd, "G21")
@@ -141,7 +146,15 @@ class Modal(TranslatorMixin):
         note = self.E_MODE_FOLLOWS_POSITIONING
         if note is None or not self.evalues or not self.hy.m229_written or self.hy.e_mode_written == absolute:
             return
-        self.after("M82" if absolute else "M83", note=note)
+        mode = "M82" if absolute else "M83"
+        line = self.line
+        if line is not None and len(line.parsed.commands) > 1:
+            # other commands on the line (G91 G1 X10 A0.5): the E mode right after G90/G91, before the move that
+            # the source runs after it (written one command a line, in the order the source runs them)
+            glue = line.ending or self.default_ending
+            self.replace(cmd, f"{rewrite(cmd)}{glue}{mode}", note=note)
+        else:
+            self.after(mode, note=note)
         self.hy.e_mode_written = absolute
 
     def set_position(self, cmd: Command) -> None:
@@ -193,12 +206,24 @@ class Modal(TranslatorMixin):
         Hyrel reads the same time from the same words."""
         params = cmd.params
         source, hyrel = self.source.semantics.dwell, self.target.semantics.dwell
+        if source.refused(params):
+            name = self.source.title.split(" (")[0]
+            self.untranslatable(
+                cmd,
+                f'G4 without {source.required}: {name} refuses the line and stops the program ("Dwell time missing '
+                'with g4"); nothing after it would run there',
+                key="G4-refused",
+                aspects=("*",),
+            )
+            return
         seconds = source.seconds(params)
         idle = [letter for letter in "PS" if letter in params and source.unit(letter) is None]
         if not idle and seconds == hyrel.seconds(params):
             return
-        if "S" in idle and hasattr(self, "rpm"):
-            self.rpm = num(params.get("S"))  # LinuxCNC: the S word of any line is the spindle speed
+        if "S" in idle and hasattr(self, "speed_word"):
+            # LinuxCNC: the S word of any line is the spindle speed, set before the dwell ("G-code Order of
+            # Execution"): a running spindle changes speed here
+            self.speed_word(cmd)
         name = self.source.title.split(" (")[0]
         if seconds is None:
             self.replace(cmd, rewrite(cmd, drop="PS"))

@@ -149,13 +149,16 @@ class Motion(TranslatorMixin):
                     v = fast_float(params[letter])
                     if v is not None:
                         values[letter] = fmt(v * INCH)
+        f_inch = self.feed_inches()
+        if f_inch:
             f = fast_float(params.get("F"))
             if f is not None:
+                values = dict(values or {})
                 values["F"] = fmt(f * INCH, 2)
         if "F" in params:
             if not g0:  # a G0 F is one-shot on Hyrel; where it is modal in the source, source_feed() differs next
                 f = fast_float(params["F"])
-                self.hy.feed = f * INCH if f is not None and self.inch else f
+                self.hy.feed = f * INCH if f is not None and f_inch else f
         elif not g0:
             feed = self.state.feed
             if feed is not None:
@@ -322,6 +325,12 @@ class Motion(TranslatorMixin):
     def move_extra(self, cmd: Command, rapid: bool) -> tuple[str, tuple[str, ...]] | None:
         """Dialect hook: (letters to drop, words to add) for a move; None for no change."""
         return None
+
+    def feed_inches(self) -> bool:
+        """Whether this line's F words are inches per minute: the units in force when the source reads them (LinuxCNC
+        sets the feed before the line's G20/G21 run: ``Semantics.words_first``; ``line_feed_inch``)."""
+        line = self.line_feed_inch
+        return self.inch if line is None else line
 
     def source_feed(self) -> float | None:
         feed = self.state.feed

@@ -4,8 +4,9 @@ a change of direction (Hyrel Gcode page, M3).
 The head a spindle command addresses: the ``spindle`` setting; else, for CNC sources, the head the active
 tool maps to (a tool change with a tool map switches heads, "multi-head: T<tools[n]>", research/dialects.md
 2.3 M6 row), so that the spindle runs on the head that cuts; else mapped tool 0.  A spindle running at such
-a tool change goes to the new head (Machinekit: the source's one spindle keeps running with the new tool) or
-stops (the Carvera stops it for its automatic tool change).
+a tool change stops where the source's tool change stops it (``Semantics.tool_change_stops_spindle``: LinuxCNC's
+and Machinekit's M6, "The spindle will be stopped"; the Carvera's automatic tool change), else goes to the new
+head.
 
 A mixin of ``HyrelTranslator``.
 """
@@ -21,7 +22,25 @@ from gclint.translate.words import fast_float
 
 class Spindles(TranslatorMixin):
     SPINDLE_FOLLOWS_TOOL = False  # CNC sources: the spindle is on the active tool's head (see above)
-    SPINDLE_STOPS_AT_TOOL_CHANGE = False  # the source stops the spindle for a tool change (Carvera)
+
+    def tool_change_stops(self, cmd: Command) -> None:
+        """A tool change (M6) on a source machine that stops the spindle for it (``Semantics.tool_change_stops_spindle``:
+        LinuxCNC "The spindle will be stopped", the Carvera's ATC): every running spindle stops here, and runs again
+        only at the job's next M3/M4."""
+        if not self.source.semantics.tool_change_stops_spindle:
+            return
+        running = sorted(self.hy.spindles_on)
+        if not running:
+            return
+        self.before(*(f"M5 T{address}" for address in running), note="the tool change stops the spindle")
+        self.hy.spindles_on.clear()
+        self.report(
+            TR_NOTE,
+            "tool change while the spindle runs: the source machine's M6 stops the spindle (LinuxCNC: \"The spindle "
+            'will be stopped"); M5 written, it runs again at the next M3/M4',
+            key="M6-stops",
+            cmd=cmd,
+        )
 
     def spindle_head(self) -> int:
         """The Hyrel address spindle commands go to now."""
@@ -30,8 +49,8 @@ class Spindles(TranslatorMixin):
         return self.opts.spindle_address()
 
     def spindle_to_head(self, old: int | None, new: int) -> None:
-        """A tool change from head ``old`` to ``new``: a spindle running on ``old`` stops there and, unless
-        the source stops it for the change, runs on ``new`` at the same speed (after the T line)."""
+        """A tool change from head ``old`` to ``new``: a spindle running on ``old`` stops there and runs on ``new``
+        at the same speed (after the T line), where the source's spindle keeps running through a tool change."""
         if not self.SPINDLE_FOLLOWS_TOOL or self.opts.spindle is not None:
             return
         if old is None:
@@ -41,16 +60,13 @@ class Spindles(TranslatorMixin):
         code = self.hy.spindles_on.pop(old, None)
         if code is None:
             return
-        lines = [f"M5 T{old}"]
-        if not self.SPINDLE_STOPS_AT_TOOL_CHANGE:
-            speed = f" S{self.spindle_percent}" if self.spindle_percent is not None else ""
-            lines.append(f"{code} T{new}{speed}")
-            self.hy.spindles_on[new] = code
-        self.after(*lines, note="the spindle follows the tool to its head")
+        # (a source whose tool change stops the spindle stopped it already: ``tool_change_stops``)
+        speed = f" S{self.spindle_percent}" if self.spindle_percent is not None else ""
+        self.after(f"M5 T{old}", f"{code} T{new}{speed}", note="the spindle follows the tool to its head")
+        self.hy.spindles_on[new] = code
         self.report(
             TR_NOTE,
-            f"tool change while the spindle runs: it stops on T{old}"
-            + ("" if self.SPINDLE_STOPS_AT_TOOL_CHANGE else f" and runs on T{new}, the new tool's head"),
+            f"tool change while the spindle runs: it stops on T{old} and runs on T{new}, the new tool's head",
             key="spindle-head",
         )
 
@@ -63,7 +79,10 @@ class Spindles(TranslatorMixin):
         address = self.spindle_head()
         running = self.hy.spindles_on.get(address)
         line = self.line
-        if line is not None and any(c.code in ("M3", "M4") for c in line.parsed.commands[self.index + 1 :]):
+        # (where the source sets a line's S before its commands, LinuxCNC, an M3/M4 anywhere on the line runs after it)
+        first = "S" in self.source.semantics.words_first
+        rest = () if line is None else line.parsed.commands if first else line.parsed.commands[self.index + 1 :]
+        if any(c.code in ("M3", "M4") for c in rest):
             return  # the M3/M4 on this line carries the speed
         if running is not None:
             self.spindle_percent = self.rpm_percent(s, self.MAX_RPM)

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+from gclint.dialects.semantics import computed
 from gclint.syntax.nodes import Command, to_number
 
 INCH = 25.4
@@ -25,5 +26,6 @@ def fast_float(text: str | None) -> float | None:
 
 
 def has_expression(cmd: Command) -> bool:
-    """True when a parameter is an expression or a parameter reference ({...}, [...], #...)."""
-    return any(value and value[0] in "{[#" for value in cmd.params.values())
+    """True when a parameter is an expression, a parameter reference or a function ({...}, [...], #..., SIN[30]:
+    ``gclint.dialects.semantics.computed``)."""
+    return any(computed(value) for value in cmd.params.values())

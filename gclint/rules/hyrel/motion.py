@@ -378,6 +378,18 @@ _E_ONLY = (
 )
 
 
+def native_e_message(params, e_absolute: bool, e_position: float | None) -> str | None:
+    """HY031's message for a G1 with E in native flow (explain says the same), or None: it prints as meant."""
+    if not _moves_axis(params):
+        return _E_ONLY
+    text = params.get("E")
+    try:
+        value = float(text)
+    except (TypeError, ValueError):
+        return None
+    return _travel_message(text, value, e_absolute, e_position)
+
+
 def _travel_message(text: str, value: float, e_absolute: bool, e_position: float | None) -> str | None:
     """HY031's message for a G1 moving an axis with E ``text`` (of ``value``), or None: it extrudes forward."""
     if value <= 0:

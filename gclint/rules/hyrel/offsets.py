@@ -250,6 +250,20 @@ class ToolHeightRegister(ParamTableRule):
 _OFFSET_LETTERS = ("O", "X", "Y", "Z", "A", "B", "D", "I", "K")
 
 
+def m6_message(params) -> str | None:
+    """HY038's message for a Hyrel M6 with these parameters (explain says the same), or None: it declares offsets."""
+    if not params:
+        return (
+            "M6 with no parameters does nothing on Hyrel (M6 declares head offsets); a T command alone changes the tool"
+        )
+    if "T" not in params or any(letter in params for letter in _OFFSET_LETTERS):
+        return None
+    return (
+        f"M6 T{params['T']} looks like a tool change, but on Hyrel M6 declares head offsets "
+        "(M6 T# O# X.. Y.. Z..) and this one declares none; change tools with a T command"
+    )
+
+
 @register
 class M6UsedAsToolChange(Rule):
     code = "HY038"
@@ -277,15 +291,11 @@ class M6UsedAsToolChange(Rule):
 
     def check(self, line: Line, cmd: Command) -> None:
         params = cmd.params
-        if not params:
-            self.report(
-                line,
-                "M6 with no parameters does nothing on Hyrel (M6 declares head offsets); "
-                "a T command alone changes the tool",
-                node=cmd,
-            )
+        message = m6_message(params)
+        if message is None:
             return
-        if "T" not in params or any(letter in params for letter in _OFFSET_LETTERS):
+        if not params:
+            self.report(line, message, node=cmd)
             return
         fix = None
         address = self.ctx.interpreter.address(cmd)
@@ -304,13 +314,7 @@ class M6UsedAsToolChange(Rule):
                     (Edit(line.number, word.column, t_word.end_column, f"T{number}"),),
                     safe=False,
                 )
-        self.report(
-            line,
-            f"M6 T{params['T']} looks like a tool change, but on Hyrel M6 declares head offsets "
-            "(M6 T# O# X.. Y.. Z..) and this one declares none; change tools with a T command",
-            node=cmd,
-            fix=fix,
-        )
+        self.report(line, message, node=cmd, fix=fix)
 
 
 # -- HY055 ---------------------------------------------------------------------------------------------

@@ -203,17 +203,22 @@ class WaitRIsATolerance(Rule):
         return frozenset("R")
 
     def check(self, line: Line, cmd: Command) -> None:
-        if cmd.get("S") is not None:
-            return  # R is the tolerance around S: the page sets no limit on it
-        r = cmd.get("R")
-        if r is not None and r > 50:
-            self.report(
-                line,
-                f"{cmd.code} R{cmd.params['R']} is a Marlin-style target, but Hyrel's R is a tolerance and "
-                f"sets nothing ('if omitted, no new target temperature is set'): write "
-                f"{cmd.code} S{cmd.params['R']} R5",
-                node=cmd.param("R"),
-            )
+        message = r_target_message(cmd)
+        if message is not None:
+            self.report(line, message, node=cmd.param("R"))
+
+
+def r_target_message(cmd: Command) -> str | None:
+    """HY035's message for a Hyrel wait whose R looks like a Marlin target (explain says the same), or None."""
+    if cmd.get("S") is not None:
+        return None  # R is the tolerance around S: the page sets no limit on it
+    r = cmd.get("R")
+    if r is None or r <= 50:
+        return None
+    return (
+        f"{cmd.code} R{cmd.params['R']} is a Marlin-style target, but Hyrel's R is a tolerance and "
+        f"sets nothing ('if omitted, no new target temperature is set'): write {cmd.code} S{cmd.params['R']} R5"
+    )
 
 
 # -- HY036 ---------------------------------------------------------------------------------------------
