@@ -308,3 +308,34 @@ def test_summary_of_a_milling_job_counts_cutting_not_printing(tmp_path) -> None:
     out = run_cli("summary", "--dialect", "machinekit", str(job)).stdout.decode()
     assert "flow:" not in out and "printing" not in out
     assert "0.02 m at feed (cutting)" in out, out
+
+
+# -- the second translation review ------------------------------------------------------------------------------
+
+
+def test_absolute_arc_centres_in_inches_are_written_in_mm():
+    # LinuxCNC G90.1: I and J are the centre's coordinates, in the line's units (G20: inches)
+    text = "G20 G90 G54 G17\nG0 X1 Y1 Z0\nG90.1\nG1 X1 Y1 F10\nG2 X2 Y1 I1.5 J1\nG91.1\nG2 X3 Y1 I0.5 J0\nM2\n"
+    out, _ = translate("machinekit", text)
+    arcs = [line for line in out.splitlines() if line.startswith("G2 ")]
+    assert arcs == ["G2 X50.8 Y25.4 I12.7 J0", "G2 X76.2 Y25.4 I12.7 J0"]
+
+
+def test_clearing_g92_offsets_gives_the_position_back():
+    # LinuxCNC G92.1 turns the G92 offsets off: the arc starts from Y10 again, not from the shifted Y0
+    text = "G21 G90\nG0 X10 Y10 Z5\nG92 X0 Y0\nG1 X5 F200\nG92.1\nG1 X20\nG2 X30 Y10 R10\nM2\n"
+    out, _ = translate("machinekit", text)
+    assert "G2 X30 Y10 I5 J-8.6603" in out.splitlines()
+
+
+def test_m3_before_any_spindle_speed_is_a_warning():
+    _, result = translate("machinekit", "G21 G90\nG0 X0 Y0 Z5\nM3\nG1 X10 F100\nS5000\nG1 X20\nM2\n")
+    assert any(f.code == "TR003" and "no spindle speed set yet" in f.message for f in result.findings)
+    _, result = translate("machinekit", "G21\nS1000 M3\nG1 X1 F100\nM2\n")
+    assert not any("no spindle speed set yet" in f.message for f in result.findings)
+
+
+def test_words_with_no_command_are_never_dropped_in_silence():
+    # (Prusa XL's "P0 S1 L2 D0" parks the tool: its S is no spindle speed)
+    _, result = translate("marlin", "G21\nM83\nG1 X10 E1 F1000\nP0 S1 L2 D0\nG1 X20\n")
+    assert [(f.line, f.code) for f in result.findings if f.code == "TR002"] == [(4, "TR002")]

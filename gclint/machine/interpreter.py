@@ -339,7 +339,11 @@ class Interpreter:
         for axis in _AXES:
             v = cmd.params.get(axis)
             if v is not None:
+                before, shift = st.position.get(axis), st.g92_shift.get(axis, 0.0)
                 st.position.set_raw(axis, v)
+                after = st.position.get(axis)
+                known = before is not None and after is not None and shift is not None
+                st.g92_shift[axis] = shift + (before - after) if known else None  # type: ignore[operator]
         if "E" in cmd.params:
             e = cmd.params["E"]
             try:
@@ -350,7 +354,14 @@ class Interpreter:
             st.g92_offsets_active = True
 
     def _clear_g92(self, cmd: Command, line: Line) -> None:
-        self.state.g92_offsets_active = False
+        st = self.state
+        st.g92_offsets_active = False
+        for axis, shift in st.g92_shift.items():
+            if shift is None:
+                st.position.forget(axis)
+            elif shift:
+                st.position.add(axis, shift)
+        st.g92_shift = {}
 
     def _home_and_reset(self, cmd: Command, line: Line) -> None:
         # Hyrel: after homing, "a G28 also resets current offsets to 0 - including any may have been set with
@@ -359,6 +370,7 @@ class Interpreter:
         st = self.state
         st.head_reselected_line = None
         st.g92_offsets_active = False
+        st.g92_shift = {}
         st.fixture_offsets_active = False
         st.applied_height_register = None
         st.applied_height_line = None
@@ -402,7 +414,7 @@ class Interpreter:
 
     def _g93(self, cmd: Command, line: Line) -> None:
         # Hyrel G93 clears G92 offsets (not inverse-time feed)
-        self.state.g92_offsets_active = False
+        self._clear_g92(cmd, line)
 
     def _g81(self, cmd: Command, line: Line) -> None:
         st = self.state

@@ -109,6 +109,9 @@ class MachineState:
     axes_to_rehome: set[str] = field(default_factory=set)  # axes with homes M18/M84 left unhomed (G28 takes them off)
     fixture_offsets_active: bool = False
     g92_offsets_active: bool = False
+    # what G92 shifted each axis by (program position = machine position - shift; None: not known), so that
+    # clearing the offsets (LinuxCNC's G92.1/G92.2, Marlin's G92.1, Hyrel's G93) gives the position back
+    g92_shift: dict[str, float | None] = field(default_factory=dict)
 
     # temperatures
     targets: dict[int, float] = field(default_factory=dict)  # device -> last set temperature

@@ -71,7 +71,8 @@ class ArcMoves(TranslatorMixin):
             if offsets is None:
                 return
             _, _, oa, ob, _ = arcs.PLANES[plane]
-            cmd, centre = offsets, {oa: offsets.params[oa], ob: offsets.params[ob]}
+            scale = INCH if self.inch else 1.0  # (the offsets are in the source's units: X10, every length in mm)
+            cmd, centre = offsets, {k: fmt((num(offsets.params[k]) or 0.0) * scale) for k in (oa, ob)}
         params = cmd.params
         ext = self.EXTRUDER
         mixing = ext in params and self.mixing_e(cmd)

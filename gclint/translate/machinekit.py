@@ -355,6 +355,17 @@ class MachinekitToHyrel(CncTranslator):
         s = num(cmd.params.get("S"))
         if s is not None:
             self.rpm = s
+        if self.rpm is None:
+            # LinuxCNC's M3/M4 turn "at the 'S' speed" (m-code.adoc, "M3, M4, M5 Spindle Control"), none yet here;
+            # Hyrel's M3 with no S turns at the speed set on the head ("M3 Spindle On, Clockwise")
+            self.report(
+                TR_APPROX,
+                f"{cmd.code} with no spindle speed set yet: LinuxCNC turns at the S speed (none given), Hyrel's"
+                f" {cmd.code} without S at the speed set on the head",
+                key="M3-no-S",
+                cmd=cmd,
+                aspects=("spindle",),
+            )
         self.spindle_on(cmd, self.rpm_percent(self.rpm) if self.rpm is not None else None)
 
     def tool_change(self, cmd: Command) -> None:

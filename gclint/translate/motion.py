@@ -23,6 +23,9 @@ class Motion(TranslatorMixin):
         params = cmd.params
         mode = self.state.motion_mode
         if not any(a in params for a in "XYZAB"):
+            if any(letter not in ("S", "F") for letter in params):  # (Prusa's "P0 S1 L2 D0": not a speed or feed)
+                self.remove(cmd, TR_LOST, "words with no command; dropped", key="implicit")
+                return
             if "S" in params:
                 self.speed_word(cmd)
             if "F" in params:
