@@ -148,3 +148,32 @@ def test_dl001_cites_no_historic_page_for_another_dialects_code_and_agrees_in_nu
 
 def _check_as(text: str, dialect: str) -> list:
     return Linter(Options(dialect=dialect)).check_text(text, "job.gcode").findings
+
+
+# -- the second operator review ---------------------------------------------------------------------------------
+
+_DUAL = "M6 T0 O1 X0 Y0\nM6 T7 O2 X100 Y0\nM109 T0 S215\nM109 T7 S230\nT0\nG1 X10 Y10 F1000\nG1 X20 E1\nT7\nG1 X30 E1\nM30\n"
+
+
+@pytest.mark.parametrize(
+    "comment", ["; dual-yoke Hydra 16A", "; Hydra 16A, two yokes", "; 16A dual", "; Hydra 16A (Dual Yoke)"]
+)
+def test_a_comment_naming_the_dual_yoke_16a_in_any_words(comment):
+    # T_v5, "Using the T with the 16A (Dual Yoke)": "Current dual-yoke Hydra 16A units"
+    result = _check(f"{comment}\n{_DUAL}")
+    assert result.context.printer == "16a-dual" and not [f for f in result.findings if f.code == "HY007"]
+    one_head = f"{comment}\nM6 T4 O1 X0 Y0\nM109 T4 S215\nT4\nG1 X10 Y10 F1000\nG1 X20 E1\nM30\n"
+    assert _check(one_head).context.printer == "16a-dual"
+
+
+def test_the_pages_own_wait_tolerance_is_no_marlin_habit():
+    # Gcode page, M109 Example 6: "M109 R10"; only an R above 50 with no S reads as a Marlin target (HY035)
+    job = "M104 S215\nM109 R10\nG28 X0 Y0\nG1 X10 Y10 F1000\nG1 X20 E1\nG1 X30 E1\nM30\n"
+    assert "HY035" not in infer(job, "job.gcode").why()
+    assert "HY035" not in {f.code for f in _check(job).findings}
+
+
+def test_model_names_read_with_their_article():
+    from gclint.machine.profiles import a_model
+
+    assert [a_model(n) for n in ("esr", "ehr", "30m", "16a")] == ["an esr", "an ehr", "a 30m", "a 16a"]

@@ -31,7 +31,7 @@ from gclint.context.content import ContentReading, Seen
 from gclint.context.model import CONTENT, DEFAULT
 from gclint.dialects.addressing import HEAD, fits, resolve_v4_command, resolve_v4_variable, resolve_v5
 from gclint.dialects.base import HeadScan
-from gclint.machine.profiles import PROFILES
+from gclint.machine.profiles import PROFILES, a_model
 
 MODEL_ORDER = ("30m", "esr", "ehr", "16a", "16a-dual")  # the simplest model that fits the job wins ties
 LINE_MISFIT = 4.0
@@ -112,12 +112,17 @@ def decide(
         s.favour(points, ehr.line, f"{ehr} after G28 Z0: the EHR header (M660 is ONLY used on the EHR)")
     named: list[str] = []  # the models a comment names: the job's own word for its printer
     if scan is not None:
+        found: dict[str, str] = {}
         for name in MODEL_ORDER:
             pattern = PROFILES[name].named
             text = scan.found(rf"(?im)[;(][^\n]*?(?:{pattern})") if pattern else None
             if text is not None:
-                named.append(name)
-                s.favour({name: NAMED}, 0, f"the comment '{text.replace(': ', ' - ')}' names it")
+                found[name] = text
+        if "16a-dual" in found:  # ("16A dual" names the dual-yoke 16A, not the single-yoke one as well)
+            found.pop("16a", None)
+        for name, text in found.items():
+            named.append(name)
+            s.favour({name: NAMED}, 0, f"the comment '{text.replace(': ', ' - ')}' names it")
     if not s.evidence:
         return MODEL_ORDER[0], DEFAULT, (), (MODEL_ORDER[0],)
     best = max(named or MODEL_ORDER, key=lambda n: s.total[n])
@@ -144,7 +149,9 @@ def decide(
         uses = f"{n} use{'s' if n != 1 else ''}"
         them = "them" if n != 1 else "it"
         if named and s.total[best] < max(s.total.values()):  # (the lines alone would read another model)
-            disagree = f"{uses} a {best} lacks ({worst}): the comment's model is kept and the HY rules report {them}"
+            disagree = (
+                f"{uses} {a_model(best)} lacks ({worst}): the comment's model is kept and the HY rules report {them}"
+            )
         else:
             disagree = f"{uses} no model fits with the rest ({worst}): the HY rules report {them}"
         reasons = (*reasons[:1], disagree)

@@ -49,6 +49,15 @@ def _e_mode_without_m229(cmd, state) -> bool:
     return not state.e_values
 
 
+def marlin_style_r(cmd) -> bool:
+    """A Hyrel wait whose R looks like a Marlin target (HY035): R above 50 with no S.  The page sets no limit
+    on the tolerance, and its own "M109 R10" (M109 Example 6) is Hyrel's."""
+    if cmd.get("S") is not None:
+        return False
+    r = cmd.get("R")
+    return r is not None and r > 50
+
+
 HYREL_HABITS = (
     # "Any axis not homed will have its position remain unchanged" (G28 Send X, Y to Physical Home)
     Habit("G28 with no axis (on Hyrel it homes nothing)", "HY025", "G28", GCODE, lambda c, s: not c.params),
@@ -59,7 +68,8 @@ HYREL_HABITS = (
             "HY035",
             c,
             GCODE,
-            lambda c, s: "R" in c.params and "S" not in c.params,
+            # (what HY035 reports: an R above 50 with no S; the page's own "M109 R10" (Example 6) is Hyrel's)
+            lambda c, s: marlin_style_r(c),
         )
         for c in ("M109", "M190", "M191")
     ),

@@ -13,6 +13,11 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 
+def a_model(name: str) -> str:
+    """A model's name with its article ("an esr", "an ehr": E is read "ee"; "a 30m", "a 16a")."""
+    return ("an " if name[:1] in "aeiou8" else "a ") + name
+
+
 @dataclass(frozen=True)
 class PrinterProfile:
     name: str
@@ -28,6 +33,11 @@ class PrinterProfile:
     @property
     def max_position(self) -> int:
         return max(self.positions)
+
+    @property
+    def a(self) -> str:
+        """The name with its article, as read aloud: "an esr", "an ehr", "a 30m", "a 16a"."""
+        return a_model(self.name)
 
     def describe_positions(self) -> str:
         return f"T0-T{self.max_position}"
@@ -80,7 +90,9 @@ PROFILES: dict[str, PrinterProfile] = {
             "XYZAB",
             _ALWAYS | {"M675", "M676", "M678", "M684", "M685"},
             lathe=True,
-            named=r"\b(?:Hydra ?)?16A\b[^\n]*\bdual\b",
+            # ("16A dual", "dual-yoke Hydra 16A", "Hydra 16A, two yokes": T_v5 "16A (Dual Yoke)", "Current
+            # dual-yoke Hydra 16A units")
+            named=r"\b(?:Hydra ?)?16A\b[^\n]*\b(?:dual|two[- ]yokes?|2[- ]yokes?)\b|\b(?:dual|two)[- ]?yokes?\b[^\n]*\b16A\b",
             second_bed=True,
         ),
     )

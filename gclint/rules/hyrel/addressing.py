@@ -260,7 +260,7 @@ class ToolBeyondModel(Rule):
             hint = v4_hint(self.ctx, int_value(cmd.params.get("T"))) if node is not cmd else ""
             self.report(
                 line,
-                f"{what} names {address.label}, but a {profile.name} has tool positions "
+                f"{what} names {address.label}, but {profile.a} has tool positions "
                 f"{profile.describe_positions()} only ({profile.title}){self.ctx.model_note()}{hint}",
                 node=node,
             )
@@ -274,7 +274,7 @@ class ToolBeyondModel(Rule):
         self.report(
             line,
             f"{what} names {address.label}, but the pages give a second bed to the Hydra models only ('our Hydra models "
-            f"have room to have a second hotbed'), and a {profile.name} is not one{self.ctx.model_note()}",
+            f"have room to have a second hotbed'), and {profile.a} is not one{self.ctx.model_note()}",
             node=node,
             severity=Severity.WARNING,
         )
@@ -447,9 +447,7 @@ class V4AddressingInV5(Rule):
     def _beyond(self, v5: Address) -> str:
         if v5.kind == HEAD and v5.position not in self.ctx.profile.positions:
             profile = self.ctx.profile
-            return (
-                f", a position a {profile.name} does not have ({profile.describe_positions()}){self.ctx.model_note()}"
-            )
+            return f", a position {profile.a} does not have ({profile.describe_positions()}){self.ctx.model_note()}"
         return ""
 
     def _report(self, line: Line, r: Renumbering, message: str, safe: bool) -> None:

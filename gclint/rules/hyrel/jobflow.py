@@ -232,7 +232,7 @@ class AuxPortNotOnModel(Rule):
         models = ", ".join(p.name for p in PROFILES.values() if cmd.code in p.aux_codes)
         self.report(
             line,
-            f"{cmd.code} ({what}) is not on a {profile.name} (it is on: {models}){self.ctx.model_note()}",
+            f"{cmd.code} ({what}) is not on {profile.a} (it is on: {models}){self.ctx.model_note()}",
             node=cmd,
         )
 

@@ -314,6 +314,6 @@ class LatheOnNon16A(Rule):
         self.report(
             line,
             f"{cmd.code} turns on the lathe, which is 'Only available on Hydra 16A models'; "
-            f"gclint checked for a {profile.name} ({profile.title}){self.ctx.model_note()}",
+            f"gclint checked for {profile.a} ({profile.title}){self.ctx.model_note()}",
             node=cmd,
         )

@@ -9,6 +9,7 @@ from __future__ import annotations
 
 from gclint.dialects.addressing import BED, GROUP, GROUP_MEMBERS, HEAD, RESERVED, VIRTUAL
 from gclint.dialects.base import Param
+from gclint.dialects.habits import marlin_style_r
 from gclint.rules.base import ANY_T, Rule, Severity, register
 from gclint.rules.dialect import ParamTableRule
 from gclint.rules.hyrel.addressing import reported_as_v4
@@ -210,11 +211,8 @@ class WaitRIsATolerance(Rule):
 
 def r_target_message(cmd: Command) -> str | None:
     """HY035's message for a Hyrel wait whose R looks like a Marlin target (explain says the same), or None."""
-    if cmd.get("S") is not None:
-        return None  # R is the tolerance around S: the page sets no limit on it
-    r = cmd.get("R")
-    if r is None or r <= 50:
-        return None
+    if not marlin_style_r(cmd):
+        return None  # (R is the tolerance around S, or a tolerance: the page sets no limit on it)
     return (
         f"{cmd.code} R{cmd.params['R']} is a Marlin-style target, but Hyrel's R is a tolerance and "
         f"sets nothing ('if omitted, no new target temperature is set'): write {cmd.code} S{cmd.params['R']} R5"
