@@ -177,3 +177,21 @@ def test_model_names_read_with_their_article():
     from gclint.machine.profiles import a_model
 
     assert [a_model(n) for n in ("esr", "ehr", "30m", "16a")] == ["an esr", "an ehr", "a 30m", "a 16a"]
+
+
+@pytest.mark.parametrize(
+    "comment,dialect",
+    [
+        ("; Marlin 2.1.2", "marlin"),
+        ("; for Prusa MK4 firmware", "marlin"),
+        ("; Klipper", "marlin"),
+        ("; LinuxCNC", "machinekit"),
+        ("; Duet 3", "reprap"),
+        ("; Hyrel", "hyrel"),
+    ],
+)
+def test_a_comment_naming_the_firmware_is_weak_evidence_for_it(comment, dialect):
+    job = f"{comment}\nG90\nG21\nG0 X10 Y10 F6000\nG1 X20 F1000\nG4 P100\n"
+    assert infer(job, "job.gcode").dialect == dialect
+    # (weak: a code only Hyrel has still wins)
+    assert infer(f"{comment}\nM229 E1 D1\nM756 S0.3\nG1 X10 E1 F1000\n", "job.gcode").dialect == "hyrel"

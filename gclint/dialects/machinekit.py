@@ -289,7 +289,10 @@ MACHINEKIT = Dialect(
     codes=describe(table(codes(_LINUXCNC_G), codes(_LINUXCNC_M), _FDM), _DESCRIPTIONS),
     aliases=("linuxcnc", "machinekit-fdm"),
     detection=Detection(
-        patterns=((r"(?i)^;\s*gcode_flavor\s*=\s*machinekit", 12),),
+        patterns=(
+            (r"(?i)^;\s*gcode_flavor\s*=\s*machinekit", 12),
+            (r"(?i)^[;(][^\n]*\b(?:LinuxCNC|Machinekit|EMC2)\b", 4),  # (a comment naming the controller: weak)
+        ),
         extensions=(".ngc",),
         clues=MACHINEKIT_CLUES,
         prior=0.05,  # an RS274NGC program Carvera runs as well is more often LinuxCNC's (it shares Carvera's clues)

@@ -237,6 +237,9 @@ MARLIN = Dialect(
     detection=Detection(
         patterns=(
             (r"(?i)^;\s*FLAVOR:\s*Marlin", 10),
+            # a comment naming the firmware ("; Marlin 2.1.2", "; for Prusa MK4 firmware", "; Klipper", LightBurn's
+            # "; Marlin device profile"): weak, as RepRapFirmware's and Smoothieware's names are
+            (r"(?i)^[;(][^\n]*\b(?:Marlin|Klipper|Prusa(?!Slicer)(?! ?slicer))\b", 4),
             (r"(?i)^;\s*FLAVOR:\s*(?:RepRap|Griffin|UltiGCode)", 6),
             (
                 r"(?i)^;\s*gcode_flavor\s*=\s*(?:marlin|marlin2|reprap|repetier|teacup|makerware|sailfish|mach3|smoothie|klipper|sprinter|no-extrusion)\s*$",
