@@ -195,3 +195,10 @@ def test_a_comment_naming_the_firmware_is_weak_evidence_for_it(comment, dialect)
     assert infer(job, "job.gcode").dialect == dialect
     # (weak: a code only Hyrel has still wins)
     assert infer(f"{comment}\nM229 E1 D1\nM756 S0.3\nG1 X10 E1 F1000\n", "job.gcode").dialect == "hyrel"
+
+
+def test_a_second_bed_points_to_the_hydra():
+    # Gcode page, Controlling Temperature: "our Hydra models have room to have a second hotbed"
+    job = "M140 T25 S60\nM190 T25 S60\nM109 T0 S215\nT0\nG1 X10 Y10 F1000\nG1 X20 E1\nG1 X30 E1\nM30\n"
+    result = _check(job)
+    assert result.context.printer == "16a" and not [f for f in result.findings if f.code == "HY007"]

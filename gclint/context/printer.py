@@ -94,6 +94,13 @@ def decide(
         s.misfit(lambda p: "A" not in p.axes, reading.rotary_axes, counts.get(("axis",), 1), "uses an A/B axis")
     if reading.lathe is not None:
         s.misfit(lambda p: not p.lathe, reading.lathe, counts.get(("lathe",), 1), "runs the lathe")
+    # Bed2 (v5 T25, v4 T92): "our Hydra models have room to have a second hotbed" (Gcode page, Controlling
+    # Temperature); the pages give the other models none
+    bed2 = 25 if firmware == 5 else 92
+    second = [seen for (_, letter, n), seen in reading.addresses.items() if letter == "T" and n == bed2]
+    if second:
+        first = min(second, key=lambda seen: seen.line)
+        s.misfit(lambda p: not p.second_bed, first, len(second), "uses the second bed (Bed2), which only the Hydra has")
     specific = _specific_aux()
     for code, seen in reading.aux_codes.items():
         owners = [n for n in MODEL_ORDER if code in specific[n]]
