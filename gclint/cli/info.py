@@ -205,7 +205,7 @@ def list_dialects() -> None:
     metavar="LINE",
     help='G-code to explain, e.g. -e "M109 T0 S240 L10 U5" (repeatable; lines may be separated by \\n).',
 )
-@click.option("--dialect", "-d", metavar="D", help="Dialect (default: detected from FILE; hyrel for -e).")
+@click.option("--dialect", "-d", metavar="D", help="Dialect (default: detected from FILE or the -e lines).")
 @click.option("--format", "-f", "fmt", type=click.Choice(["text", "json"]), default="text", show_default=True)
 @click.option("--all-lines", is_flag=True, help="Also list lines with no command (comments, blank lines).")
 def explain(file: str | None, expressions: tuple[str, ...], dialect: str | None, fmt: str, all_lines: bool) -> None:
@@ -221,7 +221,7 @@ def explain(file: str | None, expressions: tuple[str, ...], dialect: str | None,
         _fail('nothing to explain: give a FILE or -e "M109 T0 S240"')
     from gclint.context import infer, infer_source
 
-    chosen = _check_dialect(dialect, allow_auto=True) or ("auto" if file else "hyrel")
+    chosen = _check_dialect(dialect, allow_auto=True) or "auto"  # (-e lines are read as a file's lines are)
     items: Iterable[Explanation]
     if expressions:
         text = "\n".join(e.replace("\\n", "\n") for e in expressions)
