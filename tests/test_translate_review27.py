@@ -339,3 +339,13 @@ def test_words_with_no_command_are_never_dropped_in_silence():
     # (Prusa XL's "P0 S1 L2 D0" parks the tool: its S is no spindle speed)
     _, result = translate("marlin", "G21\nM83\nG1 X10 E1 F1000\nP0 S1 L2 D0\nG1 X20\n")
     assert [(f.line, f.code) for f in result.findings if f.code == "TR002"] == [(4, "TR002")]
+
+
+@pytest.mark.parametrize(
+    "line,words",
+    [("M3 S10000", "not RPM"), ("G28 X10", "ignores the value")],
+)
+def test_explain_warns_where_check_does(line, words):
+    # (HY023 and HY025: the one message, in check and in explain)
+    text = "\n".join(e.render() for e in explain_text(line, dialects.get("hyrel")))
+    assert f"warning: {line.split()[0]}" in text and words in text

@@ -9,6 +9,7 @@ from gclint.explain.addressing import target
 from gclint.explain.generic import absent, does, generic, notes, read, read_or_absent, reading
 from gclint.explain.job import Decoder, Job
 from gclint.explain.model import Explanation, fmt, number
+from gclint.rules.hyrel.lasers_spindles import rpm_message
 from gclint.syntax.nodes import Command
 
 # M623 "Dn max for UV pens is 60,000 (1 minute); Dn max for other devices 1,000 (1 second)"
@@ -63,6 +64,9 @@ def spindle(job: Job, exp: Explanation, cmd: Command, spec: Code | None) -> None
         target(job, exp, cmd, spec)
         if s is not None:
             exp.add(s.text.strip(), reading(spec, "S", "0" if number(s.value) == 0 else s.value))
+            message = rpm_message(cmd)
+            if message is not None:
+                exp.warn(message)  # (as HY023 reports it)
         read_or_absent(exp, cmd, spec, "F")
         notes(exp, spec)
         generic(job.dialect, exp, cmd, spec, skip="TSF")

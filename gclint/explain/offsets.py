@@ -8,7 +8,7 @@ from gclint.explain.addressing import target
 from gclint.explain.generic import absent, does, generic, notes, read, reading
 from gclint.explain.job import Decoder, Job
 from gclint.explain.model import Explanation, number
-from gclint.rules.hyrel.offsets import m6_message
+from gclint.rules.hyrel.offsets import home_value_message, m6_message
 from gclint.syntax.nodes import Command
 
 
@@ -25,6 +25,8 @@ def home(job: Job, exp: Explanation, cmd: Command, spec: Code | None) -> None:
         for axis in "XYZAB":
             if read(exp, cmd, spec, axis) is None:
                 exp.note(absent(spec, axis))
+            elif job.addressed and (message := home_value_message(cmd, axis)) is not None:
+                exp.warn(message)  # (as HY025 reports it)
         if not listed:
             # "Any axis not homed will have its position remain unchanged" (G28 Send X, Y to Physical Home)
             exp.warn("no axis listed: Hyrel homes only the axes named (G28 X0 Y0)")

@@ -126,13 +126,18 @@ class SpindlePowerOver100(ParamTableRule):
     families = ("hyrel",)
 
     def range_message(self, cmd: Command, p: Param, problem: str) -> str:
-        value = cmd.get(p.letter)
-        if value is not None and value > 100:
-            return (
-                f"{cmd.code} S{cmd.raw('S')}: S is 'power (0-100%)' on Hyrel, not RPM ({problem}); the pages do not "
-                "say what a value above 100 does"
-            )
-        return f"{cmd.code}: {problem} (S is percent power, 0-100)"
+        return rpm_message(cmd, problem) or f"{cmd.code}: {problem} (S is percent power, 0-100)"
+
+
+def rpm_message(cmd: Command, problem: str = "above 100") -> str | None:
+    """HY023's message for an M3/M4 whose S is above 100 (an rpm; explain says the same), or None."""
+    value = cmd.get("S")
+    if value is None or value <= 100:
+        return None
+    return (
+        f"{cmd.code} S{cmd.raw('S')}: S is 'power (0-100%)' on Hyrel, not RPM ({problem}); the pages do not "
+        "say what a value above 100 does"
+    )
 
 
 @register

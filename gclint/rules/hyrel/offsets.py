@@ -142,15 +142,21 @@ class G28AxisValue(Rule):
             )
             return
         for axis in listed:
-            raw = params[axis]
-            value = to_number(raw) if raw is not None else None
-            if value is not None and value != 0:
-                self.report(
-                    line,
-                    f"G28 {axis}{raw}: Hyrel homes {axis} and ignores the value ('We do not support "
-                    f"intermediate positioning during homing'); write {axis}0",
-                    node=cmd.param(axis),
-                )
+            message = home_value_message(cmd, axis)
+            if message is not None:
+                self.report(line, message, node=cmd.param(axis))
+
+
+def home_value_message(cmd: Command, axis: str) -> str | None:
+    """HY025's message for a G28 axis with a value other than 0 (explain says the same), or None."""
+    raw = cmd.params.get(axis)
+    value = to_number(raw) if raw is not None else None
+    if value is None or value == 0:
+        return None
+    return (
+        f"G28 {axis}{raw}: Hyrel homes {axis} and ignores the value ('We do not support intermediate positioning"
+        f" during homing'); write {axis}0"
+    )
 
 
 # -- HY034 ---------------------------------------------------------------------------------------------
