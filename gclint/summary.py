@@ -72,6 +72,7 @@ class JobSummary:
     printing_mm: float = 0.0
     travel_mm: float = 0.0
     unmeasured_moves: int = 0  # moves from (or to) a position the state does not know: not in the metres
+    unmeasured_spirals: int = 0  # of which spirals (Hyrel G2.1/G2.2): their end is known, their path is not
     time_s: float = 0.0
     dwell_s: float = 0.0  # of which G4 dwells, as the dialect counts them
     error: str | None = None
@@ -132,8 +133,10 @@ def summarize(source: Source, context: Context) -> JobSummary:
     x_high = y_high = feed_high = -math.inf
     printing_mm = travel_mm = 0.0
     unmeasured = 0
-    head = HeadUse("")  # (never used: head_name is None until the first move with E sets it)
+    group: list[HeadUse] = []  # the heads the working tool prints with (a clone squad: each of its heads)
     head_name: str | None = None
+    membership = reader.membership  # (a squad's heads changed: ask again)
+    spirals = 0
     flat_z: float | None = None  # (the height of the last printing move that kept its height)
     last_feed: float | None = None  # (a rapid with no speed of its own: at the last feed, a lower bound)
     was_printing = False  # (the time when the last printing move ends: where the last layer ends)
@@ -145,13 +148,18 @@ def summarize(source: Source, context: Context) -> JobSummary:
             end = event.point
             if e is not None:
                 name = event.tool or ""
-                if name != head_name:
-                    found = heads.get(name)
-                    if found is None:
-                        found = heads[name] = HeadUse(name)
-                    head, head_name = found, name
+                if name != head_name or reader.membership != membership:
+                    membership = reader.membership
+                    group = []
+                    for each in reader.heads_of(name):
+                        found = heads.get(each)
+                        if found is None:
+                            found = heads[each] = HeadUse(each)
+                        group.append(found)
+                    head_name = name
                 if e is not NATIVE:  # filament: the net E of every move (retractions included)
-                    head.extruded_mm += e
+                    for head in group:
+                        head.extruded_mm += e
             if not end:  # (a move the reader could not place)
                 continue
             start = event.origin
@@ -159,9 +167,11 @@ def summarize(source: Source, context: Context) -> JobSummary:
             x0, y0, z0 = start[0], start[1], start[2]
             x1, y1, z1 = end[0], end[1], end[2]
             dz = z1 - z0 if z0 is not None and z1 is not None else 0.0
-            if x0 is None or y0 is None or x1 is None or y1 is None:
+            if x0 is None or y0 is None or x1 is None or y1 is None or event.spiral:
                 length = None
                 unmeasured += 1
+                if event.spiral:
+                    spirals += 1
             elif arc is None:
                 dx, dy = x1 - x0, y1 - y0
                 length = sqrt(dx * dx + dy * dy + dz * dz)
@@ -170,7 +180,8 @@ def summarize(source: Source, context: Context) -> JobSummary:
                 length = _arc_length(arc, dz)
             feed = event.feed
             if e is not None and (e is NATIVE or e > 0):  # printing (an unretraction in place too: it feeds)
-                head.printing_moves += 1
+                for head in group:
+                    head.printing_moves += 1
                 was_printing = True
                 if length is not None:
                     printing_mm += length
@@ -244,6 +255,7 @@ def summarize(source: Source, context: Context) -> JobSummary:
     if was_printing:
         planner.watch("printing ends")
     summary.printing_mm, summary.travel_mm, summary.unmeasured_moves = printing_mm, travel_mm, unmeasured
+    summary.unmeasured_spirals = spirals
     summary.cutting_mm = cutting_mm
     summary.cnc = cuts and not printing_mm and not any(h.printing_moves for h in heads.values())
     summary.time_s = planner.finish()
@@ -410,7 +422,7 @@ def _temperature(summary: JobSummary, heads: dict[str, HeadUse], heat: Heat) -> 
         if heat.wait:
             _note(head.waits, heat.value)
         return
-    kind = heat.kind
+    kind = heat.device  # (a bed or chamber by its name: "bed", "chamber", Hyrel's "bed 2 (T25)")
     if not _note(summary.devices.setdefault(kind, []), heat.value):
         summary.more_device_set_points[kind] = summary.more_device_set_points.get(kind, 0) + 1
     if heat.wait:
@@ -487,8 +499,12 @@ def render(summary: JobSummary) -> str:
     else:
         moves = f"  moves: {summary.printing_mm / 1000:,.2f} m printing, {summary.travel_mm / 1000:,.2f} m travel"
     if summary.unmeasured_moves:
-        n = summary.unmeasured_moves
-        moves += f" (and {n:,} move{'s' if n != 1 else ''} from an unknown position, not measured)"
+        n = summary.unmeasured_moves - summary.unmeasured_spirals
+        spirals = summary.unmeasured_spirals
+        parts = [f"{n:,} move{'s' if n != 1 else ''} from an unknown position"] if n else []
+        if spirals:
+            parts.append(f"{spirals:,} spiral{'s' if spirals != 1 else ''} (G2.1/G2.2: the path is not modelled)")
+        moves += f" (and {' and '.join(parts)}, not measured)"
     out.append(moves)
     if summary.stopped:
         out.append(f"  stops at {summary.stopped}; nothing after it runs (the rest is not counted)")

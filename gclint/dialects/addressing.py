@@ -10,6 +10,7 @@ T5-T9 yoke 2, ...).  v4 files are converted when read (``resolve_v4_*``) and wri
 
 from __future__ import annotations
 
+from collections.abc import Iterable, Mapping
 from dataclasses import dataclass
 
 from gclint.syntax.nodes import Word, is_number, to_number
@@ -86,6 +87,25 @@ GROUP_MEMBERS: dict[int, tuple[int, ...]] = {
     47: tuple(range(24)),
     48: tuple(range(30, 40)),
 }
+
+
+def members(address: int, squads: Mapping[int, Iterable[int]]) -> list[int]:
+    """The devices a group or virtual address covers: the T_v5 groups (``GROUP_MEMBERS``) and a clone squad's
+    heads (``squads``: job state, M702/M703); a physical address covers itself (an empty list: none known)."""
+    found: list[int] = []
+    for device in GROUP_MEMBERS.get(address, (address,)):
+        if device != address:
+            found.append(device)
+        if device in squads:
+            found.extend(squads[device])
+    return found
+
+
+def wait_fails(address: Address) -> bool:
+    """Whether a wait (M109, M190, M191) on ``address`` fails: "this will FAIL (non-fatally) if you address a
+    virtual group address; be sure to use an actual physical address" (Hyrel wiki, Gcode page, M109 Wait for
+    Temp (Head)).  The temperature is set, the job goes on without waiting."""
+    return address.kind in (VIRTUAL, GROUP)
 
 
 def resolve_v5(number: int) -> Address:

@@ -12,7 +12,7 @@ from collections.abc import Callable
 from functools import cache, partial, reduce
 from operator import add
 
-from gclint.dialects.addressing import GROUP_MEMBERS, Address, resolve_v5
+from gclint.dialects.addressing import Address, members, resolve_v5
 from gclint.dialects.base import Dialect
 from gclint.machine.state import EVALUES, NATIVE, MachineState
 from gclint.syntax.fastpath import PLAIN_NUMBER, run_amounts
@@ -533,14 +533,7 @@ class Interpreter:
 
     def _members(self, address: int) -> list[int]:
         """The devices a group or virtual address covers: the T_v5 groups, a clone squad's heads."""
-        squads = self.state.squads
-        members: list[int] = []
-        for device in GROUP_MEMBERS.get(address, (address,)):
-            if device != address:
-                members.append(device)
-            if device in squads:
-                members.extend(squads[device])
-        return members
+        return members(address, self.state.squads)
 
     def _fan_range(self, cmd: Command, line: Line) -> None:
         if not self.fan_ranges:

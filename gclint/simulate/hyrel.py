@@ -27,9 +27,19 @@ from __future__ import annotations
 
 from dataclasses import replace
 
-from gclint.dialects.addressing import resolve_v5
+from gclint.dialects.addressing import (
+    BED,
+    GROUP,
+    HEAD,
+    VIRTUAL,
+    Address,
+    address_number,
+    members,
+    resolve_v5,
+    wait_fails,
+)
 from gclint.simulate.devices import DeviceModel
-from gclint.simulate.events import Flow
+from gclint.simulate.events import Flow, Heat
 from gclint.simulate.heat import Heater, heat_set, heat_wait, heater_look
 from gclint.simulate.machine import number
 from gclint.simulate.trace import AUX_PORTS, EndState, Look, Move
@@ -81,6 +91,13 @@ class HyrelSimulator(DeviceModel):
         self.head_offset = [0.0] * 5  # the focused head's M6 offsets, invoked by T
         self.height = 0.0  # the Z of the M660 register a G1 H invoked
         self.layer_height: float | None = None  # M756 S: every head's layer height for native flow
+        # clone squads (M702 S establishes one, M703 T# S adds a head, M704 T# S removes it; M30 decommissions
+        # them): squad address -> its heads (Hyrel wiki, T_v5 page; Gcode page, M30 End of Program)
+        self.squads: dict[int, set[int]] = {}
+        self.known: set[int] = set()  # heads the job declares (M6) or selects (T#): what a group covers here
+        # (``events``) set-points per device name and kind, and the W0 ones M116 waits for (M109 Example 7, M116)
+        self.set_points: dict[tuple[str, str], float] = {}
+        self.w0_devices: dict[tuple[str, str], None] = {}
 
     def table(self):
         h = {
@@ -130,6 +147,14 @@ class HyrelSimulator(DeviceModel):
             "M660": self.m660,
             "G4": self.g4,
             "M0": self.pause,  # "M0 is a stop until resume command" (M0)
+            "M702": self.m702,
+            "M703": self.m703,
+            "M704": self.m703,
+            # spirals (Gcode page, "G2.1 Spiral CW Arc^1", "G2.2 Spiral CW Arc^2", G3.1, G3.2)
+            "G2.1": self.spiral_move,
+            "G3.1": self.spiral_move,
+            "G2.2": self.spiral_move,
+            "G3.2": self.spiral_move,
         }
         for n in range(54, 60):
             h[f"G{n}"] = self.workspace
@@ -176,6 +201,118 @@ class HyrelSimulator(DeviceModel):
     def waits(self, cmd: Command) -> bool:
         return "W" not in cmd.params  # "W0": the wait happens at M116 (M109, M116)
 
+    def heat_event(self, cmd: Command, n: int, kind: str, wait: bool) -> None:
+        """A set-point per device the command reaches (``heat_targets``).  A wait on a virtual or group address
+        sets the temperature and does not wait (``addressing.wait_fails``, as HY003 reads it); one with W0
+        waits at M116."""
+        value = self.heat_value(cmd, wait)
+        if value is None:
+            return
+        targets, fails = self.heat_targets(cmd, kind)
+        waits = wait and not fails and self.waits(cmd)
+        w0 = wait and not fails and not waits and number(cmd.params.get("W")) == 0
+        for device, device_kind in targets:
+            key = (device, device_kind)
+            self.set_points[key] = value
+            if w0:
+                self.w0_devices[key] = None
+            else:
+                self.w0_devices.pop(key, None)  # (a later plain set-point or wait replaces the W0 one)
+            self.emit(Heat(n, device, device_kind, value, waits))
+
+    def heat_targets(self, cmd: Command, kind: str) -> tuple[list[tuple[str, str]], bool]:
+        """The devices (name, kind) a temperature command sets, and whether a wait on its address fails.  The
+        T variable is read as the HY rules read it (``resolve_variable``; HY046: ``M190 T0`` addresses head T0);
+        without T, a head code sets the focused head, a bed or chamber code the primary one ("default is the
+        primary bed / chamber", T_v5).  A group (T40-T48) or a clone squad (T30-T39) sets its members
+        (``addressing.members``): a squad's heads, a group's heads or beds that the job uses; none known: the
+        address itself."""
+        text = cmd.params.get("T")
+        t = address_number(text) if text is not None else None
+        if t is None:
+            if kind != "head":
+                return [(kind, kind)], False
+            if self.focus is None:
+                return [(self.tool_name(), kind)], False
+            address = resolve_v5(self.focus)
+        else:
+            address = self.resolve_variable(t)
+        if address.v5 is None:
+            return [(address.label, kind)], False
+        if address.kind in (VIRTUAL, GROUP):
+            wanted = HEAD if kind == "head" else BED
+            known = self.known | set(self.heads)
+            covered = [
+                m
+                for m in dict.fromkeys(members(address.v5, self.squads))
+                if resolve_v5(m).kind == wanted and (m in known or address.kind == VIRTUAL)
+            ]
+            if not covered:
+                name = self.named(address.v5) if address.kind == VIRTUAL else address.label
+                return [(name, kind)], wait_fails(address)
+            return [self.device_name(resolve_v5(m), kind) for m in covered], wait_fails(address)
+        return [self.device_name(address, kind)], False
+
+    def device_name(self, address: Address, kind: str) -> tuple[str, str]:
+        """(name, kind) of one physical device: a head by its T, Bed1 / Chamber1 (T24) as "bed" / "chamber",
+        Bed2 / Chamber2 (T25) with its address."""
+        if address.kind == HEAD and address.v5 is not None:
+            return self.named(address.v5), "head"
+        if address.kind == BED:
+            kind = kind if kind != "head" else "bed"
+            return (kind if address.v5 == 24 else f"{kind} 2 (T{address.v5})"), kind
+        return address.label, kind
+
+    def heads_of(self, name: str) -> tuple[str, ...]:
+        """A clone squad prints with its heads (T_v5: M703 "adds a single head to the Clone Squad")."""
+        digits = name[1:]
+        if name[:1] == "T" and digits.isdigit():
+            squad = self.squads.get(int(digits))
+            if squad:
+                return tuple(self.named(m) for m in sorted(squad))
+        return (name,)
+
+    # -- clone squads -------------------------------------------------------------------------------------
+
+    def m702(self, cmd: Command, n: int) -> None:
+        """``M702 S<squad>``: establish a clone squad (empty until M703 adds heads), as the interpreter does."""
+        squad = address_number(cmd.params.get("S"))
+        if squad is not None:
+            self.squads[squad] = set()
+            self.membership += 1
+
+    def m703(self, cmd: Command, n: int) -> None:
+        """``M703 T# S<squad>`` adds head T# to the squad, ``M704`` removes it (no M702, no squad)."""
+        squad = address_number(cmd.params.get("S"))
+        if squad not in self.squads:
+            return
+        for address in self.addresses(cmd):
+            if cmd.code == "M703":
+                self.squads[squad].add(address)
+            else:
+                self.squads[squad].discard(address)
+        self.membership += 1
+
+    def spiral_move(self, cmd: Command, n: int) -> Move | None:
+        """G2.1/G3.1 and G2.2/G3.2: a spiral.  G2.1 "Effective ending X/Y is always the same as the current XY and
+        is not specified"; G2.2 "specifies final X/Y (and Z) location"; "An end Z can be supplied" (Gcode page,
+        G2.1 Spiral CW Arc^1, G2.2 Spiral CW Arc^2).  The path between (laps, pitch, reverse code) is not
+        modelled: the move is marked a spiral (``Move.spiral``), its length unknown.  E marks it printing, with
+        the native flow of arcs."""
+        params = cmd.params
+        f = params.get("F")
+        if f is not None:
+            value = number(f)
+            self.feed = value * self.feed_scale if value is not None else None
+        start = self.machine()
+        self.pos = self.target(params, xy=cmd.code in ("G2.2", "G3.2"))
+        delta = self.extrusion(params, False)
+        self.spiral = True
+        try:
+            return self.sync(start, None, delta, self.feed, False, native=self.arc_native(params))
+        finally:
+            self.spiral = False
+
     def head(self, address: int) -> Head:
         head = self.heads.get(address)
         if head is None:
@@ -189,6 +326,7 @@ class HyrelSimulator(DeviceModel):
         address = self.resolve_command(int(text)).v5
         if address is not None:
             self.focus = address
+            self.known.add(address)
             # "M6 declares that a particular head holds a set of X, Y, and/or Z offsets, which will be invoked
             # during a T (tool change) command"; I1 "store values and move these distances" (M6)
             values, moves = self.head_offsets.get(address, ([0.0] * 5, False))
@@ -250,6 +388,7 @@ class HyrelSimulator(DeviceModel):
         if "O" not in params:
             return  # M6 K1 and the like: behaviour during tool changes only
         for address in self.addresses(cmd, default_focus=False):
+            self.known.add(address)
             values = [(number(params.get(a)) or 0.0) for a in "XYZAB"]
             self.head_offsets[address] = (values, number(params.get("I")) == 1)
 
@@ -302,6 +441,9 @@ class HyrelSimulator(DeviceModel):
         self.trace.end.ended = True
         self.wcs = None
         self.focus = 0
+        if self.squads:  # "decommissions any clone squads that were in effect" (M30)
+            self.squads.clear()
+            self.membership += 1
         self.dirty()
         self.ran = False
 
@@ -336,11 +478,18 @@ class HyrelSimulator(DeviceModel):
         self.dirty()
 
     def m116(self, cmd: Command, n: int) -> None:
+        """ "wait for any set temps (M109, M190, M191) with W0 values before proceding" (M116)."""
         for address, both_ways in self.pending_w0.items():
             head = self.head(address)
             if head.heat is not None:
                 head.heat = heat_wait(head.heat, head.heat[0], both_ways)
+                if address in (24, 25):
+                    head.waited = head.heat[0]
         self.pending_w0.clear()
+        if self.listening:
+            for device, kind in self.w0_devices:
+                self.emit(Heat(n, device, kind, self.set_points[(device, kind)], True))
+        self.w0_devices.clear()
         self.dirty()
 
     def bed(self, cmd: Command, n: int) -> None:
@@ -353,6 +502,9 @@ class HyrelSimulator(DeviceModel):
                 head.heat = heat_set(head.heat, s)
             if wait and "W" not in cmd.params and head.heat is not None:
                 head.waited = head.heat[0]
+                self.pending_w0.pop(address, None)
+            elif wait and number(cmd.params.get("W")) == 0 and head.heat is not None:
+                self.pending_w0[address] = False  # "W0 (but do not pause until M116 is executed)" (M190, M116)
         self.dirty()
 
     def m106(self, cmd: Command, n: int) -> None:

@@ -114,6 +114,9 @@ class Simulator:
         self._look: Look | None = None
         self.pauses = 0  # pauses and dwell since the last synchronisation point (compared there)
         self.dwell = 0.0
+        self.spiral = False  # (while a model's spiral handler runs) the move is a spiral: a move even in place
+        # (``events``) counts changes of what a tool name covers (``heads_of``): a reader of the events asks again
+        self.membership = 0
 
     # -- the loop --------------------------------------------------------------------------------------
 
@@ -291,6 +294,11 @@ class Simulator:
         if name is None:
             name = self._names[tool] = self.tool_label(tool)
         return name
+
+    def heads_of(self, name: str) -> tuple[str, ...]:
+        """The heads a working tool's name (``tool_name``) prints with: itself, or the heads of a clone squad
+        (Hyrel).  It may change when ``membership`` does."""
+        return (name,)
 
     def tool_title(self, name: str) -> str:
         """A tool's name (``tool_name``) as a legend says it."""
@@ -641,7 +649,8 @@ class Simulator:
         """A move ran: a synchronisation point when it prints (or, in a CNC job, when it is a feed move)."""
         end = self.machine()
         listening = self.listening
-        if end == start and arc is None:
+        spiral = self.spiral
+        if end == start and arc is None and not spiral:
             if listening and delta:  # an extruder-only move (a retraction, a prime): an event
                 self._events.append(
                     self.located(Move(self.line, start, end, None, delta, feed, self.look(), rapid, working=False))
@@ -653,10 +662,12 @@ class Simulator:
                 travel = Move(
                     self.line, start, end, arc, delta, feed, self.look(), rapid, self.frame, tuple(self.anchor), False
                 )
+                travel.spiral = spiral
                 self._events.append(self.located(travel))
             return None
         e = NATIVE if native else (delta if printing else None)
         move = Move(self.line, start, end, arc, e, feed, self.look(), rapid, self.frame, tuple(self.anchor))
+        move.spiral = spiral
         if listening:
             self.located(move)
         if self.pauses or self.dwell:

@@ -148,6 +148,7 @@ class Move:
         "primes",
         "marks",
         "trail",
+        "spiral",
     )
 
     def __init__(
@@ -184,6 +185,8 @@ class Move:
         # where there were pauses since the previous synchronisation point: the pauses and the spindle's
         # direction changes in their order ("pause", "M3", "off", "pause"...): which pause it was
         self.trail: tuple = ()
+        # a spiral (Hyrel G2.1/G2.2, G3.1/G3.2): its end is known, its path is not (laps, pitch): no length
+        self.spiral = False
 
     def __repr__(self) -> str:  # pragma: no cover - debugging aid
         return f"Move(line={self.line}, end={self.end}, e={self.e}, feed={self.feed})"

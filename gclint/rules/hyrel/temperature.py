@@ -7,7 +7,7 @@ Temps (v5+), M190, M191) and the T_v5 chart of addresses, as catalogued in
 
 from __future__ import annotations
 
-from gclint.dialects.addressing import BED, GROUP, GROUP_MEMBERS, HEAD, RESERVED, VIRTUAL
+from gclint.dialects.addressing import BED, GROUP, GROUP_MEMBERS, HEAD, RESERVED, VIRTUAL, wait_fails
 from gclint.dialects.base import Param
 from gclint.dialects.habits import marlin_style_r
 from gclint.rules.base import ANY_T, Rule, Severity, register
@@ -119,7 +119,7 @@ class WaitOnGroupAddress(Rule):
         if "T" not in cmd.params:
             return
         address = self.ctx.interpreter.address(cmd)
-        if address is not None and address.kind in (VIRTUAL, GROUP):
+        if address is not None and wait_fails(address):
             self.report(
                 line,
                 f"{cmd.code} T{cmd.params['T']} waits on {address.label}, a virtual or group address: "
