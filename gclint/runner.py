@@ -259,9 +259,22 @@ class _Walk:
                             subfolders.append((entry.path, why, down))
                         continue
                     if entry.is_symlink() and entry.is_dir():
-                        if inherited is None:
+                        target = os.path.realpath(entry.path)
+                        walked = target == self.top_real or target.startswith(self.top_real + os.sep)
+                        if inherited is None and walked:  # (a folder this walk reads anyway: a loop)
                             self.notes.append(
-                                f"{entry.path}: a symbolic link to a folder, not followed (name the folder to check it)"
+                                f"{entry.path}: a symbolic link to a folder this walk checks anyway, not followed"
+                            )
+                        elif inherited is None:
+                            # (the jobs behind it are reachable wherever the link resolves, a printer host's folder
+                            # included: the gate does not pass them unread; the link may lead out of the checkout,
+                            # so it is not followed)
+                            self.problems.append(
+                                FileResult(
+                                    entry.path,
+                                    error=f"{entry.path}: a symbolic link to a folder, not followed: name the folder it"
+                                    " points to to check it, or exclude the link",
+                                )
                             )
                         continue
                 except OSError:

@@ -162,3 +162,27 @@ def test_more_reprapfirmware_and_marlin_codes():
     assert [c for _, c, _ in _found("M105\nM994\n", "marlin", "a.gcode")] == ["SC005"]
     found = _found("M105\nM512 P1234 S5678\nM511 P1234\n", "marlin", "a.gcode")
     assert [(n, c) for n, c, _ in found] == [(2, "SC006"), (2, "SC006"), (3, "SC006")]
+
+
+# -- the fifth attack -------------------------------------------------------------------------------------------
+
+
+@pytest.mark.parametrize("p", ['{"ERASE"}', "{var.e}", '{"ER"^"ASE"}'])
+def test_an_expression_that_may_erase_the_firmware(p):
+    # RepRapFirmware's GetQuotedString evaluates {...} before M999 compares the string with "ERASE"
+    assert [c for _, c, _ in _found(f"M999 P{p}\n", "reprap", "a.gcode")] == ["SC005"]
+
+
+def test_a_carvera_file_runs_its_macro_whatever_o_words_it_defines():
+    # Carvera Community Firmware Player.cpp: M98 always runs /sd/gcodes/macros/<P>.cnc
+    text = "G0 X0\no1234 sub\no1234 endsub\nM98 P1234\nM30\n"
+    assert [(n, c) for n, c, _ in _found(text, "auto", "job.cnc")] == [(4, "SC004")]
+    assert _found(text, "machinekit", "job.ngc") == []
+
+
+@pytest.mark.parametrize(
+    "line,found",
+    [("M552 S1", True), ("M552 S2", True), ("M552 S0", False), ("M552 S-1", False), ('M586 P0 C"*"', True)],
+)
+def test_network_on_and_cors(line, found):
+    assert bool(_found(f"{line}\n", "reprap", "a.gcode")) is found

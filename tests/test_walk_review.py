@@ -400,3 +400,13 @@ def test_a_flashforge_gx_job_is_found_and_its_gcode_still_gated(tmp_path):
     proc = run_cli("check", "--no-cache", ".", cwd=tmp_path)
     shown = (proc.stdout + proc.stderr).decode()
     assert proc.returncode == 2 and "FlashForge .gx job" in shown and "SC005" in shown, shown
+
+
+def test_a_link_to_a_folder_found_by_a_walk_fails_the_check(tmp_path):
+    (tmp_path / "payload").mkdir()
+    (tmp_path / "payload" / "evil.gcode").write_text("M30 /sys/config.g\n")
+    (tmp_path / "jobs").mkdir()
+    (tmp_path / "jobs" / "ok.gcode").write_text(CLEAN)
+    (tmp_path / "jobs" / "sub").symlink_to(tmp_path / "payload")
+    proc = run_cli("check", "--no-cache", "jobs", cwd=tmp_path)
+    assert proc.returncode == 2 and b"a symbolic link to a folder" in proc.stderr, proc.stderr

@@ -134,6 +134,10 @@ class RunsFile(_SecurityRule):
         self._fanuc = False  # within a Fanuc-style subprogram ("O100" ... M99)
         self._joined_tail = 0  # the last line LinuxCNC reads joined to lines before it (check_joined)
         self._called: set[str] = set()  # the subroutines whose outside call was reported
+        # a job the user did not say is for LinuxCNC, in a file named as a Carvera job (".cnc", ".nc", ".tap")
+        self._carvera_may_run = ctx.context.origin not in (OPTION, CONFIGURATION) and str(
+            ctx.path or ""
+        ).lower().endswith((".cnc", ".nc", ".tap"))
 
     def check(self, line: Line, cmd: Command) -> None:
         if cmd.code == "O":
@@ -278,7 +282,10 @@ class RunsFile(_SecurityRule):
             number = _macro_number(rest, cmd) if code == "M98" else None
             if number is None:
                 return
-            if self.ctx.dialect.semantics.effect("M98") != "call-subroutine":
+            if self.ctx.dialect.semantics.effect("M98") != "call-subroutine" or self._carvera_may_run:
+                # (a Carvera always runs gcodes/macros/<P>.cnc, whatever O-words the job defines: Carvera Community
+                # Firmware Player.cpp on_gcode_received, M98; a job read as LinuxCNC by its own content in a Carvera
+                # file is not exempt for that)
                 self.report_masked(
                     line,
                     f"M98 P{number} runs the file gcodes/macros/{number}.cnc on a Carvera: code outside this job",
@@ -535,11 +542,13 @@ class ChangesPrinterFiles(_SecurityRule):
             return
         value = p.strip('"')
         if code == "M999":
-            if value.upper() == "ERASE":
+            # (an expression, "P{"ERASE"}" or "P{var.e}", gives the string GetQuotedString compares: reported too)
+            if value.upper() == "ERASE" or "{" in p:
                 self.report_masked(
                     line,
-                    f"M999 P{p} erases the firmware of a RepRapFirmware printer as it restarts: the printer has none"
-                    " until it is flashed again",
+                    f"M999 P{p} erases the firmware of a RepRapFirmware printer as it restarts"
+                    + (' (when its expression gives "ERASE")' if "{" in p else "")
+                    + ": the printer has none until it is flashed again",
                     column,
                 )
             return

@@ -6,7 +6,7 @@ import re
 
 from gclint.rules.base import Severity, register
 from gclint.rules.security.base import _SecurityRule
-from gclint.rules.security.common import _NUMBER, _starts_line, _strip_comment
+from gclint.rules.security.common import _NUMBER, _quote, _starts_line, _strip_comment
 from gclint.rules.security.files import system_file
 from gclint.syntax.nodes import Command, Line
 
@@ -36,7 +36,7 @@ class OpensNetworkService(_SecurityRule):
     code = "SC007"
     name = "opens-network-service"
     severity = Severity.ERROR
-    summary = "The job switches on a network service of the printer (RepRapFirmware M586: HTTP, FTP, Telnet)"
+    summary = "The job switches on a network service of the printer (RepRapFirmware M586: HTTP, FTP, Telnet; M552; M586 C CORS)"
     explanation = """
         RepRapFirmware's "M586 P<protocol> S1" switches on a network service: P0 the web interface (HTTP),
         P1 FTP, P2 Telnet.  FTP reads and writes every file on the SD card and Telnet is a G-code console,
@@ -46,6 +46,8 @@ class OpensNetworkService(_SecurityRule):
         config-override.g, runonce.g, checked as RepRapFirmware), is not reported; in any other file it is
         (a change can add a file of any name to a `sys/` folder; silence a macro that config.g runs with
         per-file-ignores in a configuration the CI names).  Switching a service off (S0) is not reported.
+        The same holds for "M552 S1" (the network on) and "S2" (a Wi-Fi access point), and for "M586 C"*""
+        (web pages of any site may use the web interface: CORS).
     """
     example_bad = "M586 P2 S1"
     example_good = "M586 P2 S0"
@@ -53,7 +55,7 @@ class OpensNetworkService(_SecurityRule):
         "research/firmware_codes.md section 6 (M586 network protocols); RepRapFirmware src/Networking/NetworkDefs.h"
         " (protocol numbers: 0 HTTP, 1 FTP, 2 Telnet)"
     )
-    codes = ("M586",)
+    codes = ("M586", "M552")
 
     def __init__(self, ctx) -> None:
         super().__init__(ctx)
@@ -66,13 +68,35 @@ class OpensNetworkService(_SecurityRule):
         if self.configuration or not _starts_line(line, cmd):
             return
         if cmd is not None and cmd.words:
-            protocol, state = cmd.raw("P"), cmd.raw("S")
+            protocol, state, cors = cmd.raw("P"), cmd.raw("S"), cmd.raw("C")
         else:
             argument = _strip_comment(rest)
             m_p = re.search(r"(?i)P[ \t]*+(\S+)", argument)
             m_s = re.search(r"(?i)S[ \t]*+(\S+)", argument)
+            m_c = re.search(r"(?i)C[ \t]*+(\S+)", argument)
             protocol, state = (m_p.group(1) if m_p else None), (m_s.group(1) if m_s else None)
+            cors = m_c.group(1) if m_c else None
+        if code == "M586" and cors is not None and cors.strip('"'):
+            # (GCodes2.cpp case 586: C sets the site the web interface accepts requests from, CORS; "*" is any)
+            self.report_masked(
+                line,
+                f"M586 C{cors} lets the web pages of {_quote(cors.strip(chr(34)))} control the printer through its web"
+                " interface (CORS): a job must not open the machine to other sites",
+                column,
+            )
         if state is None or (_NUMBER.fullmatch(state) and float(state) == 0):
+            return
+        if code == "M552":
+            if not (_NUMBER.fullmatch(state) and float(state) > 0):
+                return  # (S0 stops the network, S-1 holds the Wi-Fi module in reset)
+            # (GCodes2.cpp case 552: S1 starts the network, S2 the Wi-Fi access point; the services it starts are
+            # those config.g enabled, HTTP by default: src/Networking/NetworkInterface.cpp)
+            self.report_masked(
+                line,
+                f"M552 S{state} switches the printer's network on (S2: as a Wi-Fi access point): its web interface and"
+                " the other services configured become reachable after this job",
+                column,
+            )
             return
         number = int(float(protocol)) if protocol is not None and _NUMBER.fullmatch(protocol) else None
         what = _PROTOCOLS.get(number, f"network protocol P{protocol}") if number is not None else "a network service"
