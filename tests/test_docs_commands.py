@@ -12,6 +12,7 @@ from tests.conftest import ROOT, run_cli
 
 DOCS = [
     ROOT / "README.md",
+    ROOT / "CONTRIBUTING.md",
     ROOT / "docs" / "editors.md",
     ROOT / "docs" / "entry-points.md",
     ROOT / "docs" / "ci.md",

@@ -16,11 +16,13 @@ from hypothesis import strategies as st
 import gclint.engine
 import gclint.machine.interpreter
 import gclint.runs
+from gclint.dialects import all_dialects
 from gclint.engine import Linter, Options
 from gclint.rules.base import Rule
 from gclint.syntax.fastpath import PLAIN_MOVE
 from gclint.syntax.source import Source
 from tests.conftest import CORPUS, corpus_job, needs_corpus
+from tests.plain_route import route_blockers, slow_reading
 from tests.strategies import DIALECTS, any_line, numbers
 
 
@@ -75,7 +77,12 @@ def test_the_route_is_taken_where_no_rule_looks(monkeypatch):
     ctx.interpreter.plain_run = lambda *a: calls.append(a[1:]) or False  # type: ignore[method-assign]
     linter._run(source, ctx, result)
     # each run of plain moves is offered whole, then (refused here) applied one move after the other
-    assert calls == [(0, 9), ("G1", 1, "1", "2", None, None, None), (19, 28), ("G1", 3, "3", None, None, "1", None)]
+    assert calls == [
+        (0, 9),
+        ("G1", 1, "1", "2", None, None, None),
+        (19, 28),
+        ("G1", 3, "3", None, None, "1", None),
+    ], slow_reading("marlin", f"the moves were offered as {calls}")
 
 
 def test_runs_of_plain_moves_are_applied_whole(monkeypatch):
@@ -90,7 +97,9 @@ def test_runs_of_plain_moves_are_applied_whole(monkeypatch):
     ctx.interpreter.plain_run = lambda *a: runs.append((*a[1:], offer(*a))) and runs[-1][-1]  # type: ignore[method-assign]
     linter._run(source, ctx, result)
     at = len(first) + 10
-    assert runs == [(4, len(first), False), (at, at + len(second) + len(";end\n"), True)]  # (comments join runs)
+    assert runs == [(4, len(first), False), (at, at + len(second) + len(";end\n"), True)], (  # (comments join runs)
+        slow_reading("marlin", f"runs offered and applied: {runs}")
+    )
     st = ctx.state
     assert st.position.snapshot() == {"X": 3.0, "Y": 4.0, "Z": 0.3}
     assert (st.feed, st.e_position, st.motion_mode, st.first_move_line, st.first_print_line) == (
@@ -146,7 +155,7 @@ def test_short_runs_are_read_with_the_lines_around_them(monkeypatch):
         Linter(Options(dialect=dialect)).check_text(job)
         # (the 3,000 moves, from where the rules' first look ends: the others are 1-line runs, read with the
         # lines around them, and the next runs are looked for twice as far each time)
-        assert offered and min(offered) >= 1000, dialect
+        assert offered and min(offered) >= 1000, slow_reading(dialect, f"runs of {offered[:10]} lines offered")
         _same(job, dialect)
     # M-code lines read on their own every line or two within a run (M83, M106 T0: the interpreter's), with
     # retractions HY031 finds without reading, then a long stretch applied whole again
@@ -156,7 +165,9 @@ def test_short_runs_are_read_with_the_lines_around_them(monkeypatch):
     for dialect in ("hyrel", "marlin"):
         offered.clear()
         found = Linter(Options(dialect=dialect)).check_text(job).findings
-        assert max(offered) >= 1000 and len(offered) < 50, dialect
+        assert max(offered) >= 1000 and len(offered) < 50, slow_reading(
+            dialect, f"{len(offered)} runs offered, the longest {max(offered, default=0)} lines"
+        )
         assert dialect == "marlin" or sum(f.code == "HY031" for f in found) > 700
         _same(job, dialect)
 
@@ -220,7 +231,9 @@ def test_hyrel_runs_are_applied_around_the_moves_a_rule_wants(e_mode, travel, fo
     skip = (head + moves).count("\n")
     alone, bulk = _how_read("hyrel", job, monkeypatch)
     assert [n - skip for n in alone if n > skip] == expected
-    assert bulk >= len(moves.splitlines()) // 2 + len(tail.splitlines())
+    assert bulk >= len(moves.splitlines()) // 2 + len(tail.splitlines()), slow_reading(
+        "hyrel", f"{bulk} lines applied in runs, {len(alone)} read one by one"
+    )
     findings = Linter(Options(dialect="hyrel")).check_text(job).findings
     assert [f.line - skip for f in findings if f.line > skip and f.code in ("HY030", "HY031")] == found
     _same(job, "hyrel")
@@ -231,7 +244,9 @@ def test_a_run_refused_at_first_is_applied_once_what_it_waits_for_is_read(monkey
     job = "M82\nG92 E0\nG0 F360 X1 Y1 Z.3\n" + "".join(f"G1 X{i} Y{i} E{i}\n" for i in range(1, 3000))
     for dialect in ("marlin", "hyrel"):
         alone, bulk = _how_read(dialect, job, monkeypatch)
-        assert len(alone) < 100 and bulk > 2900, (dialect, len(alone))
+        assert len(alone) < 100 and bulk > 2900, slow_reading(
+            dialect, f"{len(alone)} lines read one by one, {bulk} applied in runs"
+        )
         _same(job, dialect)
 
 
@@ -246,7 +261,7 @@ def test_m_codes_that_change_nothing_go_with_runs(monkeypatch):
     alone, bulk = _how_read("marlin", job, monkeypatch)
     lines = job.splitlines()
     assert [lines[n - 1] for n in alone if lines[n - 1][0] == "M"] == ["M104 S200", "M204 S5 S6", "M587 S1 P1234"]
-    assert bulk > 2000
+    assert bulk > 2000, slow_reading("marlin", f"{bulk} lines applied in runs, {len(alone)} read one by one")
     _same(job, "marlin")
     findings = Linter(Options(dialect="marlin")).check_text(job).findings
     assert [(f.code, lines[f.line - 1]) for f in findings if f.code.startswith(("SX", "SC"))] == [
@@ -305,7 +320,8 @@ def test_hyrel_long_lines_are_read_one_by_one(monkeypatch):
     long = "G1 X1.1234567" + " " * 60 + "Y2.1234567 Z3.1234567 E4.1234567 F5000.12345"  # (E and F cut)
     job = "G28\nG1 X1 Y1 Z.2 E1 F600\n" + _SLICED + "G1 X2 Y2 E2\n" * 200 + long + "\n" + "G1 X3 Y3 E3\n" * 200
     alone, bulk = _how_read("hyrel", job, monkeypatch)
-    assert job.count("\n") - 200 in alone and bulk >= 200
+    assert job.count("\n") - 200 in alone
+    assert bulk >= 200, slow_reading("hyrel", f"{bulk} lines applied in runs, {len(alone)} read one by one")
     assert "HY029" in [f.code for f in Linter(Options(dialect="hyrel")).check_text(job).findings]
     _same(job, "hyrel")
 
@@ -324,7 +340,10 @@ def test_hyrel_runs_take_arcs_of_short_words(monkeypatch):
     lines = job.splitlines()
     read = [lines[n - 1] for n in alone if lines[n - 1].startswith(("G2 ", "G3 "))]
     assert {no_centre[:-1], long[:-1], longer[:-1]} <= set(read) and wide[:-1] not in read
-    assert len(read) < 100 and bulk >= 1100  # (the first ones while HY060 decides, then every 300 arcs)
+    # (the first ones while HY060 decides, then every 300 arcs)
+    assert len(read) < 100 and bulk >= 1100, slow_reading(
+        "hyrel", f"{len(read)} arcs read one by one, {bulk} lines in runs"
+    )
     found = {(f.code, lines[f.line - 1]) for f in Linter(Options(dialect="hyrel")).check_text(job).findings}
     assert {("HY017", no_centre[:-1]), ("HY029", longer[:-1])} <= found
     _same(job, "hyrel")
@@ -567,7 +586,7 @@ def test_a_rule_with_a_run_filter_sees_the_moves_it_wants(rule, monkeypatch):
         found[plain] = [f.line for f in result.findings if f.code == rule.code]
     assert found[True] == found[False] == [4 + i for i in range(300) if i % 10 == 7]
     alone, bulk = _how_read("marlin", job, monkeypatch, rule)
-    assert bulk > 200 if rule is _AtX7 else bulk == 0
+    assert bulk > 200 if rule is _AtX7 else bulk == 0, slow_reading("marlin", f"{bulk} lines applied in runs", rule)
 
 
 def test_a_run_of_a_million_lines_takes_no_memory_to_find():
@@ -607,3 +626,60 @@ def test_a_comment_that_needs_reading_is_found_anywhere_in_a_long_run():
             job[number - 1] = "; api_key = 0123456789ABCDEF0123456789ABCDEF"
             findings = Linter(Options(dialect="marlin")).check_text("\n".join(job) + "\n").findings
             assert [(f.line, f.code) for f in findings] == [(number, "SC006")], number
+
+
+# -- every rule keeps plain moves on their route ---------------------------------------------------------------------
+
+# Rules that keep part of the route shut, each with why; a new rule never goes here (CONTRIBUTING.md, "A rule that
+# reads moves": declare trigger_letters, or plain_filter with run_filter).
+KNOWN_SLOW = {
+    ("machinekit", "DL005"): "plain_filter without run_filter: Machinekit runs of moves are read line by line",
+}
+
+
+@pytest.mark.parametrize("dialect", [d.name for d in all_dialects()])
+def test_no_rule_keeps_plain_moves_off_their_route(dialect):
+    blockers = route_blockers(dialect, select=["ALL"])  # (every rule, those off by default too)
+    new = [b for b in blockers if (dialect, b[:5]) not in KNOWN_SLOW]
+    assert not new, (
+        "rules that keep plain moves off their fast route (CONTRIBUTING.md, 'A rule that reads moves'):\n"
+        + ("\n".join(new))
+    )
+    assert {code for d, code in KNOWN_SLOW if d == dialect} <= {b[:5] for b in blockers}, "KNOWN_SLOW is out of date"
+
+
+class _ReadsEveryMove(Rule):  # a rule on G1 that declares no filter: every move is read
+    code = "ZZ908"
+    codes = ("G1",)
+    families = None
+
+
+class _TriggersOnX(_ReadsEveryMove):  # a trigger letter a plain move has
+    code = "ZZ909"
+
+    def trigger_letters(self, code):
+        return frozenset("XH")
+
+
+class _PlainFilterOnly(_AtX7):  # a plain filter without a run filter
+    code = "ZZ910"
+    run_filter = None
+
+
+@pytest.mark.parametrize(
+    "rule,missing",
+    [
+        (_ReadsEveryMove, "listens to G1 with neither trigger_letters"),
+        (_TriggersOnX, "trigger_letters('G1') = 'HX' has letters a plain move has"),
+        (_PlainFilterOnly, "has plain_filter for G1 but no run_filter"),
+    ],
+)
+def test_a_guard_names_the_rule_and_what_it_lacks(rule, missing, monkeypatch):
+    """A rule that reads every move makes the guards fail with its code and the filter it lacks, not with
+    ``assert 3002 < 100``."""
+    [blocker] = route_blockers("marlin", [*Linter(Options(dialect="marlin")).rule_classes, rule])
+    assert blocker.startswith(f"{rule.code} ({rule.__name__}) ") and missing in blocker, blocker
+    job = "M82\nG92 E0\nG0 F360 X1 Y1 Z.3\n" + "".join(f"G1 X{i} Y{i} E{i}\n" for i in range(1, 3000))
+    alone, bulk = _how_read("marlin", job, monkeypatch, rule)
+    message = slow_reading("marlin", f"{len(alone)} lines read one by one, {bulk} applied in runs", rule)
+    assert bulk < 2900 and rule.code in message and missing in message, message
