@@ -308,8 +308,9 @@ class WordNotInDialect(Rule):
     example_bad = "; gclint: dialect=machinekit\nG1 X10 Y10 E0.5 F1200"
     example_good = "; gclint: dialect=machinekit\nG1 X10 Y10 A0.5 F1200"
     source = (
-        "Machinekit-FDM remap.ini and GCode.org (the extruder is the A axis); machinekit-cnc scripts/gcode-to-ngc "
-        "(RepRap E rewritten to A); LinuxCNC source, src/emc/rs274ngc/interp_read.cc (\"Bad character used\")"
+        "Machinekit-FDM GCode.org and subroutines/g28.ngc (the extruder is the A axis); machinekit-cnc "
+        'scripts/gcode-to-ngc (RepRap E rewritten to A); LinuxCNC source, src/emc/rs274ngc/interp_read.cc ("Bad '
+        'character used")'
     )
     codes = ("G0", "G1", "G2", "G3")
     families = ("linuxcnc",)
