@@ -1,4 +1,4 @@
-"""Carvera -> Hyrel (research/dialects.md section 2.3), as a table.  Helpers: test_translate_tables."""
+"""Carvera -> Hyrel (docs/translation.md, Carvera -> Hyrel), as a table.  Helpers: test_translate_tables."""
 
 from __future__ import annotations
 

@@ -17,7 +17,8 @@ P = Param
 # The base language: LinuxCNC's G and M codes (LinuxCNC docs @ 5c41560e, gclint/firmware/linuxcnc.py).
 _LINUXCNC_G = G_CODES
 _LINUXCNC_M = M_CODES
-# Machinekit-FDM remap.ini (final flavour: value in P, index in T) and the seed README flavour.
+# Machinekit-FDM remap.ini (final flavour: value in P, index in T) and the flavour of its first README ("Machinekit
+# Flavor GCode", Dec 2014).
 _FDM = [
     code(
         "M104",
@@ -26,7 +27,7 @@ _FDM = [
         P("S", "temperature (seed)"),
         P("T", "extruder index (final)"),
         P("I", "immediate"),
-        source="remap.ini / seed README",
+        source="remap.ini / first README (Dec 2014)",
     ),
     code(
         "M106",
@@ -35,7 +36,7 @@ _FDM = [
         P("S", "PWM 0-255 (seed)"),
         P("T", "fan index (final)"),
         P("I", "execute immediately"),
-        source="remap.ini / seed README",
+        source="remap.ini / first README (Dec 2014)",
     ),
     code(
         "M107", "fan off", P("T", "fan index"), P("P", "device index (seed)"), P("I", "immediate"), source="remap.ini"
@@ -46,7 +47,7 @@ _FDM = [
         P("P", "temperature (final) or sensor index (seed)"),
         P("S", "temperature (seed)"),
         P("T", "extruder index"),
-        source="remap.ini / seed README",
+        source="remap.ini / first README (Dec 2014)",
     ),
     code(
         "M140", "set bed temperature", P("P", "temperature"), P("S", "temperature (RepRap style)"), P("I", "immediate")
