@@ -1079,6 +1079,11 @@ HYREL_V4 = HYREL_V5.derive(
         ),
     ],
     aliases=("hyrel4",),
+    sources=(
+        *HYREL_V5.sources,
+        "T_v4: https://hyrel3d.com/wiki/index.php?title=T_v4&oldid=7348",
+        "Hyrel v4 firmware source: github.com/Karl690/HydraSt_407 @ 734de72 (Hydra4/main.c, Hydra4/src/MCode.c)",
+    ),
     variant_of="hyrel",
     detection=HYREL_DETECTION,  # v4 or v5 is decided from the addresses the file uses (gclint.context)
     description="Hyrel firmware/Repetrel v4 and earlier: T commands are tool numbers 0-9, T variables inside M-codes are CAN device addresses.",

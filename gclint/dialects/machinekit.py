@@ -1,7 +1,7 @@
 """Machinekit FDM (LinuxCNC interpreter with the FDM remaps), also used for plain LinuxCNC programs.
 
 The FDM codes come from the Machinekit-FDM remap.ini (github.com/machinekoder/Machinekit-FDM-Standard @ 397d429)
-and its first README (GCode.md @ 4bf969d: M104 P<index> S<temp>, M106 P<index> S<pwm> I, M109 P S).  The base
+and its first README (GCode.md, December 2014: M104 P<index> S<temp>, M106 P<index> S<pwm> I, M109 P S).  The base
 language is LinuxCNC's RS274NGC: O-words, #parameters, [expressions], user M-codes M100-M199.
 """
 
@@ -276,7 +276,7 @@ MACHINEKIT_SEMANTICS = Semantics(
             "M7": "coolant",
             "M8": "coolant",
             "M9": "coolant-off",
-            "M226": "pause",  # the FDM remap's pause (Machinekit-FDM subroutines/m226.ngc; docs/translation.md)
+            "M226": "pause",  # the FDM remap's pause (Machinekit-FDM remap.ini, M226; docs/translation.md)
             "M221": "flow",
             "M18": None,  # (no motors-off code in LinuxCNC)
             "M84": None,
@@ -308,7 +308,7 @@ MACHINEKIT = Dialect(
     semantics=MACHINEKIT_SEMANTICS,
     machine_ini=True,
     sources=(
-        "Machinekit-FDM: github.com/machinekoder/Machinekit-FDM-Standard (GCode.md @ 4bf969d; remap.ini @ 397d429)",
+        "Machinekit-FDM: github.com/machinekoder/Machinekit-FDM-Standard (GCode.md of Dec 2014; remap.ini @ 397d429)",
         "machinekit-cnc: github.com/machinekit/machinekit-cnc @ 93065fc (remap-subroutines/fdm, scripts/gcode-to-ngc)",
         "LinuxCNC docs: https://linuxcnc.org/docs/html/gcode/g-code.html (source @ 5c41560e)",
     ),

@@ -289,7 +289,8 @@ class MachinekitSimulator(CncSimulator):
                 "M701": self.ve_line,
                 "M702": self.ve_line,
                 # M0 "program pause" (LinuxCNC); M226 a pause of the FDM remap (Machinekit-FDM
-                # subroutines/m226.ngc: M0); M1 is an optional stop, off unless the operator enables it: not counted
+                # remap.ini, M226; docs/translation.md: M0); M1 is an optional stop, off unless the operator enables
+                # it: not counted
                 "M0": self.pause,
                 "M226": self.pause,
             }
