@@ -112,9 +112,13 @@ _V4_VARIABLES: dict[int, tuple[str, int | None, str, bool]] = {
     16: (AUX, 22, "aux (yoke 1 aux position)", False),
     20: (GROUP, 42, "yoke 2, all heads", True),
     26: (SPINDLE, 20, "3-phase spindle", True),
+    # yokes 3 and 4: in the firmware's tables (confidence: high for v4), but no 3- or 4-yoke machine is
+    # documented, so the v5 counterparts are inferred (confidence: medium) and never applied
     30: (GROUP, 43, "yoke 3, all heads", False),
     40: (GROUP, 44, "yoke 4, all heads", False),
     41: (LASER, 21, "CO2 laser", True),
+    # groups 50-57 (hyrel.h, hyrel_can.h: high for v4); v5 squads T30-T39 and T48 are their likely
+    # counterparts (confidence: medium for 50 -> T48, low for the numbering of 51-57)
     50: (GROUP, 48, "all groups (clone squads)", False),
     90: (GROUP, 46, "all beds", True),
     91: (BED, 24, "hotbed 1", True),
