@@ -531,9 +531,7 @@ class SquadNumberRange(ParamTableRule):
     """
     example_bad = "M702 T0 S40"
     example_good = "M702 T0 S30"
-    source = (
-        "T_v5, M702 Establish Clone Squad, M703 Add to Clone Squad, M704 Remove from Clone Squad"
-    )
+    source = "T_v5, M702 Establish Clone Squad, M703 Add to Clone Squad, M704 Remove from Clone Squad"
     families = ("hyrel",)
 
     def __init__(self, ctx) -> None:
@@ -789,9 +787,7 @@ class SquadNotEstablished(Rule):
         M702 T0 S30
         M703 T1 S30
     """
-    source = (
-        "T_v5, M702 Establish Clone Squad, M703 Add to Clone Squad, M704 Remove from Clone Squad"
-    )
+    source = "T_v5, M702 Establish Clone Squad, M703 Add to Clone Squad, M704 Remove from Clone Squad"
     dialects = ("hyrel",)
 
     def __init__(self, ctx) -> None:

@@ -574,9 +574,7 @@ class AxisNotOnModel(MoveRule):
     """
     example_bad = "; gclint-test: printer=30m\nG1 X10 Y10 A90 F1200"
     example_good = "; gclint-test: printer=30m\nG1 X10 Y10 F1200"
-    source = (
-        "Gcode page, G0 Rapid Move / G1 Working Move note on axes; G28, G92, M203, G54 - G59, M6 parameters"
-    )
+    source = "Gcode page, G0 Rapid Move / G1 Working Move note on axes; G28, G92, M203, G54 - G59, M6 parameters"
     codes = (*_ARCS, "G28", "G92", "G38", "M203", *(f"G{n}" for n in range(54, 60)), "M6")
     slot = "axis_on_model"
 

@@ -372,9 +372,7 @@ class OffsetsClearedByG28(Rule):
         T1
         G1 X20 Y10 E1 F1200
     """
-    source = (
-        "Gcode page, G28 Send X, Y to Physical Home, G1 Working Move and T Tool Change; T_v5, Explicit Mode"
-    )
+    source = "Gcode page, G28 Send X, Y to Physical Home, G1 Working Move and T Tool Change; T_v5, Explicit Mode"
     codes = ("G28", "G92", *_FIXTURES, "M30")
     families = ("hyrel",)
 

@@ -50,9 +50,7 @@ class WaitParameterGroups(Rule):
     """
     example_bad = "M109 T0 S240 H230 L10"
     example_good = "M109 T0 S240 L10 U5"
-    source = (
-        "Gcode page, M109 Wait for Temp (Head), M190 Wait for Temp (Bed), M191 Wait for Temp (Chamber)"
-    )
+    source = "Gcode page, M109 Wait for Temp (Head), M190 Wait for Temp (Bed), M191 Wait for Temp (Chamber)"
     codes = _WAITS
     families = ("hyrel",)
 
@@ -371,8 +369,7 @@ class NegativeTemperature(ParamTableRule):
     example_bad = "M104 T0 S-20"
     example_good = "M104 T0 S20"
     source = (
-        "Gcode page, M104 Set Temp (Head) and M109 Wait for Temp (Head) ('heated and chilled (sub-ambient) "
-        "heads')"
+        "Gcode page, M104 Set Temp (Head) and M109 Wait for Temp (Head) ('heated and chilled (sub-ambient) " "heads')"
     )
     families = ("hyrel",)
 
