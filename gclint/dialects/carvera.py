@@ -128,7 +128,7 @@ CARVERA_SEMANTICS = Semantics(
     feed_on_any_command=True,
     default_workspace="G54",
     tool_change_stops_spindle=True,
-    no_tool=-1,  # "M6 | Auto tool change, T0 indicates wireless probe, T-1 indicates None" (seeds/carvera-mcodes.md,
+    no_tool=-1,  # "M6 | Auto tool change, T0 indicates wireless probe, T-1 indicates None" (Carvera M-code table,
     probe_tool=0,  # https://carvera-community.gitbook.io/docs/firmware/supported-commands/mcodes)
     effects=effects(
         WORKSPACES,

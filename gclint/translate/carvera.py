@@ -62,7 +62,7 @@ class CarveraToHyrel(CncTranslator):
         **_codes(
             "M336",
             TR_LOST,
-            'line-by-line execution mode ("Pauses after each line", carvera-mcodes.md M336): the pauses are lost',
+            'line-by-line execution mode ("Pauses after each line", Carvera M-code table, M336): the pauses are lost',
         ),
         **_codes("M221", TR_DROPPED, "soft endstops on/off (Carvera's M221 is not a flow command)"),
         **_codes("M82 M83", TR_DROPPED, "extruder mode (no extrusion here)"),
