@@ -1,9 +1,9 @@
 """``gclint cura-script``: write ``Gclint.py``, a script for Cura's post-processing plugin.
 
-Cura loads post-processing scripts from the ``scripts`` folder of its configuration folder; the module
-name must equal the class name (``Gclint``) and the class subclasses Cura's ``Script``
-(research/anchors.md section c).  Cura runs scripts in its own bundled Python, which cannot import
-gclint, so the script runs gclint as a program: the command is written into the script when it is
+Cura loads post-processing scripts from the ``scripts`` folder of its configuration folder; the module name must equal
+the class name (``Gclint``) and the class subclasses Cura's ``Script`` (Cura source,
+plugins/PostProcessingPlugin/Script.py and PostProcessingPlugin.py).  Cura runs scripts in its own bundled Python, which
+cannot import gclint, so the script runs gclint as a program: the command is written into the script when it is
 generated (this Python with ``-m gclint``) and can be changed in the script's settings.
 
 Cura cannot block an export: its plugin catches every script exception and saves the file anyway.  The

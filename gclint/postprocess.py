@@ -1,10 +1,10 @@
 """``gclint postprocess``: the slicer post-processing step (PrusaSlicer, SuperSlicer, OrcaSlicer, Bambu
 Studio; Simplify3D with ``"[output_filepath]"``).
 
-The contract (research/anchors.md section c): the slicer runs ``$SHELL -c "<configured line> '<path>'"``
-with every setting exported as ``SLIC3R_<KEY>``; the G-code path comes last and is often a temporary
-copy (``<temp>.gcode.pp``); the script must change that file in place; a non-zero exit stops the export
-and PrusaSlicer shows the captured stderr.  So gclint:
+The contract (PrusaSlicer source, src/libslic3r/GCode/PostProcessor.cpp): the slicer runs ``$SHELL -c "<configured line>
+'<path>'"`` with every setting exported as ``SLIC3R_<KEY>``; the G-code path comes last and is often a temporary copy
+(``<temp>.gcode.pp``); the script must change that file in place; a non-zero exit stops the export and PrusaSlicer shows
+the captured stderr.  So gclint:
 
 1. reads the source flavour from ``SLIC3R_GCODE_FLAVOR`` (else the file's header),
 2. translates the file to ``--to`` (if given and different), writing a temporary file and renaming it

@@ -2,7 +2,7 @@
 
 PrusaSlicer and its forks append their whole configuration to the job as comments, which has included
 ``; printhost_apikey = ...`` and ``; printhost_password = ...`` (OctoPrint File Check has a
-``leaked_api_key`` check for exactly this, research/anchors.md); hand-edited start G-code carries URLs
+``leaked_api_key`` check for exactly this: OctoPrint documentation, File Check); hand-edited start G-code carries URLs
 with ``user:password@host`` and tokens pasted from a browser.  A job file travels (print farms, git, shared
 folders), so such a secret is leaked to everyone who gets the job.
 

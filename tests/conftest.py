@@ -15,7 +15,7 @@ ROOT = Path(__file__).resolve().parent.parent
 
 
 def _shared() -> Path:
-    """The workplace's shared folder (corpus, seeds): $GCLINT_SHARED, else ../shared beside the checkout,
+    """The workplace's shared folder (corpus, seeds): $GCLINT_SHARED, else the folder ``shared`` beside the checkout,
     else /work/shared (where a clone made elsewhere, e.g. in a temporary folder, still finds it)."""
     for candidate in (os.environ.get("GCLINT_SHARED"), ROOT.parent / "shared", "/work/shared"):
         if candidate and Path(candidate, "corpus").is_dir():

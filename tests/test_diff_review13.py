@@ -68,7 +68,7 @@ WRONG = [
 
 
 def test_5_marlin_laser_power_on_moves_is_seen_and_explained() -> None:
-    """Marlin's S on a move is the laser power (research/dialects.md 1.1 G1): dropped by the translator
+    """Marlin's S on a move is the laser power (Marlin G-code reference, G0-G1): dropped by the translator
     (TR003), which the diff sees as moves that no longer cut, explained by that finding."""
     source = "G90\nG21\nM4 S0\nG0 X10 Y10\nG1 X20 Y10 S200 F3000\nG1 X20 Y20 S0\nM5\n"
     _, _, diff = translate_and_diff("marlin", source)

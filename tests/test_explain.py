@@ -63,7 +63,7 @@ ROWS = [
     ),
     ("hyrel", "M106 T0 S50", ["of range 0-100: 50% duty", "default 0-100"], []),
     ("hyrel", "M106 T0 P100", ["P100 (during extrusion moves only, at 100% duty)"], []),
-    # T addressing, v5 and v4 (T_v5 "Chart of Addresses"; research/hyrel_v4.md)
+    # T addressing, v5 and v4 (T_v5 "Chart of Addresses"; T_v4 and the Hyrel v4 firmware source)
     ("hyrel", "T0", ["switch to head T0: yoke 1, position 1, and invoke all its flow, prime, unprime and offset"], []),
     ("hyrel", "T7", ["head T7: yoke 2, position 3"], []),
     ("hyrel", "M702 T0 S30\nT30", ["designate clone squad T30", "virtual head / clone squad T30"], []),

@@ -161,7 +161,8 @@ def test_hy008_rewrites_with_the_certain_map(line, v5):
 
 
 def test_hy008_aux_map_is_uncertain():
-    # hyrel_v4.md: aux T16 "high for v4; mapping to v5 Aux1 is I - medium": no fix, and the message says so
+    # v4 aux T16 (Hyrel v4 firmware toolNumberMap: tool 10 -> 16) is certain for v4; that it is v5 Aux1 T22 is
+    # inferred (confidence: medium, docs/sources.md): no fix, and the message says so
     # (in a file whose addresses say v4: M6 T12 O2, M109 T12 are v4 heads)
     found = lint("M6 T12 O2\nM109 T12 S200\nM104 T16 S0\n", printer="16a-dual", codes=("HY008",))
     found = [f for f in found if f.line == 3]
@@ -351,7 +352,8 @@ V4_JOB = (
 
 
 def test_cli_fix_converts_every_v4_address_or_none(tmp_path):
-    # a v4 job checked as v5: v4 T0 is "all devices" (v5 T40, research/hyrel_v4.md section 3, high); the
+    # a v4 job checked as v5: v4 T0 is "all devices" (v5 T40; T_v4 page and HH_BROADCAST_ALL 0 in the v4
+    # firmware, confidence: high); the
     # fix converts it with the others, as the translator does, or the switch-offs would reach head T0 only
     path = write(tmp_path, "job.gcode", V4_JOB)
     run_cli("check", "--dialect", "hyrel", "--fix", str(path))
@@ -373,7 +375,7 @@ def test_cli_fix_is_the_translators_conversion(tmp_path):
 
 
 def test_cli_fix_refuses_a_v4_job_with_an_uncertain_address(tmp_path):
-    # v4 T16 (the aux port) -> v5 T22 is "medium" (research/hyrel_v4.md section 2): nothing is converted,
+    # v4 T16 (the aux port) -> v5 T22 is inferred (confidence: medium, docs/sources.md): nothing is converted,
     # and the other findings say why
     job = V4_JOB.replace("M30\n", "M104 T16 S0\nM30\n")
     path = write(tmp_path, "job.gcode", job)
@@ -422,7 +424,7 @@ MIXED_V5 = (
 
 def test_cli_unsafe_fix_writes_the_v5_address_of_a_v4_footer(tmp_path):
     # a v5 job (W0, M116) with Hyrel's old footer: T100, T90, T91 name nothing in v5 and map to v5 T47,
-    # T46, T24 with high confidence (research/hyrel_v4.md sections 2 and 3): an unsafe HY047 fix
+    # T46, T24 with high confidence (T_v4 page; v4 firmware hyrel.h, docs/sources.md): an unsafe HY047 fix
     path = write(tmp_path, "job.gcode", MIXED_V5)
     run_cli("check", "--dialect", "hyrel", "--fix", str(path))
     assert path.read_text(encoding="utf-8") == MIXED_V5  # the file mixes numberings: not a safe fix

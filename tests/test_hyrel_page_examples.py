@@ -1,7 +1,9 @@
 """Every example on the Hyrel pages passes gclint's checks (issue "Hyrel rules", done means 1).
 
-The example command lines are read in place from ../shared/seeds (the Gcode page, T_v5 and the
-hidden-codes page): every indented block under an "Example", "Usage", "Here are examples", "A sample
+The example command lines are read in place from stored copies of the pages (``conftest.SEEDS``, in the workplace's
+shared folder; a clone without it skips): the Gcode page (https://hyrel3d.com/wiki/index.php/Gcode), T_v5
+(https://hyrel3d.com/wiki/index.php/T_v5) and the hidden-codes page (Sekret!, docs/sources.md): every indented block
+under an "Example", "Usage", "Here are examples", "A sample
 of code ..." or "Before/After editing" heading, i.e. every indented block except the parameter lists
 ("Parameters"), the M773 sample output and the report listings of the hidden-codes page.  Each block is
 checked as one file (its lines run in sequence, as in the laser and spiral examples) with every rule

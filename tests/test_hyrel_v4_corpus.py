@@ -1,8 +1,8 @@
 """The real Hyrel jobs of the corpus (issue "Hyrel rules", done means 2).
 
 All four public Hyrel jobs (../shared/corpus/hyrel/*.gcode, read in place) are written for v4 addressing:
-`M6 T12 O2`, `M109 T12 S77`, `M703 T14 S12` with a `T1` tool change (corpus/README.md,
-research/hyrel_v4.md).  Checked as v4 they must show no error; checked as v5 every v4 T variable must
+`M6 T12 O2`, `M109 T12 S77`, `M703 T14 S12` with a `T1` tool change (corpus/README.md;
+the T_v4 page and the Hyrel v4 firmware source, docs/sources.md).  Checked as v4 they must show no error; checked as v5 every v4 T variable must
 get the HY008 warning; and `gclint check --fix --dialect hyrel` on a copy must rewrite them to v5
 numbers and nothing else.  The .ini in the folder is a slicer profile, not a job.
 """
@@ -31,7 +31,7 @@ JOBS = sorted(p.name for p in HYREL.glob("*.gcode")) if HYREL.is_dir() else []
 V4_ERRORS: dict[str, set[tuple[int, str]]] = {name: set() for name in JOBS}
 
 # A v4 device address as a T variable of an M-code (yoke 1 T11-T15, T16 aux, yoke 2 T21-T25, T26
-# spindle, beds T90-T92, all heads T100), as research/hyrel_v4.md lists them.
+# spindle, beds T90-T92, all heads T100), as the Hyrel v4 firmware source lists them (docs/sources.md).
 V4_VARIABLE = re.compile(r"^\s*M\d+\b[^;]*?\bT(1[0-6]|2[0-6]|9[0-2]|100)\b")
 # The certain v4 -> v5 numbers these jobs use: T12 (yoke 1, position 2) -> T1, T14 (position 4) -> T3.
 V4_TO_V5 = {"T12": "T1", "T14": "T3", "S12": "S1"}

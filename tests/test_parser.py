@@ -42,7 +42,7 @@ def roundtrip(raw: str) -> None:
         assert all(type(n).__name__ != "Unparsed" for n in line.elements()) or parsed.kind == "error"
 
 
-# -- the grammar: every construct DESIGN.md lists ---------------------------------------------------------
+# -- the grammar: every construct grammar.lark reads ------------------------------------------------------
 
 
 @pytest.mark.parametrize(
@@ -82,7 +82,7 @@ def roundtrip(raw: str) -> None:
         ("G1 X1 M-1", ["G1"]),
         ("G1 X1 M0.5", ["G1", "M0.5"]),  # (could be a sub-code: a command)
         ("G28.140 D0 M0.0001", ["G28.14"]),
-        # ... and so is a letter the command takes by the firmware docs (firmware_codes.md section 9)
+        # ... and so is a letter the command takes by the firmware sources (BambuStudio profiles, Prusa-Firmware-Buddy)
         ("M900 L1000.0 M1.0", ["M900"]),  # Bambu: not M900 then an M1 stop
         ("M1006 A0 B0 L0 C0 D0 M100 E0 F0 N0", ["M1006"]),
         ("M970 Q1 A7 B30 C80 H15 K0 M20 O3", ["M970"]),

@@ -5,7 +5,7 @@
    trimmed), other control characters (erased or dropped): the SC rules read each firmware's view of the
    line and report on the line as written, naming the view.
 2. Lines the grammar refuses are read the same way, so a job that switches SX001 off hides nothing.
-3. Smoothieware/Carvera runs every G and M of a line (research/firmware_codes.md section 8): each dangerous
+3. Smoothieware/Carvera runs every G and M of a line (Smoothieware source, GcodeDispatch.cpp): each dangerous
    command after the first is reported.
 4. M928 (SD logging into a named file), M997/M936 (firmware update), M505 (system folder): SC005.
 5. SHELL with fillers (tatweel, braille blank, Hangul filler) or letters of other scripts (Cyrillic ЅНЕLL,

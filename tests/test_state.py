@@ -37,7 +37,7 @@ def test_position_absolute_and_relative():
 
 
 def test_e_mode_marlin_couples_to_g90_g91_hyrel_does_not():
-    # Marlin: "G90/G91 reset E mode"; Hyrel and RRF: independent (dialects.md 1.1 G90)
+    # Marlin: "G90/G91 reset E mode"; Hyrel and RRF: independent (Marlin G-code reference and Duet G-code dictionary, G90)
     assert run("M83\nG90\n", "marlin").state.e_absolute is True
     assert run("M82\nG91\n", "marlin").state.e_absolute is False
     assert run("M83\nG90\n", "hyrel").state.e_absolute is False

@@ -97,7 +97,7 @@ HYREL_TWO_HEADS = (
 
 
 def test_marlin_temperatures_without_t_go_to_the_active_tool(tmp_path: Path) -> None:
-    # Marlin M104/M109: "T = hotend idx (default active)" (research/dialects.md)
+    # Marlin M104/M109: T is the hotend index, the active one by default (Marlin G-code reference, M104)
     job = tmp_path / "mm.gcode"
     job.write_text(MARLIN_TWO_TOOLS)
     heads = {h.head: h for h in summarize_path(str(job)).heads}
@@ -187,7 +187,7 @@ def test_multi_tool_prusaslicer_jobs_against_hand_counts(name: str) -> None:
 
 
 def test_a_marlin_g0_that_extrudes_prints(tmp_path: Path) -> None:
-    # Marlin: G0 is an alias of G1, "E allowed (extrudes)" (research/dialects.md): a slicer's purge line
+    # Marlin: G0 is an alias of G1, E allowed, it extrudes (Marlin G-code reference, G0-G1): a slicer's purge line
     job = tmp_path / "purge.gcode"
     job.write_text(";FLAVOR:Marlin\nG28\nM83\nG0 X10 Y0 E5 F500 ; purge\nG0 X20 Y0\nG1 X30 Y0 E1\n")
     s = summarize_path(str(job))

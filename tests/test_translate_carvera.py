@@ -1,4 +1,4 @@
-"""Carvera -> Hyrel (research/dialects.md section 2.3), as a table.  Helpers: test_translate_tables."""
+"""Carvera -> Hyrel (docs/translation.md, Carvera -> Hyrel), as a table.  Helpers: test_translate_tables."""
 
 from __future__ import annotations
 
@@ -74,7 +74,7 @@ CARVERA = [
     Row("2.3 M7/M9 (air) on Aux1", "M7\nM9", "M7\nM9"),
     Row("2.3 M7/M9 (air) on the 16A's air port", "M7\nM9", "M685 S100\nM685 S0", settings={"air": "M685"}),
     Row("2.3 M17, M18, M84", "M17\nM84", "M17\nM84"),
-    # "M30 | End of the program, no action on the Carvera" (carvera-mcodes.md): the code after it runs
+    # "M30 | End of the program, no action on the Carvera" (Carvera M-code table, M30): the code after it runs
     Row("2.3 M30: no action on the Carvera", "M30\nG1 X5", "G1 X5", "TR001"),
     Row("2.3 M82/M83", "M82\nM83", "", "TR001"),
     Row("2.3 M97 M98 M99 (jumps, subprograms)", "M97 P14\nM98 P1001 L4\nM99", "", "TR005"),

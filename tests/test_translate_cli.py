@@ -1,4 +1,4 @@
-"""``gclint translate`` on the command line (DESIGN.md contracts): stdin/stdout, -o, --in-place,
+"""``gclint translate`` on the command line (the contracts of README.md and docs/translation.md): stdin/stdout, -o, --in-place,
 --unsupported, --annotate, --tool-map, --printer, --flow, --set; ``gclint rules TR00n``."""
 
 from __future__ import annotations

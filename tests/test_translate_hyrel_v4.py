@@ -1,4 +1,4 @@
-"""Hyrel v4 <-> v5 renumbering (research/hyrel_v4.md), and foreign sources written for hyrel-v4.
+"""Hyrel v4 <-> v5 renumbering (T_v4 and T_v5 pages, Hyrel v4 firmware source; docs/sources.md), and foreign sources written for hyrel-v4.
 
 A table per direction, then round trips: v4 -> v5 -> v4 gives every corpus Hyrel job back byte for byte,
 and so do generated lines in both directions.
@@ -37,7 +37,7 @@ V4_TO_V5 = [
     Row("all beds T90 -> T46", "M140 T90 S0", "M140 T46 S0"),
     Row("bed 1 T91 -> T24", "M140 T91 S60", "M140 T24 S60"),
     Row("bed 2 T92 -> T25", "M190 T92 S60", "M190 T25 S60"),
-    # v4 aux T16 -> v5 Aux1 T22 is inferred (hyrel_v4.md: "medium"): left as it is and reported
+    # v4 aux T16 -> v5 Aux1 T22 is inferred (confidence "medium": docs/sources.md): left as it is and reported
     Row("aux T16 (v5 Aux1 T22 inferred)", "M106 T16 S100", "M106 T16 S100", "TR006"),
     Row("CO2 laser T41 -> T21", "M620 T41 E0", "M620 T21 E0"),
     Row("spindle T26 -> T20", "M3 T26 S50", "M3 T20 S50"),
@@ -80,7 +80,7 @@ def test_v4_to_v5(row: Row) -> None:
 
 
 def test_uncertain_aux_map_is_named_in_the_finding() -> None:
-    # research/hyrel_v4.md: "mapping to v5 Aux1 is I - medium"; the finding says so and names the guess
+    # the mapping to v5 Aux1 is inferred, confidence "medium" (docs/sources.md); the finding says so and names the guess
     for source, target, line, likely in (
         ("hyrel-v4", "hyrel", "M106 T16 S100", "v5 T22"),
         ("hyrel-v4", "hyrel", "T10", "v5 T22"),

@@ -1,4 +1,4 @@
-"""Machinekit FDM -> Hyrel (research/dialects.md section 2.2), as a table.  Helpers: test_translate_tables."""
+"""Machinekit FDM -> Hyrel (docs/translation.md, Machinekit -> Hyrel), as a table.  Helpers: test_translate_tables."""
 
 from __future__ import annotations
 

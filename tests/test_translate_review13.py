@@ -137,7 +137,7 @@ def test_9_bare_m109_is_no_cooling_wait() -> None:
 
 
 def test_10_rrf_tool_fans_stay_on_their_heads() -> None:
-    """M563 F: a tool's own fan is its head's; "S alone -> fans of current tool" (dialects.md 1.3 M106)."""
+    """M563 F: a tool's own fan is its head's; "S alone -> fans of current tool" (Duet G-code dictionary, M106)."""
     src = "M563 P0 D0 H1 F0\nM563 P1 D1 H2 F2\nT0\nM83\nM106 S0.5\nG1 X1 E1 F100\nT1\nM106 S1\nG1 X2 E1\n"
     out, _ = translate("reprap", src)
     lines = out.splitlines()

@@ -12,7 +12,7 @@ def _codes(result, code: str) -> list[str]:
     return [f.message for f in result.findings if f.code == code]
 
 
-# -- (1) Machinekit velocity extrusion: feed moves outside G22 ... G23 print (dialects.md 2.2) -------------
+# -- (1) Machinekit velocity extrusion: feed moves outside G22 ... G23 print (docs/translation.md) -----------
 
 VE = (
     "G21 G90\nM104 P0 S200\nM109 P0 S200\nG0 Z0.2\nM701 P0.5\nM702 P0.2\nG1 X10 Y10 F1200\nG1 X20 Y10\n"
@@ -202,7 +202,7 @@ def test_8_carvera_laser_mode_stops_the_spindle() -> None:
     assert lines.count("M5 T0") == 1  # not again in the footer
 
 
-# -- (9) laser power: RepRapFirmware after M452, Marlin's inline power (dialects.md 2.1 laser rows) --------
+# -- (9) laser power: RepRapFirmware after M452, Marlin's inline power (docs/translation.md) ----------
 
 
 def test_9_rrf_m452_makes_m3_s_and_move_s_laser_power() -> None:

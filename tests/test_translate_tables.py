@@ -1,6 +1,6 @@
 """Translation tests as tables, in the manner of sqlglot's ``validate_all``: one row per construct.
 
-A row: the research/dialects.md section 2 row it covers, the source line(s), the expected Hyrel line(s)
+A row: the translation-table row (docs/translation.md: a pair's table or an X rule) it covers, the source line(s), the expected Hyrel line(s)
 ("" when the command is dropped), the TR codes the translation reports for it, and optionally the
 hyrel-v4 output and translation settings.  Rows marked ``out=`` are consciously left out of the
 translation: the row documents why and checks the finding that reports it.
@@ -62,7 +62,7 @@ def translate_rows(
 class Row:
     """One construct: ``src`` (source lines) -> ``hyrel`` (expected lines) and the TR codes ``tr``."""
 
-    row: str  # the research/dialects.md section 2 row (or X rule) it covers
+    row: str  # the translation-table row (or X rule) it covers
     src: str
     hyrel: str
     tr: str = ""
@@ -268,7 +268,7 @@ MARLIN = [
     Row("2.1 M106 (no S: full)", "M106", "M106 T0 S255"),
     Row("2.1 M106 P0 (part fan of the focused head)", "T1\nM106 P0 S255", "T1\nM106 T1 S255"),
     Row("2.1 M106 P2 unmapped", "M106 P2 S255", "", "TR002"),
-    # (v5 Aux1 T22 has no certain v4 address: hyrel_v4.md rates aux T16 "medium", so it stays, with TR006)
+    # (v5 Aux1 T22 has no certain v4 address: the v4 map rates aux T16 "medium", so it stays, with TR006)
     Row("2.1 M106 P2 mapped", "M106 P2 S255", "M106 T22 S255", settings={"fan_map": "2=T22"}, v4="M106 T22 S255"),
     Row("2.1 M106 T (secondary speed)", "M106 S255 T128", "M106 T0 S255", "TR004"),
     Row("2.1 M107", "M107", "M107 T0"),

@@ -1,7 +1,7 @@
 """The command group and what every command shares: one-line usage errors, notes on stderr, option checks.
 
-Exit codes (DESIGN.md): 0 no finding at warning level or above; 1 findings; 2 usage error or a file that
-could not be read.  Bad input never shows a traceback: one line on stderr naming the file and the reason.
+Exit codes (README.md, docs/entry-points.md): 0 no finding at warning level or above; 1 findings; 2 usage error or a
+file that could not be read.  Bad input never shows a traceback: one line on stderr naming the file and the reason.
 """
 
 from __future__ import annotations
@@ -28,7 +28,7 @@ class UsageFailure(click.ClickException):
 
 class _Main(click.Group):
     """The command group: whatever escapes a command becomes one line on stderr and exit code 2, never a
-    traceback (DESIGN.md).  ``GCLINT_DEBUG=1`` shows the traceback of an internal error."""
+    traceback (docs/entry-points.md).  ``GCLINT_DEBUG=1`` shows the traceback of an internal error."""
 
     def invoke(self, ctx: click.Context):
         try:

@@ -1,7 +1,7 @@
 """What a file is: its dialect (and firmware flavour), Hyrel firmware version and printer model.
 
-What the user said wins (DESIGN.md, "Dialect names"): ``--dialect``/``--printer``/``--flavor``, the
-configuration, then a ``; gclint: dialect=NAME`` line; an explicit dialect is never second-guessed.
+What the user said wins (docs/architecture.md, "What a file is checked as"): ``--dialect``/``--printer``/``--flavor``,
+the configuration, then a ``; gclint: dialect=NAME`` line; an explicit dialect is never second-guessed.
 Otherwise the file is read once (gclint.context.content) and every candidate reading is scored on how well
 it explains it (gclint.context.score: a code a candidate lacks nearly rules it out, a habit costs a little,
 a code only one dialect has is strong evidence, the header and the extension are weak, Hyrel is the

@@ -1,8 +1,8 @@
 """Hyrel firmware v4 or v5, decided by the weight of every address the file uses, never by one line.
 
 Each use of an address (a T variable inside an M-code, an ``M703``/``M704`` S, a ``T`` command) is read in
-both numberings (gclint.dialects.addressing: the T_v5 page's "Chart of Addresses"; research/hyrel_v4.md for
-v4) and scored under each:
+both numberings (gclint.dialects.addressing: the T_v5 page's "Chart of Addresses"; for v4 the T_v4
+page and the Hyrel v4 firmware source, docs/sources.md) and scored under each:
 
 * natural: the number names a device the command addresses (a head on ``M104``, a bed on ``M140``): 0;
 * a mistake: a device the command does not address (a bed code on a head address, a wait on a group or a
@@ -71,7 +71,7 @@ def _command_cost(address: Address, v5: bool) -> float:
 
 def _squad_cost(number: int, v5: bool) -> float:
     # M702-M704 S: v5 a squad T30-T39 or a head to copy (T_v5, "M702 Establish Clone Squad"); v4 an alias
-    # (research/hyrel_v4.md section 4)
+    # (Hyrel v4 firmware source, Hydra4/src/MCode.c M702-M704)
     if v5:
         return 0.0 if 30 <= number <= 39 or 0 <= number < _YOKES else MISTAKE
     return 0.0 if resolve_v4_variable(number).kind == HEAD else MISTAKE

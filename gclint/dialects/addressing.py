@@ -1,7 +1,8 @@
 """Hyrel head addressing: what a T number means in firmware v5 and in v4, and the v4 -> v5 map.
 
-Sources: ../shared/seeds/hyrel-T_v5-addressing.wiki.txt ("Chart of Addresses"), and
-../shared/research/hyrel_v4.md sections 1-3 (v4 device addresses read from the Hyrel firmware tables).
+Sources (docs/sources.md): the T_v5 page (https://hyrel3d.com/wiki/index.php/T_v5, "Chart of Addresses"), and
+for v4 the T_v4 page and the Hyrel v4 firmware source (github.com/Karl690/HydraSt_407 @ 734de72: Hydra4/main.c
+toolNumberMap, Hydra4/common/inc/hyrel.h), with the confidence of each v4 -> v5 entry ("Hyrel v4 addressing").
 
 Everything inside gclint speaks v5 numbers: a physical head is its v5 position index 0-19 (T0-T4 yoke 1,
 T5-T9 yoke 2, ...).  v4 files are converted when read (``resolve_v4_*``) and written back with
@@ -34,7 +35,7 @@ class Address:
     kind: str
     v5: int | None  # the v5 address (for v4 files: the translated number), None when there is none
     label: str
-    certain: bool = True  # False where the v4 -> v5 correspondence is inferred (research: medium/low)
+    certain: bool = True  # False where the v4 -> v5 correspondence is inferred (confidence: medium/low)
 
     @property
     def position(self) -> int | None:
@@ -120,20 +121,24 @@ def resolve_v5(number: int) -> Address:
     return Address(number, RESERVED, None, f"T{number} (no device has this address)")
 
 
-# -- v4 (research/hyrel_v4.md) ----------------------------------------------------------------------
+# -- v4 (T_v4 page, Hyrel v4 firmware source; docs/sources.md) --------------------------------------
 
-# T variables inside M-codes are device addresses (hyrel_v4.md section 1-3); value: (kind, v5, label, certain)
+# T variables inside M-codes are CAN device addresses (hyrel.h, mailbox.c); value: (kind, v5, label, certain)
 _V4_VARIABLES: dict[int, tuple[str, int | None, str, bool]] = {
     0: (GROUP, 40, "all devices", True),
     10: (GROUP, 41, "yoke 1, all heads", True),
-    # "Aux (yoke-1 aux position) | T10 | T16 | T22 (Aux1) | ... high for v4; mapping to v5 Aux1 is I -
-    # medium" (hyrel_v4.md section 2; open question 4: "whether v5 Aux1 (T22) = v4 device 16")
+    # The aux port: tool 10 -> device 16 in toolNumberMap (confidence: high for v4); that it is v5 Aux1 T22 is
+    # inferred (confidence: medium): no page says whether v5 Aux1 (T22) is v4 device 16 (docs/sources.md)
     16: (AUX, 22, "aux (yoke 1 aux position)", False),
     20: (GROUP, 42, "yoke 2, all heads", True),
     26: (SPINDLE, 20, "3-phase spindle", True),
+    # yokes 3 and 4: in the firmware's tables (confidence: high for v4), but no 3- or 4-yoke machine is
+    # documented, so the v5 counterparts are inferred (confidence: medium) and never applied
     30: (GROUP, 43, "yoke 3, all heads", False),
     40: (GROUP, 44, "yoke 4, all heads", False),
     41: (LASER, 21, "CO2 laser", True),
+    # groups 50-57 (hyrel.h, hyrel_can.h: high for v4); v5 squads T30-T39 and T48 are their likely
+    # counterparts (confidence: medium for 50 -> T48, low for the numbering of 51-57)
     50: (GROUP, 48, "all groups (clone squads)", False),
     90: (GROUP, 46, "all beds", True),
     91: (BED, 24, "hotbed 1", True),
@@ -150,7 +155,7 @@ for _i in range(1, 8):
 for _i in range(1, 5):
     _V4_VARIABLES[41 + _i] = (HEAD, 15 + _i, f"yoke 4, position {_i + 1}", False)
 
-# T commands (a line "T3") are tool numbers (hyrel_v4.md: toolNumberMap): 0-4 yoke 1, 5-9 yoke 2,
+# T commands (a line "T3") are tool numbers (Hydra4/main.c toolNumberMap): 0-4 yoke 1, 5-9 yoke 2,
 # 10 aux, 11 CO2 laser, 12 spindle, 13/14 hotbeds; 50-57 select a group.
 _V4_COMMANDS: dict[int, tuple[str, int | None, str, bool]] = {
     10: (AUX, 22, "aux", False),  # v5 Aux1 inferred, "medium" (as variable 16 above)
@@ -188,7 +193,7 @@ def resolve_v4_command(number: int) -> Address:
 # (T_v5 addresses T10-T19 exist only on three- and four-yoke machines; T90+ do not exist at all.)
 V4_STYLE_VARIABLES = frozenset(list(range(10, 17)) + list(range(21, 27)) + [90, 91, 92, 100])
 
-# The certain part of the v4 -> v5 map for T variables (issue 4 / hyrel_v4.md, confidence "high").
+# The certain part of the v4 -> v5 map for T variables (issue 4; docs/sources.md, confidence "high").
 V4_TO_V5_VARIABLE: dict[int, int] = {
     n: v5 for n, (kind, v5, label, certain) in _V4_VARIABLES.items() if certain and v5 is not None
 }
@@ -201,7 +206,7 @@ V4_TO_V5_COMMAND: dict[int, int] = {
 }
 V5_TO_V4_COMMAND: dict[int, int] = {v5: n for n, v5 in V4_TO_V5_COMMAND.items()}
 
-# The inferred part of the map (research confidence medium or low: v4 aux 16 / tool 10 -> v5 Aux1 T22,
+# The inferred part of the map (confidence medium or low: v4 aux 16 / tool 10 -> v5 Aux1 T22,
 # yokes 3 and 4, groups): never applied, only named in messages as the likely counterpart.
 V4_TO_V5_VARIABLE_INFERRED: dict[int, int] = {
     n: v5 for n, (kind, v5, label, certain) in _V4_VARIABLES.items() if not certain and v5 is not None
@@ -238,7 +243,7 @@ def fits(code: str, address: Address) -> bool:
 
 # -- renumbering one command between v4 and v5 ---------------------------------------------------------
 
-# M702-M704 S: v5 a squad or the head to copy, v4 an alias or a group (hyrel_v4.md section 4)
+# M702-M704 S: v5 a squad or the head to copy (T_v5), v4 an alias or a group (Hydra4/src/MCode.c M702-M704)
 SQUAD_CODES = frozenset({"M702", "M703", "M704"})
 
 
@@ -249,7 +254,7 @@ class Renumbering:
     node: Word  # the Word holding the number (the code word of a T command)
     letter: str  # "T" or "S" (M702-M704)
     number: int
-    new: int | None  # None: no certain counterpart (research/hyrel_v4.md confidence medium or low, or none)
+    new: int | None  # None: no certain counterpart (docs/sources.md confidence medium or low, or none)
     tool_command: bool  # a T command line (a tool number) rather than a T variable
 
     @property

@@ -20,9 +20,10 @@ from gclint.secrets import mask
 class Param:
     """One parameter of a code.
 
-    ``minimum``/``maximum`` bound the value; ``integer`` requires a whole number; ``choices`` lists the
-    only allowed values; ``forbidden`` letters must not appear at all.  ``rule`` names the rule that reports a value outside these bounds (``DL003``
-    by default); ``source`` names the section of the seed document the fact comes from.
+    ``minimum``/``maximum`` bound the value; ``integer`` requires a whole number; ``choices`` lists the only allowed
+    values; ``forbidden`` letters must not appear at all.  ``rule`` names the rule that reports a value outside these
+    bounds (``DL003`` by default); ``source`` names the section of the public source the fact comes from
+    (docs/sources.md).
 
     How ``gclint explain`` reads the word, in the words of the page's "decoded and executed by the
     printer as follows" sections: ``says`` is a phrase with ``{value}`` for the value written (for a T

@@ -1,9 +1,10 @@
 """Makera Carvera (Smoothieware-based community firmware): milling, laser and 4th-axis jobs.
 
-Inventory from ../shared/seeds/carvera-mcodes.md and research/dialects.md section 1.8 [CV].  Carvera runs
+Inventory from the Carvera community docs (github.com/Carvera-Community/docs @ 3a9d423: the M-code table
+firmware/supported-commands/mcodes/README.md and the G-code table gcodes.md).  Carvera runs
 in grbl mode: G4 P is seconds; M3 S is RPM; M6 T is an automatic tool change; M7/M9 are air.  The firmware
 is built on Smoothieware, whose console commands (``echo``, ``play``...) a Carvera file may hold
-(research/firmware_codes.md section 8, gclint/firmware/smoothieware.py): CarveraController's own test
+(Smoothieware source @ bb41e992, gclint/firmware/smoothieware.py): CarveraController's own test
 programs print their progress with ``echo``.
 """
 
@@ -29,7 +30,7 @@ _M = (
     " M887 M888 M957 M958 M1000"
 )
 
-# What the common codes do, for ``gclint explain`` (seeds/carvera-mcodes.md; Smoothieware in grbl mode).
+# What the common codes do, for ``gclint explain`` (Carvera M-code table; Smoothieware in grbl mode).
 _MOVE = {
     "X": "X",
     "Y": "Y",
@@ -114,8 +115,8 @@ def _open(code: str) -> bool:
 
 # Smoothieware in grbl mode, as the Carvera community docs describe it: G4 P and S in seconds, G0 F for that move
 # only ("F applies to that line only", gcodes/g0-default-rapid-feed.md), G28 to the clearance position, T with M6,
-# F on any line, G54 at the start (research/dialects.md 1.8 [CV]).  M7 is the air, M801/M802 the vacuum, M821/M822
-# the light (seeds: Carvera M-code table).
+# F on any line, G54 at the start (Carvera community docs, gcodes.md).  M7 is the air, M801/M802 the vacuum, M821/M822
+# the light (Carvera M-code table).
 CARVERA_SEMANTICS = Semantics(
     dwell=DWELL_SECONDS_SUM,
     extruder=None,
@@ -127,7 +128,7 @@ CARVERA_SEMANTICS = Semantics(
     feed_on_any_command=True,
     default_workspace="G54",
     tool_change_stops_spindle=True,
-    no_tool=-1,  # "M6 | Auto tool change, T0 indicates wireless probe, T-1 indicates None" (seeds/carvera-mcodes.md,
+    no_tool=-1,  # "M6 | Auto tool change, T0 indicates wireless probe, T-1 indicates None" (Carvera M-code table,
     probe_tool=0,  # https://carvera-community.gitbook.io/docs/firmware/supported-commands/mcodes)
     effects=effects(
         WORKSPACES,
@@ -139,7 +140,7 @@ CARVERA_SEMANTICS = Semantics(
             "M2": "end-program",
             "M30": "end-program",
             "M6": "tool-change",
-            "M98": "run-macro-file",  # "M98 P<n>: run gcodes/macros/<n>.cnc" (seeds: Carvera M-code table)
+            "M98": "run-macro-file",  # "M98 P<n>: run gcodes/macros/<n>.cnc" (Carvera M-code table)
             "M600": "pause",
             "M25": "pause",
             "M1": "optional-stop",
@@ -183,9 +184,9 @@ CARVERA = Dialect(
     semantics=CARVERA_SEMANTICS,
     console=True,
     sources=(
-        "seeds/carvera-mcodes.md",
-        "research/dialects.md section 1.8 [CV]",
-        "research/firmware_codes.md section 8",
+        "Carvera M-code table: github.com/Carvera-Community/docs, firmware/supported-commands/mcodes/README.md",
+        "Carvera G-code table: github.com/Carvera-Community/docs, firmware/supported-commands/gcodes.md",
+        "Smoothieware source: github.com/Smoothieware/Smoothieware @ bb41e992",
     ),
     extras={"max_rpm": 15000},
 )

@@ -1,8 +1,8 @@
 """Hyrel (Repetrel / Hydra motion controller), firmware v5 and v4.
 
-Every code, parameter and range here comes from ../shared/seeds/hyrel-gcode-reference.wiki.txt (the
-"Gcode" page; section names in the ``source`` fields), the T_v5 page and the hidden-codes page, as
-catalogued in ../shared/research/dialects.md sections 1.8 and 3.  Ranges that a specific rule reports
+Every code, parameter and range here comes from the Hyrel wiki's "Gcode" page
+(https://hyrel3d.com/wiki/index.php/Gcode; section names in the ``source`` fields), the T_v5 page and the
+hidden-codes page Sekret! (addresses and revisions: docs/sources.md).  Ranges that a specific rule reports
 carry that rule's code (``rule="HY0nn"``); the others are reported by DL003.
 """
 
@@ -192,7 +192,7 @@ _ARC = [
     P("E", "printing move", says=_EXTRUDING),
     P("S", "segment length (<3) or segment count (>=3, full circles only)", absent=_SEGMENTS),
     # G2 Clockwise Arc: usage "G2 Xn Yn Zn In Jn Fn En Sn" -- no R (radius) and no K; the firmware
-    # draws plain G2/G3 in XY only (research/dialects.md H19).
+    # draws plain G2/G3 in XY only (Hyrel firmware source, src/GCode.c ProcessG2G3Command).
     P("R", "radius form is not supported", rule="HY017", forbidden=True),
     P("K", "K is not supported on G2/G3", rule="HY017", forbidden=True),
 ]
@@ -957,7 +957,7 @@ HYREL_DETECTION = Detection(
             weight=6,
         ),
     ),
-    prior=1.0,  # the first target: Hyrel wins where the evidence ties (DESIGN.md, "Dialect names")
+    prior=1.0,  # the first target: Hyrel wins where the evidence ties (docs/architecture.md, detection)
 )
 # What a Hyrel machine does with a line (Hyrel wiki, Gcode page; the section named at each effect).
 HYREL_SEMANTICS = Semantics(
@@ -1013,7 +1013,7 @@ HYREL_V5 = Dialect(
     aliases=("hyrel-v5", "hyrel5"),
     detection=HYREL_DETECTION,
     open_codes=_is_t_command,
-    unknown_severity="error",  # Hyrel firmware reuses numbers with other meanings (dialects.md X1)
+    unknown_severity="error",  # Hyrel firmware reuses numbers with other meanings (Hyrel firmware source, inc/GCode.h)
     unknown_note=(
         "Repetrel does not list {code}; Hyrel reuses many numbers for other things, so it is rejected or does "
         "something else"
@@ -1021,9 +1021,9 @@ HYREL_V5 = Dialect(
     description="Hyrel 3D printers (30M, ESR, EHR, 16A) with Repetrel/firmware v5: T commands and T variables share one address table.",
     semantics=HYREL_SEMANTICS,
     sources=(
-        "seeds/hyrel-gcode-reference.wiki.txt",
-        "seeds/hyrel-T_v5-addressing.wiki.txt",
-        "seeds/hyrel-hidden-codes.wiki.txt",
+        "Gcode page: https://hyrel3d.com/wiki/index.php/Gcode (revision 4926, 2020-07-02)",
+        "T_v5: https://hyrel3d.com/wiki/index.php/T_v5 (revision 4502, 2020-05-14)",
+        "Sekret! (hidden codes): https://hyrel3d.in/wiki/index.php?title=Sekret%21 (revision 4283, 2020-05-10)",
     ),
     extras={
         "firmware": 5,
@@ -1047,8 +1047,9 @@ HYREL_V4 = HYREL_V5.derive(
     add=[
         # "M116 is supported with version 5.x and later" (Gcode page): known, but not supported (HY027).
         replace(HYREL_CODES["M116"], summary="wait for W0 temperatures (v5+ only: not on v4)", supported=False),
-        # v4 M702 seeds group S (50-57) with device T's settings (hyrel_v4.md section 4: 4.200c); explain
-        # reads it as the v5 squad (the T and S readings and the M30 note of v5's M702)
+        # v4 M702 seeds group S (50-57) with device T's settings (Hyrel v4 firmware source, Hydra4/src/MCode.c
+        # M_Code_M702; changelog 4.200c in Hydra4/inc/main.h); explain reads it as the v5 squad (the T and S
+        # readings and the M30 note of v5's M702)
         replace(
             HYREL_CODES["M702"],
             summary="seed group S (50-57) with device T's settings (v4)",
@@ -1056,10 +1057,10 @@ HYREL_V4 = HYREL_V5.derive(
                 "T": replace(_catalogued("M702", "T"), meaning="device whose settings are copied"),
                 "S": replace(_catalogued("M702", "S"), meaning="group number", minimum=50, maximum=57),
             },
-            source="T_v4 / hyrel_v4.md section 4",
+            source="T_v4; Hyrel v4 firmware source, Hydra4/src/MCode.c M_Code_M702",
         ),
-        # v4 M703/M704 give a device an alias (hyrel_v4.md section 4); the v5 squad form needs S, but v4
-        # jobs also use other letters (M703 T14 P10 in the corpus), so nothing is required here.
+        # v4 M703/M704 give a device an alias (Hydra4/src/MCode.c M_Code_M703, M_Code_M704); the v5 squad form
+        # needs S, but v4 jobs also use other letters (M703 T14 P10 in the corpus), so nothing is required here.
         code(
             "M703",
             "add alias S to device T (v4)",
@@ -1067,17 +1068,22 @@ HYREL_V4 = HYREL_V5.derive(
             P("S", "alias", says="gets the alias {value} (v4 cloning: commands sent to {value} reach this device too)"),
             P("P", "firmware parameter"),
             P("C", "seed group (4.0 firmware)"),
-            source="T_v4 / hyrel_v4.md section 4",
+            source="T_v4; Hyrel v4 firmware source, Hydra4/src/MCode.c M_Code_M703",
         ),
         code(
             "M704",
             "remove alias S from device T (v4)",
             P("T", "device", says="device: {value}"),
             P("S", "alias", says="remove the alias {value}"),
-            source="T_v4 / hyrel_v4.md section 4",
+            source="T_v4; Hyrel v4 firmware source, Hydra4/src/MCode.c M_Code_M704",
         ),
     ],
     aliases=("hyrel4",),
+    sources=(
+        *HYREL_V5.sources,
+        "T_v4: https://hyrel3d.com/wiki/index.php?title=T_v4&oldid=7348",
+        "Hyrel v4 firmware source: github.com/Karl690/HydraSt_407 @ 734de72 (Hydra4/main.c, Hydra4/src/MCode.c)",
+    ),
     variant_of="hyrel",
     detection=HYREL_DETECTION,  # v4 or v5 is decided from the addresses the file uses (gclint.context)
     description="Hyrel firmware/Repetrel v4 and earlier: T commands are tool numbers 0-9, T variables inside M-codes are CAN device addresses.",

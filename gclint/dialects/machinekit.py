@@ -1,7 +1,7 @@
 """Machinekit FDM (LinuxCNC interpreter with the FDM remaps), also used for plain LinuxCNC programs.
 
-The FDM codes come from the Machinekit-FDM remap.ini (research/dialects.md 1.8 [MK]) and the seed README
-(../shared/seeds/machinekit-fdm-mcodes.md: M104 P<index> S<temp>, M106 P<index> S<pwm> I, M109 P S).  The base
+The FDM codes come from the Machinekit-FDM remap.ini (github.com/machinekoder/Machinekit-FDM-Standard @ 397d429)
+and its first README (GCode.md, December 2014: M104 P<index> S<temp>, M106 P<index> S<pwm> I, M109 P S).  The base
 language is LinuxCNC's RS274NGC: O-words, #parameters, [expressions], user M-codes M100-M199.
 """
 
@@ -14,10 +14,11 @@ from gclint.syntax.nodes import ASSIGNMENT, GCODE, IMPLICIT, OWORD
 
 P = Param
 
-# The base language: LinuxCNC's G and M codes (research/firmware_codes.md section 7, gclint/firmware/linuxcnc.py).
+# The base language: LinuxCNC's G and M codes (LinuxCNC docs @ 5c41560e, gclint/firmware/linuxcnc.py).
 _LINUXCNC_G = G_CODES
 _LINUXCNC_M = M_CODES
-# Machinekit-FDM remap.ini (final flavour: value in P, index in T) and the seed README flavour.
+# Machinekit-FDM remap.ini (final flavour: value in P, index in T) and the flavour of its first README ("Machinekit
+# Flavor GCode", Dec 2014).
 _FDM = [
     code(
         "M104",
@@ -26,7 +27,7 @@ _FDM = [
         P("S", "temperature (seed)"),
         P("T", "extruder index (final)"),
         P("I", "immediate"),
-        source="remap.ini / seed README",
+        source="remap.ini / first README (Dec 2014)",
     ),
     code(
         "M106",
@@ -35,7 +36,7 @@ _FDM = [
         P("S", "PWM 0-255 (seed)"),
         P("T", "fan index (final)"),
         P("I", "execute immediately"),
-        source="remap.ini / seed README",
+        source="remap.ini / first README (Dec 2014)",
     ),
     code(
         "M107", "fan off", P("T", "fan index"), P("P", "device index (seed)"), P("I", "immediate"), source="remap.ini"
@@ -46,7 +47,7 @@ _FDM = [
         P("P", "temperature (final) or sensor index (seed)"),
         P("S", "temperature (seed)"),
         P("T", "extruder index"),
-        source="remap.ini / seed README",
+        source="remap.ini / first README (Dec 2014)",
     ),
     code(
         "M140", "set bed temperature", P("P", "temperature"), P("S", "temperature (RepRap style)"), P("I", "immediate")
@@ -187,7 +188,7 @@ def _bracket_expression(cmd) -> bool:
     return cmd.kind == GCODE and any(v and v[0] in "[#" for v in cmd.params.values())
 
 
-# Content that marks Machinekit/LinuxCNC (research/dialects.md 1.8 [MK, LCNC] and section 2.2's flavour detection).
+# Content that marks Machinekit/LinuxCNC (Machinekit-FDM remap.ini, LinuxCNC docs; docs/translation.md, Machinekit).
 # The RS274NGC program language (O-words, # parameters, [expressions]) is Carvera's too.
 NGC_LANGUAGE_CLUES = (
     # "S10000 M3": a spindle speed written as a word of its own, before the M3 (RS274NGC)
@@ -226,7 +227,8 @@ MACHINEKIT_CLUES = (
 # The LinuxCNC interpreter's reading of a line, which Machinekit shares (gclint.dialects.semantics names the
 # sections of the LinuxCNC documentation): the order of execution, G90.1/G91.1, G28/G30 through a point to a stored
 # position, T that the next M6 loads (T0: no tool), G4 P in seconds, F on any line, G54 at the start.  The extruder
-# is the A axis ("A follows G90/G91", research/dialects.md 1.1 G1 [MK]).
+# is the A axis (Machinekit-FDM GCode.org G28 and subroutines/g28.ngc; machinekit-cnc scripts/gcode-to-ngc rewrites
+# E to A).
 MACHINEKIT_SEMANTICS = Semantics(
     dwell=DWELL_P_SECONDS,
     extruder="A",
@@ -241,7 +243,7 @@ MACHINEKIT_SEMANTICS = Semantics(
     g30="predefined",
     tool_select="prepare",
     no_tool=0,
-    wait_r=None,  # the FDM remaps' M109 takes P (value) and T (index): research/dialects.md 1.8 [MK]
+    wait_r=None,  # the FDM remaps' M109 takes P (value) and T (index): Machinekit-FDM remap.ini "argspec=tP"
     heat_words="remap",
     feed_on_any_command=True,
     default_workspace="G54",
@@ -274,7 +276,7 @@ MACHINEKIT_SEMANTICS = Semantics(
             "M7": "coolant",
             "M8": "coolant",
             "M9": "coolant-off",
-            "M226": "pause",  # the FDM remap's pause (research/dialects.md 2.2, M226 -> M0)
+            "M226": "pause",  # the FDM remap's pause (Machinekit-FDM remap.ini, M226; docs/translation.md)
             "M221": "flow",
             "M18": None,  # (no motors-off code in LinuxCNC)
             "M84": None,
@@ -298,14 +300,18 @@ MACHINEKIT = Dialect(
         prior=0.05,  # an RS274NGC program Carvera runs as well is more often LinuxCNC's (it shares Carvera's clues)
     ),
     owords=True,
-    not_move_words="E",  # research/dialects.md 1.1 (G1, Machinekit: A = extruder) and 1.8 [MK]
+    not_move_words="E",  # the extruder is A (Machinekit-FDM subroutines/g28.ngc; gcode-to-ngc: E -> A)
     open_codes=_open,
     unknown_severity="error",  # the LinuxCNC interpreter stops on an unknown code
     unknown_note="the machinekit interpreter stops on an unknown code",
     description="Machinekit's FDM configuration of the LinuxCNC interpreter; also plain LinuxCNC programs.",
     semantics=MACHINEKIT_SEMANTICS,
     machine_ini=True,
-    sources=("seeds/machinekit-fdm-mcodes.md", "research/dialects.md section 1.8 [MK, LCNC]"),
+    sources=(
+        "Machinekit-FDM: github.com/machinekoder/Machinekit-FDM-Standard (GCode.md of Dec 2014; remap.ini @ 397d429)",
+        "machinekit-cnc: github.com/machinekit/machinekit-cnc @ 93065fc (remap-subroutines/fdm, scripts/gcode-to-ngc)",
+        "LinuxCNC docs: https://linuxcnc.org/docs/html/gcode/g-code.html (source @ 5c41560e)",
+    ),
     extras={"fan_max": 255},
 )
 

@@ -1,7 +1,7 @@
 """Marlin 2.x (and the Marlin-like flavours of slicers: Prusa firmware, Bambu, Creality, Klipper hosts).
 
-Inventory from the Marlin G-code reference (marlinfw.org, research/dialects.md section 1 [MAR]) and
-Marlin's own dispatch (research/firmware_codes.md section 5).  Parameters are not catalogued: Marlin
+Inventory from the Marlin G-code reference (https://marlinfw.org/meta/gcode/) and Marlin's own dispatch
+(Marlin source @ 005ec919, Marlin/src/gcode/gcode.cpp).  Parameters are not catalogued: Marlin
 ignores letters it does not use.  Klipper extended commands (``SET_FAN_SPEED ...``) are accepted because
 Klipper hosts read Marlin-flavour files.  What Prusa, Bambu and Klipper firmware add is in their own
 inventories (gclint/firmware/): a file written for one of them (``Context.flavor``) is checked against
@@ -31,14 +31,14 @@ _M = (
     " M808 M851 M852 M860 M861 M862 M863 M864 M865 M866 M867 M868 M869 M871 M876 M900 M906 M907 M908 M909"
     " M910 M911 M912 M913 M914 M915 M916 M917 M918 M919 M928 M951 M993 M994 M995 M997 M999 M7219"
 )
-# In Marlin's dispatch (firmware_codes.md section 5, Marlin @ 005ec919) but not in the reference: the
+# In Marlin's dispatch (Marlin/src/gcode/gcode.cpp @ 005ec919) but not in the reference: the
 # MMU3 codes, internal and board-specific ones.
 _SOURCE = (
     "G800 M12 M293 M294 M309 M414 M485 M552 M553 M554 M704 M705 M706 M707 M708 M709 M800 M936 M1000 M1001"
     " M1002 M1003 M1004 M3426"
 )
 
-# What the common codes do, for ``gclint explain`` (Marlin G-code reference, marlinfw.org; dialects.md 1 [MAR]).
+# What the common codes do, for ``gclint explain`` (Marlin G-code reference, marlinfw.org/meta/gcode/).
 _MOVE = {
     "X": "X",
     "Y": "Y",
@@ -188,7 +188,7 @@ def _open(code: str) -> bool:
 # Content that marks Marlin-flavour G-code (the Marlin habits Hyrel's rules catch are Hyrel's habits, no clue).
 MARLIN_CLUES = (Clue("a Klipper extended command (NAME KEY=VALUE)", kind=EXTENDED, weight=4),)
 
-# What Marlin's machine does with a line (gclint.dialects.semantics names the sources; research/dialects.md 1.1-1.5
+# What Marlin's machine does with a line (gclint.dialects.semantics names the sources; the Marlin G-code reference
 # for G0, G90 and G28).  Pauses: M0/M1 "wait for user", M25 "pause SD print", M226 "wait for pin state", M600
 # "filament change" (Marlin G-code reference).  M30 deletes a file from the SD card: no effect on the machine.
 MARLIN_EFFECTS = effects(
@@ -215,10 +215,10 @@ MARLIN_EFFECTS = effects(
 )
 MARLIN_SEMANTICS = Semantics(
     dwell=DWELL_MS_S_WINS,
-    g0_extrudes=True,  # "on Cartesians [G0] must be a direct alias for G1", E allowed (dialects.md 1.1 G0)
+    g0_extrudes=True,  # "on Cartesians [G0] must be a direct alias for G1", E allowed (Marlin reference, G0-G1)
     g0_feed="modal",
-    e_follows_g90=True,  # "G90/G91 reset E mode" (dialects.md 1.1 G1)
-    arc_turns="extra",  # "P = number of extra full circles" (ARC_P_CIRCLES, dialects.md 1.1 G2/G3)
+    e_follows_g90=True,  # G90/G91 also set the E mode (Marlin reference, G90 and G91)
+    arc_turns="extra",  # P full circles before the arc (ARC_P_CIRCLES: Marlin/src/gcode/motion/G2_G3.cpp)
     commands_per_line="first",
     # "G53: ... if (parser.chain()) process_parsed_command()": the move after G53 runs, in machine coordinates
     # (Marlin/src/gcode/geometry/G53-G59.cpp, with CNC_COORDINATE_SYSTEMS)
@@ -259,9 +259,12 @@ MARLIN = Dialect(
     ),
     extended_commands=True,
     open_codes=_open,
-    unknown_severity="warning",  # Marlin echoes "Unknown command" and goes on (anchors.md, Marlin)
+    unknown_severity="warning",  # Marlin echoes "Unknown command" and goes on (Marlin/src/gcode/gcode.cpp)
     description="Marlin firmware and Marlin-flavour output of the common slicers.",
     semantics=MARLIN_SEMANTICS,
-    sources=("research/dialects.md section 1 [MAR]",),
+    sources=(
+        "Marlin G-code reference: https://marlinfw.org/meta/gcode/ (MarlinDocumentation _gcode/*.md @ 9ceeb6e)",
+        "Marlin source: github.com/MarlinFirmware/Marlin @ 005ec919, Marlin/src/gcode/gcode.cpp",
+    ),
     extras={"fan_max": 255},
 )

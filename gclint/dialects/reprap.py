@@ -1,7 +1,7 @@
 """RepRapFirmware 3.x (Duet): G/M codes, meta commands (if, var, echo...), {expressions}, macros.
 
-Inventory from the Duet G-code dictionary (research/dialects.md section 1 [RRF]) and the codes the
-firmware's source has built in (research/firmware_codes.md section 6, gclint/firmware/reprapfirmware.py).  RepRapFirmware runs
+Inventory from the Duet G-code dictionary (https://docs.duet3d.com/User_manual/Reference/Gcodes) and the codes
+the firmware's source has built in (RepRapFirmware @ fc1cd16c, gclint/firmware/reprapfirmware.py).  RepRapFirmware runs
 a macro file for a code it does not know (sys/M<n>.g, sys/G<n>.g), so no G or M code is unknown there
 (DL001 speaks only of constructs it has not, such as Klipper's extended commands, and then as a warning).
 """
@@ -49,7 +49,7 @@ def system_file(path: str) -> bool:
     return len(parts) >= 2 and parts[-2] == "sys" and parts[-1].endswith(".g")
 
 
-# What the common codes do, for ``gclint explain`` (Duet G-code dictionary; dialects.md 1 [RRF]).
+# What the common codes do, for ``gclint explain`` (Duet G-code dictionary).
 _MOVE = {
     "X": "X",
     "Y": "Y",
@@ -180,14 +180,14 @@ def _object_model(cmd) -> bool:
     return any(v and v[0] == "{" for v in cmd.params.values())
 
 
-# Content that marks RepRapFirmware 3 (research/dialects.md 1 [RRF]; firmware_codes.md).
+# Content that marks RepRapFirmware 3 (Duet G-code dictionary; RepRapFirmware source @ fc1cd16c).
 REPRAP_CLUES = (
     Clue("a meta command (if, while, var, set, global, abort)", kind=META, test=lambda c: c.code != "echo", weight=4),
     Clue("an echo command (RepRapFirmware or Carvera console)", "echo", weight=1),
     # (a CNC M98 calls a numbered subprogram: M98 P100)
     Clue('M98 P"file": calls a macro file by name', "M98", test=lambda c: not is_number(c.params.get("P") or "")),
     Clue("an object-model expression {...}", test=_object_model, contains="{"),
-    # "string parameters ... enclosed in double quotes" (Duet G-code dictionary; research/dialects.md 1 [RRF]):
+    # "string parameters ... enclosed in double quotes" (Duet G-code dictionary):
     # M291 P"message", M4000 S"tool name" (Prusa's M862.3 P "MK4S" is its flavour's own pattern)
     Clue(
         'a quoted string parameter (P"...")',
@@ -203,7 +203,7 @@ REPRAP_CLUES = (
     ),
     Clue("T-1: deselects every tool", "T-1"),
     # "G1 H1: ... the move is terminated when the endstop switch is triggered", H2 moves motors individually
-    # (Duet G-code dictionary, G0/G1; research/dialects.md 1.1 [RRF]); Marlin's moves have no H, Hyrel's H
+    # (Duet G-code dictionary, G0/G1); Marlin's moves have no H, Hyrel's H
     # applies an M660 register (a Hyrel job with no M660 gets HY034, gclint.dialects.habits)
     *(
         Clue(f"{c} H1/H2/H3/H4: a homing move", c, test=lambda c: c.params.get("H") in ("1", "2", "3", "4"))
@@ -214,10 +214,10 @@ REPRAP_CLUES = (
 # RepRapFirmware reads a line as Marlin does (G0 is G1 in FDM mode, G4 S counts when both are given: GCodes.cpp
 # DoDwell) except: G90/G91 leave the E mode alone ("extrusion is NOT set to absolute using G90"), every command of a
 # line runs (StringParser.cpp), M0/M1/M2 end the job, M116 waits for every set-point, G10/M568 set tool
-# temperatures (research/dialects.md 1.1-1.5 [RRF]).
+# temperatures (Duet G-code dictionary: G90, M0-M2, M116, G10, M568).
 REPRAP_SEMANTICS = MARLIN_SEMANTICS.derive(
     e_follows_g90=False,
-    fan_scale="255-or-fraction",  # M106 S: "0-1, or 0-255 above 1" (research/dialects.md 1.3 M106 [RRF])
+    fan_scale="255-or-fraction",  # M106 S: "0-1, or 0-255 above 1" (Duet G-code dictionary, M106)
     commands_per_line="all",
     effects={
         "M0": "end-program",
@@ -227,7 +227,7 @@ REPRAP_SEMANTICS = MARLIN_SEMANTICS.derive(
         "G10": "tool-temperature-or-offset",
         "M568": "tool-temperature",
         "M563": "define-tool",
-        # not Marlin's EEPROM: RepRapFirmware's M500 writes sys/config-override.g (research/dialects.md 1.7)
+        # not Marlin's EEPROM: RepRapFirmware's M500 writes sys/config-override.g (Duet G-code dictionary, M500)
         "M500": None,
         "M501": None,
         "M502": None,
@@ -260,6 +260,9 @@ REPRAP = Dialect(
     meta_keywords=META_KEYWORDS,
     macro_file=macro_file,
     system_file=system_file,
-    sources=("research/dialects.md section 1 [RRF]",),
+    sources=(
+        "Duet G-code dictionary: https://docs.duet3d.com/User_manual/Reference/Gcodes (Duet3D/wiki-content @ 91f2348)",
+        "RepRapFirmware source: github.com/Duet3D/RepRapFirmware @ fc1cd16c (3.5-dev)",
+    ),
     extras={"fan_max": 255},
 )

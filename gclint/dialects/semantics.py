@@ -245,7 +245,7 @@ class Semantics:
       while heating or cooling: Marlin, RepRapFirmware), ``"tolerance"`` (the window the wait accepts: Hyrel,
       "M109 Wait for Temp (Head)"), None (no R).  ``heat_words``: which words carry a set-point and the tool it
       is for: ``"S"`` (S, and T the tool) or ``"remap"`` (Machinekit FDM: the README's ``M104 P<index> S<temp>``,
-      else the remap's ``M104 P<temp> T<index>``: research/dialects.md 1.8 [MK]).
+      else the remap's ``M104 P<temp> T<index>``: Machinekit-FDM remap.ini "argspec=iPt").
     * ``user_programs``: M100-M199 run the external program of that name where the dialect has no code of its
       own by that number (LinuxCNC's M-code documentation, "M100-M199 User Defined Commands").
     * ``blanks_ignored``: spaces and tabs outside comments do not count, even inside a number (LinuxCNC: "Spaces

@@ -1,7 +1,7 @@
 """``gclint explain``: decode each command in the printer's own terms.
 
 Modelled on the "This command is decoded and executed by the printer as follows" sections of the Hyrel
-Gcode page (../shared/seeds/hyrel-gcode-reference.wiki.txt):
+Gcode page (https://hyrel3d.com/wiki/index.php/Gcode):
 
     M109 T0 S240 L10 U5
     * M109 (wait for head temperature)

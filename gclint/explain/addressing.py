@@ -142,7 +142,7 @@ def tool(job: Job, cmd: Command, line: Line) -> Explanation:
     return Explanation(line.number, line.raw, code, f"switch focus to {address_text(job, address)}")
 
 
-# -- clone squads (T_v5 M702-M704; v4: aliases, hyrel_v4.md section 4) ---------------------------------
+# -- clone squads (T_v5 M702-M704; v4: aliases, Hydra4/src/MCode.c M702-M704) --------------------------
 
 
 def _squad(cmd: Command) -> int | None:

@@ -1,4 +1,5 @@
-"""Firmware inventories: the codes each real firmware documents, as data (research/firmware_codes.md).
+"""Firmware inventories: the codes each real firmware documents, as data (each module names the firmware source it was
+read from, by repository and commit; docs/sources.md, Firmware inventories).
 
 A dialect (gclint/dialects/) says how a family of files is read and checked; an inventory says which
 codes one firmware accepts.  Prusa (Buddy and MK3), Bambu and Klipper read Marlin-flavour files: their

@@ -1,6 +1,6 @@
 """Bambu Lab printers (X1, P1, A1, H2D, H2C), as their own slicer profiles use them.
 
-Bambu publishes no G-code reference: research/firmware_codes.md section 3 lists the codes found in Bambu's
+Bambu publishes no G-code reference: this inventory lists the codes found in Bambu's
 machine profiles (bambulab/BambuStudio resources/profiles/BBL/machine, several commits) and those
 BambuStudio itself writes ("slicer" in the section).  Sub-codes are separate codes; G28.14/G28.140 and
 G29.2/G29.20 are distinct on the printer, but gclint's parser reads a sub-code as a decimal (G28.140 is
@@ -50,5 +50,5 @@ BAMBU = Firmware(
             (r"^;\s*BambuStudio\b[^\n]*", 2),
         )
     ),
-    source="research/firmware_codes.md section 3 (BambuStudio machine profiles)",
+    source="BambuStudio machine profiles: github.com/bambulab/BambuStudio, resources/profiles/BBL/machine",
 )

@@ -3,7 +3,7 @@
 
 An inventory is a set of normalised codes (``M862.3``, ``G28``) and of command words that are not G/M
 codes (Klipper's ``SET_FAN_SPEED``, Prusa's ``PRUSA``).  Each module cites the section of
-``research/firmware_codes.md`` it was taken from, and lists nothing that section does not list.
+firmware source (repository and commit) it was taken from, and lists nothing that section does not list.
 """
 
 from __future__ import annotations

@@ -1,6 +1,6 @@
 """Klipper: the traditional G/M codes it accepts and its extended commands.
 
-Inventory: research/firmware_codes.md section 4 (Klipper3d/klipper @ 84104bbb, docs/G-Codes.md and the
+Inventory: the Klipper source (github.com/Klipper3d/klipper @ 84104bbb, docs/G-Codes.md and the
 ``register_command`` calls).  Extended commands are words followed by ``KEY=VALUE`` pairs; any name can
 also be a ``[gcode_macro]`` on a given machine (PRINT_START and the like), so a Klipper file's own macros
 go in ``extend-known-codes``.
@@ -80,5 +80,5 @@ KLIPPER = Firmware(
             Clue("a command word (a Klipper macro)", kind=EXTENDED, test=_macro, weight=2),
         ),
     ),
-    source="research/firmware_codes.md section 4 (Klipper @ 84104bbb)",
+    source="Klipper: github.com/Klipper3d/klipper @ 84104bbb, docs/G-Codes.md",
 )

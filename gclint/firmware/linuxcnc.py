@@ -1,6 +1,7 @@
 """LinuxCNC (RS274NGC): the G and M codes its interpreter documents.
 
-Inventory: research/firmware_codes.md section 7 (LinuxCNC @ 5c41560e, docs/src/gcode/*.adoc).  M100-M199
+Inventory: the LinuxCNC documentation (https://linuxcnc.org/docs/html/gcode/g-code.html and m-code.html;
+source github.com/LinuxCNC/linuxcnc @ 5c41560e, docs/src/gcode/*.adoc).  M100-M199
 are user-defined (an external program of that name), and ``REMAP=`` lines in a machine's INI file can
 define any unallocated code: those are the machine's own, declared with ``extend-known-codes``.  The
 Machinekit dialect (gclint/dialects/machinekit.py) is this language plus the FDM remaps.
@@ -26,5 +27,5 @@ LINUXCNC = Firmware(
     title="LinuxCNC",
     codes=code_set(G_CODES, M_CODES),
     dialect="machinekit",
-    source="research/firmware_codes.md section 7 (LinuxCNC @ 5c41560e)",
+    source="LinuxCNC documentation: https://linuxcnc.org/docs/html/gcode/ (github.com/LinuxCNC/linuxcnc @ 5c41560e)",
 )

@@ -4,8 +4,8 @@ The remaps (``remap.ini``: ``REMAP=G28 modalgroup=1 argspec=xyza ngc=g28``, ``M1
 meaning than LinuxCNC's: G28 rapids the listed axes (all when none) to zero and resets the extruder axis A, since
 "Machinekit does not support homing from GCode" (Machinekit-FDM-Standard, GCode.org "G28: Move to Origin" and
 ``subroutines/g28.ngc``); G30 is a probe.  A job that uses the remaps' own codes (``M104 P200``, ``G22``) is read
-with them; a plain LinuxCNC program keeps LinuxCNC's G28 (gclint.dialects.semantics).  Research/dialects.md 1.8
-and 2.2 [MK].
+with them; a plain LinuxCNC program keeps LinuxCNC's G28 (gclint.dialects.semantics).  Sources: Machinekit-FDM
+(github.com/machinekoder/Machinekit-FDM-Standard @ 397d429: GCode.md, remap.ini, subroutines/*.ngc).
 """
 
 from __future__ import annotations
@@ -41,7 +41,7 @@ MACHINEKIT_FDM = Firmware(
             Clue("M700-M702: Machinekit velocity extrusion", "M700", weight=4),
         ),
     ),
-    source="research/dialects.md 1.8 and 2.2 [MK]",
+    source="Machinekit-FDM: github.com/machinekoder/Machinekit-FDM-Standard @ 397d429, remap.ini",
     marks_dialect=False,
     semantics={"home": "zero-listed", "g30": None},
 )

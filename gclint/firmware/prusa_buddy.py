@@ -1,7 +1,7 @@
 """Prusa Buddy firmware (32-bit: MK4/MK4S, MK3.5/MK3.9, MINI, XL, CORE One, iX).
 
-Inventory: research/firmware_codes.md section 1 (prusa3d/Prusa-Firmware-Buddy @ 818d812f): Prusa's own
-dispatch table and the Marlin fork's.  The Marlin codes the section lists separately as gated behind
+Inventory: the Prusa Buddy firmware source (github.com/prusa3d/Prusa-Firmware-Buddy @ 818d812f): Prusa's own
+dispatch table and the Marlin fork's.  The Marlin codes listed separately as gated behind
 options no stock configuration sets (G10, M3-M5, M125, M413 ...) are left out: stock Buddy builds answer
 "unknown" to them.  In Buddy, M862-M865 and M970-M977 have Prusa's meanings (the custom table runs first).
 """
@@ -41,7 +41,7 @@ PRUSA_BUDDY = Firmware(
     detection=Detection(
         patterns=(
             # PrusaSlicer's settings (the top block from 2.8, the end of every file) and the start G-code's
-            # printer check (M862.3 P "MK4S": firmware_codes.md section 1, M862.3)
+            # printer check (M862.3 P "MK4S": Prusa-Firmware-Buddy, M862.3)
             (rf"(?i)^;\s*printer_model\s*=\s*{MODELS}[\w.]*\s*$", 8),
             (rf'(?i)^\s*M862\.3\s*P\s*"{MODELS}[\w.]*"', 8),
             # PrusaSlicer's printer profile keywords ("; printer_notes = ...PRINTER_MODEL_MK3..."): the profile
@@ -49,5 +49,5 @@ PRUSA_BUDDY = Firmware(
             (rf"(?i)^;\s*printer_notes\s*=[^\n]*PRINTER_MODEL_{MODELS}", 8),
         )
     ),
-    source="research/firmware_codes.md section 1 (Prusa-Firmware-Buddy @ 818d812f)",
+    source="Prusa-Firmware-Buddy: github.com/prusa3d/Prusa-Firmware-Buddy @ 818d812f",
 )

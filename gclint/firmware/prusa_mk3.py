@@ -1,6 +1,6 @@
 """Prusa MK3 / MK3S / MK2.5S firmware (8-bit, Prusa-Firmware).
 
-Inventory: research/firmware_codes.md section 2 (prusa3d/Prusa-Firmware @ 0c9bf5d4, 3.14.0-BETA1): the
+Inventory: the Prusa MK3 firmware source (github.com/prusa3d/Prusa-Firmware @ 0c9bf5d4, 3.14.0-BETA1): the
 "### ..." blocks of ``process_commands()`` checked against the ``case`` labels.  G82-G85 are inside
 ``#if 0`` (not compiled) and left out; plain M862 has no action of its own (only M862.x).
 """
@@ -50,5 +50,5 @@ PRUSA_MK3 = Firmware(
             (rf"(?i)^;\s*printer_notes\s*=[^\n]*PRINTER_MODEL_{MODELS}", 8),
         )
     ),
-    source="research/firmware_codes.md section 2 (Prusa-Firmware @ 0c9bf5d4)",
+    source="Prusa-Firmware: github.com/prusa3d/Prusa-Firmware @ 0c9bf5d4",
 )

@@ -3,7 +3,8 @@ Skeinforge-era slicers wrote for them: ``M101``/``M103`` turn the extruder on an
 speed.  Marlin answers "Unknown command" to those, so a file that uses them was written for one of these
 firmwares, and gclint checks it against the page that documents them.
 
-Source: ../shared/seeds/reprap-gcode-2015.txt (every code with a heading of its own on the page).
+Source: the RepRap wiki G-code page (https://reprap.org/wiki/G-code) as revised on 15 January 2015 by Adrianbowyer
+(every code with a heading of its own on the page).
 """
 
 from __future__ import annotations
@@ -40,7 +41,7 @@ REPRAP_2015 = Firmware(
             ),
         ),
     ),
-    source="seeds/reprap-gcode-2015.txt",
+    source="RepRap wiki G-code page, https://reprap.org/wiki/G-code (revision of 2015-01-15)",
     # the page lists every firmware's codes of its time, Hyrel's numbers among them (M229, M721...): they
     # tell no dialect, only this flavour once the file is read as Marlin-flavour
     marks_dialect=False,

@@ -1,6 +1,6 @@
 """RepRapFirmware 3.5 (Duet): the G/M codes it has built in, and its meta commands.
 
-Inventory: research/firmware_codes.md section 6 (Duet3D/RepRapFirmware @ fc1cd16c, 3.5-dev:
+Inventory: the RepRapFirmware source (github.com/Duet3D/RepRapFirmware @ fc1cd16c, 3.5-dev:
 ``GCodes2.cpp`` and ``StringParser.cpp``).  Codes the firmware recognises only to answer that they are
 gone (M305, M750-M756, the internal M998 and Q0) are left out.  Any other G/M number runs the macro file
 of that name (``M1234.g``) if the machine has one, so the RepRapFirmware dialect accepts every number.
@@ -38,5 +38,5 @@ REPRAPFIRMWARE = Firmware(
     codes=code_set(_G, _M),
     dialect="reprap",
     words=frozenset(w.upper() for w in META_COMMANDS),
-    source="research/firmware_codes.md section 6 (RepRapFirmware @ fc1cd16c)",
+    source="RepRapFirmware: github.com/Duet3D/RepRapFirmware @ fc1cd16c",
 )

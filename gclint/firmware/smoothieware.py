@@ -1,9 +1,9 @@
 """Smoothieware (edge): the G/M codes its modules handle and the console commands it accepts in a file.
 
-Inventory: research/firmware_codes.md section 8 (Smoothieware/Smoothieware @ bb41e992).  Codes a machine's
-configuration assigns (switch and temperature-switch modules: any G or M number) are the machine's own,
-declared with ``extend-known-codes``.  Carvera's community firmware is built on Smoothieware
-(research/dialects.md [CV], [SMO]): the Carvera dialect takes its console commands (``echo``) from here.
+Inventory: the Smoothieware source (github.com/Smoothieware/Smoothieware @ bb41e992).  Codes a machine's configuration
+assigns (switch and temperature-switch modules: any G or M number) are the machine's own, declared with
+``extend-known-codes``.  Carvera's community firmware is built on Smoothieware (Carvera community docs: M115 reports
+X-GRBL_MODE:1; Smoothieware Robot.cpp, G4): the Carvera dialect takes its console commands (``echo``) from here.
 """
 
 from __future__ import annotations
@@ -36,5 +36,5 @@ SMOOTHIEWARE = Firmware(
     codes=code_set(_G, _M),
     dialect="carvera",
     words=frozenset(w.upper() for w in CONSOLE_COMMANDS),
-    source="research/firmware_codes.md section 8 (Smoothieware @ bb41e992)",
+    source="Smoothieware: github.com/Smoothieware/Smoothieware @ bb41e992",
 )

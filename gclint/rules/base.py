@@ -176,7 +176,7 @@ class Rule:
     explanation: ClassVar[str] = ""  # why it matters; markdown allowed
     example_bad: ClassVar[str] = ""  # G-code that triggers the rule
     example_good: ClassVar[str] = ""  # the corrected G-code
-    source: ClassVar[str] = ""  # the section of the seed documents the rule comes from
+    source: ClassVar[str] = ""  # the public source (docs/sources.md) and section the rule comes from
     # command codes to listen to (ANY_T for T commands); a rule may set its own in __init__
     codes: tuple[str, ...] = ()
     families: ClassVar[tuple[str, ...] | None] = None  # dialect families it applies to; None = all

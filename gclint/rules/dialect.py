@@ -50,8 +50,9 @@ class UnknownCode(Rule):
     example_bad = "; gclint: dialect=hyrel\nM204 S1000"
     example_good = "; gclint: dialect=hyrel\nM203 X6000 Y6000"
     source = (
-        "dialect inventories (research/dialects.md 1.8; Hyrel Gcode page, Code_Chart); firmware inventories "
-        "(research/firmware_codes.md)"
+        "dialect inventories (gclint/dialects/, each naming its public sources: Hyrel Gcode page, Code_Chart; "
+        "Marlin G-code reference; Duet G-code dictionary; Machinekit-FDM remap.ini; Carvera M-code table); "
+        "firmware inventories (gclint/firmware/, each naming its firmware repository and commit)"
     )
     on_unknown_code = True
     pure = True
@@ -306,7 +307,11 @@ class WordNotInDialect(Rule):
     """
     example_bad = "; gclint: dialect=machinekit\nG1 X10 Y10 E0.5 F1200"
     example_good = "; gclint: dialect=machinekit\nG1 X10 Y10 A0.5 F1200"
-    source = "research/dialects.md 1.1 (G1, Machinekit: A = extruder) and 1.8 [MK] (gcode-to-ngc: E -> A)"
+    source = (
+        "Machinekit-FDM GCode.org and subroutines/g28.ngc (the extruder is the A axis); machinekit-cnc "
+        'scripts/gcode-to-ngc (RepRap E rewritten to A); LinuxCNC source, src/emc/rs274ngc/interp_read.cc ("Bad '
+        'character used")'
+    )
     codes = ("G0", "G1", "G2", "G3")
     families = ("linuxcnc",)
 

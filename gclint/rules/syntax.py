@@ -50,7 +50,7 @@ class DuplicateWord(_IssueRule):
     """
     example_bad = "G1 X10 Y5 X20"
     example_good = "G1 X20 Y5"
-    source = "LinuxCNC rs274ngc errors (research/anchors.md)"
+    source = 'LinuxCNC source, src/emc/rs274ngc/interp_read.cc ("Multiple X words on one line")'
 
     def check_issues(self, line: Line) -> None:
         """As the parser says, except from a password on: an unquoted password is read as words ("M551
@@ -85,7 +85,7 @@ class LineNumberSequence(Rule):
     """
     example_bad = "N10 G1 X1\nN5 G1 X2"
     example_good = "N10 G1 X1\nN20 G1 X2"
-    source = "Marlin queue.cpp (research/anchors.md, Marlin)"
+    source = 'Marlin source, Marlin/src/gcode/queue.cpp (STR_ERR_LINE_NO: "Line Number is not Last Line Number+1")'
     on_numbered = True
 
     def __init__(self, ctx) -> None:

@@ -44,12 +44,15 @@ class Dropped(TranslationRule):
     explanation = """
         Display messages (M117), progress (M73), host reports (M105, M114, M115), the source firmware's
         own configuration (M500-M503, M563, M950) and waits for the move queue (M400) have no Hyrel
-        command.  They do not change what the machine makes, so the translator drops them (X1 of
-        research/dialects.md: only codes of the Hyrel chart are written) and reports them at info level.
+        command.  They do not change what the machine makes, so the translator drops them (only codes of
+        the Hyrel Gcode page's Code_Chart are written: docs/translation.md) and reports them at info level.
     """
     example_bad = "M117 Printing..."
     example_good = "; (the line is dropped; with --annotate: '; gclint: dropped ...')"
-    source = "research/dialects.md 2.0 X1, 2.1 (M117, M73, M105, M400 rows)"
+    source = (
+        "Gcode page, Code_Chart (the only codes written); Marlin G-code reference (M117, M73, M105, M400); "
+        "docs/translation.md (output is allow-listed)"
+    )
 
 
 @register
@@ -68,7 +71,10 @@ class DroppedBehaviourLost(TranslationRule):
     """
     example_bad = "M204 P1500"
     example_good = "; (dropped: Hyrel has no acceleration setting in G-code)"
-    source = "research/dialects.md 2.0 X1, 2.1 (M201/M204/M205/M900 row, M203 row)"
+    source = (
+        "Marlin G-code reference (M201, M203, M204, M205, M900); Gcode page, M203 Set G0 Speed and Code_Chart; "
+        "Hyrel firmware source, inc/GCode.h (M204 no-ramp speed, M205 homing speed)"
+    )
 
 
 @register
@@ -86,7 +92,10 @@ class Approximate(TranslationRule):
     """
     example_bad = "G28"
     example_good = "G28 X0 Y0"
-    source = "research/dialects.md 2.1-2.3 (rows classed 'approx')"
+    source = (
+        "docs/translation.md (per-dialect tables); Gcode page, G28 Send X, Y to Physical Home; Duet G-code "
+        "dictionary, G10; Marlin G-code reference, M600"
+    )
 
 
 @register
@@ -103,7 +112,10 @@ class TranslatedWithNote(TranslationRule):
     """
     example_bad = "M109 R200"
     example_good = "M109 T0 S200 R2"
-    source = "research/dialects.md 1.7 (3), 2.1 (M109 R row)"
+    source = (
+        "Marlin G-code reference, M109 (R: wait when heating or cooling); Gcode page, M109 Wait for Temp (Head) "
+        "(Rn: a tolerance); docs/translation.md"
+    )
 
 
 @register
@@ -121,7 +133,10 @@ class Untranslatable(TranslationRule):
     """
     example_bad = "o100 if [#1 GT 2]"
     example_good = "; (no translation: rewrite the job without program flow)"
-    source = "research/dialects.md 2.2 (O-words, # parameters, M62-M68 rows), 2.3 (ATC, probing rows)"
+    source = (
+        "LinuxCNC docs, o-code.html and m-code.html#mcode:m62-m65; Carvera M-code table (ATC, probing); Gcode "
+        "page, Code_Chart (no counterpart); docs/translation.md"
+    )
 
 
 @register
@@ -134,14 +149,17 @@ class AddressWithoutCounterpart(TranslationRule):
         Hyrel v4 T variables are CAN device addresses (T11-T15 yoke 1, T21-T25 yoke 2, T16 aux, T41 laser,
         T26 spindle, T91/T92 beds, wildcards T0, T10, T20, T90, T100); v5 uses one address table for T
         commands and variables (T0-T19 heads, T20-T25 devices, T30-T48 groups).  The map is certain for
-        the numbers the Hyrel firmware tables and wiki confirm (research/hyrel_v4.md); for the others
+        the numbers the Hyrel firmware tables and wiki confirm (docs/sources.md); for the others
         (v4 clone groups T50-T57, v5 Aux2 T23, yoke 3 and 4, and the aux port: v4 T16 / tool T10 is v5
         Aux1 T22 by inference only, "mapping to v5 Aux1 is I - medium") the number is left unchanged and
-        reported, and where research infers a counterpart the finding names it as uncertain.
+        reported, and where one is inferred the finding names it as uncertain.
     """
     example_bad = "M104 T23 S0"
     example_good = "M104 T22 S0"
-    source = "research/hyrel_v4.md sections 1-3; seeds/hyrel-T_v5-addressing.wiki.txt"
+    source = (
+        "T_v5, Chart of Addresses; T_v4 page; Hyrel v4 firmware source, Hydra4/main.c toolNumberMap and "
+        "Hydra4/common/inc/hyrel.h (confidence per address: docs/sources.md)"
+    )
 
 
 @register
@@ -159,7 +177,10 @@ class ToolNotOnPrinter(TranslationRule):
     """
     example_bad = "T5"
     example_good = "T1"
-    source = "seeds/hyrel-T_v5-addressing.wiki.txt (T-address map per model); research/dialects.md 2.0 X2"
+    source = (
+        "T_v5, Using the T with the ESR and 30M / EHR and 16A / 16A (Dual Yoke) (T-address map per model); "
+        "docs/translation.md (every head command addressed)"
+    )
 
 
 @register
@@ -175,7 +196,10 @@ class AfterEndOfProgram(TranslationRule):
     """
     example_bad = "M2\nG0 X0"
     example_good = "M30"
-    source = "research/dialects.md 2.0 X6; Hyrel Gcode page, M30 End of Program"
+    source = (
+        "Hyrel Gcode page, M30 End of Program; LinuxCNC docs, m-code.html#mcode:m2-m30; Carvera M-code table (M2, "
+        "M30); Duet G-code dictionary (M0, M1, M2); docs/translation.md (the footer)"
+    )
 
 
 @register

@@ -1,12 +1,12 @@
 """Machinekit FDM (LinuxCNC) and Carvera (Smoothieware community firmware), as the source of a translation.
 
-Machinekit (seeds/machinekit-fdm-mcodes.md; research/dialects.md 1.1-1.5 and 2.2 [MK, LCNC]): the
+Machinekit (the Machinekit-FDM README "Machinekit Flavor GCode" and remap.ini; the LinuxCNC G-code docs): the
 extruder is the A axis and follows G90/G91; E is not a word of the language; G0 ignores F (the F still
 sets the feed of later moves); ``M104 P<index> S<temp>`` (the README) or ``M104 P<temp> T<index>`` (the
 final remap), M106/M109 alike; ``M221 P`` is a factor; ``T`` prepares a tool and ``M6`` changes to it;
 the G28 remap (g28.ngc) rapids X, then Y, then Z to 0 and resets A; M2 and M30 end the program.
 
-Carvera (seeds/carvera-mcodes.md; research/dialects.md 2.3 [CV]): M3 S is rpm, an S word alone sets the
+Carvera (the Carvera community docs' M-code and G-code tables): M3 S is rpm, an S word alone sets the
 speed; M5 stops; ``M6 T<n>`` changes tools (T0 is the probe, T-1 none); M7/M9 air; M321/M322 enter and
 leave laser mode, where M3 fires and S on a move is the power (0-1); G28 goes to the clearance position;
 "M2 end program, stop spindle and air"; "M30 End of the program, no action on the Carvera"; G0's F is
@@ -105,7 +105,7 @@ class CncSimulator(DeviceModel):
 
     def g53(self, cmd: Command, n: int) -> Move | None:
         """G53: the move on this line is in machine coordinates (LinuxCNC: "Non-modal; requires G0/G1 active";
-        Carvera: "the directly following G0/G1 will be executed in MCS"; research/dialects.md 1.1 G53).  Its
+        Carvera: "the directly following G0/G1 will be executed in MCS"; Carvera community docs, gcodes.md G53).  Its
         words may be on G53 itself ("G53 Z-2", "G0 G53 Z-2": the motion mode applies)."""
         self._g53_line = n
         self._g53_next = self.G53_NEXT_LINE
@@ -114,8 +114,9 @@ class CncSimulator(DeviceModel):
         return None
 
     def feed_mode(self, cmd: Command, n: int) -> None:
-        """G93 inverse time: "1/min in G93 inverse-time" (research/dialects.md G1): F on a feed move is the
-        inverse of the minutes it takes, so its feed is F times its length; G94 units per minute."""
+        """G93 inverse time: "1/min in G93 inverse-time" (LinuxCNC G-code docs, G93; Carvera community docs,
+        gcodes/inverse-time-feed-g93-g94.md): F on a feed move is the inverse of the minutes it takes, so its feed is F
+        times its length; G94 units per minute."""
         self.inverse_time = cmd.code == "G93"
         self.inverse_line = n
 
@@ -240,8 +241,8 @@ class CncSimulator(DeviceModel):
 
 
 class MachinekitSimulator(CncSimulator):
-    """Machinekit FDM.  Velocity extrusion (research/dialects.md 1.1 G1, 2.2: "VE mode if M700/M701/M702 or
-    G22/G23 without A-moves"; g22.ngc/g23.ngc in the corpus: with VE, G22 disables the extruder and G23
+    """Machinekit FDM.  Velocity extrusion (Machinekit-FDM remap.ini, M700-M702; docs/translation.md: VE mode if
+    M700/M701/M702 or G22/G23 without A-moves; g22.ngc/g23.ngc in the corpus: with VE, G22 disables the extruder and G23
     enables it): from its start every feed move (G1/G2/G3 moving X, Y or Z) outside G22 ... G23 extrudes at a
     rate the machine computes from the line width (M701 P) and height (M702 P), Hyrel's native flow; once a
     move has an A word the extruder is an axis again.  Without VE, G22/G23 retract and recover."""
@@ -287,8 +288,9 @@ class MachinekitSimulator(CncSimulator):
                 "M700": self.ve_line,
                 "M701": self.ve_line,
                 "M702": self.ve_line,
-                # M0 "program pause" (LinuxCNC); M226 a pause of the FDM remap (research/dialects.md 2.2, M226
-                # -> M0); M1 is an optional stop, off unless the operator enables it: not counted
+                # M0 "program pause" (LinuxCNC); M226 a pause of the FDM remap (Machinekit-FDM
+                # remap.ini, M226; docs/translation.md: M0); M1 is an optional stop, off unless the operator enables
+                # it: not counted
                 "M0": self.pause,
                 "M226": self.pause,
             }
@@ -517,8 +519,8 @@ class CarveraSimulator(CncSimulator):
                 "M802": self.vacuum_off,
                 "M821": self.light,
                 "M822": self.light_off,
-                # M600 "Pause (use this to add pauses)" (seeds/carvera-mcodes.md); M25 pauses the file being
-                # played (Smoothieware, research/firmware_codes.md 8); M1 is an optional stop, a pause in optional
+                # M600 "Pause (use this to add pauses)" (Carvera M-code table); M25 pauses the file being
+                # played (Smoothieware source, M25); M1 is an optional stop, a pause in optional
                 # stop mode
                 "M600": self.pause,
                 "M25": self.pause,
@@ -534,7 +536,7 @@ class CarveraSimulator(CncSimulator):
             self.pause(cmd, n)
 
     def stop_mode(self, cmd: Command, n: int) -> None:
-        # "M333 Turn off optional stop mode", "M334 Turn on optional stop mode. See M01" (seeds/carvera-mcodes.md;
+        # "M333 Turn off optional stop mode", "M334 Turn on optional stop mode. See M01" (Carvera M-code table;
         # its M1 row names them the other way round: the rows of the codes themselves are followed here)
         self.stops = cmd.code == "M334"
 

@@ -123,8 +123,8 @@ LIMIT_NAMES = frozenset(
     }
 )
 
-# The layer marks slicers write, each on a comment line of its own, by kind: what the corpus (../shared/corpus/
-# marlin) shows each writing.  PrusaSlicer, SuperSlicer and OrcaSlicer ";LAYER_CHANGE" (then ";Z:0.2");
+# The layer marks slicers write, each on a comment line of its own, by kind: what the slicers' output (the test
+# corpus's marlin folder) shows each writing.  PrusaSlicer, SuperSlicer and OrcaSlicer ";LAYER_CHANGE" (then ";Z:0.2");
 # BambuStudio "; CHANGE_LAYER" (then "; Z_HEIGHT: 0.2"); Cura, ideaMaker, Cura legacy and Slic3r profiles
 # ";LAYER:0" (Cura's raft layers are negative); Simplify3D "; layer 1, Z = 0.200"; KISSlicer
 # "; BEGIN_LAYER_OBJECT z=1.00" and "; BEGIN_LAYER_RAFT z=0.50" (the group gives the height where the mark has

@@ -1,5 +1,6 @@
-"""Marlin and RepRapFirmware, as the source of a translation (research/dialects.md 1.1-1.5; the Marlin and
-RepRapFirmware G-code references it quotes; the 2015 RepRap G-code page in the seeds).
+"""Marlin and RepRapFirmware, as the source of a translation (the Marlin G-code reference,
+https://marlinfw.org/meta/gcode/; the Duet G-code dictionary, https://docs.duet3d.com/User_manual/Reference/Gcodes;
+the RepRap wiki G-code page of 2015, https://reprap.org/wiki/G-code).
 
 What differs from Hyrel and matters for the diff: G0 is G1 (it extrudes, and shares G1's F); Marlin's
 G90/G91 also set the E mode; M106 S is 0-255 (RepRapFirmware: 0-1 too); M221 is a percentage; G28 with
@@ -36,7 +37,8 @@ class MarlinSimulator(DeviceModel):
         self.layers = LayerHeights() if self.mapping.flow == "native" else None
         self.feed_factor = 1.0  # M220
         self.spindle: tuple | None = None
-        self.cutter: str | None = None  # M3/M4 until M5: an S on a move is the laser power (dialects.md 1.1 G1)
+        # M3/M4 until M5: an S on a move is the laser power (Marlin G-code reference, G0-G1)
+        self.cutter: str | None = None
         self.coolant: dict[str, bool] = {}
         self._g53_line = -1
         self._g53_alone = False
@@ -81,7 +83,7 @@ class MarlinSimulator(DeviceModel):
             "G10": self.firmware_retract,
             "G11": self.firmware_retract,
             # waits for the operator or an event: M0/M1 "wait for user", M25 "pause file print", M226 "wait
-            # for pin state" (research/firmware_codes.md 5), M600 filament change (research/dialects.md M600)
+            # for pin state" (Marlin G-code reference), M600 filament change (Marlin G-code reference, M600)
             "M0": self.pause,
             "M1": self.pause,
             "M25": self.pause,
@@ -130,7 +132,7 @@ class MarlinSimulator(DeviceModel):
             self.wcs = None
             self.dirty()
         if self.cutter is not None and "S" in params and not self.RRF:
-            # Marlin: "S = laser power" on G0/G1/G2/G3 (research/dialects.md 1.1), in the M3/M4 unit
+            # Marlin: "S = laser power" on G0/G1/G2/G3 (Marlin G-code reference, G0-G1), in the M3/M4 unit
             self.set_power(self.cutter, self.spindle_percent({"S": params["S"]}))
         move = super().motion(mode, params, n)
         if move is not None and self.feed_factor != 1.0 and move.feed is not None:
@@ -160,7 +162,7 @@ class MarlinSimulator(DeviceModel):
 
     def g53(self, cmd: Command, n: int) -> None:
         # G53: "Machine coordinates for the move it prefixes; alone on a line activates native workspace"
-        # (Marlin); "Non-modal, rest of line only" (RepRapFirmware) (research/dialects.md 1.1 G53).  Whether a
+        # (Marlin G-code reference, G53); "Non-modal, rest of line only" (Duet G-code dictionary, G53).  Whether a
         # move follows on the line is not known here: a move on this line uses machine coordinates, and the
         # native workspace is active from here in Marlin.
         self._g53_line = n
@@ -451,9 +453,9 @@ class RepRapSimulator(MarlinSimulator):
                 self.dirty()
         tool = _index(params.get("P"))
         if tool is not None and number(params.get("L")) in (None, 1):
-            # "G10 P3 X17.8 Y-19.3 Z0.0 ... sets the offset for tool ... 3" (seeds/reprap-gcode-2015.txt G10;
-            # research/dialects.md G10: "G10 L1/L2/L20 P X Y Z... (tool offset / WCS origin)"); T "applies G10
-            # offsets" (research/dialects.md T).  Which way an offset moves the head is not in the sources: an
+            # "G10 P3 X17.8 Y-19.3 Z0.0 ... sets the offset for tool ... 3" (RepRap wiki G-code page 2015, G10;
+            # Duet G-code dictionary, G10: G10 L1/L2/L20 P X Y Z... tool offset or WCS origin); T applies the G10
+            # offsets (Duet G-code dictionary, T).  Which way an offset moves the head is not in the sources: an
             # axis set while the tool has an offset is in the frame "tool N offset", not at a number.
             offsets = dict(self.tool_offsets.get(tool, {}))
             for letter in "XYZ":
@@ -465,7 +467,7 @@ class RepRapSimulator(MarlinSimulator):
     def frame_label(self, i: int = 0) -> str | None:
         label = super().frame_label(i)
         if self.wcs == "G53" or not self.tool_offsets or i > 2:
-            return label  # G53: "ignores WCS and tool offsets" (research/dialects.md G53)
+            return label  # G53: "ignores WCS and tool offsets" (Duet G-code dictionary, G53)
         tool = self.heat.tool
         if tool is None or not self.tool_offsets.get(tool, {}).get("XYZ"[i]):
             return label
@@ -478,8 +480,8 @@ class RepRapSimulator(MarlinSimulator):
             self.dirty()
 
     def m563(self, cmd: Command, n: int) -> None:
-        """Define a tool: its own fans (F, research/dialects.md 1.5 M563); M106 without P drives "fans of current
-        tool" (1.3)."""
+        """Define a tool: its own fans (F: Duet G-code dictionary, M563); M106 without P drives "fans of current
+        tool" (M106)."""
         tool = _index(cmd.params.get("P"))
         text = cmd.params.get("F")
         if tool is None or text is None:

@@ -1,7 +1,7 @@
 """Tools, heaters, fans and flow of a source printer (Marlin, RepRapFirmware, Machinekit FDM).
 
-What a source firmware does with them (research/dialects.md 1.3 and 1.4; Marlin and RepRapFirmware G-code
-references; the Machinekit FDM README in the seeds):
+What a source firmware does with them (the Marlin G-code reference and the Duet G-code
+dictionary, M104/M109/M106/M221; the Machinekit-FDM README "Machinekit Flavor GCode"):
 
 * Each tool (extruder index) has its own set-point; ``M104``/``M109`` without ``T`` address the active
   tool.  A job that prints with a tool whose set-point it never set runs on a single-nozzle machine (one
@@ -12,7 +12,7 @@ references; the Machinekit FDM README in the seeds):
   tool prints.  Other fan indices are other devices.
 * ``M221`` is a percentage per extruder (a multiplier of 1.0 = 100 %).
 * RepRapFirmware: ``M563 P<tool> F<fans>`` gives a tool fans of its own, and ``M106`` without ``P`` drives
-  "fans of current tool" (research/dialects.md 1.3 M106, 1.5 M563).  A fan that one tool owns is that
+  "fans of current tool" (Duet G-code dictionary, M106 and M563).  A fan that one tool owns is that
   tool's head's fan (Hyrel's fans are per head); fan 0 of tools that declare none is the part fan above.
 """
 
@@ -39,7 +39,7 @@ def heat_wait(old: Heater | None, value: float, both_ways: bool) -> Heater:
     """A wait for ``value``.  One that cools too (Marlin/RRF ``M109 R``, Hyrel's C/U/R, Machinekit's in-range
     wait, RRF M116) leaves the nozzle at the set-point.  One that only heats (Marlin and RRF ``M109 S``, "set &
     wait only when heating"; Hyrel ``M109`` with no C/U/R, "waits until T >= S-1 °C (heating only)":
-    research/dialects.md 1.3 M109) leaves it at least at the set-point, and as hot as it may have been before
+    Marlin G-code reference, M109) leaves it at least at the set-point, and as hot as it may have been before
     (a nozzle waited to 250 °C and then set to 220 °C is not waited for at 220 °C)."""
     if both_ways:
         return (value, value, value)
@@ -77,7 +77,7 @@ class ToolHeat:
     def set_temp(self, tool: int | None, value: float | None, wait: bool, both_ways: bool = False) -> None:
         """``M104``/``M109`` on ``tool`` (None: the active tool); ``value`` None: wait for the set-point.
         ``both_ways``: the wait cools too (Marlin/RRF ``M109 R``, Machinekit's in-range wait); else it waits
-        only while heating (``M109 S``: research/dialects.md 1.3), see ``heat_wait``."""
+        only while heating (``M109 S``: Marlin G-code reference, M109), see ``heat_wait``."""
         if tool is None:
             tool = self.tool if self.tool is not None else 0
         old = self.nozzle if self.shared else self.temps.get(tool)

@@ -1,10 +1,10 @@
 """Hyrel (Repetrel v5, and v4 through its addresses), as the target of a translation.  Every fact is from the
-Hyrel Gcode page in the seeds (section named) or T_v5:
+Hyrel wiki's Gcode page (https://hyrel3d.com/wiki/index.php/Gcode, section named) or T_v5:
 
 * G0 is a rapid, non-working move with a one-shot F; G1 is a working move whose F persists (G0, G1).
 * Flow: without ``M229 E1`` any E marks a printing move and Hyrel computes the flow (native); with
   ``M229 E1 D1`` the E values are used (M229, "Controlling Material Flow"), as absolute or relative
-  amounts (M82, M83).  Arcs compute their flow natively even under M229 E1 (research/dialects.md 1.1, G2).
+  amounts (M82, M83).  Arcs compute their flow natively even under M229 E1 (Hyrel wiki, Gcode page, G2).
 * ``M104``/``M109 T# S``: a head's set-point; M109 waits, ``W0`` waits only at ``M116`` (M109, M116).
 * ``M106 T# S`` is a share of the range ``C`` (default C100, "use C255 to be compatible with most
   slicers"), which holds until M30; ``P`` is the duty during extrusion moves only; M107 is M106 S0.
@@ -348,9 +348,9 @@ class HyrelSimulator(DeviceModel):
     def motion(self, mode: str, params: dict, n: int) -> Move | None:
         self.ran = True
         if mode == "G0" and "E" in params:
-            params = {k: v for k, v in params.items() if k != "E"}  # [fw] G0 E is stripped
+            params = {k: v for k, v in params.items() if k != "E"}  # G0 E is stripped (Hyrel firmware source)
         # "Sn is a one-time (non-persistent) material flow rate multiplier (rarely used) applied to this move
-        # only" (G1): the move's flow is the head's times S ([fw] 0-15.99, research/dialects.md H15)
+        # only" (G1): the move's flow is the head's times S (Hyrel firmware source clamps it to 0-15.99)
         if mode == "G1" and "H" in params:  # "Hn is the stored head offset to apply" (G1), until G28
             h = number(params.get("H"))
             self.height = self.registers.get(int(h), 0.0) if h is not None else 0.0

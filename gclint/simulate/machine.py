@@ -611,7 +611,7 @@ class Simulator:
 
     def cutting(self) -> bool:
         """A spindle or laser runs: every feed move is a working move, as in a CNC job (a Marlin spindle or
-        laser job, research/dialects.md 1.2 M3/M4)."""
+        laser job, Marlin G-code reference, M3-M4)."""
         return False
 
     def g0(self, cmd: Command, n: int) -> Move | None:

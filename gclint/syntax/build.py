@@ -137,8 +137,8 @@ def code_of(word: Word) -> str:
     return word.letter + (word.value or "")
 
 
-# Commands that take G or M as a parameter letter, by the firmware docs (research/firmware_codes.md:
-# section 9 "Letter M used as a parameter", and the parameter lists of sections 1 and 3): Bambu
+# Commands that take G or M as a parameter letter, by the firmware sources (Prusa-Firmware-Buddy @ 818d812f
+# and the BambuStudio machine profiles; docs/sources.md, Firmware inventories): Bambu
 # "M900 K0.02 M1.0", "M1006 A0 B0 L0 C0 D0 M100", "M970 Q1 A7 ... M20", "M983.1 M1", "G151 P M",
 # "G383 O0 M2 T140", "M9711 M E Z...", "M9712 E M"; Prusa Buddy "M863 M L P E R", "M959 ... G ... K M",
 # "M960 ... G ... M", "M46 M".  (Prusa MK3's "G80 ... M" is left out: in a CNC program "G80 M5" is two

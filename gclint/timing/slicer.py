@@ -1,7 +1,7 @@
 """What the slicer wrote about a job besides the moves: its settings (``; key = value``, the config block at the top
 or the end of the file) and its own time estimate.
 
-Where each slicer writes them (as the corpus, ../shared/corpus/marlin, shows):
+Where each slicer writes them (as the slicers' own output shows: the test corpus's marlin folder):
 
 * PrusaSlicer, SuperSlicer, OrcaSlicer and BambuStudio: every setting as ``; key = value`` (a list of values per
   mode or extruder, comma-separated: the first is the normal mode's); the estimate as

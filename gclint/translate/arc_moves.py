@@ -86,7 +86,7 @@ class ArcMoves(TranslatorMixin):
         if "R" not in params:
             a, b, oa, ob, _ = arcs.PLANES[plane]
             if not num(params.get(oa)) and not num(params.get(ob)):
-                # Hyrel: "I=J=0 -> INVALID ARC" (research/dialects.md 1.1 G2); the source rejects it too
+                # Hyrel: "I=J=0 -> INVALID ARC" (Hyrel wiki, Gcode page, G2); the source rejects it too
                 self.untranslatable(cmd, "arc with no centre (I and J both 0 or missing)", key="arc-no-centre")
                 return
             self._check_radius(cmd, plane)

@@ -1,4 +1,4 @@
-"""Arc geometry for translations (research/dialects.md 2.0 X9).
+"""Arc geometry for translations (docs/translation.md, rule X9).
 
 Hyrel's plain G2/G3 draw in the XY plane only, take I/J centres (no R, no K) and compute their flow
 natively even under ``M229 E1`` (Hyrel Gcode page, G2).  So an arc in the XZ or YZ plane, an arc with

@@ -10,7 +10,7 @@ tables:
 * ``DROPPED``: source code -> (TR code, reason) for codes with no Hyrel counterpart.
 * ``END_CODES``: codes that end the program in the source (the footer goes there).
 
-Anything else is dropped with a finding: output is allow-listed (research/dialects.md 2.0 X1), an unknown
+Anything else is dropped with a finding: output is allow-listed (docs/translation.md, rule X1), an unknown
 code is never passed through.  The source machine state comes from ``gclint.machine.Interpreter`` for the
 source dialect (X3); what the Hyrel side will believe is ``state.HyrelSide``.
 
@@ -92,17 +92,18 @@ class HyrelTranslator(LineWriter, Heads, Program, Motion, ArcMoves, Modal, Spind
     # A subclass whose ``move`` differs from this class's only for words a plain move never has (H, S, R...)
     # says so, to keep plain moves off the tree (``plain_route``).
     MOVE_OVERRIDE_IGNORES_PLAIN: ClassVar[bool] = False
-    # The note written with M82/M83 when the source's G90/G91 also switch the E mode (Marlin: G90/G91
-    # set E absolute/relative; Machinekit: the extruder axis A follows them; Hyrel's do not, dialects.md
-    # 1.4 M82/M83 and 2.1 G90 row); None where the E mode is independent (RepRapFirmware, Carvera).
+    # The note written with M82/M83 when the source's G90/G91 also switch the E mode (Marlin: G90/G91 set E
+    # absolute/relative; Machinekit: the extruder axis A follows them; Hyrel's do not: Marlin G-code reference G90/G91,
+    # Machinekit-FDM remap, Hyrel wiki Gcode page M82/M83); None where the E mode is independent (RepRapFirmware,
+    # Carvera).
     E_MODE_FOLLOWS_POSITIONING: str | None = None
     DEFAULT_WORKSPACE: str | None = None  # the workspace the source starts in (CNC sources: G54)
     FEED_ON_ANY_COMMAND = False  # an F on a non-motion command sets the feed (LinuxCNC, Carvera)
     TURNS_COUNT_THE_ARC = False  # G2/G3 P: extra full circles (Marlin); LinuxCNC: the turns, P1 the arc itself
     MACHINE = "the source machine's"  # whose machine coordinates G53 names (messages)
     G53_ALONE = "keep"  # G53 with no move on its line: "keep", "drop" (does nothing), "next" (the next G0/G1)
-    # The pauses that take a message as the rest of the line ("M0 [S|P] [string]", Marlin: firmware_codes.md
-    # section 1 "M0, M1 | wait for user | P ms, S s, rest of line = text"): a pattern for the line up to the
+    # The pauses that take a message as the rest of the line ("M0 [S|P] [string]", Marlin G-code
+    # reference M0-M1: "wait for user", P ms, S s, the rest of the line a message): a pattern for the line up to the
     # message, or None.  A line the grammar cannot read for its message keeps the pause.
     TEXT_PAUSE: ClassVar[re.Pattern[str] | None] = None
 

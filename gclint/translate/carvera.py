@@ -1,4 +1,4 @@
-"""Carvera (Smoothieware community firmware, grbl mode) -> Hyrel v5 (research/dialects.md section 2.3).
+"""Carvera (Smoothieware community firmware, grbl mode) -> Hyrel v5 (docs/translation.md, Carvera -> Hyrel).
 
 M3 S is rpm (Hyrel: percent of the spindle's maximum, configuration ``spindle-max-rpm``); an S word on a
 line of its own sets the speed for the next M3; M6 T is an automatic tool change (Hyrel: focus a head
@@ -20,12 +20,12 @@ from gclint.translate.words import num
 
 
 class CarveraToHyrel(CncTranslator):
-    MAX_RPM = 15000.0  # Carvera C1 (research/dialects.md 2.3; gclint/dialects/carvera.py extras)
+    MAX_RPM = 15000.0  # Carvera C1 (Carvera community docs, features/spindle-max-rpm.md)
     EXTRA_LETTERS: ClassVar[frozenset[str]] = frozenset("SABE")
 
     MACHINE = "the Carvera's"
     G53_ALONE = "next"  # "Must be on a line by itself OR the first G code on a line, the directly following G0/G1
-    # will be executed in MCS" (research/dialects.md 1.1 G53)
+    # will be executed in MCS" (Carvera community docs, gcodes.md G53)
     END_CODES: ClassVar[frozenset[str]] = frozenset({"M2"})  # "M30 End of the program, no action on the Carvera"
     HANDLERS: ClassVar[dict[str, str]] = {  # besides cnc.CNC_HANDLERS
         "M30": "m30",
@@ -62,7 +62,7 @@ class CarveraToHyrel(CncTranslator):
         **_codes(
             "M336",
             TR_LOST,
-            'line-by-line execution mode ("Pauses after each line", carvera-mcodes.md M336): the pauses are lost',
+            'line-by-line execution mode ("Pauses after each line", Carvera M-code table, M336): the pauses are lost',
         ),
         **_codes("M221", TR_DROPPED, "soft endstops on/off (Carvera's M221 is not a flow command)"),
         **_codes("M82 M83", TR_DROPPED, "extruder mode (no extrusion here)"),
@@ -146,7 +146,7 @@ class CarveraToHyrel(CncTranslator):
         super().speed_word(cmd)
 
     def m30(self, cmd: Command) -> None:
-        """ "M30 | End of the program, no action on the Carvera" (carvera-mcodes.md): the code after it runs
+        """ "M30 | End of the program, no action on the Carvera" (Carvera M-code table, M30): the code after it runs
         (example programs run several passes, each ending in M30).  Hyrel's M30 would end the job."""
         self.remove(cmd, TR_DROPPED, "no action on the Carvera (the code after it runs); dropped", key="M30")
 
@@ -173,7 +173,7 @@ class CarveraToHyrel(CncTranslator):
             )
 
     def optional_stop_mode(self, cmd: Command) -> None:
-        """M333 "Turn off optional stop mode", M334 "Turn on optional stop mode. See M01" (carvera-mcodes.md;
+        """M333 "Turn off optional stop mode", M334 "Turn on optional stop mode. See M01" (Carvera M-code table;
         the firmware's own test, corpus TEST_M01_M333_M334_OptionalStop.cnc: after M334 "The program should
         pause" at each M01).  Hyrel has no optional stop: the translator decides at each M1."""
         self.m1_pauses = cmd.code == "M334"
@@ -181,7 +181,7 @@ class CarveraToHyrel(CncTranslator):
         self.remove(cmd, TR_NOTE, f"optional stop mode {state}", key=("optional-stop", cmd.code))
 
     def optional_stop(self, cmd: Command) -> None:
-        """M1 pauses when optional stop mode is on (M334), else it does nothing (carvera-mcodes.md M1, M333,
+        """M1 pauses when optional stop mode is on (M334), else it does nothing (Carvera M-code table: M1, M333,
         M334)."""
         if self.m1_pauses:
             self.pause_command(cmd, "M0 ; gclint: optional stop (M334)")
@@ -278,7 +278,7 @@ class CarveraToHyrel(CncTranslator):
     def laser_mode(self, cmd: Command) -> None:
         running = sorted(self.hy.spindles_on)
         if running:
-            # M321: "The machine will drop the current tool automatically" (carvera-mcodes.md): the spindle
+            # M321: "The machine will drop the current tool automatically" (Carvera M-code table, M321): the spindle
             # stops with it, as at an ATC change (Semantics.tool_change_stops_spindle)
             self.before(*(f"M5 T{a}" for a in running), note="laser mode drops the tool: the spindle stops")
             self.hy.spindles_on.clear()

@@ -1,6 +1,6 @@
 """What the CNC sources (Machinekit/LinuxCNC and Carvera) share: one handler table for their common
 rows, the LinuxCNC-style tool change (``T`` prepares, ``M6`` changes), G53 machine-coordinate moves and
-the end of program codes.  research/dialects.md 2.2 and 2.3.
+the end of program codes.  docs/translation.md, Machinekit -> Hyrel and Carvera -> Hyrel.
 """
 
 from __future__ import annotations
@@ -35,7 +35,8 @@ class CncTranslator(HyrelTranslator):
     G53_ALONE = "drop"  # LinuxCNC: "Non-modal; requires G0/G1 active"
     SPINDLE_FOLLOWS_TOOL = True  # a mapped tool is a spindle head (spindle.py)
     DEFAULT_WORKSPACE = "G54"
-    FEED_ON_ANY_COMMAND = True  # LinuxCNC and the Carvera start in G54 (research/dialects.md 1.1, G54-G59)
+    # LinuxCNC and the Carvera start in G54 (LinuxCNC G-code docs, G54-G59; Carvera community docs, gcodes.md)
+    FEED_ON_ANY_COMMAND = True
 
     def __init__(self, source, target, options=None) -> None:
         super().__init__(source, target, options)

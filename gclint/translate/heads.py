@@ -1,7 +1,7 @@
 """The tool/head model: source tool -> Hyrel head address (the tool map and the printer's positions),
 tool changes, and the per-head commands (temperatures, fans, flow).
 
-Hyrel addresses every head command explicitly (research/dialects.md 2.0 X2) and keeps set-points, fans
+Hyrel addresses every head command explicitly (docs/translation.md, rule X2) and keeps set-points, fans
 and flow per head; a source firmware keeps them per tool, and its part fan is one fan for all tools
 (tools.py).  So what the source's active tool prints with is carried to the Hyrel head that prints:
 before the first working move after a tool change (``sync_working_head``), the head gets the set-point,
@@ -180,7 +180,7 @@ class Heads(TranslatorMixin):
             if tools.shared and not ready and heated and state.waited != heated:
                 # the source's one nozzle was waited hot (to ``heated``) and heads towards ``target``; this
                 # head was not: it waits for that heat first, else it would print cold (Hyrel M109 without
-                # a window waits while heating only, research/dialects.md 1.3 M109 [fw])
+                # a window waits while heating only, Hyrel firmware source, src/MCode.c M109)
                 lines.append(f"M109 T{address} S{fmt(heated, 1)}")
                 state.target = state.waited = heated
                 self.hy.temps.pop(address, None)

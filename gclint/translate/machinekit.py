@@ -1,6 +1,6 @@
-"""Machinekit FDM (LinuxCNC with the FDM remaps) -> Hyrel v5 (research/dialects.md section 2.2).
+"""Machinekit FDM (LinuxCNC with the FDM remaps) -> Hyrel v5 (docs/translation.md, Machinekit -> Hyrel).
 
-Two flavours of the temperature and fan codes, told apart per command: the seed README's
+Two flavours of the temperature and fan codes, told apart per command: the first README's
 ``M104 P<index> S<temp>`` (S present: P is an index) and the final remap's ``M104 P<temp> T<index>``
 (no S: P is the value).  The extruder is the A axis (A follows G90/G91), G22/G23 retract, G4 P is
 seconds, M2 ends the program.  O-words, # parameters, [expressions], HAL I/O (M62-M68) and user
@@ -26,8 +26,8 @@ class MachinekitToHyrel(CncTranslator):
     FAN_MAX = 255.0
     EXTRA_LETTERS: ClassVar[frozenset[str]] = frozenset("FEBCUVWSP")
     # The extruder A is an angular axis ("[AXIS_3] # Extruders ... TYPE = ANGULAR", ANGULAR_UNITS = degree:
-    # corpus machinekit/taz_cramps/TAZ_5_CRAMPS.ini); G20 scales lengths only (dialects.md X10: "multiply X Y Z
-    # I J K R F (and linear E) by 25.4"), so A amounts are not converted under G20 (reported: a configuration
+    # corpus machinekit/taz_cramps/TAZ_5_CRAMPS.ini); G20 scales lengths only (docs/translation.md rule X10: X Y Z
+    # I J K R F (and linear E) multiplied by 25.4), so A amounts are not converted under G20 (reported: a configuration
     # with a linear A would scale them)
     E_LINEAR = False
 
@@ -94,9 +94,10 @@ class MachinekitToHyrel(CncTranslator):
     def __init__(self, source, target, options=None) -> None:
         super().__init__(source, target, options)
         self.nurbs = False  # inside a G5.2 ... G5.3 block
-        # velocity extrusion (research/dialects.md 2.2: "VE mode if M700/M701/M702 or G22/G23 without
-        # A-moves"; "In VE mode G22/G23 delimit non-printing stretches: moves between G22 and G23 are travel
-        # (no E1)"): the feed moves outside G22 ... G23 print, with no A word
+        # velocity extrusion (Machinekit-FDM remap.ini, M700-M702 and G22/G23; docs/translation.md, Machinekit ->
+        # Hyrel: VE mode if M700/M701/M702 or G22/G23 without A moves, and in VE mode G22/G23 delimit non-printing
+        # stretches, the moves between G22 and G23 being travel): the feed moves outside G22 ... G23 print, with no
+        # A word
         self.ve = False
         self.ve_travel = False  # between a G22 and its G23
         self.a_moves = False  # a move carried an A word (the extruder is an axis: no VE)
@@ -173,9 +174,10 @@ class MachinekitToHyrel(CncTranslator):
         self.a_moves = True
 
     def velocity_extrusion(self, cmd: Command) -> None:
-        """VE mode starts (dialects.md 2.2): from now on the feed moves outside G22 ... G23 print."""
+        """VE mode starts (docs/translation.md, Machinekit -> Hyrel): from now on the feed moves outside G22 ... G23
+        print."""
         if self.ve or self.a_moves:
-            return  # the extruder is the A axis (dialects.md 2.2: VE "without A-moves")
+            return  # the extruder is the A axis (docs/translation.md: VE "without A-moves")
         self.ve = True
         self.extra_always = True  # move_extra adds the E1 of printing moves
         self.report(
@@ -387,7 +389,7 @@ class MachinekitToHyrel(CncTranslator):
             return
         self.select_tool(cmd, tool)
 
-    # -- temperatures and fans: seed (S present: P = index) or final (P = value, T = index) ----------------
+    # -- temperatures and fans: first README (S present: P = index) or final (P = value, T = index) ----------------
 
     def _flavour(self, cmd: Command) -> tuple[str | None, int | None]:
         params = cmd.params
@@ -440,7 +442,7 @@ class MachinekitToHyrel(CncTranslator):
     def m106(self, cmd: Command) -> None:
         if "P" not in cmd.params and "S" not in cmd.params:
             # remap.ini "M106 ... argspec=iPt": P is required (a capital in the argspec), and the README's form
-            # is "M106 P<index> S<value>"; the interpreter refuses the line (research/dialects.md 1.8 [MK])
+            # is "M106 P<index> S<value>"; the interpreter refuses the line (Machinekit-FDM remap.ini, M106)
             self.untranslatable(cmd, "without P: the Machinekit FDM remap requires P and refuses the line", key="M106")
             return
         value, index = self._flavour(cmd)

@@ -1,6 +1,7 @@
-"""Marlin -> Hyrel v5 (research/dialects.md section 2.1; RepRapFirmware builds on it in reprap.py).
+"""Marlin -> Hyrel v5 (docs/translation.md, Marlin and RepRapFirmware -> Hyrel; RepRapFirmware builds on it in
+reprap.py).
 
-The traps (dialects.md 1.7): M109/M190/M191 R is a target that also waits while cooling (Hyrel: a
+The traps (docs/translation.md): M109/M190/M191 R is a target that also waits while cooling (Hyrel: a
 tolerance window); M106 S is 0-255 (RepRapFirmware also 0-1) and P is a fan index (Hyrel: duty during
 extrusion); M221 is a percentage (Hyrel: a multiplier); M203 is mm/s caps (Hyrel: G0 speeds in mm/min);
 G10/G11 retract (Hyrel: unsupported); G28 homes every axis (Hyrel: only those listed); G90/G91 also set
@@ -33,7 +34,7 @@ _HOST_ASPECTS: dict[str, tuple[str, ...]] = {
 class MarlinToHyrel(HyrelTranslator):
     """Marlin 2.x and Marlin-flavour slicer output -> Hyrel v5."""
 
-    # "M0, M1 | wait for user | P ms, S s, rest of line = text" (firmware_codes.md section 1, Marlin):
+    # "M0, M1 | wait for user | P ms, S s, rest of line = text" (Marlin G-code reference, M0-M1):
     # the code (after an N number), its S/P timeout words, then the message
     TEXT_PAUSE: ClassVar[re.Pattern[str] | None] = re.compile(
         r"[ \t]*(?:[Nn][ \t]*\d+[ \t]*)?[Mm][ \t]*0*[01](?![\d.])(?:[ \t]*[SsPp][ \t]*[-+]?(?:\d+\.?\d*|\.\d+)(?![\w.]))*"
@@ -103,7 +104,8 @@ class MarlinToHyrel(HyrelTranslator):
         drop = ""
         add: tuple[str, ...] = ()
         if "S" in params and not self.laser and not self.RRF:
-            # Marlin: "S = laser power" on G0/G1/G2/G3 (dialects.md 1.1, LASER_FEATURE): the machine is a laser
+            # Marlin: S is the laser power on G0/G1/G2/G3 (Marlin G-code reference G0-G1, LASER_FEATURE): the machine
+            # is a laser
             self.enter_laser(cmd, "a move with S (Marlin's inline laser power)")
         if self.laser:
             if "S" in params:
@@ -137,8 +139,8 @@ class MarlinToHyrel(HyrelTranslator):
             return drop, add
         return None
 
-    # -- laser (dialects.md 2.1: "M3/M4 laser -> M620 T<laser> E1 (once) + M621 P<pct>; moves with power get
-    # E1"; "G1 ... S<p> (Marlin laser power) -> M621 P<%> before the move; strip S; %=S/255*100 (PWM)") ------
+    # -- laser (docs/translation.md: M3/M4 laser -> M620 T<laser> E1 (once) + M621 P<pct>; moves with power get
+    # E1; G1 ... S<p> (Marlin laser power) -> M621 P<%> before the move, S stripped, %=S/255*100 (PWM)) ------
 
     def enter_laser(self, cmd: Command, why: str) -> None:
         """From here S is laser power: a spindle started before (the same cutter) stops, the laser is enabled."""
@@ -173,8 +175,8 @@ class MarlinToHyrel(HyrelTranslator):
             self.consume(cmd)
 
     def laser_percent(self, cmd: Command, s: float) -> float:
-        """Marlin's cutter power unit is PWM 0-255 by default; RepRapFirmware's laser S is 0-255 (dialects.md
-        1.2 M3)."""
+        """Marlin's cutter power unit is PWM 0-255 by default; RepRapFirmware's laser S is 0-255 (Marlin G-code
+        reference M3; Duet G-code dictionary M3)."""
         return min(100.0, max(0.0, s / 255 * 100))
 
     def laser_move(self, cmd: Command, rapid: bool) -> tuple[str, ...]:
@@ -263,7 +265,7 @@ class MarlinToHyrel(HyrelTranslator):
         text = "G28 " + " ".join(f"{a}0" for a in axes)
         if " ".join([cmd.code or "", *(f"{w.letter}{w.value}" for w in cmd.words)]) != text:
             self.replace(cmd, text)
-        # the source homes the listed axes, every one when none is listed (dialects.md 1.1 G28)
+        # the source homes the listed axes, every one when none is listed (Marlin G-code reference, G28)
         self.restore_offsets(cmd, [a for a in "XYZ" if a in params] or ["X", "Y", "Z"])
 
     def workspace_extra(self, cmd: Command) -> None:
@@ -295,8 +297,8 @@ class MarlinToHyrel(HyrelTranslator):
             self.report(TR_NOTE, "pause message dropped (it is not a comment on Hyrel)", key="M0-message", cmd=cmd)
 
     def print_pause(self, cmd: Command) -> None:
-        """M25 "pause file print" (firmware_codes.md section 1, Marlin: "M24, M25 | start-resume / pause file
-        print"; RepRapFirmware "M25 pause"): inside the job it pauses the print until it is resumed."""
+        """M25 "pause file print" (Marlin G-code reference, M24 and M25: start or resume /
+        pause the SD print; Duet G-code dictionary, M25): inside the job it pauses the print until it is resumed."""
         self.pause_command(cmd, "M0 ; gclint: pause (M25)")
         self.report(
             TR_APPROX,
@@ -440,7 +442,7 @@ class MarlinToHyrel(HyrelTranslator):
     def spindle_stop(self, cmd: Command) -> None:
         self.cutter_on = False
         if self.laser:
-            # "M5 -> M5 T<spindle> (or M621 P0 for laser)" (dialects.md 2.1)
+            # "M5 -> M5 T<spindle> (or M621 P0 for laser)" (docs/translation.md)
             self.laser_fire = False
             if self.laser_power_written:
                 self.replace(cmd, "M621 P0")
@@ -507,7 +509,7 @@ class MarlinToHyrel(HyrelTranslator):
                 cmd=cmd,
             )
         else:
-            # no S or R: research/dialects.md 1.3 gives M109 only with them (S waits while heating, R both
+            # no S or R: the Marlin reference gives M109 only with them (S waits while heating, R both
             # ways).  Hyrel's M109 with no window waits while heating only ("no H/C/L/U/R -> waits until
             # T >= S-1 °C"): a window would wait for cooling too, forever after an M104 S0
             self.temperature(cmd, "M109", address, None, tool=index)
@@ -520,7 +522,7 @@ class MarlinToHyrel(HyrelTranslator):
                 aspects="temp",
             )
         if self.RRF and index is not None and address is not None:
-            # "RRF M109 T selects the tool" (dialects.md 1.3 and 2.1 M109 rows): a tool change, with what the
+            # "RRF M109 T selects the tool" (Duet G-code dictionary, M109): a tool change, with what the
             # tool prints with (set-point, part fan, flow) carried to its head before its first working move
             if address != self.hy.focus:
                 self.after(f"T{address}", note="RepRapFirmware's M109 T selects the tool")

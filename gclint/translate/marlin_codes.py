@@ -1,6 +1,6 @@
-"""The Marlin codes with no Hyrel counterpart, by what dropping them costs (research/dialects.md 2.1 and
-1.8): TR001 no effect on the job, TR002 the firmware did something, TR005 the toolpath or the job's flow
-would change.  Klipper-style host commands found in Marlin-flavour files are listed apart.
+"""The Marlin codes with no Hyrel counterpart, by what dropping them costs (the Marlin G-code reference,
+marlinfw.org/meta/gcode; docs/translation.md): TR001 no effect on the job, TR002 the firmware did something, TR005 the
+toolpath or the job's flow would change.  Klipper-style host commands found in Marlin-flavour files are listed apart.
 """
 
 from __future__ import annotations
@@ -8,7 +8,7 @@ from __future__ import annotations
 from gclint.translate.findings import TR_DROPPED, TR_LOST, TR_UNTRANSLATABLE
 from gclint.translate.findings import codes as _codes
 
-# Codes with no Hyrel counterpart (research/dialects.md 2.1 and 1.8).  TR001: no effect on the job.
+# Codes with no Hyrel counterpart (Marlin G-code reference; docs/translation.md).  TR001: no effect on the job.
 NO_EFFECT = {
     **_codes("M73 M73.2", TR_DROPPED, "print progress display"),
     **_codes("M117 M118", TR_DROPPED, "display or host message"),

@@ -61,10 +61,10 @@ class Modal(TranslatorMixin):
     def machine_coordinates(self, cmd: Command) -> None:
         """G53: machine coordinates for one move in every source ("Machine coordinates for the move it
         prefixes", Marlin; "Non-modal, rest of line only", RepRapFirmware; "Non-modal; requires G0/G1 active",
-        LinuxCNC; "the directly following G0/G1 will be executed in MCS", Carvera: research/dialects.md 1.1
-        G53).  Hyrel's G53 is modal "Clear Offsets" ("sets the fixture offsets to (0,0,0,0,0)", Gcode page,
-        G53), so the move is written as ``G53`` / the move / the workspace the job had selected (dialects.md
-        2.1 G53 row; 2.2 and 2.3 "as 2.1").  One implementation for every source."""
+        LinuxCNC; "the directly following G0/G1 will be executed in MCS", Carvera community docs,
+        gcodes.md G53).  Hyrel's G53 is modal "Clear Offsets" ("sets the fixture offsets to (0,0,0,0,0)", Gcode page,
+        G53), so the move is written as ``G53`` / the move / the workspace the job had selected (docs/translation.md,
+        The pairs).  One implementation for every source."""
         line = self.line
         assert line is not None
         commands = line.parsed.commands

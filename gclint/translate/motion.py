@@ -126,7 +126,8 @@ class Motion(TranslatorMixin):
                 if self.sync_due:
                     self.sync_working_head()
                 if g0:
-                    out_code = "G1"  # Marlin/RRF: G0 is G1 and extrudes (dialects.md 1.1 G0)
+                    # Marlin/RRF: G0 is G1 and extrudes (Marlin G-code reference G0-G1; Duet G-code dictionary G0/G1)
+                    out_code = "G1"
                     g0 = False
                     self.extruding_rapid(cmd)
                 if self.evalues:

@@ -1,6 +1,6 @@
 """Options of a translation: from the command line and the configuration file.
 
-The choices a translation to Hyrel needs (research/dialects.md 2.4, "proposed config schema"), with
+The choices a translation to Hyrel needs (docs/translation.md, Settings), with
 their defaults:
 
     flow          evalues   keep the slicer's E amounts and switch Hyrel to them (M229 E1 D1);
@@ -212,7 +212,7 @@ def _check_tool_map(tool_map: dict[int, int], where: str) -> None:
         if not 0 <= address <= 19:
             raise ValueError(
                 f"{where}{tool}=T{address}: a tool maps to a head (T0-T19); T{address} is "
-                f"{resolve_v5(address).label} (seeds/hyrel-T_v5-addressing)"
+                f"{resolve_v5(address).label} (Hyrel wiki, T_v5)"
             )
 
 

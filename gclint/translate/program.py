@@ -69,7 +69,7 @@ class Program(TranslatorMixin):
         """After homing, Hyrel's G28 "resets current offsets to 0 - including any ... set with a G92 ...,
         performs a G53, and applies a head offset of 0 mm" (Gcode page, G28); the source keeps its workspace
         and the G92 offsets of the axes it did not home.  Written again: the workspace the job selected
-        ("Re-emit active G5x/H after (Hyrel G28 clears them)", dialects.md 2.1 G28 row), the head focus
+        (Hyrel G28 clears them: Hyrel wiki, Gcode page, G28; docs/translation.md, Header and footer), the head focus
         (its offsets), then a G92 that puts each axis not homed back where the source has it (Hyrel keeps
         its machine position: "Any axis not homed will have its position remain unchanged")."""
         if self.wcs_selected:

@@ -1,11 +1,11 @@
 """Hyrel v4 <-> v5: renumber T variables (and the few T commands that differ); nothing else changes.
 
-v4 T variables are CAN device addresses, v5 has one address table (research/hyrel_v4.md sections 1-3,
-gclint/dialects/addressing.py).  Only the certain part of the map is used (V4_TO_V5_VARIABLE and its
+v4 T variables are CAN device addresses, v5 has one address table (T_v4 and T_v5 pages, Hyrel v4 firmware source;
+gclint/dialects/addressing.py, docs/sources.md).  Only the certain part of the map is used (V4_TO_V5_VARIABLE and its
 inverse): 11-15 -> 0-4, 21-25 -> 5-9, 41 -> 21, 26 -> 20, 91/92 -> 24/25, and the wildcards 0 -> 40,
 10/20 -> 41/42, 100 -> 47, 90 -> 46.  T commands (tool numbers) are 0-9 in both; v4's special tool
 numbers 11-14 (laser, spindle, beds) become 21, 20, 24, 25.  A number with no certain counterpart stays
-as it is and is reported (TR006); where research/hyrel_v4.md infers one (the aux port, v4 T16 / tool
+as it is and is reported (TR006); where the v4 map infers one (the aux port, v4 T16 / tool
 T10 -> v5 Aux1 T22, rated "medium"; yokes 3 and 4; groups), the finding names it and says the map is
 uncertain there.  Edits touch the T value only, so spacing,
 comments and everything else stay byte for byte and v4 -> v5 -> v4 gives the file back.
@@ -129,14 +129,14 @@ class Renumber(Translator):
         return _splice(line, cmd, changes)
 
     def _likely(self, letter: str, number: int, inferred: dict[int, int]) -> str:
-        """Where research/hyrel_v4.md infers a counterpart: say which, and that the map is uncertain there."""
+        """Where the v4 map infers a counterpart: say which, and that the map is uncertain there."""
         likely = inferred.get(number)
         if likely is None:
             return ""
         source, target = ("v4", "v5") if self.to_v5 else ("v5", "v4")
         return (
             f" (the v4 -> v5 map is uncertain here: {source} {letter}{number} is most likely {target} "
-            f"{letter}{likely}, inferred, not documented: research/hyrel_v4.md; check it by hand)"
+            f"{letter}{likely}, inferred, not documented (docs/sources.md, Hyrel v4 addressing); check it by hand)"
         )
 
     def _report(self, line: Line, cmd: Command, result: TranslationResult, message: str, key: tuple) -> None:

@@ -1,7 +1,6 @@
-"""RepRapFirmware 3 (Duet) -> Hyrel v5 (research/dialects.md section 2.1): Marlin's translation plus tool
-temperatures and offsets in G10, M568, M116, fan values 0-1, M2 as the end of program, and meta commands,
-{expressions} and macro files (sys/<code>.g for a code the firmware does not know), which cannot be
-translated.
+"""RepRapFirmware 3 (Duet) -> Hyrel v5 (docs/translation.md, Marlin and RepRapFirmware -> Hyrel): Marlin's translation
+plus tool temperatures and offsets in G10, M568, M116, fan values 0-1, M2 as the end of program, and meta commands,
+{expressions} and macro files (sys/<code>.g for a code the firmware does not know), which cannot be translated.
 """
 
 from __future__ import annotations
@@ -20,7 +19,7 @@ class RepRapToHyrel(MarlinToHyrel):
     """RepRapFirmware 3 (Duet) -> Hyrel v5: like Marlin, plus tool temperatures and offsets in G10, fan values
     0-1, meta commands and macros (untranslatable), M116."""
 
-    TEXT_PAUSE = None  # RepRapFirmware's M0/M1 stop and take no message (dialects.md 1.2 M0): not guessed
+    TEXT_PAUSE = None  # RepRapFirmware's M0/M1 stop and take no message (Duet G-code dictionary, M0/M1): not guessed
     HANDLERS: ClassVar[dict[str, str]] = {
         "M451": "printer_mode",
         "M452": "printer_mode",
@@ -85,7 +84,7 @@ class RepRapToHyrel(MarlinToHyrel):
         super().move(cmd)
 
     def printer_mode(self, cmd: Command) -> None:
-        """M451 FFF, M452 laser, M453 CNC printer mode (firmware_codes.md section 3, RepRapFirmware): in laser
+        """M451 FFF, M452 laser, M453 CNC printer mode (Duet G-code dictionary, M451-M453): in laser
         mode M3/M4 S and the S on moves are the laser power."""
         if cmd.code == "M452":
             self.enter_laser(cmd, "M452")
@@ -143,7 +142,7 @@ class RepRapToHyrel(MarlinToHyrel):
 
     def _fan_owner(self, cmd: Command) -> int | None:
         """The tool whose own fan (M563 F) this M106/M107 drives: P names the fan, else "S alone -> fans of
-        current tool" (research/dialects.md 1.3 M106); None for the part fan (fan 0 of tools that declare
+        current tool" (Duet G-code dictionary, M106); None for the part fan (fan 0 of tools that declare
         no fans) and fans no single tool owns."""
         fan = self._tool_index(cmd, "P")
         if fan is None:
@@ -166,7 +165,7 @@ class RepRapToHyrel(MarlinToHyrel):
         """Define a tool (configuration: Repetrel configures the Hyrel heads).  Its fans F are kept: "S alone"
         on M106 drives the current tool's fans.  ``M563 S<n>`` (older Duet firmware) adds n to "all tool
         numbers found in the remainder of the current input stream" (RepRap page, M563); RepRapFirmware 3.1
-        removed it (research/dialects.md 1.5 M563), so the tool numbers are left as written and reported."""
+        removed it (Duet G-code dictionary, M563), so the tool numbers are left as written and reported."""
         params = cmd.params
         tool = self._tool_index(cmd, "P")
         if tool is None and "S" in params:
@@ -197,7 +196,7 @@ class RepRapToHyrel(MarlinToHyrel):
             level = num(params.get("L"))
             if level == 1 and "P" in params and any(a in params for a in "XYZ") and self.opts.tool_offsets == "m6":
                 # "RRF G10 L1 P<t> X Y Z (tool offset) | default dropped; opt M6 T<map> O<reg> X Y Z"
-                # (dialects.md 2.1): as G10 P<t> X Y Z
+                # (docs/translation.md, Marlin and RepRapFirmware -> Hyrel): as G10 P<t> X Y Z
                 self._offsets_as_m6(cmd, self._tool_index(cmd, "P"))
                 return
             if level in (2, 20):
@@ -280,8 +279,8 @@ class RepRapToHyrel(MarlinToHyrel):
         index = self._tool_index(cmd, "P")
         s = num(params.get("S"))
         if "A" in params and s is not None and s > 0:
-            # "M568 | Tool settings: P tool, R standby, S active, A heater state" (dialects.md 1.2): the sources
-            # give no values for A, so whether the heater is on is unknown; heating a tool the source leaves off
+            # M568 tool settings: P tool, R standby, S active, A heater state (Duet G-code dictionary, M568); the
+            # sources give no values for A, so whether the heater is on is unknown; heating a tool the source leaves off
             # or at standby would change the job (and a later M116 would wait for it)
             self.remove(
                 cmd,

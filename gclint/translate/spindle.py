@@ -2,8 +2,8 @@
 a change of direction (Hyrel Gcode page, M3).
 
 The head a spindle command addresses: the ``spindle`` setting; else, for CNC sources, the head the active
-tool maps to (a tool change with a tool map switches heads, "multi-head: T<tools[n]>", research/dialects.md
-2.3 M6 row), so that the spindle runs on the head that cuts; else mapped tool 0.  A spindle running at such
+tool maps to (a tool change with a tool map switches heads, "multi-head: T<tools[n]>", docs/translation.md,
+Carvera -> Hyrel), so that the spindle runs on the head that cuts; else mapped tool 0.  A spindle running at such
 a tool change stops where the source's tool change stops it (``Semantics.tool_change_stops_spindle``: LinuxCNC's
 and Machinekit's M6, "The spindle will be stopped"; the Carvera's automatic tool change), else goes to the new
 head.

@@ -1,7 +1,7 @@
 """What the Hyrel printer will believe after the lines written so far (the target side of a translation).
 
-The source side is ``gclint.machine.Interpreter`` run with the source dialect (research/dialects.md 2.0
-X3); this is its counterpart for the output: which header lines were written, the modal G1 feed, the
+The source side is ``gclint.machine.Interpreter`` run with the source dialect (docs/translation.md,
+rule X3); this is its counterpart for the output: which header lines were written, the modal G1 feed, the
 focused head, what is switched on and must be switched off at the end.
 """
 

@@ -1,7 +1,7 @@
 """The tool model: what the source firmware believes about its tools (set-points, waits, the part fan,
 flow), so that the head Hyrel prints with gets the same when the active tool changes.
 
-Source semantics (research/dialects.md 1.3, 1.4; issue 13):
+Source semantics (Marlin G-code reference and Duet G-code dictionary, M104/M109/M106/M221/T; issue 13):
 
 * A set-point belongs to a tool (M104/M109 T, else the active tool).  A job that prints with a tool it
   never gave a set-point runs on a single-nozzle machine (one heater for every filament, as with a

@@ -1,4 +1,4 @@
-"""HY: Hyrel semantics, from the Hyrel Gcode page, T_v5 and the hidden-codes page (../shared/seeds).
+"""HY: Hyrel semantics, from the Hyrel wiki pages Gcode, T_v5 and Sekret! (docs/sources.md).
 
 One module per topic; importing this package registers the rules.
 """

@@ -1,10 +1,10 @@
 """HY addressing rules: which head a T number names, whether it exists on the printer, whether it is
 loaded, v4 numbers in v5 files, clone squads.
 
-Sources: the T_v5 page (../shared/seeds/hyrel-T_v5-addressing.wiki.txt: "Chart of Addresses", the
-per-model tables, "Default Mode", "Explicit Mode", "Error Messages", M702-M704), the Gcode page
-("Understanding the T", "T Tool Change") and ../shared/research/hyrel_v4.md (v4 device addresses and the
-v4 -> v5 map), as catalogued in ../shared/research/dialects.md section 3 (H40-H46).
+Sources (docs/sources.md): the T_v5 page (https://hyrel3d.com/wiki/index.php/T_v5: "Chart of Addresses",
+the per-model tables, "Default Mode", "Explicit Mode", "Error Messages", M702-M704), the Gcode page
+("Understanding the T", "T Tool Change"), and for v4 device addresses and the v4 -> v5 map the T_v4 page
+and the Hyrel v4 firmware source (HydraSt_407: Hydra4/main.c toolNumberMap, Hydra4/common/inc/hyrel.h).
 
 A "T command" is a line ``T3`` (changes the focused head); a "T variable" is the T word of an M-code
 (``M104 T3 S200``: the device the command acts on).  ``Interpreter.address`` resolves T variables and
@@ -130,7 +130,7 @@ class ToolNotLoaded(Rule):
         T0
         T1
     """
-    source = "T_v5, Error Messages and Default Mode (M6 T# O... for every loaded head) (catalogue H43)"
+    source = "T_v5, Error Messages and Default Mode (M6 T# O... for every loaded head)"
     codes = (ANY_T, "M703")
     families = ("hyrel",)
 
@@ -229,7 +229,7 @@ class ToolBeyondModel(Rule):
     """
     source = (
         "T_v5, Chart of Addresses and Using the T with the ESR and 30M / EHR and 16A / 16A (Dual Yoke); Gcode "
-        "page, Controlling Temperature (Hotbed 2) (catalogue H44)"
+        "page, Controlling Temperature (Hotbed 2)"
     )
     families = ("hyrel",)
 
@@ -319,7 +319,7 @@ class V4AddressingInV5(Rule):
         silent.
 
         The fix converts the whole file, as `gclint translate --from hyrel-v4 --to hyrel` does (the same
-        v4 -> v5 map, where it is certain: research/hyrel_v4.md, confidence "high"): a file half in v4
+        v4 -> v5 map, where it is certain: docs/sources.md, Hyrel v4 addressing, confidence "high"): a file half in v4
         and half in v5 numbering means something else again (`M104 T0 S0` left alone would switch off
         head T0 only).  Every finding carries the same fix.  It is safe when no converted line also
         means something in v5 (a head the model lacks, an address no device has); when one does (`M140
@@ -339,8 +339,8 @@ class V4AddressingInV5(Rule):
         M109 T1 S200
     """
     source = (
-        "Gcode page, Understanding the T; T_v5, The T and Chart of Addresses "
-        "(catalogue: research/hyrel_v4.md sections 1-3)"
+        "Gcode page, Understanding the T; T_v5, The T and Chart of Addresses; T_v4 page; Hyrel v4 firmware "
+        "source, Hydra4/main.c toolNumberMap and Hydra4/common/inc/hyrel.h (v4 device addresses)"
     )
     families = ("hyrel",)
     on_issue = True
@@ -474,7 +474,7 @@ class V4AddressingInV5(Rule):
         if self.blocked is not None:
             return (), (
                 f"; no fix: the file's v4 addresses are converted all together or not at all, and the one at "
-                f"{self.blocked} has no certain v5 counterpart (research/hyrel_v4.md): convert by hand or with "
+                f"{self.blocked} has no certain v5 counterpart (the map is inferred there): convert by hand or with "
                 f"{translate}"
             )
         if self.converted > _MAX_FIX_EDITS:
@@ -525,14 +525,13 @@ class SquadNumberRange(ParamTableRule):
         establishes nothing, and the heads the job expects to print together print alone (or not at
         all).
 
-        In v4 files (`--dialect hyrel-v4`) M702 seeds the groups 50-57 instead (research/hyrel_v4.md
-        section 4), and M703/M704 give a device an alias, so only the M702 range is checked there.
+        In v4 files (`--dialect hyrel-v4`) M702 seeds the groups 50-57 instead (Hyrel v4 firmware
+        source, Hydra4/src/MCode.c M_Code_M702-M_Code_M704), and M703/M704 give a device an alias, so
+        only the M702 range is checked there.
     """
     example_bad = "M702 T0 S40"
     example_good = "M702 T0 S30"
-    source = (
-        "T_v5, M702 Establish Clone Squad, M703 Add to Clone Squad, M704 Remove from Clone Squad (catalogue H40, H41)"
-    )
+    source = "T_v5, M702 Establish Clone Squad, M703 Add to Clone Squad, M704 Remove from Clone Squad"
     families = ("hyrel",)
 
     def __init__(self, ctx) -> None:
@@ -609,7 +608,7 @@ class NoHeadFocusBeforePrinting(Rule):
         T1
         G1 X10 Y10 E1 F1200
     """
-    source = "T_v5, Default Mode and Explicit Mode (catalogue H45)"
+    source = "T_v5, Default Mode and Explicit Mode"
     families = ("hyrel",)
 
     def __init__(self, ctx) -> None:
@@ -678,12 +677,12 @@ class AddressOutOfTable(Rule):
         In a v5 file (its addresses say v5), a number that is an address only in v4 numbering (T26,
         T90-T92, T100: the v4 spindle, beds and wildcards, as in Hyrel's old standard footer `M104 T100
         S0`, `M140 T90 S0`) is reported with its v4 meaning, and an unsafe fix (`--unsafe-fixes`) writes
-        the v5 address that meaning has, where research/hyrel_v4.md rates the map "high" (sections 2
-        and 3) and the device fits the command.  A file whose addresses say v4 is HY008's.
+        the v5 address that meaning has, where docs/sources.md (Hyrel v4 addressing) rates the map "high"
+        (special devices and wildcards) and the device fits the command.  A file whose addresses say v4 is HY008's.
     """
     example_bad = "M104 T27 S200"
     example_good = "M104 T2 S200"
-    source = "T_v5, Chart of Addresses; Gcode page, Understanding the T and T Tool Change (catalogue H44)"
+    source = "T_v5, Chart of Addresses; Gcode page, Understanding the T and T Tool Change"
     families = ("hyrel",)
 
     def __init__(self, ctx) -> None:
@@ -734,15 +733,15 @@ class AddressOutOfTable(Rule):
 
     def _v4_fix(self, line: Line, cmd: Command, word: Word | None, number: int) -> tuple[Fix | None, str]:
         """In a file whose addresses say v5: the fix to the v5 address a v4 number (T26, T90-T92, T100)
-        means, where research/hyrel_v4.md rates the map "high" and the device fits the command.  Unsafe:
-        the file mixes numberings, and only its author knows this line is the v4 one."""
+        means, where docs/sources.md (Hyrel v4 addressing) rates the map "high" and the device fits the
+        command.  Unsafe: the file mixes numberings, and only its author knows this line is the v4 one."""
         if word is None or number not in V4_STYLE_VARIABLES or not is_v5(self.ctx):
             return None, ""
         v4 = resolve_v4_variable(number)
         if v4.v5 is None:
             return None, ""
         if not v4.certain:
-            return None, "; the v4 -> v5 map is uncertain here (research/hyrel_v4.md): check the address by hand"
+            return None, "; the v4 -> v5 map is uncertain here (inferred, not documented): check the address by hand"
         if self.ctx.context.version_evidence != 5 or not fits(str(cmd.code), resolve_v5(v4.v5)):
             return None, ""  # a v4 file (HY008 converts it whole) or a device the command does not address
         text = f"{word.text[0]}{v4.v5}"
@@ -788,9 +787,7 @@ class SquadNotEstablished(Rule):
         M702 T0 S30
         M703 T1 S30
     """
-    source = (
-        "T_v5, M702 Establish Clone Squad, M703 Add to Clone Squad, M704 Remove from Clone Squad (catalogue H41, H42)"
-    )
+    source = "T_v5, M702 Establish Clone Squad, M703 Add to Clone Squad, M704 Remove from Clone Squad"
     dialects = ("hyrel",)
 
     def __init__(self, ctx) -> None:

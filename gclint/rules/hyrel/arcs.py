@@ -1,7 +1,7 @@
 """HY arc rules: G2/G3 and Hyrel's spirals (G2.1/G3.1, G2.2/G3.2) and 3-space arcs (G2.3/G3.3).
 
 Sources: the Hyrel Gcode page ("G2 Clockwise Arc" ... "G3.3 3-Space CCW Arc", "G16"-"G19") and the
-catalogue in ../shared/research/dialects.md section 3 (H17-H23, F07).  Hyrel's plain G2/G3 take I/J only
+Hyrel firmware source (src/GCode.c: arc checks, G2.1/G3.1), see docs/sources.md.  Hyrel's plain G2/G3 take I/J only
 (no R, no K), draw in the XY plane, and are printed with native flow even under M229 E1.
 """
 
@@ -91,7 +91,7 @@ class ArcSegmentCountNotFullCircle(Rule):
         G1 X0 Y0 F1200
         G2 I10 J0 E1 S6
     """
-    source = "Gcode page, G2 Clockwise Arc (catalogue H17)"
+    source = "Gcode page, G2 Clockwise Arc"
     codes = _PLAIN
     families = ("hyrel",)
 
@@ -132,7 +132,7 @@ class ArcRadiusOrK(ParamTableRule):
     """
     example_bad = "G2 X20 Y0 R10 F1200"
     example_good = "G2 X20 Y0 I10 J0 F1200"
-    source = "Gcode page, G2 Clockwise Arc (catalogue H19)"
+    source = "Gcode page, G2 Clockwise Arc"
     families = ("hyrel",)
 
     def run_filter(self, text: str, start: int, end: int) -> list[int]:
@@ -167,7 +167,7 @@ class SpiralLapParameters(ParamTableRule):
     """
     example_bad = "G2.1 X10 I15 J20 E1"
     example_good = "G2.1 I15 J20 P1.2 E1"
-    source = "Gcode page, G2.1 Spiral CW Arc^1 (catalogue H20, F07)"
+    source = "Gcode page, G2.1 Spiral CW Arc^1; Hyrel firmware source, src/GCode.c ProcessG2_1G3_1Command"
     families = ("hyrel",)
 
     def check(self, line: Line, cmd: Command) -> None:
@@ -199,7 +199,7 @@ class SpiralNeedsPitchOrLaps(Rule):
     """
     example_bad = "G2.2 X12 I25 E1"
     example_good = "G2.2 X12 I25 P4 E1"
-    source = "Gcode page, G2.2 Spiral CW Arc^2 (catalogue H21)"
+    source = "Gcode page, G2.2 Spiral CW Arc^2"
     codes = ("G2.2", "G3.2")
     families = ("hyrel",)
 
@@ -243,7 +243,7 @@ class ArcEAmountIgnored(Rule):
         G1 X0 Y0 F1200
         G1 X20 Y0 E0.8
     """
-    source = "Gcode page, G2 Clockwise Arc (catalogue H18)"
+    source = "Gcode page, G2 Clockwise Arc"
     codes = _ALL_ARCS
     families = ("hyrel",)
 
@@ -283,7 +283,7 @@ class PlainArcInOtherPlane(Rule):
         G18
         G2.3 X10 Z5 I5 K0 F600
     """
-    source = "Gcode page, G16-G19 Arc Plane (catalogue H23)"
+    source = "Gcode page, G16-G19 Arc Plane"
     codes = _PLAIN
     families = ("hyrel",)
 
@@ -324,7 +324,7 @@ class ArcNormalOutsideG16(Rule):
         G16
         G2.3 X10 Y0 Z5 I5 J0 K0 U0 V1 W1
     """
-    source = "Gcode page, G2.3 3-Space CW Arc (note on G16-G19) and G3.3 3-Space CCW Arc (catalogue H22)"
+    source = "Gcode page, G2.3 3-Space CW Arc (note on G16-G19) and G3.3 3-Space CCW Arc"
     codes = ("G2.3", "G3.3")
     families = ("hyrel",)
 

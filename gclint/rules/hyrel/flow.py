@@ -1,7 +1,7 @@
 """HY flow rules: native flow versus E values (M229), fans (M106), flow settings (M221, M756, M721/M722).
 
-Sources: the Hyrel Gcode page ("Controlling Material Flow", "M106 Set Cooling / Etc.") and the catalogue
-in ../shared/research/dialects.md section 3.  Hyrel's two ways to control flow: native flow (the default)
+Sources: the Hyrel Gcode page ("Controlling Material Flow", "M106 Set Cooling / Etc.") and the Hyrel
+firmware source (src/MCode.c), see docs/sources.md.  Hyrel's two ways to control flow: native flow (the default)
 ignores E amounts and computes flow from speed, layer height and width; `M229 E1 D1` uses the slicer's
 E values.  ``MachineState.flow_mode`` says which one is active.
 """
@@ -34,7 +34,10 @@ class M229E1D0(Rule):
     """
     example_bad = "M229 E1 D0"
     example_good = "M229 E1 D1"
-    source = "Gcode page, M229 Use E Values (catalogue H01, F01)"
+    source = (
+        "Gcode page, M229 Use E Values; Hyrel firmware source, src/MCode.c M_Code_M229 (D0 is 'NOT VALID with '"
+        "'Use E Value')"
+    )
     codes = ("M229",)
     families = ("hyrel",)
 
@@ -84,7 +87,7 @@ class FanDutyOverRange(ParamTableRule):
         M106 C255
         M106 T0 S128
     """
-    source = "Gcode page, M106 Set Cooling / Etc. (catalogue H09, H10)"
+    source = "Gcode page, M106 Set Cooling / Etc."
     families = ("hyrel",)
 
     def check(self, line: Line, cmd: Command) -> None:
@@ -137,7 +140,7 @@ class FanRangeValue(ParamTableRule):
     """
     example_bad = "M106 C1000"
     example_good = "M106 C255"
-    source = "Gcode page, M106 Set Cooling / Etc. (catalogue H09, F02)"
+    source = "Gcode page, M106 Set Cooling / Etc.; Hyrel firmware source, src/MCode.c M_Code_M106 (C held to 1-255)"
     families = ("hyrel",)
 
     def check(self, line: Line, cmd: Command) -> None:
@@ -173,7 +176,7 @@ class EModeWithoutM229(Rule):
         M229 E1 D1
         M83
     """
-    source = "Gcode page, M82 Absolute E-Values / M83 Relative E-Values (catalogue H37)"
+    source = "Gcode page, M82 Absolute E-Values / M83 Relative E-Values"
     codes = ("M82", "M83")
     families = ("hyrel",)
 
@@ -214,7 +217,7 @@ class M756IgnoredUnderM229(Rule):
         M229 E0
         M756 S0.2
     """
-    source = "Gcode page, M756 Set Height for Flow (catalogue H38)"
+    source = "Gcode page, M756 Set Height for Flow"
     codes = ("M756",)
     families = ("hyrel",)
 
@@ -253,7 +256,7 @@ class FlowMultiplierRange(ParamTableRule):
     """
     example_bad = "M221 T0 S-1"
     example_good = "M221 T0 S1.0"
-    source = "Gcode page, G1 Working Move (Sn) and M221 Set Flow Rate (Sn) (catalogue H15, H39)"
+    source = "Gcode page, G1 Working Move (Sn) and M221 Set Flow Rate (Sn)"
     families = ("hyrel",)
 
     def __init__(self, ctx) -> None:
@@ -289,7 +292,7 @@ class PrimeSpeedUnits(Rule):
     """
     example_bad = "M721 T0 S35 E100 P-15"
     example_good = "M721 T0 S10000 E100 P-15"
-    source = "Gcode page, M721 Set Unprime Values and M722 Set Prime Values (catalogue H62)"
+    source = "Gcode page, M721 Set Unprime Values and M722 Set Prime Values"
     codes = ("M721", "M722")
     families = ("hyrel",)
 
@@ -341,7 +344,7 @@ class SlicerEWithoutM229(MoveRule):
         G1 X10 Y11 E2.56
         M30
     """
-    source = "Gcode page, Controlling Material Flow and G1 Working Move (catalogue H60)"
+    source = "Gcode page, Controlling Material Flow and G1 Working Move"
     slot = "slicer_e"
 
     DISTINCT = 5  # this many different E amounts look sliced (native Hyrel jobs write E1 on every move)

@@ -1,9 +1,8 @@
 """HY job-flow rules: the end of the job (M30), line length, M0/M792 actions, the aux ports.
 
 Sources: the Hyrel Gcode page, "Other Commands" (M30 End of Program, M792 Execute Action), "M0 Stop
-Until Resume" and "Controlling Aux Devices" (M7, M8, M670-M689), the hidden-codes page (M673), as
-catalogued in ../shared/research/dialects.md section 3 (H35, H36, H47, H50, H51) and 3.3 (the
-100-character note).
+Until Resume" and "Controlling Aux Devices" (M7, M8, M670-M689), the hidden-codes page Sekret! (M673);
+see docs/sources.md.
 """
 
 from __future__ import annotations
@@ -47,7 +46,7 @@ class CodeAfterM30(Rule):
         M104 T0 S0
         M30
     """
-    source = "Gcode page, M30 End of Program (catalogue H35)"
+    source = "Gcode page, M30 End of Program"
     families = ("hyrel",)
     on_line_after_m30 = True
 
@@ -90,7 +89,7 @@ class MissingM30(Rule):
         G1 X10 E1 F600
         M30
     """
-    source = "Gcode page, M30 End of Program (catalogue H35)"
+    source = "Gcode page, M30 End of Program"
     families = ("hyrel",)
 
     def finish(self) -> None:
@@ -137,7 +136,7 @@ class LineOver100Characters(Rule):
     explanation = """
         The M0 section says "Note that all lines will be truncated at 100 characters."  Whether "all
         lines" means the M0/M792 text or every line of the file is not clear, so gclint takes it as
-        written (research/dialects.md 3.3): a longer line loses what follows column 100.  A warning
+        written (gclint's reading of the page): a longer line loses what follows column 100.  A warning
         when that is part of a command (a word, a parameter, a checksum) or the text of an M0/M792
         (its message or action: what the printer says or does); info when it is only comment text,
         which changes nothing the printer does (a slicer profile's banner comment, Hyrel's own among
@@ -151,8 +150,8 @@ class LineOver100Characters(Rule):
     )
     example_good = "M0 ; SAY Remove the part, load the next sheet, press Play"
     source = (
-        "Gcode page, M0 Stop Until Resume ('all lines will be truncated at 100 characters'); "
-        "research/dialects.md 3.3 (catalogue H47)"
+        "Gcode page, M0 Stop Until Resume ('all lines will be truncated at 100 characters'; gclint reads it as "
+        "every line)"
     )
     families = ("hyrel",)
     on_line_longer_than = _LIMIT
@@ -218,7 +217,7 @@ class AuxPortNotOnModel(Rule):
         ; gclint-test: printer=30m
         M679 S100
     """
-    source = "Gcode page, Controlling Aux Devices (M671-M689) (catalogue H50)"
+    source = "Gcode page, Controlling Aux Devices (M671-M689)"
     codes = tuple(_MODEL_AUX)
     families = ("hyrel",)
 
@@ -257,7 +256,7 @@ class AuxPercentRange(ParamTableRule):
     """
     example_bad = "M7 S255"
     example_good = "M7 S100"
-    source = "Gcode page, Controlling Aux Devices (M7, M8, M670-M689); hidden codes, M673 (catalogue H50, H51)"
+    source = "Gcode page, Controlling Aux Devices (M7, M8, M670-M689); hidden codes, M673"
     families = ("hyrel",)
 
     def check(self, line: Line, cmd: Command) -> None:
@@ -306,7 +305,7 @@ class StateAssumedAcrossM30(Rule):
         M106 C255
         M106 T0 S128
     """
-    source = "Gcode page, M30 End of Program; T_v5, M702 (an M30 decommissions any clone squads) (catalogue H36, H42)"
+    source = "Gcode page, M30 End of Program; T_v5, M702 (an M30 decommissions any clone squads)"
     codes = ("M30", "M106", "M229", ANY_T, *_FIXTURES)
     families = ("hyrel",)
 
@@ -398,7 +397,7 @@ class M0UnknownAction(Rule):
     """
     example_bad = "M792 ; SPEAK Hello Wilbur"
     example_good = "M792 ; SAY Hello Wilbur"
-    source = "Gcode page, M0 Stop Until Resume and M792 Execute Action (catalogue H47)"
+    source = "Gcode page, M0 Stop Until Resume and M792 Execute Action"
     codes = ("M0", "M792")
     families = ("hyrel",)
 

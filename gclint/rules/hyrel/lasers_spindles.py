@@ -1,8 +1,7 @@
 """HY rules for lasers, UV pens, spindles and lathes (M620-M623, M3/M4/M5, M253-M255, M30).
 
 Sources: the Hyrel Gcode page ("Controlling Lasers and UV Pens", "Controlling Spindles and Lathes", "M30
-End of Program") and the catalogue in ../shared/research/dialects.md section 3 (H29, H31-H34, H48,
-H49).  ``MachineState.emitters_enabled`` and ``spindles`` say which devices are on.
+End of Program"), see docs/sources.md.  ``MachineState.emitters_enabled`` and ``spindles`` say which devices are on.
 """
 
 from __future__ import annotations
@@ -49,7 +48,7 @@ class EmitterNeedsTarget(ParamTableRule):
     """
     example_bad = "M620 E1"
     example_good = "M620 T21 E1"
-    source = "Gcode page, M620 Enable Device (catalogue H31)"
+    source = "Gcode page, M620 Enable Device"
     families = ("hyrel",)
 
     def missing_message(self, cmd: Command, p: Param) -> str:
@@ -77,7 +76,7 @@ class EmitDurationTooLong(_DeviceRule):
         M620 T21 E1
         M623 P80 D500
     """
-    source = "Gcode page, M623 Duration Emit (catalogue H33)"
+    source = "Gcode page, M623 Duration Emit"
     codes = ("M623",)
 
     UV_MAX = 60000.0
@@ -122,7 +121,10 @@ class SpindlePowerOver100(ParamTableRule):
     """
     example_bad = "M3 T20 S12000"
     example_good = "M3 T20 S75"
-    source = "Gcode page, M3 Turn On Spindle (CW) (catalogue H48, F12)"
+    source = (
+        "Gcode page, M3 Turn On Spindle (CW); Hyrel firmware source, src/MCode.c M_Code_M3 (S goes to the "
+        "spindle PWM as it is)"
+    )
     families = ("hyrel",)
 
     def range_message(self, cmd: Command, p: Param, problem: str) -> str:
@@ -162,7 +164,7 @@ class SpindleDirectionChange(_DeviceRule):
         G4 S2
         M4 T20 S75
     """
-    source = "Gcode page, M3 Turn On Spindle (CW) (catalogue H48)"
+    source = "Gcode page, M3 Turn On Spindle (CW)"
     codes = ("M3", "M4")
 
     def check(self, line: Line, cmd: Command) -> None:
@@ -211,7 +213,7 @@ class EmitterOnAtEnd(_DeviceRule):
         M620 T21 E0
         M30
     """
-    source = "Gcode page, Laser Examples / UV Pen Examples and G81 Peck Drilling (catalogue H34, H29)"
+    source = "Gcode page, Laser Examples / UV Pen Examples and G81 Peck Drilling"
     codes = ("M30",)
 
     def __init__(self, ctx) -> None:
@@ -270,7 +272,7 @@ class LaserPowerBeforeEnable(_DeviceRule):
         M620 T21 E1
         M621 P40
     """
-    source = "Gcode page, M621 Set Laser Power and M623 Duration Emit (catalogue H32)"
+    source = "Gcode page, M621 Set Laser Power and M623 Duration Emit"
     codes = ("M621", "M623")
 
     def check(self, line: Line, cmd: Command) -> None:
@@ -305,7 +307,7 @@ class LatheOnNon16A(Rule):
     """
     example_bad = "; gclint-test: printer=30m dialect=hyrel\nM253 S75"
     example_good = "; gclint-test: printer=30m dialect=hyrel\nM255"
-    source = "Gcode page, M253 Turn On Lathe (CW), M254 Turn On Lathe (CCW), M255 Turn Off Lathe (catalogue H49)"
+    source = "Gcode page, M253 Turn On Lathe (CW), M254 Turn On Lathe (CCW), M255 Turn Off Lathe"
     codes = ("M253", "M254")
     families = ("hyrel",)
 

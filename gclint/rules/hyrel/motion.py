@@ -1,7 +1,7 @@
 """HY motion rules: what G0/G1 mean on Hyrel, units, motors, axes, offsets and probing.
 
 Sources: the Hyrel Gcode page ("Controlling Movement", "Controlling Position and Offsets", "Other
-Commands"), the hidden-codes page (G38) and the catalogue in ../shared/research/dialects.md section 3.
+Commands"), the hidden-codes page Sekret! (G38) and the Hyrel firmware source; see docs/sources.md.
 
 G0/G1 lines are the hot path (millions per job).  The rules that look at them do not each listen to
 G0/G1: one ``MoveChecks`` per file listens once on behalf of all the enabled ones and calls a rule only
@@ -263,7 +263,9 @@ class RapidMoveWithE(MoveRule):
     """
     example_bad = "G0 X20 Y20 E1"
     example_good = "G1 X20 Y20 E1 F1200"
-    source = "Gcode page, G0 Rapid Move (catalogue H12, F10)"
+    source = (
+        "Gcode page, G0 Rapid Move; Hyrel firmware source, src/GCode.c G_Code_G0_0 (E reported invalid and removed)"
+    )
     slot = "rapid_e"
 
     def move(self, line: Line, cmd: Command) -> None:
@@ -296,7 +298,7 @@ class TravelMarkedPrinting(MoveRule):
         G1 X10 Y10 E1 F1200
         G1 X30 Y10
     """
-    source = "Gcode page, G1 Working Move (catalogue H13)"
+    source = "Gcode page, G1 Working Move"
     slot = "travel_prints"
 
     def __init__(self, ctx) -> None:
@@ -421,7 +423,7 @@ class PrintingInRelativeMode(MoveRule):
         G90
         G1 X10 Y0 E1 F1200
     """
-    source = "Gcode page, G1 Working Move and G91 Relative Positioning (catalogue H14)"
+    source = "Gcode page, G1 Working Move and G91 Relative Positioning"
     codes = (*_ARCS, "G90")
     slot = "relative_print"
 
@@ -481,7 +483,7 @@ class G1FeedUndefined(MoveRule):
         G0 X10 Y10 F3000
         G1 X20 Y10 E1 F1200
     """
-    source = "Gcode page, G0 Rapid Move and G1 Working Move (catalogue H11)"
+    source = "Gcode page, G0 Rapid Move and G1 Working Move"
     codes = _ARCS
     slot = "feed_undefined"
 
@@ -526,7 +528,7 @@ class MotionAfterMotorsOff(MoveRule):
         G28 X0 Y0
         G0 X10 Y10
     """
-    source = "Gcode page, M18 Disengage Motors (catalogue H53)"
+    source = "Gcode page, M18 Disengage Motors"
     codes = (*_ARCS, "G81", "G38")
     slot = "motors_off"
 
@@ -572,10 +574,7 @@ class AxisNotOnModel(MoveRule):
     """
     example_bad = "; gclint-test: printer=30m\nG1 X10 Y10 A90 F1200"
     example_good = "; gclint-test: printer=30m\nG1 X10 Y10 F1200"
-    source = (
-        "Gcode page, G0 Rapid Move / G1 Working Move note on axes; G28, G92, M203, G54 - G59, M6 parameters "
-        "(catalogue H59)"
-    )
+    source = "Gcode page, G0 Rapid Move / G1 Working Move note on axes; G28, G92, M203, G54 - G59, M6 parameters"
     codes = (*_ARCS, "G28", "G92", "G38", "M203", *(f"G{n}" for n in range(54, 60)), "M6")
     slot = "axis_on_model"
 
@@ -619,7 +618,7 @@ class G10G11Unsupported(Rule):
     """
     example_bad = "G10"
     example_good = "M721 T0 I1"
-    source = "Gcode page, G10 UNUSED and G11 UNUSED (catalogue H24)"
+    source = "Gcode page, G10 UNUSED and G11 UNUSED"
     codes = ("G10", "G11")
     families = ("hyrel",)
 
@@ -650,7 +649,7 @@ class InchUnits(Rule):
     """
     example_bad = "G20"
     example_good = "G21"
-    source = "Gcode page, G20 Set Units to Inches (catalogue H25)"
+    source = "Gcode page, G20 Set Units to Inches"
     codes = ("G20",)
     families = ("hyrel",)
 
@@ -678,7 +677,7 @@ class NonModalG53OrInverseTime(MoveRule):
         G53
         G0 X0 Y0
     """
-    source = "Gcode page, G53 Clear Offsets and G93 Clear Coordinate Offsets (catalogue H57, H58)"
+    source = "Gcode page, G53 Clear Offsets and G93 Clear Coordinate Offsets"
     codes = ("G53", "G93", "G94", "G2", "G3")
     slot = None  # joins MoveChecks.inverse_time only while watching a G93
 
@@ -772,7 +771,7 @@ class G0SpeedLooksLikeMmPerS(Rule):
     """
     example_bad = "M203 X200 Y200"
     example_good = "M203 X12000 Y12000"
-    source = "Gcode page, M203 Set G0 Speed (catalogue H52)"
+    source = "Gcode page, M203 Set G0 Speed"
     codes = ("M203",)
     families = ("hyrel",)
 
@@ -802,7 +801,7 @@ class PauseSAndPAdd(Rule):
     """
     example_bad = "G4 S1 P500"
     example_good = "G4 P1500"
-    source = "Gcode page, G4 Timed Pause (catalogue H63)"
+    source = "Gcode page, G4 Timed Pause"
     codes = ("G4",)
     families = ("hyrel",)
 
@@ -829,7 +828,7 @@ class ProbeParameters(Rule):
     """
     example_bad = "G38 Z-9 P0 D1 F200"
     example_good = "G38 Z-9 T0 P3 D1 I1 F200"
-    source = "Hidden codes page, G38 Distance Probing (catalogue H64)"
+    source = "Hidden codes page, G38 Distance Probing"
     codes = ("G38",)
     families = ("hyrel",)
 

@@ -1,8 +1,8 @@
 """HY offset rules: M6 head offsets, M660 tool-height registers and their H, G28 homing, G81.
 
 Sources: the Hyrel Gcode page, "Controlling Position and Offsets" (G28 Send X, Y to Physical Home, M6
-Declare Head Offsets, M660 Assign Tool Height Offset, T Tool Change) and "G81 Peck Drilling", as
-catalogued in ../shared/research/dialects.md section 3 (H16, H26-H28, H30, H46, H55; F05, F06).
+Declare Head Offsets, M660 Assign Tool Height Offset, T Tool Change) and "G81 Peck Drilling", and the
+Hyrel firmware source (src/MCode.c M_Code_M6, M_Code_M660; src/GCode.c G_Code_G28); see docs/sources.md.
 """
 
 from __future__ import annotations
@@ -42,7 +42,7 @@ class G81WithoutAppliedM660(Rule):
         G1 Z10 F600 H1
         G81 T20 X100 Y75 I3 P3 Q-2 Z-7.5 F200
     """
-    source = "Gcode page, G81 Peck Drilling and M660 Assign Tool Height Offset (catalogue H28)"
+    source = "Gcode page, G81 Peck Drilling and M660 Assign Tool Height Offset"
     codes = ("G81",)
     families = ("hyrel",)
 
@@ -98,7 +98,10 @@ class M660EhrWithoutZHome(Rule):
         G28 Z0
         M660 H2 Z28.2
     """
-    source = "Gcode page, M660 Assign Tool Height Offset (catalogue H30, F05)"
+    source = (
+        "Gcode page, M660 Assign Tool Height Offset; Hyrel firmware source, src/MCode.c M_Code_M660 (H required) "
+        "and inc/main.h NUM_TOOL_OFFSETS (60)"
+    )
     codes = ("M660",)
     families = ("hyrel",)
 
@@ -129,7 +132,10 @@ class G28AxisValue(Rule):
     """
     example_bad = "G28"
     example_good = "G28 X0 Y0"
-    source = "Gcode page, G28 Send X, Y to Physical Home (catalogue H26, F09)"
+    source = (
+        "Gcode page, G28 Send X, Y to Physical Home; Hyrel firmware source, src/GCode.c G_Code_G28 and main.c (an "
+        "axis with no home sensor)"
+    )
     codes = ("G28",)
     families = ("hyrel",)
 
@@ -190,7 +196,10 @@ class ToolHeightRegister(ParamTableRule):
         M660 H2 Z28.2
         G1 X50 Y75 F4800 H2
     """
-    source = "Gcode page, G1 Working Move (Hn) and M660 Assign Tool Height Offset (catalogue H16, F05)"
+    source = (
+        "Gcode page, G1 Working Move (Hn) and M660 Assign Tool Height Offset; Hyrel firmware source, src/MCode.c "
+        "M_Code_M660 and inc/main.h NUM_TOOL_OFFSETS (60)"
+    )
     families = ("hyrel",)
 
     def __init__(self, ctx) -> None:
@@ -291,7 +300,7 @@ class M6UsedAsToolChange(Rule):
         M6 T1 O2 X20 Y0 Z0
         T1
     """
-    source = "Gcode page, M6 Declare Head Offsets and T Tool Change (catalogue H46)"
+    source = "Gcode page, M6 Declare Head Offsets and T Tool Change"
     codes = ("M6",)
     families = ("hyrel",)
 
@@ -363,10 +372,7 @@ class OffsetsClearedByG28(Rule):
         T1
         G1 X20 Y10 E1 F1200
     """
-    source = (
-        "Gcode page, G28 Send X, Y to Physical Home, G1 Working Move and T Tool Change; T_v5, Explicit Mode "
-        "(catalogue H27)"
-    )
+    source = "Gcode page, G28 Send X, Y to Physical Home, G1 Working Move and T Tool Change; T_v5, Explicit Mode"
     codes = ("G28", "G92", *_FIXTURES, "M30")
     families = ("hyrel",)
 
@@ -473,7 +479,7 @@ class HeadOffsetRegister(ParamTableRule):
         `M6 T# On Xn Yn Zn` stores head offsets in register O ("On is the Offset position where these
         are being stored"), invoked by the T command of that head.  The firmware has registers 0-59, and
         register 0 is the fixed zero offset (G28 "applies a head offset of 0 mm (as in an M6 O0)";
-        research/dialects.md F06: "index 0 never changes"): an O outside 0-59 or not whole, or offsets
+        the firmware's M6 "don't allow location 0 to change"): an O outside 0-59 or not whole, or offsets
         written to O0, are lost and the head prints without its offset.  `M6 O0` alone (apply the zero
         offset) is fine.
 
@@ -481,15 +487,15 @@ class HeadOffsetRegister(ParamTableRule):
         decodes an M6 without O as "(no offset registers, so ignore all offsets)" (its `M6 K1` example),
         so the head prints without them (warning).  Write the register: `M6 T1 O2 X25 Y0 Z0.5`.
 
-        (The catalogue also suggests an info for every M6 in a job, since "Repetrel reads this data from
+        (An info for every M6 in a job would also be possible, since "Repetrel reads this data from
         the heads, and sends it to the printer before the gcode file is loaded"; gclint does not report
         it, because Repetrel's own job header is made of exactly these lines.)
     """
     example_bad = "M6 T0 O60 X20 Y-30 Z40"
     example_good = "M6 T0 O1 X20 Y-30 Z40"
     source = (
-        "Gcode page, M6 Declare Head Offsets (parameters, M6 K1 example) and G28 Send X, Y to Physical Home "
-        "(catalogue H55, F06)"
+        "Gcode page, M6 Declare Head Offsets (parameters, M6 K1 example) and G28 Send X, Y to Physical Home; "
+        "Hyrel firmware source, src/MCode.c M_Code_M6 (O 0-59; register 0 never changes)"
     )
     families = ("hyrel",)
 

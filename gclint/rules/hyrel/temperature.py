@@ -1,8 +1,7 @@
 """HY temperature rules: M104, M109/M190/M191 waits, W0 and M116.
 
 Sources: the Hyrel Gcode page, "Controlling Temperature" (M104, M109 Wait for Temp (Head), M116 Wait for
-Temps (v5+), M190, M191) and the T_v5 chart of addresses, as catalogued in
-../shared/research/dialects.md section 3 (H03-H08, H61).
+Temps (v5+), M190, M191) and the T_v5 chart of addresses; see docs/sources.md.
 """
 
 from __future__ import annotations
@@ -51,10 +50,7 @@ class WaitParameterGroups(Rule):
     """
     example_bad = "M109 T0 S240 H230 L10"
     example_good = "M109 T0 S240 L10 U5"
-    source = (
-        "Gcode page, M109 Wait for Temp (Head), M190 Wait for Temp (Bed), M191 Wait for Temp (Chamber) "
-        "(catalogue H03, H04)"
-    )
+    source = "Gcode page, M109 Wait for Temp (Head), M190 Wait for Temp (Bed), M191 Wait for Temp (Chamber)"
     codes = _WAITS
     families = ("hyrel",)
 
@@ -111,7 +107,7 @@ class WaitOnGroupAddress(Rule):
     """
     example_bad = "M109 T40 S200"
     example_good = "M109 T0 S200"
-    source = "Gcode page, M109 Wait for Temp (Head) (also M190, M191) (catalogue H05)"
+    source = "Gcode page, M109 Wait for Temp (Head) (also M190, M191)"
     codes = _WAITS
     families = ("hyrel",)
 
@@ -153,7 +149,7 @@ class V5OnlyCodeOnV4(Rule):
         ; gclint-test: dialect=hyrel-v4
         M109 T11 S200
     """
-    source = "Gcode page, M109 Wait for Temp (Head) ([v5+] W0) and M116 Wait for Temps (v5+) (catalogue H08)"
+    source = "Gcode page, M109 Wait for Temp (Head) ([v5+] W0) and M116 Wait for Temps (v5+)"
     codes = ("M116", *_WAITS)
     dialects = ("hyrel-v4",)
 
@@ -185,7 +181,7 @@ class WaitRIsATolerance(Rule):
         temperature is set".  Marlin and RepRapFirmware read `M109 R210` as "set 210 °C and wait, also
         when cooling"; on Hyrel it sets nothing and waits until the head is within ±210 °C of the
         temperature already set.  An R above 50 °C with no S is taken for such a Marlin target (the
-        threshold is the catalogue's, research/dialects.md H07, not the page's): write `M109 S210 R5`.
+        threshold is gclint's own choice, not the page's): write `M109 S210 R5`.
         With S, R is the tolerance the page describes, whatever its size: the page gives no limit, so
         `M109 T0 S240 R60` is not reported.
 
@@ -196,7 +192,7 @@ class WaitRIsATolerance(Rule):
     """
     example_bad = "M109 T0 R210"
     example_good = "M109 T0 S210 R5"
-    source = "Gcode page, M109 Wait for Temp (Head) (Sn, Rn, Example 6; also M190, M191) (catalogue H07)"
+    source = "Gcode page, M109 Wait for Temp (Head) (Sn, Rn, Example 6; also M190, M191)"
     codes = _WAITS
     families = ("hyrel",)
 
@@ -247,7 +243,7 @@ class W0NeverWaited(Rule):
         G1 X10 E1 F600
         M30
     """
-    source = "Gcode page, M109 Wait for Temp (Head) ([v5+] W0) and M116 Wait for Temps (v5+) (catalogue H08)"
+    source = "Gcode page, M109 Wait for Temp (Head) ([v5+] W0) and M116 Wait for Temps (v5+)"
     codes = ("M116", "M30")
     dialects = ("hyrel",)
 
@@ -310,7 +306,7 @@ class WaitTargetKind(Rule):
     example_good = "M190 T24 S60"
     source = (
         "Gcode page, M104 / M109 / M140 / M141 / M190 / M191 (T# is the target head / bed / chamber); "
-        "T_v5, Chart of Addresses (catalogue H06)"
+        "T_v5, Chart of Addresses"
     )
     codes = (*_WAITS, *_SETS)
     families = ("hyrel",)
@@ -373,8 +369,7 @@ class NegativeTemperature(ParamTableRule):
     example_bad = "M104 T0 S-20"
     example_good = "M104 T0 S20"
     source = (
-        "Gcode page, M104 Set Temp (Head) and M109 Wait for Temp (Head) ('heated and chilled (sub-ambient) "
-        "heads') (catalogue H61)"
+        "Gcode page, M104 Set Temp (Head) and M109 Wait for Temp (Head) ('heated and chilled (sub-ambient) " "heads')"
     )
     families = ("hyrel",)
 

@@ -41,7 +41,7 @@ def _starts_line(line: Line, cmd: Command | None) -> bool:
     return cmd is None or line.parsed.commands[0] is cmd
 
 
-# RepRapFirmware M551 P"password" (research/firmware_codes.md section 6: M551 password); an old-style
+# RepRapFirmware M551 P"password" (RepRapFirmware source @ fc1cd16c, src/GCodes/GCodes2.cpp: M551); an old-style
 # unquoted value runs to the end of the command.
 _M551 = re.compile(
     r"""(?i)(?<![A-Za-z0-9])M0{0,4}+551(?![\d.])[^;\r\n]{0,300}?(?<![A-Za-z0-9'])P[ \t]{0,4}+("((?:[^"\r\n]|""){0,256}+)"|[^\s;"]{1,256}+)"""

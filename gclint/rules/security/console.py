@@ -16,7 +16,7 @@ from gclint.syntax.nodes import ASSIGNMENT, GCODE, IMPLICIT, META, OWORD, Comman
 # src/modules/utils/simpleshell/SimpleShell.cpp (on_console_line_received: "ignore anything that is not
 # lowercase or a $"; commands_table, matched by prefix with strncasecmp) and src/modules/utils/player/
 # Player.cpp (on_main_loop feeds every line of a played file to ON_CONSOLE_LINE_RECEIVED; play, buffer,
-# upload, download, goto, abort, suspend, resume); research/firmware_codes.md section 8.
+# upload, download, goto, abort, suspend, resume); Smoothieware source @ bb41e992, SimpleShell.cpp.
 CONSOLE_START = frozenset("abcdefghijklmnopqrstuvwxyz$")
 # What the shell runs for a first word (exact matches first, then SimpleShell's table in its order: a word
 # runs the first entry it starts with).
@@ -79,8 +79,8 @@ _CONSOLE_TABLE = (
     ("enable_4th_hd", "enables the 4th axis"),
     ("disable_4th_hd", "disables the 4th axis"),
 )
-# RepRapFirmware's meta commands: lower-case words that RepRapFirmware itself runs (research/
-# firmware_codes.md section 6; StringParser.cpp ProcessConditionalGCode).
+# RepRapFirmware's meta commands: lower-case words that RepRapFirmware itself runs (RepRapFirmware
+# source @ fc1cd16c, src/GCodes/GCodeBuffer/StringParser.cpp ProcessConditionalGCode).
 _FIRST_TOKEN = re.compile(r"[^ \t;(]*")
 
 
@@ -133,8 +133,8 @@ class ShellPassThrough(_SecurityRule):
     example_bad = "rm /sd/config.txt"
     example_good = "M1000"
     source = (
-        "Carvera M-code table (seeds/carvera-mcodes.md): M1000 pass-through to the simpleshell;"
-        " research/firmware_codes.md section 8 (console commands); Carvera Community Firmware"
+        "Carvera M-code table: M1000 pass-through to the simpleshell; Smoothieware source @ bb41e992,"
+        " SimpleShell.cpp (console commands); Carvera Community Firmware"
         " SimpleShell.cpp and Player.cpp (every played line goes to the console)"
     )
     codes = ("M1000",)

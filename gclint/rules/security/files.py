@@ -88,15 +88,15 @@ class RunsFile(_SecurityRule):
         SUBROUTINE_PATH) and run it ("Calling Files" in LinuxCNC's O-code documentation; interp_o_word.cc
         control_back_to).  Such a call, and a call whose name is computed ("o[#1] call"), is reported in
         every dialect.  Define the subroutine in the job, above the call.  M98 P with a number in a job
-        read as Machinekit/LinuxCNC is reported only then (a subprogram of the same file, research/
-        firmware_codes.md section 7); elsewhere it is always reported, since a Carvera runs
+        read as Machinekit/LinuxCNC is reported only then (a subprogram of the same file: LinuxCNC's
+        O-code documentation, "Fanuc-Style Numbered Programs"); elsewhere it is always reported, since a Carvera runs
         gcodes/macros/<number>.cnc for it.
 
-        RepRapFirmware's own configuration is macros calling macros: the firmware runs homeall.g for G28,
-        tpre0.g for T0, M<n>.g for a code it does not have, and these files call each other with M98
-        (research/firmware_codes.md section 6).  So M98 in a RepRapFirmware system or macro file (a `.g`
-        file, or a file in a `sys/` or `macros/` folder, checked as RepRapFirmware) is not reported: it
-        runs another part of the same configuration.  A job that calls a macro still is.
+        RepRapFirmware's own configuration is macros calling macros: the firmware runs homeall.g for G28, tpre0.g for
+        T0, M<n>.g for a code it does not have, and these files call each other with M98 (RepRapFirmware source,
+        src/GCodes/GCodes2.cpp: M98 and the macro-file lookup).  So M98 in a RepRapFirmware system or macro file (a `.g`
+        file, or a file in a `sys/` or `macros/` folder, checked as RepRapFirmware) is not reported: it runs another
+        part of the same configuration.  A job that calls a macro still is.
 
         M100 to M199, in a job read as Machinekit/LinuxCNC, run the external program of that name from the
         machine's program folder ("M100-M199 User Defined Commands" in LinuxCNC's M-code documentation), or
@@ -314,11 +314,11 @@ _ECHO_REDIRECT = re.compile(
     r"""[ \t]*+(?:[Nn][ \t]*+\d{1,12}+[ \t]*+)?echo[ \t]*+(>{1,3}+)[ \t]*+("(?:[^"\r\n]|"")*+"?|\{[^}\r\n]*+\}?|[^ \t;]*+)"""
 )
 _LOG_FILE = re.compile(r"(?i)\.(?:txt|log)$")
-# Codes whose file effect belongs to one firmware (research/firmware_codes.md): Smoothieware keeps settings
-# in a config-override file (section 8: M500 save overrides, M502 delete override file, M504 save to a
-# named file; seeds/carvera-mcodes.md M502 "deletes config-override"), RepRapFirmware writes
-# config-override.g (section 6: M500-M503 config-override); Marlin keeps them in EEPROM (sections 1 and 5:
-# save / load / defaults / report / validate settings), so a job read as Marlin is not reported.
+# Codes whose file effect belongs to one firmware: Smoothieware keeps settings in a config-override file
+# (Smoothieware source @ bb41e992: M500 save overrides, M502 delete override file, M504 save to a named
+# file; Carvera M-code table M502 "deletes config-override"), RepRapFirmware writes config-override.g
+# (RepRapFirmware source, src/GCodes/GCodes2.cpp M500-M503); Marlin keeps them in EEPROM (Marlin G-code
+# reference M500-M504; Prusa-Firmware-Buddy the same), so a job read as Marlin is not reported.
 _CONFIG_OVERRIDE = {  # what each does on Smoothieware/Carvera
     "M500": "writes the machine's settings into its config-override file",
     "M502": "deletes the config-override file (the machine falls back to config.txt)",
@@ -347,8 +347,8 @@ def _parameter(rest: str, cmd: Command | None, letter: str) -> str | None:
     return m.group(1) if m is not None else None
 
 
-# Codes that replace the printer's firmware (research/firmware_codes.md: section 1 Prusa Buddy M997 firmware
-# update; section 5 Marlin M997 firmware update, M936 OTA update; section 6 RepRapFirmware M997 firmware update).
+# Codes that replace the printer's firmware: M997 firmware update in Prusa-Firmware-Buddy @ 818d812f, Marlin
+# source @ 005ec919 (also M936 OTA update) and RepRapFirmware source @ fc1cd16c (src/GCodes/GCodes2.cpp).
 _FIRMWARE_UPDATE = {
     "M997": "starts a firmware update (Marlin, Prusa Buddy, RepRapFirmware): a job must not replace the printer's"
     " firmware",
@@ -413,12 +413,13 @@ class ChangesPrinterFiles(_SecurityRule):
     example_bad = "M30 /sys/config.g"
     example_good = "M30"
     source = (
-        "RepRap G-code page (M28, M30, M471, M559, M560); research/firmware_codes.md sections 6 (M472 delete, M929"
-        " logging, M500-M503 config-override) and 8 (M500, M502 delete override file, M504); RepRapFirmware"
-        " StringParser.cpp ProcessEchoCommand (echo >file, >>file); Klipper docs/G-Codes.md [configfile]"
-        " SAVE_CONFIG and [save_variables] SAVE_VARIABLE; research/firmware_codes.md sections 2 and 5 (M928 SD"
-        " logging into a file), 6 (M505 set system folder), 1, 5 and 6 (M997 firmware update), 5 (M936 OTA"
-        " update), 8 (several G/M words on one line are split at each G/M); Marlin src/gcode/parser.cpp"
+        "RepRap G-code page (M28, M30, M471, M559, M560); RepRapFirmware source @ fc1cd16c,"
+        " src/GCodes/GCodes2.cpp (M472 delete, M929 logging, M500-M503 config-override, M505 set system folder,"
+        " M997 firmware update) and StringParser.cpp ProcessEchoCommand (echo >file, >>file); Smoothieware"
+        " source @ bb41e992 (M500, M502 delete override file, M504; GcodeDispatch.cpp splits a line at each"
+        " G/M); Klipper docs/G-Codes.md [configfile] SAVE_CONFIG and [save_variables] SAVE_VARIABLE;"
+        " Prusa-Firmware @ 0c9bf5d4 (M928 SD logging into a file); Marlin source @ 005ec919 (M928, M997"
+        " firmware update, M936 OTA update); Prusa-Firmware-Buddy @ 818d812f (M997); Marlin src/gcode/parser.cpp"
         " GCodeParser::parse (M23, M28, M30: the rest of the line is the file name); LinuxCNC"
         " src/emc/rs274ngc/interp_convert.cc convert_comment, src/emc/task/emccanon.cc COMMENT (PROBEOPEN),"
         ' docs/src/gcode/overview.adoc "Comments", "Logging", "Probe Logging"; RepRapFirmware'

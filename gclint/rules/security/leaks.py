@@ -30,8 +30,9 @@ class LeakedSecret(_SecurityRule):
     example_bad = "; printhost_apikey = 0123456789ABCDEF0123456789ABCDEF"
     example_good = "; printhost_apikey = "
     source = (
-        "research/anchors.md: OctoPrint File Check, leaked_api_key; research/firmware_codes.md section 6"
-        " (M551 password, M587 Wi-Fi networks); Marlin src/gcode/feature/password/M510-M512.cpp (M511 P, M512 P S)"
+        "OctoPrint File Check (octoprint_file_check/__init__.py: leaked_api_key); RepRapFirmware source @"
+        " fc1cd16c, src/GCodes/GCodes2.cpp (M551 password, M587 Wi-Fi networks); Marlin source,"
+        " src/gcode/feature/password/M510-M512.cpp (M511 P, M512 P S)"
     )
     codes = ("M117", "M118", "M551", "M587", "M589", "M511", "M512")
     on_comment = True

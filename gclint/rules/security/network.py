@@ -14,7 +14,7 @@ from gclint.syntax.nodes import Command, Line
 
 # RepRapFirmware src/Networking/NetworkDefs.h: HttpProtocol = 0, FtpProtocol = 1, TelnetProtocol = 2,
 # MulticastDiscoveryProtocol = 3, MqttProtocol = 4 (M586 P); S1 enables, S0 disables
-# (research/firmware_codes.md section 6: M586 network protocols).
+# (src/GCodes/GCodes2.cpp @ fc1cd16c: M586 "Configure network protocols").
 _PROTOCOLS = {
     0: "HTTP (the web interface: files, configuration, any G-code)",
     1: "FTP (read and write access to the SD card)",
@@ -52,7 +52,8 @@ class OpensNetworkService(_SecurityRule):
     example_bad = "M586 P2 S1"
     example_good = "M586 P2 S0"
     source = (
-        "research/firmware_codes.md section 6 (M586 network protocols); RepRapFirmware src/Networking/NetworkDefs.h"
+        "RepRapFirmware source @ fc1cd16c, src/GCodes/GCodes2.cpp (M586 network protocols) and"
+        " src/Networking/NetworkDefs.h"
         " (protocol numbers: 0 HTTP, 1 FTP, 2 Telnet)"
     )
     codes = ("M586", "M552")
