@@ -122,7 +122,8 @@ def decide(
         found: dict[str, str] = {}
         for name in MODEL_ORDER:
             pattern = PROFILES[name].named
-            text = scan.found(rf"(?im)[;(][^\n]*?(?:{pattern})") if pattern else None
+            # (anchored at the line start: one attempt a line, so a line of 100,000 "(" costs linear time)
+            text = scan.found(rf"(?im)^[^\n;(]*+[;(][^\n]*?(?:{pattern})") if pattern else None
             if text is not None:
                 found[name] = text
         if "16a-dual" in found:  # ("16A dual" names the dual-yoke 16A, not the single-yoke one as well)

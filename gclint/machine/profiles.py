@@ -92,7 +92,8 @@ PROFILES: dict[str, PrinterProfile] = {
             lathe=True,
             # ("16A dual", "dual-yoke Hydra 16A", "Hydra 16A, two yokes": T_v5 "16A (Dual Yoke)", "Current
             # dual-yoke Hydra 16A units")
-            named=r"\b(?:Hydra ?)?16A\b[^\n]*\b(?:dual|two[- ]yokes?|2[- ]yokes?)\b|\b(?:dual|two)[- ]?yokes?\b[^\n]*\b16A\b",
+            # (the words within 40 characters of each other: a bounded search, linear on any line)
+            named=r"\b(?:Hydra ?)?16A\b[^\n]{0,40}?\b(?:dual|two[- ]yokes?|2[- ]yokes?)\b|\b(?:dual|two)[- ]?yokes?\b[^\n]{0,40}?\b16A\b",
             second_bed=True,
         ),
     )
