@@ -191,7 +191,10 @@ def write_report(outcome: Outcome, out: TextIO, fail_on: str, limit: int | None 
         return
     out.write(f"source dialect: {outcome.source_dialect} ({human(outcome.source_reason)})\n")
     if outcome.translated:
-        out.write(f"translated to: {outcome.target_dialect}\n")
+        out.write(
+            f"translated to: {outcome.target_dialect} (TR findings name lines of the job as the slicer wrote it;"
+            " the others, lines of the translated job now in the file)\n"
+        )
     elif outcome.translation_note:
         out.write(f"not translated: {human(outcome.translation_note)}\n")
     findings = outcome.findings

@@ -26,6 +26,7 @@ class Refusal:
     config: str
     codes: tuple[str, ...]
     how: str  # "select/ignore", "severity", "per-file-ignores 'pattern'"
+    pattern: str | None = None  # (per-file-ignores, allow-file-writes: the files it names)
 
     def describe(self, files: int | None = None) -> str:
         what = f"security rule{'s' if len(self.codes) != 1 else ''} {', '.join(self.codes)}"
@@ -95,7 +96,9 @@ def _guard(options: Options, trusted: Options) -> tuple[Options, tuple[Refusal, 
         refused.append(Refusal(config, tuple(lowered), "severity"))
     if options.allow_file_writes and "SC005" in kept:
         changes["allow_file_writes"] = ()
-        refused.extend(Refusal(config, ("SC005",), f"allow-file-writes {p!r}") for p in options.allow_file_writes)
+        refused.extend(
+            Refusal(config, ("SC005",), f"allow-file-writes {p!r}", pattern=p) for p in options.allow_file_writes
+        )
     if options.per_file_ignores:
         codes = list(all_rules())
         per_file: dict[str, list[str]] = {}
@@ -104,7 +107,7 @@ def _guard(options: Options, trusted: Options) -> tuple[Options, tuple[Refusal, 
             if not hit:
                 per_file[pattern] = selectors
                 continue
-            refused.append(Refusal(config, tuple(hit), f"per-file-ignores {pattern!r}"))
+            refused.append(Refusal(config, tuple(hit), f"per-file-ignores {pattern!r}", pattern=pattern))
             rest = [c for c in codes if c not in hit and matches(c, [s.strip().upper() for s in selectors])]
             if rest:
                 per_file[pattern] = rest

@@ -70,3 +70,15 @@ def test_words_after_m30_are_a_file_name(dialect, line):
 @pytest.mark.parametrize("line", ["M30", "M30 ; end of program", "M30 (done)", "N5 M30*33", "M30   "])
 def test_m30_alone_ends_the_program(line):
     assert Linter(Options(select=["SC"])).check_text(f"G28\n{line}\n", "job.gcode").findings == []
+
+
+def test_a_refused_allow_file_writes_counts_the_files_its_pattern_names(tmp_path, monkeypatch):
+    (tmp_path / "sys").mkdir()
+    (tmp_path / "jobs").mkdir()
+    (tmp_path / "pyproject.toml").write_text('[tool.gclint]\nallow-file-writes = ["sys/*.g"]\n')
+    (tmp_path / "sys" / "a.g").write_text("M30 x\n")
+    for name in ("jobs/b.gcode", "jobs/c.gcode", "d.gcode"):
+        (tmp_path / name).write_text("G28 X0 Y0\nM30\n")
+    monkeypatch.chdir(tmp_path)
+    result = CliRunner().invoke(main, ["check", "--no-cache", "."])
+    assert "(allow-file-writes 'sys/*.g') for 1 file: refused" in result.output + (result.stderr or ""), result.output
