@@ -144,11 +144,11 @@ def configuration_notes(files: list[str], overrides: dict, explicit_config: str 
     for key, group in groups.items():
         count = f"{len(group.paths)} file{'s' if len(group.paths) != 1 else ''}"
         for refusal in group.refusals:
-            files = len(group.paths)
+            named = len(group.paths)
             if refusal.pattern is not None:  # (the files its pattern names, not every file the configuration covers)
                 single = Linter(replace(group.raw, per_file_ignores={refusal.pattern: list(refusal.codes)}))
-                files = sum(1 for p in group.paths if _hit(single, p, list(refusal.codes)))
-            notes.append(replace(refusal, config=_display(refusal.config)).describe(files))
+                named = sum(1 for p in group.paths if _hit(single, p, list(refusal.codes)))
+            notes.append(replace(refusal, config=_display(refusal.config)).describe(named))
         if key is None:
             continue
         on = {code[:2] for code in trust.selected(group.options)}
