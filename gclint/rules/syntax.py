@@ -222,6 +222,13 @@ class StrayValue(_IssueRule):
     example_good = "G1 Z0.200 F10000"
     source = "RepRap G-code page (fields)"
 
+    def check_issues(self, line: Line) -> None:
+        # (one finding a line, at its first stray value: a firmware's own "U0.00 0.00 0.00 ..." is one mistake)
+        strays = [issue for issue in line.issues if issue.code == self.code]
+        if strays:
+            more = f" (and {len(strays) - 1} more on this line)" if len(strays) > 1 else ""
+            self.report(line, strays[0].message + more, column=strays[0].column)
+
 
 @register
 class UnusedNoqa(Rule):
