@@ -81,15 +81,17 @@ _AUTH = re.compile(
 # access point's).  Their words are read one by one (a P inside another word's quoted string is not the P).
 # Marlin's password feature: M511 P<passcode> unlocks the machine, M512 P<old> S<new> sets the passcode
 # (https://github.com/MarlinFirmware/Marlin/blob/bugfix-2.1.x/Marlin/src/gcode/feature/password/M510-M512.cpp).
-_PASSWORD_CODE = re.compile(r"(?i)(?<![A-Za-z0-9])M0{0,4}+(551|58[79]|51[12])(?![\d.])")
+# RepRapFirmware's M586.4 configures its MQTT client: U the user name, K the password (MqttClient.cpp Configure).
+_PASSWORD_CODE = re.compile(r"(?i)(?<![A-Za-z0-9])M0{0,4}+(551|58[79]|51[12]|586\.4)(?![\d.])")
 _PASSWORD_KIND = {
     "551": "password",
     "587": "WiFi password",
     "589": "WiFi password",
     "511": "Marlin passcode",
     "512": "Marlin passcode",
+    "586.4": "MQTT password",
 }
-_PASSWORD_LETTERS = {"512": "PpSs"}  # (the words that hold one; P for the others)
+_PASSWORD_LETTERS = {"512": "PpSs", "586.4": "Kk"}  # (the words that hold one; P for the others)
 # One word: a letter, then a value "..." (RepRapFirmware writes a quote inside as ""), '...', either with
 # its closing quote missing (the value runs to the end of the line), or unquoted (to a blank or ";").
 _WORD = re.compile(r"""[ \t]*+([A-Za-z])[ \t]*+("(?:[^"\r\n]|"")*+"?|'[^'\r\n]*+'?|[^\s;"']*+)""")
@@ -125,6 +127,7 @@ def _hinted(text: str) -> bool:
         or "589" in t
         or "551" in t
         or "m51" in t  # (Marlin's M511/M512 passcodes)
+        or "586" in t  # (RepRapFirmware's M586.4 MQTT password)
         or "auth" in t
     )
 
@@ -224,7 +227,7 @@ def find(text: str) -> list[Secret]:
                 group = m.lastindex or 3
                 if not _placeholder(m.group(group)):
                     found.append(Secret(m.start(group), m.end(group), "credentials"))
-        if "587" in text or "589" in text or "551" in text or "51" in text:
+        if "587" in text or "589" in text or "551" in text or "51" in text or "586" in text:
             found.extend(_command_passwords(text))
     if len(found) <= 1:
         return found

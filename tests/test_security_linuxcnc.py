@@ -119,7 +119,6 @@ def test_a_call_of_another_file_is_reported(dialect):
         "o<probe> sub\nG0 Z1\no<probe> endsub\no<probe> call\nM2\n",
         "o<Probe Edge> sub\nG0 Z1\no<probe edge> endsub\nO<PROBEEDGE> CALL\nM2\n",  # blanks and case dropped
         "o100 sub\nG0 Z1\no100 endsub\no0100 call\nM2\n",  # the number 100
-        "O100\nG0 Z1\nM99\nM98 P100 L2\nM2\n",  # Fanuc style
     ],
 )
 def test_a_call_of_a_subroutine_defined_above_is_not_reported(text):

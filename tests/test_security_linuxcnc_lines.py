@@ -62,7 +62,6 @@ def test_a_subroutine_defined_inside_a_block_is_not_defined_above_the_call(text)
         "o<prime> sub\nG0 Z5\no<prime> endsub\no<prime> call\nM2\n",
         "o1 if [1]\nG0 X1\no1 endif\no<prime> sub\no<prime> endsub\no<prime> call\nM2\n",
         "o3 do\nG0 X1\no3 while [0]\no<prime> sub\no<prime> endsub\no<prime> call\nM2\n",
-        "O100\nG0 X1\nM99\nM98 P100\nM2\n",
         "o<Prime> sub\no<Prime> endsub\no<PRIME> call\nM2\n",
     ],
 )

@@ -186,3 +186,18 @@ def test_a_carvera_file_runs_its_macro_whatever_o_words_it_defines():
 )
 def test_network_on_and_cors(line, found):
     assert bool(_found(f"{line}\n", "reprap", "a.gcode")) is found
+
+
+# -- the sixth attack -------------------------------------------------------------------------------------------
+
+
+@pytest.mark.parametrize("call", ["M98 P2000", "o2000 call", "M98 P2000 L1"])
+def test_a_fanuc_program_number_above_the_call_defines_nothing(call):
+    # interp_o_word.cc: a bare "O2000" reached in order is only logged ("Entering Fanuc-style program number");
+    # the call then looks for 2000.ngc first (o-code.adoc: "the numbered subprogram must follow the M98 call")
+    assert [(n, c) for n, c, _ in _found(f"O2000\nG0 X1\n{call}\nM30\n")] == [(3, "SC004")]
+
+
+def test_the_mqtt_password_is_a_secret():
+    found = _found('M586.4 C"dev" U"admin" K"Sup3rS3cretPassw0rd"\n', "reprap", "b.gcode")
+    assert [c for _, c, _ in found] == ["SC006"]

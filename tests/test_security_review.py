@@ -135,9 +135,10 @@ def test_m98_macro_number_runs_a_carvera_file(dialect: str) -> None:
 
 
 def test_m98_number_is_a_linuxcnc_subprogram() -> None:
-    """A subprogram of the same file when it is defined above the call (Fanuc-style "O1" or "o1 sub"); else
-    LinuxCNC looks for the file 1.ngc first (interp_o_word.cc control_back_to)."""
-    assert "SC004" not in _codes("O1\nG0 X1\nM99\nM98 P1 L3\n", "machinekit")
+    """A subprogram of the same file when "o1 sub" defines it above the call; else LinuxCNC looks for the file
+    1.ngc first (interp_o_word.cc control_back_to), a Fanuc-style "O1" above the call included: reached in order
+    it is only a program number (convert_control_functions, O_)."""
+    assert "SC004" in _codes("O1\nG0 X1\nM99\nM98 P1 L3\n", "machinekit")
     assert "SC004" not in _codes("o1 sub\nG0 X1\no1 endsub\nM98 P1 L3\n", "machinekit")
     assert "SC004" in _codes("M98 P1 L3\nO1\nG0 X1\nM99\n", "machinekit")
 

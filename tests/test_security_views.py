@@ -147,7 +147,7 @@ def test_every_dangerous_command_of_a_line_is_reported():
 def test_dialect_exemptions_hold_in_every_view():
     assert _findings("G28\nG0 X0 M500\nM84\n", "marlin") == []  # Marlin's M500 is the EEPROM
     # a subprogram of the same file, defined above the call (else LinuxCNC looks for the file 1234.ngc first)
-    assert _findings("O1234\nG0 X1\nM99\nG0 X0 M98 P1234\nM2\n", "machinekit") == []
+    assert _findings("o1234 sub\nG0 X1\no1234 endsub\nG0 X0 M98 P1234\nM2\n", "machinekit") == []
 
 
 # -- 4. firmware and logging files ----------------------------------------------------------------------------

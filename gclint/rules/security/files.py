@@ -87,10 +87,12 @@ class RunsFile(_SecurityRule):
         look for the file name.ngc (100.ngc) in the folders the machine's INI file names (PROGRAM_PREFIX,
         SUBROUTINE_PATH) and run it ("Calling Files" in LinuxCNC's O-code documentation; interp_o_word.cc
         control_back_to).  Such a call, and a call whose name is computed ("o[#1] call"), is reported in
-        every dialect.  Define the subroutine in the job, above the call.  M98 P with a number in a job
-        read as Machinekit/LinuxCNC is reported only then (a subprogram of the same file: LinuxCNC's
-        O-code documentation, "Fanuc-Style Numbered Programs"); elsewhere it is always reported, since a Carvera runs
-        gcodes/macros/<number>.cnc for it.
+        every dialect.  Define the subroutine in the job, above the call ("o100 sub").  A Fanuc-style "O100"
+        above the call defines nothing: LinuxCNC reads it in order as a program number only, and the
+        numbered subprogram "must follow the M98 call" (O-code documentation, "Fanuc-Style Numbered
+        Programs"; interp_o_word.cc convert_control_functions).  M98 P with a number is reported always
+        where the job may run on a Carvera (which runs gcodes/macros/<number>.cnc for it): in every dialect
+        but Machinekit/LinuxCNC, and in a .cnc, .nc or .tap file the user did not set to them.
 
         RepRapFirmware's own configuration is macros calling macros: the firmware runs homeall.g for G28, tpre0.g for
         T0, M<n>.g for a code it does not have, and these files call each other with M98 (RepRapFirmware source,
@@ -221,9 +223,9 @@ class RunsFile(_SecurityRule):
             self._open[(label, keyword)] = self._open.get((label, keyword), 0) + 1
         elif keyword == "" and label.isdigit():
             # "O100" alone starts a Fanuc-style subprogram (called by M98 P100), which M99 ends (o-code.adoc,
-            # "Fanuc-Style Numbered Programs")
-            if top and counts and name is not None and len(self._subroutines) < self.SUBROUTINES_KEPT:
-                self._subroutines.add(name)
+            # "Fanuc-Style Numbered Programs": "the numbered subprogram must follow the M98 call").  Reached in
+            # order, LinuxCNC only logs "Entering Fanuc-style program number" and registers nothing
+            # (interp_o_word.cc convert_control_functions, O_): a call after it still looks for 100.ngc first.
             self._fanuc = True
 
     def _close(self, block: tuple[str, str]) -> None:

@@ -22,8 +22,8 @@ class LeakedSecret(_SecurityRule):
         credentials there ("; printhost_apikey = ...", "; printhost_password = ..."; OctoPrint's File
         Check warns about the same leak).  URLs with "user:password@", bearer tokens, API keys,
         RepRapFirmware's M587 WiFi password and its M551 machine password (the password of the web
-        interface, FTP and Telnet), and Marlin's M511/M512 passcode (its password feature), end up in start
-        G-code the same way.  A job file is copied to
+        interface, FTP and Telnet), its M586.4 MQTT password (K), and Marlin's M511/M512 passcode (its
+        password feature), end up in start G-code the same way.  A job file is copied to
         print farms, shared folders and git: whoever gets it gets the secret.  Remove it, clear the field
         in the slicer's printer settings, and revoke the key.  gclint masks the value in every report.
     """
@@ -34,7 +34,7 @@ class LeakedSecret(_SecurityRule):
         " fc1cd16c, src/GCodes/GCodes2.cpp (M551 password, M587 Wi-Fi networks); Marlin source,"
         " src/gcode/feature/password/M510-M512.cpp (M511 P, M512 P S)"
     )
-    codes = ("M117", "M118", "M551", "M587", "M589", "M511", "M512")
+    codes = ("M117", "M118", "M551", "M587", "M589", "M511", "M512", "M586.4")
     on_comment = True
     comment_hint = staticmethod(secrets.may_hold)
 
