@@ -20,8 +20,8 @@ import zlib
 MAGIC = b"GCDE"
 GCODE_BLOCK = 1
 THUMBNAIL_BLOCK = 5
-_MAX_BLOCK = 256 << 20  # (a block bigger than this is a broken or hostile file)
-MAX_FILE = 1 << 30  # (the most of a file read: a bigger one is an error for what is left)
+_MAX_BLOCK = 64 << 20  # (a block bigger than this, stored or inflated, is a broken or hostile file)
+MAX_FILE = 64 << 20  # (the most of a file read, so memory stays bounded: a bigger one is an error for the rest)
 
 
 def decode(data: bytes) -> tuple[bytes, int]:
@@ -43,7 +43,7 @@ def decode(data: bytes) -> tuple[bytes, int]:
             (stored,) = struct.unpack_from("<I", data, pos)
             pos += 4
         parameters = 6 if kind == THUMBNAIL_BLOCK else 2
-        if stored > _MAX_BLOCK or pos + parameters + stored > len(data):
+        if stored > _MAX_BLOCK or size > _MAX_BLOCK or pos + parameters + stored > len(data):
             unread += kind == GCODE_BLOCK
             break
         (encoding,) = struct.unpack_from("<H", data, pos)
@@ -55,7 +55,8 @@ def decode(data: bytes) -> tuple[bytes, int]:
             unread += 1
             continue
         try:
-            texts.append(zlib.decompress(body, bufsize=max(size, 1)) if compression == 1 else body)
+            # (inflated to the size its header gives at most: a small block cannot inflate into gigabytes)
+            texts.append(zlib.decompressobj().decompress(body, size) if compression == 1 else body)
         except zlib.error:
             unread += 1
     return b"".join(texts), unread
