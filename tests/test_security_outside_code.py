@@ -201,3 +201,12 @@ def test_a_fanuc_program_number_above_the_call_defines_nothing(call):
 def test_the_mqtt_password_is_a_secret():
     found = _found('M586.4 C"dev" U"admin" K"Sup3rS3cretPassw0rd"\n', "reprap", "b.gcode")
     assert [c for _, c, _ in found] == ["SC006"]
+
+
+def test_a_line_cut_into_too_many_commands_is_one_finding_in_linear_time():
+    nuls = "M117 x" + "".join(f"\0M30 /a{i}" for i in range(3000))
+    hashes = "G1 X1 " + "".join(f"#M30 /b{i} " for i in range(3000))
+    for line in (nuls, hashes):
+        # (after 12 kB of G-code: NUL bytes in a file's head make it binary, refused whole)
+        found = Linter(Options(select=["SC005"])).check_text("G28\n" * 3000 + line + "\n", "job.gcode").findings
+        assert any("commands after its first" in f.message for f in found), [f.message for f in found][:3]

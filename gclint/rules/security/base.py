@@ -105,9 +105,9 @@ class _SecurityRule(Rule):
         if more:
             self.report(
                 line,
-                f"this line holds more than {SEGMENT_LIMIT:,} commands after its first, and Smoothieware (Carvera)"
-                f" runs each of them: the security rules read the first {SEGMENT_LIMIT:,} and not the rest;"
-                " split the line",
+                f"this line holds more than {SEGMENT_LIMIT:,} commands after its first, and a firmware runs each of"
+                " them (Smoothieware splits a line at each G and M, RepRapFirmware at each NUL, Prusa's SD reader at"
+                f" each '#'): the security rules read the first {SEGMENT_LIMIT:,} and not the rest; split the line",
                 column=1,
                 severity=Severity.ERROR,
             )

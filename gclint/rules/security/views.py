@@ -217,10 +217,16 @@ def _views(raw: str) -> tuple[list[tuple[str, str, int]], bool]:
     if not raw.isascii() and _M_CODE.search(raw) is not None:
         add(WINDOWS_1252_VIEW, _as_windows_1252(raw), 0)
     if "\x00" in raw:  # (RepRapFirmware: each NUL ends a line, and what follows is the next one)
-        at = raw.find("\x00")
+        at, taken = raw.find("\x00"), 0
         while at >= 0:
+            if taken == SEGMENT_LIMIT:  # (as Smoothieware's split: the rest is one finding, check_view)
+                more = True
+                break
             nxt = raw.find("\x00", at + 1)
-            add(NUL_VIEW, raw[at + 1 : nxt if nxt >= 0 else len(raw)], at + 1)
+            piece = raw[at + 1 : nxt if nxt >= 0 else len(raw)]
+            if piece.strip(" \t"):  # (a run of NULs, a sparse file's, holds no command)
+                add(NUL_VIEW, piece, at + 1)
+                taken += 1
             at = nxt
     script = _POWER_FAIL.match(raw)
     if script is not None:
@@ -238,7 +244,10 @@ def _views(raw: str) -> tuple[list[tuple[str, str, int]], bool]:
             label = SMOOTHIE_VIEW if how is None else f"{how}, then as Smoothieware splits it at each G and M"
             add(label, segment, offset + start if how is None or offset else 0)
     if raw[:1] != ";":  # (Prusa and Marlin 1.1 read the SD card without Smoothieware's split: after it)
-        for text, start in _sd_card_commands(raw):
+        commands = _sd_card_commands(raw)
+        if len(commands) > 3 * SEGMENT_LIMIT:  # (a line cut into more pieces than this is one finding)
+            commands, more = commands[: 3 * SEGMENT_LIMIT], True
+        for text, start in commands:
             add(SD_CUT_VIEW if start < 0 else SD_SPLIT_VIEW, text, max(start, 0))
     return views, more
 
