@@ -91,7 +91,9 @@ _PASSWORD_KIND = {
     "512": "Marlin passcode",
     "586.4": "MQTT password",
 }
-_PASSWORD_LETTERS = {"512": "PpSs", "586.4": "Kk"}  # (the words that hold one; P for the others)
+# (the words that hold one; P for the others: M587's enterprise form puts a private key's password in Q,
+# WiFiInterface.cpp)
+_PASSWORD_LETTERS = {"512": "PpSs", "586.4": "Kk", "587": "PpQq"}
 # One word: a letter, then a value "..." (RepRapFirmware writes a quote inside as ""), '...', either with
 # its closing quote missing (the value runs to the end of the line), or unquoted (to a blank or ";").
 _WORD = re.compile(r"""[ \t]*+([A-Za-z])[ \t]*+("(?:[^"\r\n]|"")*+"?|'[^'\r\n]*+'?|[^\s;"']*+)""")

@@ -210,3 +210,31 @@ def test_a_line_cut_into_too_many_commands_is_one_finding_in_linear_time():
         # (after 12 kB of G-code: NUL bytes in a file's head make it binary, refused whole)
         found = Linter(Options(select=["SC005"])).check_text("G28\n" * 3000 + line + "\n", "job.gcode").findings
         assert any("commands after its first" in f.message for f in found), [f.message for f in found][:3]
+
+
+# -- the seventh attack ---------------------------------------------------------------------------------------
+
+
+def test_a_semicolon_in_a_subroutine_name_keeps_the_rest_as_written():
+    # interp_internal.cc close_and_downcase copies the line from a ";" on as it is: "probe;A" is not "probe;a"
+    text = 'o<"probe;A">sub\nG0 X1\no<"probe;A">endsub\no<"probe;a">call\nM2\n'
+    assert [(n, c) for n, c, _ in _found(text)] == [(4, "SC004")]
+    same = 'o<"probe;A">sub\nG0 X1\no<"probe;A">endsub\no<"probe;A">call\nM2\n'
+    assert _found(same) == []
+
+
+def test_m98_to_a_number_is_quiet_only_where_the_user_set_linuxcnc():
+    text = "O2000 SUB\nG0 X1\nO2000 ENDSUB\nM98 P2000\nM2\n"
+    assert [(n, c) for n, c, _ in _found(text, "auto", "job.gcode")] == [(4, "SC004")]
+    assert _found(text, "machinekit", "job.ngc") == []  # (the user said LinuxCNC: it refuses the M98, runs no file)
+
+
+def test_user_m_codes_in_an_ngc_file_whatever_its_content_reads_as():
+    assert [(n, c) for n, c, _ in _found("G28\nM150 P255\n", "auto", "job.ngc")] == [(2, "SC004")]
+    assert _found("G28\nM150 P255\n", "marlin", "job.ngc") == []  # (the user said Marlin: its LED code)
+
+
+def test_an_enterprise_wifi_key_password_is_a_secret():
+    line = 'M587 S"corp" X1 A"anon" U"0:/sys/user.pem" P"k.pem" Q"MyKeyPassw0rd"\n'
+    result = Linter(Options(dialect="reprap", select=["SC006"])).check_text(line, "a.gcode")
+    assert result.findings and all("MyKeyPassw0rd" not in (f.source or "") + f.message for f in result.findings)

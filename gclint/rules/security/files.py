@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import re
+from collections.abc import Mapping
 
 from gclint.context.model import CONFIGURATION, OPTION
 from gclint.rules.base import Severity, register
@@ -51,6 +52,13 @@ def _macro_number(rest: str, cmd: Command | None) -> int | None:
         return int(float(p)) if p is not None and _NUMBER.fullmatch(p) and float(p) >= 0 else None
     m = _MACRO_NUMBER.match(_strip_comment(rest))
     return int(m.group(1)) if m is not None else None
+
+
+def _linuxcnc_codes() -> Mapping[str, object]:
+    """The codes the Machinekit/LinuxCNC dialect defines (its FDM configuration's M104, M106, M109...)."""
+    from gclint import dialects
+
+    return dialects.get("machinekit").codes
 
 
 def macro_file(ctx) -> bool:
@@ -104,8 +112,10 @@ class RunsFile(_SecurityRule):
         machine's program folder ("M100-M199 User Defined Commands" in LinuxCNC's M-code documentation), or
         the subroutine the machine's INI file remaps the code to; the codes Machinekit's FDM configuration
         defines (M104, M106, M109, M140, M190...) are not reported.  In other dialects they are not reported
-        (Marlin's M150 sets LED colours), but in a ".ngc" file, LinuxCNC's own extension, those the dialect does
-        not have are.
+        (Marlin's M150 sets LED colours), but in a ".ngc" file, LinuxCNC's own extension, they are unless the
+        user set that dialect (on the command line or in a --config) and it has the code.  M98 with a number is
+        quiet only where the user set Machinekit/LinuxCNC and the job defines "o<number> sub" above the call:
+        a Carvera runs gcodes/macros/<number>.cnc whatever the job defines.
     """
     example_bad = 'M98 P"0:/macros/prime.g"'
     example_good = """
@@ -136,10 +146,11 @@ class RunsFile(_SecurityRule):
         self._fanuc = False  # within a Fanuc-style subprogram ("O100" ... M99)
         self._joined_tail = 0  # the last line LinuxCNC reads joined to lines before it (check_joined)
         self._called: set[str] = set()  # the subroutines whose outside call was reported
-        # a job the user did not say is for LinuxCNC, in a file named as a Carvera job (".cnc", ".nc", ".tap")
-        self._carvera_may_run = ctx.context.origin not in (OPTION, CONFIGURATION) and str(
-            ctx.path or ""
-        ).lower().endswith((".cnc", ".nc", ".tap"))
+        # a job the user did not say is for LinuxCNC (on the command line or in a --config): a Carvera runs
+        # gcodes/macros/<P>.cnc for its M98 P<n> whatever O-words the job defines, and LinuxCNC refuses an M98 to
+        # an "o<n> sub" (interp_o_word.cc: "'O.... sub' subroutine must be called with 'O.... call'")
+        self._user_set = ctx.context.origin in (OPTION, CONFIGURATION) and ctx.options.dialect_trusted
+        self._carvera_may_run = not self._user_set
 
     def check(self, line: Line, cmd: Command) -> None:
         if cmd.code == "O":
@@ -244,13 +255,18 @@ class RunsFile(_SecurityRule):
         external program named M1nn in the machine's program folder runs ("M100-M199 User Defined Commands" in
         LinuxCNC's M-code documentation, https://linuxcnc.org/docs/html/gcode/m-code.html#mcode:m100-m199).
         A machine's INI may remap the code instead, to a subroutine file: code outside the job either way.  In a
-        ".ngc" file (LinuxCNC's own program extension) read as another dialect, those it does not have are
-        reported."""
+        ".ngc" file (LinuxCNC's own program extension) read as another dialect, each is reported unless the user
+        set that dialect and it has the code."""
         dialect = self.ctx.dialect
         if dialect.semantics.user_programs:
             runs = code not in dialect.codes
-        else:  # (a ".ngc" job, LinuxCNC's own extension, read as another dialect: a code that dialect lacks)
-            runs = str(self.ctx.path or "").lower().endswith(".ngc") and code not in dialect.codes
+        else:  # (a ".ngc" job, LinuxCNC's own extension, read as another dialect: its content chose that reading,
+            # so only a dialect the user set, and that has the code, exempts it, or Machinekit's own table: M104...)
+            runs = (
+                str(self.ctx.path or "").lower().endswith(".ngc")
+                and not (self._user_set and code in dialect.codes)
+                and code not in _linuxcnc_codes()
+            )
         if runs:
             self.report_masked(
                 line,

@@ -120,13 +120,17 @@ def comments_in(raw: str) -> list[tuple[int, str]]:
 def as_linuxcnc_reads(text: str) -> str:
     """``text`` as interp_internal.cc ``close_and_downcase`` leaves it: outside a "(...)" comment the blanks
     (space, tab, carriage return) dropped and the letters lower-cased; inside one, everything kept as written
-    (so "o<$(REBOOT)>" names "$(REBOOT)", and "o<foo(A B)>" names "foo(A B)")."""
+    (so "o<$(REBOOT)>" names "$(REBOOT)", and "o<foo(A B)>" names "foo(A B)"); from a ";" outside a comment on,
+    the rest as written ("o<"x;B">" names "x;B")."""
     out = []
     comment = False
-    for char in text:
+    for index, char in enumerate(text):
         if comment:
             out.append(char)
             comment = char != ")"
+        elif char == ";":
+            out.append(text[index:])
+            break
         elif char == "(":
             comment = True
             out.append(char)
