@@ -229,7 +229,7 @@ def find(text: str) -> list[Secret]:
                 group = m.lastindex or 3
                 if not _placeholder(m.group(group)):
                     found.append(Secret(m.start(group), m.end(group), "credentials"))
-        if "587" in text or "589" in text or "551" in text or "51" in text or "586" in text:
+        if "51" in text or "586" in text or "587" in text or "589" in text:  # (M551, M511, M512; M586.4, M587, M589)
             found.extend(_command_passwords(text))
     if len(found) <= 1:
         return found

@@ -150,7 +150,6 @@ class RunsFile(_SecurityRule):
         # gcodes/macros/<P>.cnc for its M98 P<n> whatever O-words the job defines, and LinuxCNC refuses an M98 to
         # an "o<n> sub" (interp_o_word.cc: "'O.... sub' subroutine must be called with 'O.... call'")
         self._user_set = ctx.context.origin in (OPTION, CONFIGURATION) and ctx.options.dialect_trusted
-        self._carvera_may_run = not self._user_set
 
     def check(self, line: Line, cmd: Command) -> None:
         if cmd.code == "O":
@@ -300,7 +299,7 @@ class RunsFile(_SecurityRule):
             number = _macro_number(rest, cmd) if code == "M98" else None
             if number is None:
                 return
-            if self.ctx.dialect.semantics.effect("M98") != "call-subroutine" or self._carvera_may_run:
+            if self.ctx.dialect.semantics.effect("M98") != "call-subroutine" or not self._user_set:
                 # (a Carvera always runs gcodes/macros/<P>.cnc, whatever O-words the job defines: Carvera Community
                 # Firmware Player.cpp on_gcode_received, M98; a job read as LinuxCNC by its own content in a Carvera
                 # file is not exempt for that)
