@@ -124,8 +124,8 @@ def decide(
             pattern = PROFILES[name].named
             # (anchored at the line start: one attempt a line, so a line of 100,000 "(" costs linear time)
             text = scan.found(rf"(?im)^[^\n;(]*+[;(][^\n]*?(?:{pattern})") if pattern else None
-            if text is not None:
-                found[name] = text
+            if text is not None:  # (shown from the comment on: the match starts at the line's start)
+                found[name] = text[min(i for i in (text.find(";"), text.find("("), len(text)) if i >= 0) :]
         if "16a-dual" in found:  # ("16A dual" names the dual-yoke 16A, not the single-yoke one as well)
             found.pop("16a", None)
         for name, text in found.items():
