@@ -19,7 +19,7 @@ import os
 import tempfile
 from collections import Counter
 from collections.abc import Callable, Iterator
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from typing import BinaryIO
 
 from gclint.engine import FileResult, Linter
@@ -88,6 +88,27 @@ def plan_fixes(result: FileResult, linter: Linter, read: Callable[[], Source], *
             )
         chosen = [f for f in chosen if f not in blamed]
     return plan  # still not clean after every round: nothing is applied
+
+
+def settle(result: FileResult, linter: Linter, read: Callable[[], Source]) -> FileResult:
+    """``result`` with the marks a report shows matching what ``--fix`` does: a safe fix that the check of
+    the fixed text would take back is shown as unsafe (its edit is still offered, as --unsafe-fixes would
+    try it), so "[*] N fixable" counts only the fixes --fix applies.  A file that cannot be read again is
+    left as it is."""
+    safe = [f for f in result.findings if f.fix is not None and f.fix.safe]
+    if not safe:
+        return result
+    try:
+        kept = {id(f) for f in plan_fixes(result, linter, read).fixes}
+    except (OSError, SourceError, OutputError):
+        return result
+    if len(kept) == len(safe):
+        return result
+    findings = [
+        f if f.fix is None or not f.fix.safe or id(f) in kept else replace(f, fix=replace(f.fix, safe=False))
+        for f in result.findings
+    ]
+    return replace(result, findings=findings)
 
 
 def fix_file(result: FileResult, linter: Linter, *, unsafe: bool = False, write: bool = True) -> FixOutcome:

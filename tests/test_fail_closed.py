@@ -124,3 +124,19 @@ def test_a_job_package_is_never_passed_unread(tmp_path: Path) -> None:
     proc = run_cli("check", "--no-cache", "jobs", cwd=tmp_path)
     errors = _errors(proc)
     assert proc.returncode == 2 and any("print.ufp" in e and "ZIP archive" in e for e in errors), errors
+
+
+@pytest.mark.parametrize("text", ["max_velocity = 300\nmax_accel = 3000\n", "max_velocity = 300\n"])
+def test_a_short_key_value_file_is_not_read_as_klipper_commands(tmp_path: Path, text: str) -> None:
+    # (Klipper would stop at "Unknown command": MAX_VELOCITY is no command; a gate must not say "passed")
+    job = tmp_path / "printer.gcode"
+    job.write_text(text)
+    proc = run_cli("check", "--no-cache", str(job))
+    assert proc.returncode == 2, proc.stdout
+    assert "'key = value' configuration file" in proc.stderr.decode()
+
+
+def test_a_klipper_command_with_key_value_words_is_g_code(tmp_path: Path) -> None:
+    job = tmp_path / "job.gcode"
+    job.write_text("; gclint: dialect=marlin\nSET_FAN_SPEED FAN=part SPEED=0.5\n")
+    assert run_cli("check", "--no-cache", "--flavor", "klipper", str(job)).returncode == 0

@@ -4,6 +4,7 @@ and --diff say what they did."""
 
 from __future__ import annotations
 
+import json
 from pathlib import Path
 
 from hypothesis import given
@@ -128,11 +129,14 @@ def test_fix_says_how_many_were_fixed_and_how_many_remain(tmp_path: Path) -> Non
     proc = run_cli("check", "--fix", str(path))
     out = proc.stdout.decode()
     # (T4, a fifth slot, makes the job an EHR's (issue 24): no head is loaded there, HY006)
-    assert "Found 3 findings (2 fixed, 1 remaining: 1 warning in 1 file)." in out, out
+    assert "Found 6 findings (2 fixed, 3 more ended by those fixes, 1 remaining: 1 warning in 1 file)." in out, out
     assert path.read_text().startswith("; gclint: dialect=hyrel\nM6 T1 O2 X0 Y0 Z0\nM109 T1 S200\n")
     path.write_text(V4_IN_V5)
     proc = run_cli("check", "--fix", str(path))
-    assert proc.returncode == 0 and "Found 2 findings (2 fixed, 0 remaining)." in proc.stdout.decode()
+    assert (
+        proc.returncode == 0
+        and "Found 5 findings (2 fixed, 3 more ended by those fixes, 0 remaining)." in proc.stdout.decode()
+    )
 
 
 def test_diff_shows_the_fixes_and_writes_nothing(tmp_path: Path) -> None:
@@ -143,7 +147,7 @@ def test_diff_shows_the_fixes_and_writes_nothing(tmp_path: Path) -> None:
     out = proc.stdout.decode()
     assert out.startswith(f"--- {path}\n+++ {path} (fixed)\n@@ -1,6 +1,6 @@\n")
     assert "-M6 T12 O2 X0 Y0 Z0\n+M6 T1 O2 X0 Y0 Z0\n-M109 T12 S200\n+M109 T1 S200\n" in out
-    assert "Would fix 2 findings (0 remaining)." in proc.stderr.decode()
+    assert "Would fix 2 findings (0 remaining, 3 more would end with them)." in proc.stderr.decode()
     clean = tmp_path / "clean.gcode"
     clean.write_text("; gclint: dialect=marlin\nG1 X1 F100\n")
     proc = run_cli("check", "--diff", str(clean))
@@ -163,3 +167,31 @@ def test_a_read_only_job_is_reported_and_left_as_it_is(tmp_path: Path) -> None:
         assert job.read_text() == text and job.stat().st_ino == inode and job.stat().st_mode & 0o777 == 0o444
         assert b"read-only: not rewritten" in proc.stderr, (how, proc.stderr)
     assert run_cli("check", "--no-cache", "--fix", str(job)).returncode == 1  # the finding is still there
+
+
+def test_fixable_counts_only_the_fixes_that_fix_applies(tmp_path: Path) -> None:
+    # Renumbering v4 T11/T12 (yoke 1 heads when heated, a laser and a spindle as T commands) would leave
+    # heads heated that no T command selects (HY065): --fix takes those fixes back, so none is "fixable".
+    path = tmp_path / "job.gcode"
+    text = "; gclint: dialect=hyrel\nM109 T11 S215\nM109 T12 S215\nT11\nG1 X10 Y10 E1 F1200\nT12\nG1 X20 E1\nM30\n"
+    path.write_text(text)
+    proc = run_cli("check", "--no-cache", str(path))
+    out = proc.stdout.decode()
+    assert "HY008 [warning] M109 T11" in out and "[*]" not in out and "fixable with" not in out, out
+    proc = run_cli("check", "--no-cache", "-f", "json", str(path))
+    fixes = [f["fix"] for f in json.loads(proc.stdout) if f["code"] == "HY008"]
+    assert fixes and all(fix["applicability"] == "unsafe" for fix in fixes)
+    path.write_text(V4_IN_V5)  # (here the renumbering is kept: still fixable)
+    assert "[*] 2 fixable with --fix." in run_cli("check", "--no-cache", str(path)).stdout.decode()
+
+
+def test_fix_counts_the_findings_a_fix_ends_elsewhere(tmp_path: Path) -> None:
+    # M6 T12 and M109 T12 renumbered to T1: HY065, HY006 and HY063 end with them
+    path = tmp_path / "job.gcode"
+    path.write_text(V4_IN_V5)
+    before = run_cli("check", "--no-cache", str(path)).stdout.decode()
+    assert "Found 5 findings (5 warnings)" in before, before
+    proc = run_cli("check", "--diff", str(path))
+    assert "Would fix 2 findings (0 remaining, 3 more would end with them)." in proc.stderr.decode()
+    proc = run_cli("check", "--fix", str(path))
+    assert "Found 5 findings (2 fixed, 3 more ended by those fixes, 0 remaining)." in proc.stdout.decode()

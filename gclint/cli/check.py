@@ -297,6 +297,8 @@ def check(
         assert report is not None  # (--statistics with a format that has no table was refused above)
         with _checking(bar):
             checked = runner.results(files, Options(), overrides, **run_options)
+            stdin = run_options["stdin_name"] if "-" in files else None
+            checked = (_settle(r, overrides, config_file, links, stdin) for r in checked)
             tally, slim = _report(report, ctx, output, problems, checked, bar)
         for note in cache.notes if cache is not None else ():
             _note(note)
@@ -322,13 +324,16 @@ def check(
     if add_noqa:
         sys.exit(_add_noqa(problems + results, links, overrides, config_file, fail_on, exit_zero))
     fixed = None
+    found = sum(len(r.findings) for r in results)
     if fix or show_diff:
         results, fixed = _apply_fixes(
             results, overrides, config_file, unsafe=unsafe_fixes, write=not show_diff, show=show_fixes
         )
         if show_diff:
             remaining = sum(len(r.findings) for r in results)
-            click.echo(f"Would fix {fixed} finding{'s' if fixed != 1 else ''} ({remaining} remaining).", err=True)
+            gone = found - fixed - remaining
+            also = f", {gone} more would end with them" if gone > 0 else ""
+            click.echo(f"Would fix {fixed} finding{'s' if fixed != 1 else ''} ({remaining} remaining{also}).", err=True)
             sys.exit(2 if any(r.error for r in results + problems) else 1 if fixed else 0)
     results = problems + results
     for note in cache.notes if cache is not None else ():
@@ -336,7 +341,9 @@ def check(
     for r in results:
         if r.error:
             _error(r.error)
-    ctx = ReportContext(tool_version=__version__, fixed=fixed, group=not no_group, configuration=configuration)
+    ctx = ReportContext(
+        tool_version=__version__, fixed=fixed, found=found, group=not no_group, configuration=configuration
+    )
     writer = write_with(fmt)
     if statistics:  # the counts instead of the findings, as ruff does (JSON with --format json)
         from gclint.reports import json_report, text
@@ -353,6 +360,22 @@ def check(
     worst = max((f.severity for r in results for f in r.findings), default=None)
     if not exit_zero and _reaches(worst, fail_on):
         sys.exit(1)
+
+
+def _settle(r: FileResult, overrides: dict, config_file: str | None, links: dict, stdin: str | None) -> FileResult:
+    """The result with a safe fix that ``--fix`` would take back marked unsafe (gclint.fixes.settle): the
+    report's "[*]" marks and "N fixable" count what --fix applies.  Only a file with a safe fix pays for
+    the second check; standard input and links found in a walk are left as they are."""
+    if r.error is not None or r.path == stdin or r.path in links:
+        return r
+    if not any(f.fix is not None and f.fix.safe for f in r.findings):
+        return r
+    from gclint import runner
+    from gclint.fixes import settle
+    from gclint.syntax.source import Source
+
+    linter = runner.linter_for(runner.options_for(r.path, Options(), overrides, config_file))
+    return settle(r, linter, lambda: Source.open(r.path))
 
 
 def _apply_fixes(

@@ -20,6 +20,7 @@ class ReportContext:
     color: bool = False
     rules: dict = field(default_factory=dict)  # code -> rule class, for formats that describe rules
     fixed: int | None = None  # with --fix: how many findings were fixed
+    found: int | None = None  # with --fix: how many findings there were before (fixing one may end others)
     group: bool = True  # text, full, grouped: one code's findings in a file after the first few as one line
     # what the configuration switches off or excludes, and what a found one asked in vain (every format says
     # it: gclint.settings.configuration_notes)

@@ -49,10 +49,12 @@ def write_summary(results: list[FileResult] | Tally, out: TextIO, ctx) -> None:
     parts = [f"{total[k]} {k}{'s' if total[k] != 1 else ''}" for k in ("error", "warning", "info") if total[k]]
     files = f" in {files_with} file{'s' if files_with != 1 else ''}" if n else ""
     if ctx.fixed is not None and (ctx.fixed or n):  # --fix: ruff's "Found 3 errors (2 fixed, 1 remaining)."
-        found = n + ctx.fixed
+        found = max(ctx.found or 0, n + ctx.fixed)
         # the file count is of the remaining findings (the fixed ones may be in other files)
         remaining = f"{n} remaining: {', '.join(parts)}{files}" if n else "0 remaining"
-        out.write(f"Found {found} finding{'s' if found != 1 else ''} ({ctx.fixed} fixed, {remaining}).\n")
+        gone = found - n - ctx.fixed  # findings that ended with a fix made elsewhere (a head renumbered)
+        also = f", {gone} more ended by those fixes" if gone else ""
+        out.write(f"Found {found} finding{'s' if found != 1 else ''} ({ctx.fixed} fixed{also}, {remaining}).\n")
     elif n:
         out.write(f"Found {n} finding{'s' if n != 1 else ''} ({', '.join(parts)}){files}.\n")
     elif tally.unread:

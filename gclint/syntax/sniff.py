@@ -41,7 +41,9 @@ def not_gcode_reason(head: str) -> str | None:
     if _INI_SECTION.fullmatch(code[0]):
         return f"an INI configuration file (section {code[0]}), not G-code"
     pairs = sum(1 for line in code if _KEY_VALUE.match(line))
-    if len(code) >= 3 and pairs >= 0.9 * len(code):
+    # (no G-code line starts with a name and '=': Klipper's "NAME KEY=VALUE" has a blank after the name,
+    # RRF's "var x = 1" too; a short file is refused only when every line is a pair)
+    if pairs == len(code) or (len(code) >= 3 and pairs >= 0.9 * len(code)):
         return "a 'key = value' configuration file (slicer or printer profile), not G-code"
     return None
 
