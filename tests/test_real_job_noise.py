@@ -208,3 +208,13 @@ def test_corpus_remap_jobs():
         options = options_for(str(job), Options(), {}, None)
         assert "M206" in options.machine_codes
         assert not [f for f in Linter(options).check_path(str(job)).findings if f.code == "DL001"]
+
+
+# -- Carvera laser mode --------------------------------------------------------------------------------------
+
+
+def test_carvera_laser_mode_variants_are_known_codes():
+    """Makera's firmware (Laser.cpp) runs M321.2 and M322.2: laser mode on and off without the tool drop
+    and the Z offset change that M321 and M322 make; CarveraController's board test uses both."""
+    assert codes("; gclint: dialect=carvera\nM321.2\nG1 X10 F600 S0.5\nM322.2\nM30\n") == []
+    assert codes("; gclint: dialect=carvera\nM321.3\nM30\n") == [(2, "DL001", "warning")]

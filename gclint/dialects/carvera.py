@@ -5,7 +5,9 @@ firmware/supported-commands/mcodes/README.md and the G-code table gcodes.md).  C
 in grbl mode: G4 P is seconds; M3 S is RPM; M6 T is an automatic tool change; M7/M9 are air.  The firmware
 is built on Smoothieware, whose console commands (``echo``, ``play``...) a Carvera file may hold
 (Smoothieware source @ bb41e992, gclint/firmware/smoothieware.py): CarveraController's own test
-programs print their progress with ``echo``.
+programs print their progress with ``echo``.  M321.2 and M322.2 (laser mode on and off without the tool
+drop and offset change) are in Makera's firmware source (github.com/MakeraInc/CarveraFirmware @ 9acba62,
+src/modules/tools/laser/Laser.cpp), not in the table; CarveraController's board test runs them.
 """
 
 from __future__ import annotations
@@ -22,7 +24,7 @@ _G = (
 _M = (
     "M0 M1 M2 M3 M5 M6 M7 M9 M17 M18 M20 M21 M23 M24 M25 M26 M27 M30 M32 M82 M83 M84 M92 M97 M98 M98.1 M99"
     " M105 M112 M114 M115 M117 M118 M118.1 M119 M120 M121 M203 M203.1 M204 M205 M206 M220 M221 M223 M306 M321"
-    " M322 M323 M324 M325 M331 M332 M333 M334 M335 M336 M370 M374 M375 M400 M460 M461 M462 M463 M464 M465"
+    " M321.2 M322 M322.2 M323 M324 M325 M331 M332 M333 M334 M335 M336 M370 M374 M375 M400 M460 M461 M462 M463 M464 M465"
     " M466 M467 M468 M469 M470 M471 M472 M473 M474 M475 M476 M477 M478 M479 M480 M481 M482 M483 M484 M485"
     " M486 M487 M488 M489 M490 M490.1 M490.2 M491 M491.1 M492 M493 M493.1 M493.2 M493.3 M494 M495 M495.1 M495.2"
     " M495.3 M496 M496.1 M496.2 M496.3 M496.4 M496.5 M497 M497.1 M497.2 M498 M499 M500 M501 M502 M503 M504 M561"
@@ -87,7 +89,9 @@ _DESCRIPTIONS: Descriptions = {
     "M221": ("soft endstops", {"S": "S0 off, S1 on"}),
     "M223": ("spindle speed override", {"S": "percent"}),
     "M321": "enter laser mode (drops the tool, calibrates the collet)",
+    "M321.2": "enter laser mode, keeping the tool and the Z offset (Makera firmware, Laser.cpp)",
     "M322": "exit laser mode",
+    "M322.2": "exit laser mode, keeping the Z offset (Makera firmware, Laser.cpp)",
     "M323": "laser test mode (very low power, for focusing)",
     "M324": "exit laser test mode",
     "M325": ("laser power override", {"S": "percent"}),
