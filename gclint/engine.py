@@ -20,7 +20,7 @@ from gclint.machine.interpreter import Interpreter
 from gclint.machine.profiles import DEFAULT_PROFILE, get_profile
 from gclint.noqa import INLINE_UNSUPPRESSIBLE, NO_CODES
 from gclint.options import Options
-from gclint.rules.base import ANY_T, Finding, Rule, all_rules, matches, select_rules
+from gclint.rules.base import ANY_T, Finding, Rule, Severity, all_rules, matches, select_rules
 from gclint.runs import CodeLines, Runs, combined, comment_tests, rule_run_filters
 from gclint.syntax.build import TEXT_CODES
 from gclint.syntax.fastpath import PLAIN_MOVE, run_pattern
@@ -140,6 +140,8 @@ class Linter:
         if source.byte_view is not None and source.byte_view.lines:
             result.findings += self._byte_view_findings(path, source.byte_view.lines, ignored)
         self._check_suppressions(ctx, result)
+        if result.context is not None and result.context.assumed:
+            _as_assumed(result.findings, result.context)
         result.findings.sort(key=Finding.sort_key)
         return result
 
@@ -657,3 +659,17 @@ def _rule_failed(result: FileResult, rule: type[Rule], exc: Exception, line_numb
 def check_text(text: str, **options) -> list[Finding]:
     """Convenience for tests and library users: the findings for G-code ``text``."""
     return Linter(Options(**options)).check_text(text).findings
+
+
+# The rule families whose findings hold only under the file's dialect (SX and SC hold whatever it is for).
+DIALECT_FAMILIES = ("HY", "DL")
+
+
+def _as_assumed(findings: list[Finding], context: Context) -> None:
+    """A file whose dialect is only assumed (``Context.assumed``): its dialect's findings are information,
+    each saying so; the gate does not fail a file on what is true only of a dialect it was not shown to be for."""
+    note = context.assumed_note()
+    for f in findings:
+        if f.code.startswith(DIALECT_FAMILIES):
+            f.severity = min(f.severity, Severity.INFO)
+            f.message += note

@@ -235,7 +235,9 @@ def test_weak_and_default_decisions_are_noted_once(tmp_path: Path) -> None:
     assert err.count("nothing in 3 files tells the dialect") == 1 and "checked as hyrel v5, as gclint checks" in err
     assert "first target" not in err and "give --dialect NAME (marlin, " in err
     assert "prog.ngc: checked as machinekit on weak evidence" in err
-    assert "Checked as: hyrel v5, printer 30m (assumed) (3 files); machinekit (1 file)." in proc.stdout.decode()
+    assert (
+        "Checked as: hyrel v5 (assumed), printer 30m (assumed) (3 files); machinekit (1 file)." in proc.stdout.decode()
+    )
 
 
 def test_verbose_and_show_settings(tmp_path: Path) -> None:

@@ -207,3 +207,23 @@ def test_a_comment_naming_the_printer_is_kept_and_the_lines_it_lacks_are_finding
     # the same lines with no comment read the model they need, with no finding
     plain = Linter(Options()).check_text(job.split("\n", 1)[1], "a.gcode")
     assert plain.context.printer != model and not [f for f in plain.findings if f.code == "HY007"]
+
+
+@pytest.mark.parametrize(
+    "comment,head,model",
+    [
+        # PrusaSlicer's time comment: "30m" is thirty minutes, not the System 30M
+        ("; estimated printing time (normal mode) = 1h 30m 5s", "T4", "ehr"),
+        ("; cure time 30m", "T4", "ehr"),
+        # "Hydra 16A" names the 16A, one yoke or two ("one extra yoke gives a 16A a total of ten positions",
+        # T_v5 Overall): a job with a second yoke's head is the dual-yoke 16A's
+        ("; Hyrel Hydra 16A", "T5", "16a-dual"),
+        ("; printer: 16A", "T7", "16a-dual"),
+    ],
+)
+def test_words_that_only_look_like_a_model_do_not_decide_it(comment: str, head: str, model: str) -> None:
+    job = f"M6 T0 O1 X0 Y0 Z0\nM6 {head} O2 X0 Y0 Z0\nG28 X0 Y0\nM109 T0 S200\nM109 {head} S200\nT0\n"
+    job += f"G1 X1 Y1 E1 F1200\n{head}\nG1 X2 Y2 E1\nM30\n{comment}\n"
+    result = Linter(Options()).check_text(job, "a.gcode")
+    assert result.context.printer == model, result.context.why()
+    assert not [f for f in result.findings if f.code == "HY007"], result.findings

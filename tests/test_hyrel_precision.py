@@ -200,17 +200,17 @@ def test_hy055_milling_after_a_mid_job_g28():
     assert lint(milling.replace("G1 X30 Y0 F300\n", ""), codes=("HY055",)) == []
 
 
-def test_h_on_g0_is_reported_and_not_applied():
-    # G0 "Usage G0 Xn Yn Zn An Bn Fn" has no H; G1's has: "Hn is the stored head offset to apply"
-    found = lint("M660 H2 Z28.2\nG0 Z5 H2\nG1 Z5 F600 H2\n", codes=("HY034",))
-    # info, not a warning: real Hyrel jobs write "G0 Z0 H2" and the pages do not say Repetrel ignores it
-    assert where(found) == [(2, "HY034", "info")] and "G0's usage has no H" in found[0].message
-    # a G81 whose only H came on a G0: a warning (not HY004's error for no offset at all)
-    drill = lint("M660 H2 Z28.2\nG0 Z5 H2\nG81 T20 X100 Y75 I3 P3 Q-2 Z-7.5 F200\n", codes=("HY004",))
-    assert where(drill) == [(3, "HY004", "warning")] and "only on a G0 (line 2)" in drill[0].message
-    text = explained("M660 H2 Z28.2\nG0 Z5 H2")
-    assert "G0 has no H" in text and "invoke the offsets stored in register H2" not in text
-    assert "invoke the offsets stored in register H2" in explained("M660 H2 Z28.2\nG1 Z5 F600 H2")
+def test_h_on_g0_applies_the_register_as_on_g1():
+    # G0's usage on the page has no H (G1's has: "Hn is the stored head offset to apply"), but the firmware's G0
+    # and G1 both queue the move through motionQ_addCommand, which takes the register from H (Hyrel firmware
+    # source, src/MotorDrivers.c): real Hyrel jobs write "G0 Z0 H2", and check, explain and HY004 agree
+    assert lint("M660 H2 Z28.2\nG0 Z5 H2\nG1 Z5 F600 H2\n", codes=("HY034",)) == []
+    unset = lint("G0 Z5 H3\n", codes=("HY034",))
+    assert where(unset) == [(1, "HY034", "warning")] and "no M660 H3" in unset[0].message
+    assert where(lint("G0 Z5 H70\n", codes=("HY034",))) == [(1, "HY034", "error")]
+    assert lint("M660 H2 Z28.2\nG0 Z5 H2\nG81 T20 X100 Y75 I3 P3 Q-2 Z-7.5 F200\n", codes=("HY004",)) == []
+    for move in ("G0 Z5 H2", "G1 Z5 F600 H2"):
+        assert "invoke the offsets stored in register H2" in explained(f"M660 H2 Z28.2\n{move}")
 
 
 def test_m6_offsets_without_an_o_register():

@@ -26,8 +26,7 @@ HYREL = CORPUS / "hyrel"
 JOBS = sorted(p.name for p in HYREL.glob("*.gcode")) if HYREL.is_dir() else []
 
 # Error-level findings that are real faults of these jobs when checked as v4: none.  (The v4 jobs do
-# have warnings: M82 without M229 E1 (HY013); and infos: "G0 Z0.000 H2", an H on a G0, whose usage has
-# no H (HY034), comments that Repetrel truncates at 100 characters (HY029).)
+# have infos: M82 without M229 E1 (HY013), comments that Repetrel truncates at 100 characters (HY029).)
 V4_ERRORS: dict[str, set[tuple[int, str]]] = {name: set() for name in JOBS}
 
 # A v4 device address as a T variable of an M-code (yoke 1 T11-T15, T16 aux, yoke 2 T21-T25, T26

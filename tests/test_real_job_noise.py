@@ -218,3 +218,25 @@ def test_carvera_laser_mode_variants_are_known_codes():
     and the Z offset change that M321 and M322 make; CarveraController's board test uses both."""
     assert codes("; gclint: dialect=carvera\nM321.2\nG1 X10 F600 S0.5\nM322.2\nM30\n") == []
     assert codes("; gclint: dialect=carvera\nM321.3\nM30\n") == [(2, "DL001", "warning")]
+
+
+# -- a dialect only assumed ----------------------------------------------------------------------------------
+
+
+def test_findings_of_an_assumed_dialect_are_information_that_says_so(tmp_path):
+    """A file nothing sets apart for Hyrel (a host's 3-line test: a bare G28, moves, no M30) is checked as
+    Hyrel, the default, but its HY/DL findings are information naming the assumption: the gate does not fail
+    a Marlin test file on what is true only of a Hyrel job.  A file with Hyrel evidence keeps its warnings."""
+    result = Linter(Options()).check_text("G28\nG0 Z10 S0\nG1 X10 Y10 F600\n", "quicktest.gcode")
+    assert result.context.assumed and result.context.label().startswith("hyrel v5 (assumed)")
+    dialect = [f for f in result.findings if f.code.startswith(("HY", "DL"))]
+    assert {f.code for f in dialect} >= {"HY025", "HY010", "DL002"}
+    assert all(f.severity.label == "info" and "dialect assumed" in f.message for f in dialect)
+    job = tmp_path / "quicktest.gcode"
+    job.write_text("G28\nG0 Z10 S0\nG1 X10 Y10 F600\n")
+    assert run_cli("check", "--no-cache", str(job)).returncode == 0
+    hyrel = Linter(Options()).check_text("M6 T0 O1 X0 Y0 Z0\nG28\nT0\nG1 X10 Y10 E1 F600\n", "job.gcode")
+    assert not hyrel.context.assumed
+    assert [(f.code, f.severity.label) for f in hyrel.findings if f.code == "HY025"] == [("HY025", "warning")]
+    told = Linter(Options(dialect="hyrel")).check_text("G28\nG1 X10 Y10 F600\n", "job.gcode")
+    assert ("HY025", "warning") in [(f.code, f.severity.label) for f in told.findings]

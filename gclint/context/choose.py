@@ -72,7 +72,7 @@ def decide(ranking: Ranking) -> Decision:
     """The best reading of ``ranking``: its dialect and flavour, where the decision came from, how sure it is,
     why, and what disagreed."""
     scores = ranking.scores()
-    winner, rival, margin, _ = _pick(ranking)
+    winner, rival, margin, lead = _pick(ranking)
     dialect = ranking.by_key[winner].dialect.name
     own = ranking.best_of(scores, dialect)  # (the best reading of the winner's dialect: a flavour, perhaps)
     reasons: tuple[str, ...]
@@ -92,6 +92,10 @@ def decide(ranking: Ranking) -> Decision:
         else:
             origin = CONTENT
         strength = STRONG if margin >= CLOSE else WEAK
+        if lead <= 0 and ranking.by_key[winner].known:
+            # only its prior sets the winner above the rest: nothing in the file is for it (a bare G28 and a few
+            # moves that every firmware runs); its dialect's findings are the default reading's (Context.assumed)
+            strength = NONE
         # the other dialects' best readings: what sets the winner above all of them is said first
         field = tuple(
             ranking.best_of(scores, c.dialect.name)

@@ -77,6 +77,17 @@ class Context:
         return self.printer is not None and self.printer_origin not in (OPTION, CONFIGURATION)
 
     @property
+    def assumed(self) -> bool:
+        """True when the dialect is only the default reading: nothing in the file is for it (no evidence at
+        all, or none that sets it above another dialect but the default's prior).  The findings of its
+        dialect's rules are then information (gclint.engine): true of the default dialect, not of the file."""
+        return self.strength == NONE
+
+    def assumed_note(self) -> str:
+        """What a finding of the assumed dialect's rules adds."""
+        return f" (dialect assumed: nothing in the file says it is for {self.dialect_label()}; set it with --dialect)"
+
+    @property
     def weak(self) -> bool:
         """True when the user should be told how the file was read (little or conflicting evidence)."""
         return self.strength in (WEAK, NONE) or bool(self.conflict)
@@ -93,6 +104,8 @@ class Context:
     def label(self) -> str:
         """``hyrel v5, printer 30m (assumed)`` / ``marlin`` / ``marlin (prusa-buddy)``."""
         text = self.dialect_label()
+        if self.assumed:
+            text += " (assumed)"
         if self.printer is not None:
             text += f", printer {self.printer}"
             if self.printer_origin == DEFAULT:

@@ -40,6 +40,10 @@ NAMED = 2.0
 _TIE = 0.05  # the prior: each step along MODEL_ORDER costs this much
 
 
+# ("Hydra 16A, single yoke": the comment names the one-yoke 16A; words within 40 characters, a bounded search)
+_ONE_YOKE = r"(?im)^[^\n;(]*+[;(][^\n]*?(?:\b16A\b[^\n]{0,40}?\b(?:single|one|1)[- ]?yokes?\b|\b(?:single|one|1)[- ]?yokes?\b[^\n]{0,40}?\b16A\b)"
+
+
 def weight(lines: int) -> float:
     """How much a use on ``lines`` lines weighs: 1 for one line, one more for each doubling."""
     return 1.0 + math.log2(max(1, lines))
@@ -128,6 +132,8 @@ def decide(
                 found[name] = text[min(i for i in (text.find(";"), text.find("("), len(text)) if i >= 0) :]
         if "16a-dual" in found:  # ("16A dual" names the dual-yoke 16A, not the single-yoke one as well)
             found.pop("16a", None)
+        elif "16a" in found and scan.found(_ONE_YOKE) is None:
+            found["16a-dual"] = found["16a"]  # ("Hydra 16A" names the model, one yoke or two: the lines tell which)
         for name, text in found.items():
             named.append(name)
             s.favour({name: NAMED}, 0, f"the comment '{text.replace(': ', ' - ')}' names it")

@@ -320,13 +320,10 @@ HYREL_CODES = table(
         # feed rate)"
         P("F", "one-shot feed rate, mm/min", absent="no F: use the G0 speed from the settings (or M203)"),
         P("E", "not meaningful on G0 (HY030)"),
-        # "Usage G0 Xn Yn Zn An Bn Fn": no H, which G1's usage has ("Hn is the stored head offset to apply")
-        P(
-            "H",
-            "G0's usage has no H (the stored head offset is applied by H on a G1)",
-            rule="HY034",
-            forbidden=True,
-        ),
+        # "Usage G0 Xn Yn Zn An Bn Fn" has no H (G1's has: "Hn is the stored head offset to apply"), but the
+        # firmware applies it on a G0 as on a G1: both queue the move through motionQ_addCommand, which takes the
+        # register from H (Hyrel firmware source, src/MotorDrivers.c; HY034)
+        _HEIGHT_REGISTER,
         source="G0 Rapid Move",
     ),
     code(

@@ -103,18 +103,7 @@ def move(job: Job, exp: Explanation, cmd: Command, spec: Code | None, mode: str)
         exp.note(f"using the previously set F{fmt(job.state.feed)}")
     h = cmd.param("H")
     if h is not None and job.interpreter.height_registers:
-        if mode == "G0":
-            # "Usage G0 Xn Yn Zn An Bn Fn": H is G1's ("Hn is the stored head offset to apply")
-            exp.items.append(
-                Item(
-                    h.text.strip(),
-                    "G0 has no H: its usage is G0 Xn Yn Zn An Bn Fn; the stored head offset is applied by H on a "
-                    "G1, and the pages do not say whether a G0 applies it (gclint does not count it as applied)",
-                    True,
-                )
-            )
-        else:
-            _height_register(job, exp, h.text.strip(), h.value, line)
+        _height_register(job, exp, h.text.strip(), h.value, line)  # (on a G0 too: HY034)
     s = cmd.param("S")
     if s is not None and spindle_speed(job, exp, cmd):
         pass

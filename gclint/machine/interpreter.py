@@ -178,13 +178,13 @@ class Interpreter:
             st.motion_mode = mode
         if "E" in p:
             self._extrude(p["E"], mode, line.number)
-        if self.height_registers and "H" in p and mode == "G1":  # (G1's "Hn is the stored head offset to apply")
+        if self.height_registers and "H" in p and mode in ("G0", "G1"):
+            # (G1's "Hn is the stored head offset to apply"; a G0 applies it too: the firmware's G0 and G1 both
+            # queue the move through motionQ_addCommand, which takes the register from H: HY034)
             register = _int(p["H"])
             if register != st.applied_height_register or st.applied_height_line is None:
                 st.applied_height_line = line.number
             st.applied_height_register = register
-        elif self.height_registers and "H" in p and mode == "G0":  # (the pages do not say a G0 applies it: HY034)
-            st.g0_height_register, st.g0_height_line = _int(p["H"]), line.number
 
     def plain_move(
         self, mode: str, number: int, x: str | None, y: str | None, z: str | None, e: str | None, f: str | None
@@ -374,7 +374,6 @@ class Interpreter:
         st.fixture_offsets_active = False
         st.applied_height_register = None
         st.applied_height_line = None
-        st.g0_height_register = st.g0_height_line = None
         st.first_print_since_home_line = None
         st.first_work_since_home_line = None
         self._g28(cmd, line)
@@ -608,7 +607,6 @@ class Interpreter:
         st.tool_height_offsets.clear()
         st.applied_height_register = None
         st.applied_height_line = None
-        st.g0_height_register = st.g0_height_line = None
         st.first_print_since_m30_line = None
         st.first_print_since_tool_line = None
         st.head_reselected_line = None

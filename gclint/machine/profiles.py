@@ -54,7 +54,8 @@ PROFILES: dict[str, PrinterProfile] = {
             (0, 1, 2, 3),
             "XYZ",
             _ALWAYS | {"M671", "M675", "M677", "M679"},
-            named=r"\b(?:System ?)?30M\b",
+            # (a bare name only as written, upper case: "1h 30m 5s" and "cure time 30m" are times)
+            named=r"\b(?:System|Hydra|Hyrel) ?30M\b|(?-i:(?<!\dh )(?<!\dh)\b30M\b(?! ?\d+ ?s\b))",
         ),
         PrinterProfile(
             "esr",
@@ -62,7 +63,7 @@ PROFILES: dict[str, PrinterProfile] = {
             (0, 1, 2, 3),
             "XYZ",
             _ALWAYS | {"M671", "M679"},
-            named=r"\bESR\b|\bEngine ?SR\b",
+            named=r"\bEngine ?SR\b|(?-i:\bESR\b)",
         ),
         PrinterProfile(
             "ehr",
@@ -71,7 +72,7 @@ PROFILES: dict[str, PrinterProfile] = {
             "XYZAB",
             _ALWAYS,
             needs_z_home_for_m660=True,
-            named=r"\bEHR\b|\bEngine ?HR\b",
+            named=r"\bEngine ?HR\b|(?-i:\bEHR\b)",
         ),
         PrinterProfile(
             "16a",
@@ -80,7 +81,9 @@ PROFILES: dict[str, PrinterProfile] = {
             "XYZAB",
             _ALWAYS | {"M675", "M676", "M678", "M684", "M685"},
             lathe=True,
-            named=r"\b(?:Hydra ?)?16A\b",
+            # ("Hydra 16A" alone names the 16A, one yoke or two: "one extra yoke gives a 16A a total of ten
+            # positions", T_v5 Overall; gclint.context.printer reads it as either)
+            named=r"\bHydra ?16A\b|(?-i:\b16A\b)",
             second_bed=True,
         ),
         PrinterProfile(

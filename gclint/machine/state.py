@@ -95,8 +95,6 @@ class MachineState:
     tool_height_offsets: dict[int, float | None] = field(default_factory=dict)
     applied_height_register: int | None = None
     applied_height_line: int | None = None  # where the applied register was first applied (repeats keep it)
-    g0_height_register: int | None = None  # H on a G0 (which the pages do not say applies it: HY034, HY004)
-    g0_height_line: int | None = None
 
     # homing and motors
     homed_axes: set[str] = field(default_factory=set)

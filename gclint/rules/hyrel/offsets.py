@@ -26,10 +26,10 @@ class G81WithoutAppliedM660(Rule):
     code = "HY004"
     name = "g81-without-applied-m660"
     severity = Severity.ERROR
-    summary = "G81 peck drilling without an M660 tool-height offset set and applied (H on a G1) before it"
+    summary = "G81 peck drilling without an M660 tool-height offset set and applied (H on a move) before it"
     explanation = """
         "NOTE that an M660 offset must be set and applied BEFORE THIS COMMAND to allow for tool length."
-        Set it with `M660 H<n> Z<offset>` and apply it with `H<n>` on a G1 before the G81.  Without it the
+        Set it with `M660 H<n> Z<offset>` and apply it with `H<n>` on a G1 (or a G0) before the G81.  Without it the
         drill's length is not accounted for and the pecks go to the wrong depth: into the bed, or not
         deep enough.  G28 and M30 clear the applied offset, so it must be applied again after them.
     """
@@ -56,19 +56,9 @@ class G81WithoutAppliedM660(Rule):
                 f"G81: H{register} was applied at line {st.applied_height_line}, "
                 f"but no M660 H{register} sets that register"
             )
-        elif st.g0_height_register in st.tool_height_offsets:
-            self.report(
-                line,
-                f"G81: H{st.g0_height_register} is applied only on a G0 (line {st.g0_height_line}); the pages apply "
-                "the register with H on a G1 and do not say a G0 does: apply it on a G1 ('an M660 offset must be set "
-                "and applied BEFORE THIS COMMAND')",
-                node=cmd,
-                severity=Severity.WARNING,
-            )
-            return
         elif st.tool_height_offsets:
             stored = ", ".join(f"H{h}" for h in sorted(st.tool_height_offsets))
-            message = f"G81: M660 stores {stored}, but no G1 applies it with H before the G81"
+            message = f"G81: M660 stores {stored}, but no move applies it with H before the G81"
         else:
             message = "G81 without an M660 tool-height offset: set one (M660 H1 Z..) and apply it (G1 ... H1) first"
         self.report(line, f"{message} ('an M660 offset must be set and applied BEFORE THIS COMMAND')", node=cmd)
@@ -173,7 +163,7 @@ class ToolHeightRegister(ParamTableRule):
     code = "HY034"
     name = "tool-height-register"
     severity = Severity.ERROR
-    summary = "An H register outside 0-59, H on a G1 applying a register that no M660 has set, or H on a G0"
+    summary = "An H register outside 0-59, or H on a move applying a register that no M660 has set"
     explanation = """
         `M660 H<n> Z<offset>` stores a tool-height offset in register n; `H<n>` on a G1 applies it ("Hn is
         the stored head offset to apply (see M660 to store offsets)").  Applying a register that no M660
@@ -182,11 +172,11 @@ class ToolHeightRegister(ParamTableRule):
         has registers 0-59: another number, or an M660 without H, is an error.  H0 (no offset) is not
         reported.
 
-        H belongs to G1: G0's usage is `G0 Xn Yn Zn An Bn Fn`, with no H, and the M660 examples apply
-        the register on a G1 ("G1 Z0.275 F360 H2").  The pages do not say what Repetrel does with H on a
-        G0, so gclint does not count it as applied (as explain and the meaning diff read it) and says so
-        (info: real Hyrel jobs write `G0 Z0 H2`, and Repetrel may well apply it): put the H on a G1.  A G81
-        whose only H came on a G0 is a warning (HY004).
+        The page gives H in G1's usage (G0's is `G0 Xn Yn Zn An Bn Fn`), but a G0 applies it too: the
+        firmware's G0 and G1 both queue their move through `motionQ_addCommand`, which takes the register
+        from H on any move but a G38 probe (Hyrel firmware source, src/GCode.c G_Code_G0_0 and G_Code_G1_0,
+        src/MotorDrivers.c motionQ_addCommand).  Real Hyrel jobs write `G0 Z0 H2`; the register an H on a G0
+        names is checked as on a G1.
     """
     example_bad = """
         M660 H2 Z28.2
@@ -198,7 +188,7 @@ class ToolHeightRegister(ParamTableRule):
     """
     source = (
         "Gcode page, G1 Working Move (Hn) and M660 Assign Tool Height Offset; Hyrel firmware source, src/MCode.c "
-        "M_Code_M660 and inc/main.h NUM_TOOL_OFFSETS (60)"
+        "M_Code_M660, inc/main.h NUM_TOOL_OFFSETS (60), src/MotorDrivers.c motionQ_addCommand (H on G0 and G1)"
     )
     families = ("hyrel",)
 
@@ -214,18 +204,7 @@ class ToolHeightRegister(ParamTableRule):
     def check(self, line: Line, cmd: Command) -> None:
         params = cmd.params
         code = cmd.code
-        if code == "G0":
-            if "H" in params:
-                self.report(
-                    line,
-                    f"H{params['H'] or ''} on G0: G0's usage has no H (it is G1's: 'Hn is the stored head offset to "
-                    "apply'), and the pages do not say whether a G0 applies it; put the H on a G1 "
-                    "(as in 'G1 Z0.275 F360 H2')",
-                    node=cmd.param("H"),
-                    severity=Severity.INFO,
-                )
-            return
-        if code == "G1":
+        if code in ("G0", "G1"):
             if "H" not in params:
                 return
             super().check(line, cmd)
