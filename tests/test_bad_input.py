@@ -139,7 +139,9 @@ CASES = [
     Case("5000-digit code", _file("code.gcode", "G" + "1" * 5000 + " X1\nM" + "0" * 5000 + "1\n"), (0, 1), (0,)),
     Case("lowercase", _file("lower.gcode", "g28\ng1 x10 y20 f3000\nm104 s200\n"), (0, 1), (0,)),
     Case("no spaces", _file("nospace.gcode", "G28\nG1X10Y20F3000\nG0X0Y0S12000M3\n"), (0, 1), (0,)),
-    Case("bad N sequence", _file("lineno.gcode", "N10 G1 X1\nN5 G1 X2\n"), (1,), (0,), "not greater", ("SX003",)),
+    Case(
+        "bad N sequence", _file("lineno.gcode", "N10 G1 X1 F600*0\nN5 G1 X2*103\n"), (1,), (0,), "count up", ("SX003",)
+    ),
     Case("bad checksum", _file("checksum.gcode", "N1 G1 X1*99\n"), (1,), (0,), "checksum", ("SX004",)),
     Case("checksum mid-line", _file("checksum_mid.gcode", "N1 G1 *12 X1\n"), (1,), (0,), codes=("SX001",)),
     Case("checksum without number", _file("checksum_empty.gcode", "N1 G1 X1*\n"), (1,), (0,), codes=("SX001",)),

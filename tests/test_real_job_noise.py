@@ -240,3 +240,40 @@ def test_findings_of_an_assumed_dialect_are_information_that_says_so(tmp_path):
     assert [(f.code, f.severity.label) for f in hyrel.findings if f.code == "HY025"] == [("HY025", "warning")]
     told = Linter(Options(dialect="hyrel")).check_text("G28\nG1 X10 Y10 F600\n", "job.gcode")
     assert ("HY025", "warning") in [(f.code, f.severity.label) for f in told.findings]
+
+
+def test_an_octoprint_smart_plug_address_is_no_stray_value():
+    # jneilliii's OctoPrint plugins (Wemo, TP-Link) read "M81 192.168.1.84": the host switches that plug off
+    assert codes("; gclint: dialect=marlin\nM81 192.168.1.84\n") == []
+    assert codes("; gclint: dialect=marlin\nG1 X1 0.200 F600\n") == [(2, "SX007", "warning")]
+
+
+# -- LinuxCNC programs and subroutine libraries --------------------------------------------------------------
+
+
+def _sc004(path) -> list[str]:
+    return [f.message for f in Linter(Options()).check_path(str(path)).findings if f.code == "SC004"]
+
+
+def test_m98_in_a_linuxcnc_program_is_read_as_linuxcnc_reads_it(tmp_path):
+    """A ".ngc" program whose content reads as LinuxCNC: M98 P1 calls its Fanuc-style subprogram O1 (o-code.adoc,
+    "Fanuc-Style Numbered Programs"), not a Carvera's gcodes/macros/1.cnc; LinuxCNC looks for 1.ngc first."""
+    job = tmp_path / "test.ngc"
+    job.write_text("o1 (main)\n#1 = 2\nM98 P100\nM30\n\no100\nG53 G0 X0 Y0 Z0\nM99\n")
+    found = _sc004(job)
+    assert found and all("gcodes/macros" not in m and '"100.ngc"' in m for m in found), found
+    (tmp_path / "100.ngc").write_text("o100 sub\no100 endsub\nM2\n")
+    assert _sc004(job) == []  # (its file is beside it: the gate reads that file too)
+    carvera = tmp_path / "job.cnc"
+    carvera.write_text("G0 X0\nM98 P100\nM30\n")
+    assert any("gcodes/macros/100.cnc" in m for m in _sc004(carvera))
+
+
+def test_a_library_subroutine_calling_its_sibling_files(tmp_path):
+    lib = tmp_path / "ngcgui_lib"
+    (lib / "utilitysubs").mkdir(parents=True)
+    (lib / "utilitysubs" / "move.ngc").write_text("o<move> sub\nG0 X#1\no<move> endsub\n")
+    job = lib / "arc1.ngc"
+    job.write_text("o<arc1> sub\n#<x> = 1\no<move> call [#<x>]\no<elsewhere> call\no<arc1> endsub\n")
+    found = _sc004(job)
+    assert len(found) == 1 and '"elsewhere.ngc"' in found[0], found

@@ -77,15 +77,21 @@ class LineNumberSequence(Rule):
     code = "SX003"
     name = "line-number-sequence"
     severity = Severity.WARNING
-    summary = "N line numbers go backwards, repeat, or skip on checksummed lines"
+    summary = "On checksummed lines, an N line number that is not the previous one plus one"
     explanation = """
-        N numbers label lines.  In CNC programs they should increase; under the RepRap host protocol
-        (lines with a *checksum) each N must be the previous one plus one, or the firmware asks for a
-        resend ("Line Number is not Last Line Number+1").  M110 sets the next number.
+        Under the RepRap host protocol (lines with a *checksum) each N must be the previous one plus one,
+        or the firmware asks for a resend ("Line Number is not Last Line Number+1").  M110 sets the next
+        number.  On lines without a checksum N is a label: LinuxCNC says line numbers "may be repeated or
+        used out of order, although normal practice is to avoid such usage" (G-code overview, "Optional
+        Line Number"), and a printer reading a file from its card does not count them, so their order is
+        not reported.
     """
-    example_bad = "N10 G1 X1\nN5 G1 X2"
-    example_good = "N10 G1 X1\nN20 G1 X2"
-    source = 'Marlin source, Marlin/src/gcode/queue.cpp (STR_ERR_LINE_NO: "Line Number is not Last Line Number+1")'
+    example_bad = "N10 G1 X1 F600*0\nN12 G1 X2*81"
+    example_good = "N10 G1 X1 F600*0\nN11 G1 X1*81"
+    source = (
+        'Marlin source, Marlin/src/gcode/queue.cpp (STR_ERR_LINE_NO: "Line Number is not Last Line Number+1"); '
+        "LinuxCNC G-code overview, Optional Line Number"
+    )
     on_numbered = True
 
     def __init__(self, ctx) -> None:
@@ -110,8 +116,6 @@ class LineNumberSequence(Rule):
             return
         if line.parsed.checksum is not None and value != last + 1:
             self.report(line, f"N{_n(value)} follows N{_n(last)}: checksummed lines must count up by one", node=word)
-        elif value <= last:
-            self.report(line, f"N{_n(value)} is not greater than the previous N{_n(last)}", node=word)
 
 
 @register

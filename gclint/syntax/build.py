@@ -80,6 +80,10 @@ MAX_DIGITS = 30  # per side of the decimal point; the fast path's patterns use t
 _EXPONENT_LOWER = re.compile(r"[-+]?[0-9]{1,4}")
 _EXPONENT_UPPER = re.compile(r"[-+][0-9]{2,4}")
 
+# An IPv4 address after M80/M81: the argument OctoPrint's smart-plug plugins read ("M81 192.168.1.84" switches
+# the printer's plug off), never sent to the firmware
+_IPV4 = re.compile(r"\d{1,3}(?:\.\d{1,3}){3}")
+
 
 def _exponent_of(previous: Word | None, piece: Word) -> str | None:
     """The number written in exponent notation when the E word ``piece`` is the exponent of the word
@@ -298,7 +302,11 @@ def assemble(
             )
         elif isinstance(piece, Stray):
             extra.append(piece)
-            issues.append(Issue(STRAY_VALUE, piece.column, f"value {piece.text!r} has no word letter and is ignored"))
+            if not (current is not None and current.code in ("M80", "M81") and _IPV4.fullmatch(piece.text.strip())):
+                issues.append(
+                    Issue(STRAY_VALUE, piece.column, f"value {piece.text!r} has no word letter and is ignored")
+                )
+            # (else OctoPrint's smart-plug plugins' "M81 192.168.1.84": the host switches that plug off)
         else:  # pragma: no cover - a new piece type must be handled above
             raise TypeError(f"unknown piece {piece!r}")
     close()

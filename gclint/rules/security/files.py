@@ -5,7 +5,7 @@ from __future__ import annotations
 import re
 from collections.abc import Mapping
 
-from gclint.context.model import CONFIGURATION, OPTION
+from gclint.context.model import CONFIGURATION, CONTENT, OPTION
 from gclint.rules.base import Severity, register
 from gclint.rules.security import linuxcnc
 from gclint.rules.security.base import _SecurityRule
@@ -95,12 +95,16 @@ class RunsFile(_SecurityRule):
         look for the file name.ngc (100.ngc) in the folders the machine's INI file names (PROGRAM_PREFIX,
         SUBROUTINE_PATH) and run it ("Calling Files" in LinuxCNC's O-code documentation; interp_o_word.cc
         control_back_to).  Such a call, and a call whose name is computed ("o[#1] call"), is reported in
-        every dialect.  Define the subroutine in the job, above the call ("o100 sub").  A Fanuc-style "O100"
+        every dialect, unless the file name.ngc is beside the job (in its folder, a folder in it or a folder
+        beside it: a subroutine library's utilitysubs/, a program's subs/): that file is in the same checkout,
+        and the gate reads it too.  Define the subroutine in the job, above the call ("o100 sub").  A Fanuc-style "O100"
         above the call defines nothing: LinuxCNC reads it in order as a program number only, and the
         numbered subprogram "must follow the M98 call" (O-code documentation, "Fanuc-Style Numbered
         Programs"; interp_o_word.cc convert_control_functions).  M98 P with a number is reported always
         where the job may run on a Carvera (which runs gcodes/macros/<number>.cnc for it): in every dialect
-        but Machinekit/LinuxCNC, and in a .cnc, .nc or .tap file the user did not set to them.
+        but Machinekit/LinuxCNC, and in a .cnc, .nc or .tap file the user did not set to them.  A ".ngc"
+        program (LinuxCNC's own extension; a Carvera plays .nc and .cnc files) whose content reads as
+        LinuxCNC/Machinekit has its M98 read as LinuxCNC reads it.
 
         RepRapFirmware's own configuration is macros calling macros: the firmware runs homeall.g for G28, tpre0.g for
         T0, M<n>.g for a code it does not have, and these files call each other with M98 (RepRapFirmware source,
@@ -114,8 +118,9 @@ class RunsFile(_SecurityRule):
         defines (M104, M106, M109, M140, M190...) are not reported.  In other dialects they are not reported
         (Marlin's M150 sets LED colours), but in a ".ngc" file, LinuxCNC's own extension, they are unless the
         user set that dialect (on the command line or in a --config) and it has the code.  M98 with a number is
-        quiet only where the user set Machinekit/LinuxCNC and the job defines "o<number> sub" above the call:
-        a Carvera runs gcodes/macros/<number>.cnc whatever the job defines.
+        quiet only where LinuxCNC reads it (the user set Machinekit/LinuxCNC, or a ".ngc" program reads as
+        theirs) and the job defines "o<number> sub" above the call or number.ngc is beside it: a Carvera runs
+        gcodes/macros/<number>.cnc whatever the job defines.
     """
     example_bad = 'M98 P"0:/macros/prime.g"'
     example_good = """
@@ -150,6 +155,11 @@ class RunsFile(_SecurityRule):
         # gcodes/macros/<P>.cnc for its M98 P<n> whatever O-words the job defines, and LinuxCNC refuses an M98 to
         # an "o<n> sub" (interp_o_word.cc: "'O.... sub' subroutine must be called with 'O.... call'")
         self._user_set = ctx.context.origin in (OPTION, CONFIGURATION) and ctx.options.dialect_trusted
+        # A ".ngc" file (LinuxCNC's own program extension; a Carvera plays .nc and .cnc) whose content reads as
+        # LinuxCNC/Machinekit: its M98 P<n> is read as LinuxCNC reads it (a Fanuc-style subprogram)
+        self._ngc_program = (
+            str(ctx.path or "").lower().endswith(".ngc") and ctx.context.origin == CONTENT and not ctx.context.assumed
+        )
 
     def check(self, line: Line, cmd: Command) -> None:
         if cmd.code == "O":
@@ -185,6 +195,8 @@ class RunsFile(_SecurityRule):
                 " LinuxCNC/Machinekit look for it first, since no subroutine of that name is defined above the call"
             )
         elif name is not None:
+            if linuxcnc.beside(self.ctx.path, name):
+                return  # (a library's own subroutine file, in the checkout: the gate reads it too)
             what = (
                 f"runs the file {_quote(name + '.ngc', 60)} from the machine's program or subroutine folders when one"
                 " is there: LinuxCNC/Machinekit look for it first, since no subroutine of that name is defined"
@@ -299,7 +311,8 @@ class RunsFile(_SecurityRule):
             number = _macro_number(rest, cmd) if code == "M98" else None
             if number is None:
                 return
-            if self.ctx.dialect.semantics.effect("M98") != "call-subroutine" or not self._user_set:
+            linuxcnc_reads = self._user_set or self._ngc_program
+            if self.ctx.dialect.semantics.effect("M98") != "call-subroutine" or not linuxcnc_reads:
                 # (a Carvera always runs gcodes/macros/<P>.cnc, whatever O-words the job defines: Carvera Community
                 # Firmware Player.cpp on_gcode_received, M98; a job read as LinuxCNC by its own content in a Carvera
                 # file is not exempt for that)
@@ -308,7 +321,8 @@ class RunsFile(_SecurityRule):
                     f"M98 P{number} runs the file gcodes/macros/{number}.cnc on a Carvera: code outside this job",
                     column,
                 )
-            elif str(number) not in self._subroutines:  # (as "o100 call": interp_o_word.cc execute_call)
+            elif str(number) not in self._subroutines and not linuxcnc.beside(self.ctx.path, str(number)):
+                # (as "o100 call": interp_o_word.cc execute_call)
                 self.report_masked(
                     line,
                     f"M98 P{number} runs the file {_quote(f'{number}.ngc')} from the machine's program or subroutine"
