@@ -162,12 +162,12 @@ def test_hy033_g1_s_and_m221_negative_only():
 # -- flow codes -------------------------------------------------------------------------------------------
 
 
-def test_hy001_routing_memory():
-    assert lines("M229 E1\n", "HY001") == [1]
-    assert lines("M229 E0 D2\nM229 E1\n", "HY001") == []
-    assert lines("M229 E0 D2\nM229 E0 D0\nM229 E1\n", "HY001") == [3]
-    sev = [f.severity.label for f in check_text("M229 E1 D0\nM229 E1\n", dialect="hyrel") if f.code == "HY001"]
-    assert sev == ["error", "warning"]
+def test_hy001_only_the_combination_the_page_calls_illegal():
+    # "Note: E1 D0 is an illegal combination"; the page says nothing of an omitted D, and the firmware, given E1
+    # with no routing, sends the steps as D3 does (src/MCode.c M_Code_M229: "force canbus E steps")
+    assert lines("M229 E1 D0\n", "HY001") == [1]
+    assert lines("M229 E1\n", "HY001") == []
+    assert lines("M229 E0 D2\nM229 E0 D0\nM229 E1\n", "HY001") == []
 
 
 def test_hy011_range_on_the_same_line_and_persisting():

@@ -29,8 +29,9 @@ class M229E1D0(Rule):
         M229 switches Hyrel between native flow (E0) and the slicer's E values (E1); D chooses how the
         steps reach the head: D0 on the head controller, D1-D3 through the motion controller.  The page
         says: "Note: E1 D0 is an illegal combination."  `M229 E1 D1` is "the default way to enable E
-        values".  M229 E1 without D, when no earlier M229 chose D1-D3, is reported as a warning: D0 is
-        how v3 and earlier worked, so the routing may still be D0.
+        values".  M229 E1 without D is not reported: the page does not say what an omitted D means, and
+        the firmware, given E1 with no routing chosen (D0 or none), sends the steps through the CAN bus and
+        the C axis, as D3 does ("force canbus E steps when using E values": src/MCode.c M_Code_M229).
     """
     example_bad = "M229 E1 D0"
     example_good = "M229 E1 D1"
@@ -40,10 +41,6 @@ class M229E1D0(Rule):
     )
     codes = ("M229",)
     families = ("hyrel",)
-
-    def __init__(self, ctx) -> None:
-        super().__init__(ctx)
-        self.routing_set = False  # an earlier M229 gave D1-D3
 
     def check(self, line: Line, cmd: Command) -> None:
         p = cmd.params
@@ -55,15 +52,6 @@ class M229E1D0(Rule):
                 "M229 E1 D0 is an illegal combination: use M229 E1 D1 to enable E values",
                 node=cmd.param("D") or cmd,
             )
-        elif e == 1 and "D" not in p and not self.routing_set:
-            self.report(
-                line,
-                "M229 E1 without D: no earlier M229 chose D1-D3, and E1 with D0 is illegal; write M229 E1 D1",
-                node=cmd,
-                severity=Severity.WARNING,
-            )
-        if d is not None:
-            self.routing_set = d >= 1
 
 
 @register
