@@ -158,7 +158,9 @@ def test_file_names_are_never_options_through_the_exact_hook_entry(tmp_path):
     env.pop("GCLINT_CACHE_DIR", None)
     proc = subprocess.run(command, cwd=tmp_path, capture_output=True, env=env, timeout=120)
     output = proc.stdout.decode() + proc.stderr.decode()
-    assert proc.returncode == 1 and "--config=cfg.gcode:2:" in output and "SC001" in output, output
+    # (exit 2: cfg.gcode, a 'key = value' file, is not G-code and is said so; nothing was read as an option)
+    assert proc.returncode == 2 and "--config=cfg.gcode:2:" in output and "SC001" in output, output
+    assert "cfg.gcode: a 'key = value' configuration file" in output, output
     assert (tmp_path / "good.gcode").read_text() == GOOD, "a file name was read as --output"
     # user args that forget to end the options: refused (the hook fails), never a pass
     command = [sys.executable, "-m", "gclint", *shlex.split(hook["entry"])[1:], "--printer", "30m", *names]
