@@ -27,16 +27,14 @@ security gate (SC rules), so the cache is built so that nobody can make a job pa
 
 from __future__ import annotations
 
+# (json, hmac, secrets and tempfile are imported where an entry is read or written: a --no-cache check
+# does not pay for them)
 import hashlib
-import hmac
-import json
 import math
 import os
 import re
-import secrets as _random
 import stat
 import sys
-import tempfile
 from functools import lru_cache
 from pathlib import Path
 
@@ -273,6 +271,9 @@ class ResultCache:
             os.close(fd)
 
     def _new_key(self, path: Path) -> bytes | None:
+        import secrets as _random
+        import tempfile
+
         key = _random.token_bytes(_KEY_BYTES)
         try:
             fd, tmp = tempfile.mkstemp(dir=path.parent, prefix=".key-")
@@ -295,6 +296,8 @@ class ResultCache:
         key = self._signing_key()
         if key is None:
             raise OSError("no signing key")
+        import hmac
+
         return hmac.new(key, body, hashlib.sha256).hexdigest().encode() + b"\n" + body
 
     def _unsign(self, data: bytes) -> bytes | None:
@@ -304,6 +307,8 @@ class ResultCache:
 
     @staticmethod
     def settings_key(options_key: str, rule_codes: list[str]) -> str:
+        import json
+
         raw = json.dumps([_FORMAT, code_fingerprint(), options_key, sorted(rule_codes)])
         return hashlib.sha256(raw.encode()).hexdigest()[:32]
 
@@ -331,6 +336,8 @@ class ResultCache:
         body = self._unsign(data)
         if body is None:
             return None
+        import json
+
         record = json.loads(body)
         if not isinstance(record, dict) or record.get("format") != _FORMAT:
             return None
@@ -358,6 +365,9 @@ class ResultCache:
             if _private_dir(entry.parent, create=True) is not None:
                 return
             record = {"format": _FORMAT, "settings": settings, "path": path, "sha256": digest, "result": _dump(result)}
+            import json
+            import tempfile
+
             body = json.dumps(record).encode("ascii")  # ASCII: keeps undecodable bytes (lone surrogates) intact
             fd, tmp = tempfile.mkstemp(dir=entry.parent, prefix=".tmp-", suffix=".json")
             try:
@@ -512,6 +522,8 @@ def _verifies(data: bytes, key: bytes | None) -> bool:
     mac, sep, body = data.partition(b"\n")
     if key is None or not sep or len(mac) != 64:
         return False
+    import hmac
+
     return hmac.compare_digest(mac, hmac.new(key, body, hashlib.sha256).hexdigest().encode())
 
 

@@ -19,7 +19,6 @@ out, for the notes."""
 from __future__ import annotations
 
 import os
-import subprocess
 from dataclasses import dataclass, field
 from functools import lru_cache
 from pathlib import Path
@@ -292,6 +291,8 @@ class Excluder:
         # core.fsmonitor names a program git runs when it reads the index: never one from the repository's
         # configuration (a folder from elsewhere may carry a .git of its own)
         command = ["git", "-c", "core.fsmonitor=false", "-C", root, "ls-files", "-z"]
+        import subprocess  # (here: most checks never ask git)
+
         try:
             done = subprocess.run(
                 command, capture_output=True, env=env, timeout=GIT_TIMEOUT, stdin=subprocess.DEVNULL, check=False

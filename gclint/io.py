@@ -20,7 +20,6 @@ import errno
 import os
 import signal
 import stat
-import tempfile
 import threading
 from typing import BinaryIO
 
@@ -129,6 +128,8 @@ class AtomicWriter:
             else:
                 _install_sigterm()
                 folder = os.path.dirname(os.path.abspath(self._target))
+                import tempfile  # (here: the check's report to standard output needs none)
+
                 fd, self._tmp = tempfile.mkstemp(prefix=".gclint-", suffix=".tmp", dir=folder)
                 _LIVE.add(self._tmp)
                 self._fh = os.fdopen(fd, "wb")

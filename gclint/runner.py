@@ -8,7 +8,6 @@ import re
 import stat
 from collections import deque
 from collections.abc import Callable, Collection, Iterable, Iterator
-from concurrent.futures import ProcessPoolExecutor
 from dataclasses import dataclass, replace
 from pathlib import Path
 from typing import TYPE_CHECKING, TypedDict
@@ -570,6 +569,8 @@ def results(
     # (finished results wait in memory for their turn: each may hold up to MAX_FINDINGS findings)
     size = max(1, min(16, len(files) // (workers * 4)))
     batches = _batches(items, size)
+    from concurrent.futures import ProcessPoolExecutor  # (here: a one-file check does not pay for multiprocessing)
+
     with ProcessPoolExecutor(max_workers=workers) as pool:
         window: deque = deque()
 

@@ -29,6 +29,8 @@ _AGAIN = 1024  # (characters of a run first read line by line before trying agai
 _WINDOW = 1 << 16  # (characters of a run the rules are asked about at once: their findings are held till then)
 _CLEAN_LIMIT = 8192  # comment lines remembered as needing no reading (they repeat: ";WIDTH:0.45")
 _QUIET_LONGEST = 1024  # (the longest comment line of a run remembered as needing no reading)
+_TOGETHER = 4096  # (characters of a run's comment lines tested together before they are tested alone)
+_ALONE = 4  # (comment lines that are tested alone rather than together first)
 
 
 # A run shorter than this (in characters, a few lines) is read with the lines around it: applying a run costs
@@ -267,23 +269,60 @@ class Runs:
         if self.together and not self.any_needs_reading(block, start, end):
             return [(start, end, False)]
         out = []
-        clean = self.clean
-        comment = start if block[start] == ";" else block.find("\n;", start, end) + 1 or end
-        while comment < end:
-            stop = block.find("\n", comment, end) + 1
-            text = block[comment : stop - 2 if block[stop - 2] == "\r" else stop - 1]
-            if text not in clean:
-                if self.needs_reading(text):
-                    if comment > start:
-                        out.append((start, comment, False))
-                    out.append((comment, stop, True))
-                    start = stop
-                else:
-                    self._remember(clean, text)
-            comment = block.find("\n;", stop - 1, end) + 1 or end
+        for comment, stop in self._to_read(block, start, end):
+            if comment > start:
+                out.append((start, comment, False))
+            out.append((comment, stop, True))
+            start = stop
         if start < end:
             out.append((start, end, False))
         return out
+
+    def _to_read(self, block: str, start: int, end: int) -> Iterator[tuple[int, int]]:
+        """(start, end) of each comment line of the run ``block[start:end]`` that needs reading, in order."""
+        comment = start if block[start] == ";" else block.find("\n;", start, end) + 1 or end
+        while comment < end:
+            if self.together and comment:
+                # stretches of comment lines tested together, halved where one may need reading (as
+                # any_needs_reading tests a run's): most lines of a run that holds one secret-like setting
+                # among a slicer's thousands of settings lines are never tested alone
+                stretch = block.find("\n", comment + _TOGETHER, end) + 1 or end
+                lines = [(m.start() + 1, m.group()) for m in _COMMENT_LINES.finditer(block, comment - 1, stretch)]
+                for at in self._needing(lines):
+                    yield at, block.find("\n", at, end) + 1
+                comment = stretch
+                continue
+            stop = block.find("\n", comment, end) + 1
+            text = block[comment : stop - 2 if block[stop - 2] == "\r" else stop - 1]
+            if self._needs_reading_alone(text):
+                yield comment, stop
+            comment = block.find("\n;", stop - 1, end) + 1 or end
+
+    def _needs_reading_alone(self, text: str) -> bool:
+        if text in self.clean:
+            return False
+        if self.needs_reading(text):
+            return True
+        self._remember(self.clean, text)
+        return False
+
+    def _needing(self, lines: list[tuple[int, str]]) -> Iterator[int]:
+        """The starts of the comment lines of ``lines`` (start, the line after its line break) that need
+        reading: each alone where they are few, else tested together first (none of them needs reading
+        when together they do not)."""
+        if len(lines) <= _ALONE:
+            for at, text in lines:
+                if self._needs_reading_alone(text[1:]):
+                    yield at
+            return
+        joined = "".join(text for _, text in lines)
+        if (self.long_line is None or self.long_line.search(joined) is None) and not any(
+            test(joined) for test in self.tests
+        ):
+            return
+        half = len(lines) // 2
+        yield from self._needing(lines[:half])
+        yield from self._needing(lines[half:])
 
 
 class CodeLines:

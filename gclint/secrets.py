@@ -106,6 +106,11 @@ def _hinted(text: str) -> bool:
     """Whether any pattern could match (the common case, ";TYPE:Perimeter", stops here).  A chain of
     substring tests: several times faster than one case-insensitive regex or a loop."""
     t = text.lower()
+    return _words_hinted(t) or _codes_hinted(t)
+
+
+def _words_hinted(t: str) -> bool:
+    """``_hinted``'s tests (of the lowered text) but for the password codes'."""
     return (
         "key" in t
         or "pass" in t
@@ -125,18 +130,34 @@ def _hinted(text: str) -> bool:
         or "glpat-" in t
         or "sk-" in t
         or "eyj" in t
-        or "587" in t  # (M587, M589, M551: not "58" alone, a common digit pair)
-        or "589" in t
-        or "551" in t
-        or "m51" in t  # (Marlin's M511/M512 passcodes)
-        or "586" in t  # (RepRapFirmware's M586.4 MQTT password)
         or "auth" in t
     )
 
 
+def _codes_hinted(t: str) -> bool:
+    """``_hinted``'s tests (of the lowered text) for the password codes (``_command_passwords``)."""
+    return (
+        "587" in t  # (M587, M589, M551: not "58" alone, a common digit pair)
+        or "589" in t
+        or "551" in t
+        or "m51" in t  # (Marlin's M511/M512 passcodes)
+        or "586" in t  # (RepRapFirmware's M586.4 MQTT password)
+    )
+
+
 def may_hold(text: str) -> bool:
-    """Whether ``text`` may hold a secret (``find`` finds none in a text for which this is False)."""
-    return (len(text) >= 32 and _HEX_RUN.search(text) is not None) or _hinted(text)
+    """Whether ``text`` may hold a secret (``find`` finds none in a text for which this is False).
+
+    Where only a password code's digits hint at one (Cura's ``; LINE_WIDTH: 0.551177``, thousands of lines
+    a job), the code itself is looked for: in ASCII text each of ``find``'s other patterns holds one of the
+    other hints.  (Not outside ASCII: there ignoring case matches more than ``lower()`` shows, "ſecret" is
+    a keyword.)  True of lines joined by line breaks when true of one of them (``Rule.comment_hint``)."""
+    if len(text) >= 32 and _HEX_RUN.search(text) is not None:
+        return True
+    t = text.lower()
+    if _words_hinted(t):
+        return True
+    return _codes_hinted(t) and (not text.isascii() or _PASSWORD_CODE.search(text) is not None)
 
 
 # Values that are placeholders, not secrets: "; printhost_password = " has none, "= none", "= ***".

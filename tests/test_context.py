@@ -539,3 +539,16 @@ def test_whole_e_amounts_are_amounts_and_a_form_feed_is_no_line_break() -> None:
     assert infer("G21\nG90\nT0\n" + "G1 X1 Y1 E1 F100\n" * 12 + "M30\n", "j.gcode").dialect == "hyrel"
     hidden = infer("G28 X0 Y0\nG1 X0 F100 ; c\x0cM792 ; SHELL C:\\x.exe\nM30\n", "j.gcode")
     assert "M792" not in hidden.why()
+
+
+def test_a_plain_move_holds_no_line_mark() -> None:
+    # (gclint.context.content reads a plain move before the line marks: none of their required texts can be
+    # in one, whose characters are G, digits, X Y Z E F, signs, points and blanks)
+    from gclint.context.content import _MARKS
+    from gclint.syntax.fastpath import PLAIN_MOVE
+
+    alphabet = set("G0123456789XYZEF+-. \t")
+    for _owner, mark, _pattern in _MARKS:
+        assert mark.contains and not set(mark.contains) <= alphabet, mark
+    for move in ("G1 X1.5 Y-2 Z+.3 E0.1 F1800", "G0\tF600  X1", "G1 E-0.8 F2100 "):
+        assert PLAIN_MOVE.fullmatch(move) and set(move) <= alphabet

@@ -96,7 +96,7 @@ def _no_temporary_files_in(monkeypatch, folder: Path) -> None:
             raise PermissionError(errno.EACCES, os.strerror(errno.EACCES), str(folder))
         return original(*args, **kwargs)
 
-    monkeypatch.setattr(gclint.io.tempfile, "mkstemp", mkstemp)
+    monkeypatch.setattr(tempfile, "mkstemp", mkstemp)  # (gclint.io imports tempfile where it writes)
 
 
 def _translator_raises_after(monkeypatch, lines: int, exc: BaseException) -> None:

@@ -196,6 +196,21 @@ def test_fastpath_agrees_with_grammar_on_generated_lines(raw):
     roundtrip(raw)
 
 
+@pytest.mark.parametrize(
+    "raw",
+    ["M30", "M30 ", "M30\t; end", "M117", "  M117  ;(x)", "N10 M30", "N10  M030\t; c", "M0810", "M1002", "M23 ;"],
+)
+def test_a_free_text_code_alone_is_read_by_the_fast_path_as_the_grammar_reads_it(raw):
+    fast = parse_fast(raw)
+    assert fast is not None and fast.commands[0].kind == TEXT
+    assert fast == parse_slow(raw)
+
+
+@pytest.mark.parametrize("raw", ["M30.0", "M117 Hello", "M486 S1", "M30*12", "m30", "M+30"])
+def test_a_free_text_code_with_anything_else_is_left_to_the_grammar(raw):
+    assert parse_fast(raw) is None
+
+
 @settings(max_examples=500, deadline=None)
 @given(gcode_lines())
 def test_a_word_asked_for_before_the_others_are_built_is_the_same_word(raw):

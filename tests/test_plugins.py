@@ -10,6 +10,7 @@ Each test builds a real installed distribution: a module and a ``.dist-info`` fo
 from __future__ import annotations
 
 import json
+import sys
 import textwrap
 from pathlib import Path
 
@@ -184,3 +185,19 @@ def test_a_rule_that_raises_does_not_stop_the_run(tmp_path: Path, jobs: str) -> 
     # The other rules still ran on the file with the crash, after the crash too; the other files were checked.
     assert by_file["b_boom.gcode"] == [(3, "SX005"), (4, "SX005")], by_file
     assert by_file["a.gcode"] == [(1, "SX005")] and by_file["d.gcode"] == [(1, "SX005")]
+
+
+def test_importlib_metadata_is_asked_only_where_a_distribution_may_name_the_group(tmp_path, monkeypatch):
+    # (the pre-test that spares a one-file check importing importlib.metadata: never False where a plugin is)
+    from gclint.rules.base import _may_declare_plugins
+
+    other = install_plugin(tmp_path / "other", "other-tool", {}, {"console_scripts": {"x": "os:getcwd"}})
+    monkeypatch.setattr(sys, "path", [str(other), str(tmp_path / "missing")])
+    assert not _may_declare_plugins()
+    plugin = install_plugin(tmp_path / "plugin", "gclint-plugin", {}, {"gclint.rules": {"p": "os"}})
+    monkeypatch.setattr(sys, "path", [str(other), str(plugin)])
+    assert _may_declare_plugins()
+    archive = tmp_path / "dists.zip"
+    archive.write_bytes(b"PK\x05\x06" + bytes(18))  # (a zip file on the path: importlib.metadata reads it)
+    monkeypatch.setattr(sys, "path", [str(other), str(archive)])
+    assert _may_declare_plugins()

@@ -212,6 +212,15 @@ def _read_lines(reading: ContentReading, lines) -> None:
     done = reading.lines_read
     counts = reading.counts
     for number, raw in lines:
+        # a plain move first (most lines): it holds no line mark's required text (it is G, digits, X Y Z E F,
+        # signs, points and blanks: tests/test_context.py), starts with G and is shorter than _LINE_LIMIT
+        move = plain(raw)
+        if move is not None:
+            e = move.group(6)
+            if e is not None:
+                xy = move.group(3) is not None or move.group(4) is not None
+                _e_word(reading, move.group(1), xy, e, number, raw)
+            continue
         stripped = raw.lstrip()
         if not stripped or len(raw) > _LINE_LIMIT:
             continue
@@ -221,13 +230,6 @@ def _read_lines(reading: ContentReading, lines) -> None:
                 if mark not in found:
                     found[mark] = Seen(number, secrets.mask(raw.strip())[:_SHOWN])
         if stripped[0] in ";(":
-            continue
-        move = plain(raw)
-        if move is not None:
-            e = move.group(6)
-            if e is not None:
-                xy = move.group(3) is not None or move.group(4) is not None
-                _e_word(reading, move.group(1), xy, e, number, raw)
             continue
         keys = done.get(raw)
         if keys is not None:

@@ -172,21 +172,28 @@ except ImportError:  # pragma: no cover - another Python: every pattern is simpl
 
 
 @cache
-def _plan(pattern: str) -> tuple[re.Pattern[str], tuple[str, ...], bool]:
+def _plan(pattern: str) -> tuple[re.Pattern[str], tuple[str, ...], bool, bool]:
     """How to test ``pattern`` quickly: the compiled pattern, the texts one of which every match contains
-    (empty: no such test), and whether that test ignores case."""
+    (empty: no such test), whether that test ignores case, and whether every match lies within one line
+    (no part of the pattern can match a line feed: then only the lines holding one of the texts are
+    searched, ``HeadScan.found``)."""
     compiled = re.compile(pattern, re.MULTILINE)
     ignore_case = bool(compiled.flags & re.IGNORECASE)
     try:
         tree = _sre_parse.parse(pattern) if _sre_parse is not None else None
     except Exception:  # pragma: no cover - a pattern re compiled is parsed the same way
         tree = None
-    return compiled, (_needed(list(tree), ignore_case) if tree is not None else ()), ignore_case
+    if tree is None:  # pragma: no cover
+        return compiled, (), ignore_case, False
+    needed = _needed(list(tree), ignore_case)
+    one_line = bool(needed) and not compiled.flags & re.DOTALL and _one_line(list(tree))
+    return compiled, needed, ignore_case, one_line
 
 
 def _needed(items: list, ignore_case: bool) -> tuple[str, ...]:
     """In a parsed sequence: the most selective required text (a run of literal characters, the longest),
-    or else the texts one of which must occur (a branch whose alternatives each start with one)."""
+    or else the texts one of which must occur (a branch whose alternatives each start with one, or each
+    hold one; the run of literal characters before a branch joined to each alternative's start)."""
     p = _sre_parse
     options: list[tuple[str, ...]] = []
     run: list[str] = []
@@ -194,18 +201,93 @@ def _needed(items: list, ignore_case: bool) -> tuple[str, ...]:
         if op is p.LITERAL:
             run.append(chr(arg))
             continue
+        before = "".join(run)
         if run:
-            options.append(("".join(run),))
+            options.append((before,))
             run = []
         if op is p.SUBPATTERN:
             _group, add_flags, _del_flags, sub = arg
             if ignore_case or not add_flags & re.IGNORECASE:  # ((?i:...) in a case-sensitive pattern: no)
                 options.append(_needed(list(sub), ignore_case))
         elif op is p.BRANCH:
-            leads = tuple(_lead(alternative) for alternative in arg[1])
+            alternatives = [list(alternative) for alternative in arg[1]]
+            leads = tuple(_lead(alternative) for alternative in alternatives)
             options.append(leads if all(leads) else ())
+            if before and all(leads):  # ("\bESR|\bEngine" is read as \bE(?:SR|ngine): "ESR", "Engine")
+                options.append(tuple(before + lead for lead in leads))
+            inner = [_needed(alternative, ignore_case) for alternative in alternatives]
+            if all(inner):
+                options.append(tuple(dict.fromkeys(text for texts in inner for text in texts)))
     options = [o for o in options if o and min(map(len, o)) >= 2]
     return max(options, key=lambda o: (len(o) == 1, min(map(len, o))), default=())
+
+
+_LF = 10  # (a line feed's code point)
+
+
+def _one_line(items) -> bool:
+    """Whether no part of a parsed sequence can match a line feed, nor an end of the text other than a
+    line's end (so that searching a line alone finds what searching the whole text finds on that line).
+    Conservative: a part it does not know answers False."""
+    p = _sre_parse
+    for op, arg in items:
+        if op is p.LITERAL:
+            if arg == _LF:
+                return False
+        elif op is p.NOT_LITERAL:
+            if arg != _LF:
+                return False
+        elif op is p.ANY:
+            continue  # (without DOTALL, which _plan rules out)
+        elif op is p.IN:
+            if not _set_without_line_feed(arg):
+                return False
+        elif op in (p.MAX_REPEAT, p.MIN_REPEAT, p.POSSESSIVE_REPEAT):
+            if not _one_line(list(arg[2])):
+                return False
+        elif op is p.SUBPATTERN:
+            _group, add_flags, del_flags, sub = arg
+            if add_flags & re.DOTALL or del_flags & re.MULTILINE or not _one_line(list(sub)):
+                return False
+        elif op is p.ATOMIC_GROUP:
+            if not _one_line(list(arg)):
+                return False
+        elif op is p.BRANCH:
+            if not all(_one_line(list(alternative)) for alternative in arg[1]):
+                return False
+        elif op in (p.ASSERT, p.ASSERT_NOT):
+            if not _one_line(list(arg[1])):
+                return False
+        elif op is p.AT:
+            # ^ and $ are a line's in multi-line mode; \b, \B and \A read the text before the line too
+            if arg not in (p.AT_BEGINNING, p.AT_END, p.AT_BOUNDARY, p.AT_NON_BOUNDARY, p.AT_BEGINNING_STRING):
+                return False
+        else:
+            return False
+    return True
+
+
+def _set_without_line_feed(members) -> bool:
+    """Whether a parsed character set (``[...]``, ``\\s``, ``\\w``) cannot match a line feed."""
+    p = _sre_parse
+    if members and members[0][0] is p.NEGATE:  # ([^...]: only one that names the line feed itself)
+        return any(
+            op is p.LITERAL and arg == _LF or op in (p.RANGE, p.RANGE_UNI_IGNORE) and arg[0] <= _LF <= arg[1]
+            for op, arg in members[1:]
+        )
+    for op, arg in members:
+        if op is p.LITERAL:
+            if arg == _LF:
+                return False
+        elif op in (p.RANGE, p.RANGE_UNI_IGNORE):
+            if arg[0] <= _LF <= arg[1]:
+                return False
+        elif op is p.CATEGORY:
+            if arg not in (p.CATEGORY_DIGIT, p.CATEGORY_WORD, p.CATEGORY_NOT_SPACE, p.CATEGORY_NOT_LINEBREAK):
+                return False
+        else:
+            return False
+    return True
 
 
 def _lead(alternative) -> str:
@@ -225,8 +307,10 @@ class HeadScan:
     def __init__(self, head: str) -> None:
         self.head = head
         self._lowered: str | None = None
+        self._ascii: bool | None = None
         self._seen: dict[str, str | None] = {}
-        self._holds: dict[tuple[str, bool], bool] = {}  # (a required text of several patterns: "printer_model")
+        # where a required text of several patterns ("printer_model") first occurs (-1: nowhere)
+        self._first: dict[tuple[str, bool], int] = {}
 
     @property
     def lowered(self) -> str:
@@ -237,28 +321,67 @@ class HeadScan:
     def matches(self, pattern: str) -> bool:
         return self.found(pattern) is not None
 
+    def _first_at(self, needed: str, lowered: bool) -> int:
+        """Where ``needed`` first occurs in the head (``lowered``: in the lowered head), -1 nowhere."""
+        at = self._first.get((needed, lowered))
+        if at is None:
+            at = self._first[needed, lowered] = (self.lowered if lowered else self.head).find(needed)
+        return at
+
     def _holds_text(self, needed: str, lowered: bool) -> bool:
         """Whether the head (``lowered``: the lowered head) holds ``needed``."""
-        holds = self._holds.get((needed, lowered))
-        if holds is None:
-            holds = self._holds[needed, lowered] = needed in (self.lowered if lowered else self.head)
-        return holds
+        return self._first_at(needed, lowered) >= 0
 
     def found(self, pattern: str) -> str | None:
         """The text ``pattern`` matches first in the head (stripped, at most 80 characters, secrets masked:
         it is shown as evidence), or None."""
         if pattern in self._seen:
             return self._seen[pattern]
-        compiled, needed, ignore_case = _plan(pattern)
+        compiled, needed, ignore_case, one_line = _plan(pattern)
         if needed:
             if ignore_case:
                 needed = tuple(n.lower() for n in needed)
             if not any(self._holds_text(n, ignore_case) for n in needed):
                 self._seen[pattern] = None
                 return None
-        m = compiled.search(self.head)
+        if one_line and (not ignore_case or self._is_ascii()):
+            m = self._search_lines(compiled, needed, ignore_case)
+        else:
+            m = compiled.search(self.head)
         found = self._seen[pattern] = None if m is None else (mask(m.group(0).strip())[:80] or m.group(0)[:80])
         return found
+
+    def _is_ascii(self) -> bool:
+        # (in ASCII text a match that ignores case holds a required text exactly as the lowered head does)
+        if self._ascii is None:
+            self._ascii = self.head.isascii()
+        return self._ascii
+
+    def _search_lines(self, compiled: re.Pattern[str], needed: tuple[str, ...], lowered: bool) -> re.Match | None:
+        """``compiled.search(self.head)`` for a pattern whose every match lies within one line and holds one
+        of ``needed`` (``_plan``): only stretches of whole lines from a line holding one are searched, in
+        order (a header pattern that reads every comment line costs the head's length in a slow search, and
+        a thumbnail is up to a megabyte of comment lines with none of the texts)."""
+        head = self.head
+        text = self.lowered if lowered else head
+        nexts = {n: self._first_at(n, lowered) for n in needed}
+        while True:
+            at = min((i for i in nexts.values() if i >= 0), default=-1)
+            if at < 0:
+                return None
+            start = head.rfind("\n", 0, at) + 1
+            end = head.find("\n", max(at, start + _STRETCH))  # (a stretch of lines: one search, not one a line)
+            if end < 0:
+                end = len(head)
+            m = compiled.search(head, start, end)
+            if m is not None:
+                return m
+            for n, i in nexts.items():
+                if 0 <= i < end:
+                    nexts[n] = text.find(n, end)
+
+
+_STRETCH = 4096  # (characters of lines searched at once from a line holding a required text)
 
 
 @dataclass(frozen=True, eq=False)  # (each clue is one object: compared and hashed as itself, fast)

@@ -382,6 +382,8 @@ def all_rules() -> dict[str, type[Rule]]:
 
 
 def _load_plugins() -> None:
+    if not _may_declare_plugins():
+        return
     import types
     from importlib.metadata import entry_points
 
@@ -402,6 +404,46 @@ def _load_plugins() -> None:
                 register(item)
             except RuleError as exc:
                 raise RuleError(f"{plugin}: {exc}") from None
+
+
+_GROUP = b"gclint.rules"
+
+
+def _may_declare_plugins() -> bool:
+    """Whether some distribution may declare a ``gclint.rules`` entry point: False only when no
+    ``entry_points.txt`` that ``importlib.metadata`` would read names the group.  (Importing
+    ``importlib.metadata`` costs more than a one-file check's rules: it brings email, zipfile, csv...)  It
+    looks where ``importlib.metadata`` looks (the ``.dist-info`` and ``.egg-info`` folders in the folders
+    of ``sys.path``, the ``EGG-INFO`` of an ``.egg`` folder) and answers True, to let it look, wherever it
+    cannot say: a zip file on the path, another finder of distributions, an unreadable file."""
+    import sys
+    from importlib.machinery import PathFinder
+
+    for finder in sys.meta_path:
+        if finder is not PathFinder and getattr(finder, "find_distributions", None) is not None:
+            return True
+    for entry in sys.path:
+        root = entry or "."
+        try:
+            children = os.listdir(root)
+        except OSError:
+            if os.path.exists(root):
+                return True  # (a zip file, or a folder it cannot list)
+            continue
+        egg = os.path.basename(entry).lower().endswith(".egg")
+        for child in children:
+            low = child.lower()
+            if not (low.endswith((".dist-info", ".egg-info")) or egg and low == "egg-info"):
+                continue
+            try:
+                with open(os.path.join(root, child, "entry_points.txt"), "rb") as fh:
+                    if _GROUP in fh.read():
+                        return True
+            except (FileNotFoundError, NotADirectoryError):
+                continue
+            except OSError:
+                return True
+    return False
 
 
 class UnknownSelector(ValueError):

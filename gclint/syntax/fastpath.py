@@ -10,7 +10,8 @@ Three tiers, cheapest first:
 1. blank lines and lines holding only a ``;`` or ``(...)`` comment;
 2. the canonical shape: upper-case words separated by whitespace, one G/M/T command (optionally after an
    ``N`` line number), a trailing ``;`` comment.  Parameter words are not built until a rule asks for
-   them (``Command.words``);
+   them (``Command.words``).  A free-text code with no text (``M30``, ``M117``) is read here too (a job's
+   last line is often ``M30``: reading it no longer loads lark);
 3. any sequence of letter-and-number words, upper or lower case, with or without spaces
    (``G0X0Y0S12000M3``, ``g1 x 10``), grouped into commands by ``build.assemble``.
 """
@@ -22,7 +23,7 @@ from collections.abc import Iterator
 from functools import cache
 from operator import itemgetter
 
-from gclint.syntax.build import TEXT_CODES, assemble
+from gclint.syntax.build import TEXT_CODES, TextCommand, assemble
 from gclint.syntax.nodes import (
     FAST_NUMBER,
     FAST_WORD,
@@ -272,6 +273,10 @@ def _canonical(raw: str, body: str, comments: tuple[Comment, ...]) -> ParsedLine
         return None
     code = _CODES.get(first) or _code(first)
     if code in TEXT_CODES:
+        if len(tokens) == 1 and first[1:].isdigit():
+            # a free-text code alone (M30, M117): no text, as the grammar's text_command reads it
+            word = Word(letter, first[1:], NUMBER, first, start + 1)
+            return assemble([TextCommand(word, None), *comments], None, line_number)
         return None
     count = len(tokens) - 1
     params = dict(map(_LETTER_AND_VALUE, tokens[1:])) if count else {}
