@@ -20,7 +20,7 @@ from gclint.machine.interpreter import Interpreter
 from gclint.machine.profiles import DEFAULT_PROFILE, get_profile
 from gclint.noqa import INLINE_UNSUPPRESSIBLE, NO_CODES
 from gclint.options import Options
-from gclint.rules.base import ANY_T, Finding, Rule, all_rules, matches, select_rules
+from gclint.rules.base import ANY_T, Finding, MoveListener, Rule, all_rules, matches, select_rules
 from gclint.runs import CodeLines, Runs, combined, comment_tests, rule_run_filters
 from gclint.syntax.build import TEXT_CODES
 from gclint.syntax.fastpath import PLAIN_MOVE, run_pattern
@@ -300,6 +300,9 @@ class Linter:
         view_hooks = tuple((wants, tuple(hooks)) for wants, hooks in views.items())
         # (lines ending in a bare carriage return, read with the next as LinuxCNC reads them: one line)
         cr_hooks = tuple(r.check_joined for r in rules if getattr(r, "on_bare_cr", False))
+        # the G0/G1 listeners rules declared (FileContext.move_listener), each called in place of its first
+        # member rule (the order findings are made in)
+        listeners = _live_listeners(ctx.move_listeners, rules)
         for r in rules:
             for c in r.codes:
                 if c == ANY_T:
@@ -308,6 +311,10 @@ class Linter:
                     by_code.setdefault(c, []).append(r.check)
             if r.on_unknown_code:
                 unknown.append(r.check)
+            for listener in listeners:
+                if listener.members[0] is r:
+                    by_code.setdefault("G0", []).append(listener.move)
+                    by_code.setdefault("G1", []).append(listener.move)
 
         # code -> (handlers always called, (handler, letters) called when a letter is present, the
         # interpreter's function for the code)
@@ -321,20 +328,20 @@ class Linter:
             # does not skip the other rules' hooks on the current line.
             nonlocal line_hooks, numbered_hooks, issue_hooks, comment_hooks, long_hooks, after_end_hooks, plain
             nonlocal start_hooks, view_hooks, ignored_hooks, cr_hooks
-            rule = getattr(hook, "__self__", None)
-            if rule is None or rule not in rules:  # pragma: no cover - hooks are bound rule methods
+            owner = getattr(hook, "__self__", None)
+            gone = _failed(owner, exc, rules, listeners)
+            if not gone:  # pragma: no cover - hooks are bound methods of rules and listeners
                 raise exc
-            rules.remove(rule)
-            _rule_failed(result, type(rule), exc, line_number)
+            _rule_failed(result, type(gone[0]), exc, line_number)
 
             def keep(hooks: Iterable[Callable]) -> tuple:
-                return tuple(h for h in hooks if getattr(h, "__self__", None) is not rule)
+                return tuple(h for h in hooks if getattr(h, "__self__", None) not in gone)
 
             line_hooks, numbered_hooks = keep(line_hooks), keep(numbered_hooks)
             issue_hooks, comment_hooks = keep(issue_hooks), keep(comment_hooks)
             after_end_hooks, ignored_hooks = keep(after_end_hooks), keep(ignored_hooks)
-            long_hooks = tuple((n, h) for n, h in long_hooks if getattr(h, "__self__", None) is not rule)
-            start_hooks = tuple((c, h) for c, h in start_hooks if getattr(h, "__self__", None) is not rule)
+            long_hooks = tuple((n, h) for n, h in long_hooks if getattr(h, "__self__", None) not in gone)
+            start_hooks = tuple((c, h) for c, h in start_hooks if getattr(h, "__self__", None) not in gone)
             view_hooks = tuple((wants, keep(hooks)) for wants, hooks in view_hooks)
             cr_hooks = keep(cr_hooks)
             for code, handlers in list(by_code.items()):
@@ -357,7 +364,8 @@ class Linter:
             for handler in handlers:
                 # (a command with no code, words alone, reaches a rule only as an unknown code: every such rule
                 # looks at it; trigger_letters takes a code)
-                letters = getattr(handler, "__self__").trigger_letters(code) if code is not None else None  # noqa: B009 (typed as a plain callable)
+                owner = getattr(handler, "__self__")  # noqa: B009 (typed as a plain callable)
+                letters = owner.trigger_letters(code) if code is not None and isinstance(owner, Rule) else None
                 if letters is None:
                     always.append(handler)
                 elif letters:
@@ -583,8 +591,8 @@ class Linter:
         None when they may not.
 
         A rule that listens to every G0/G1 allows the route by having a ``plain_filter(mode, x, y, z, e,
-        f)`` that says (True) when a plain move needs its ``check``; rules that listen only for letters
-        a plain move never carries (S, H, A...) do not count."""
+        f)`` that says (True) when a plain move needs its ``check``, a move listener by its ``wants_plain``;
+        rules that listen only for letters a plain move never carries (S, H, A...) do not count."""
         if not self.plain_moves_enabled or line_hooks:
             return None
         out = {}
@@ -594,7 +602,7 @@ class Linter:
                 return None
             if not interpreter.moves_plainly(code):
                 return None
-            found = [getattr(handler.__self__, "plain_filter", None) for handler in always]
+            found = [_plain_filter(handler.__self__) for handler in always]
             filters = tuple(f for f in found if f is not None)
             if len(filters) != len(found):
                 return None
@@ -637,6 +645,60 @@ class _Joined:
         if self.last[1] is raw and parts and parts[-1] is raw:
             parts.pop()  # (the file ended in a bare carriage return: ``raw`` is the last part)
         return "\r".join([*parts, raw])[:PARSE_LIMIT], self.first
+
+
+def _plain_filter(owner: object) -> Callable[..., bool] | None:
+    """The plain filter of the owner of a G0/G1 handler: a move listener's ``wants_plain``, a rule's
+    ``plain_filter`` (None: it has none)."""
+    if isinstance(owner, MoveListener):
+        return owner.wants_plain
+    return getattr(owner, "plain_filter", None)
+
+
+def _live_listeners(listeners: list[MoveListener], rules: list[Rule]) -> list[MoveListener]:
+    """The move listeners with a member among ``rules`` (a rule whose constructor failed after joining is
+    dropped from its listener)."""
+    out = []
+    for listener in listeners:
+        for member in list(listener.members):
+            if member not in rules:
+                listener.drop(member)
+        if listener.members:
+            out.append(listener)
+    return out
+
+
+def _failed(owner: object, exc: Exception, rules: list[Rule], listeners: list[MoveListener]) -> list:
+    """What goes when ``owner``'s hook raised ``exc``: the failing rule first (removed from ``rules`` and
+    dropped from the listeners), then a listener left with no member.  For a move listener, the failing
+    rule is the member whose method was running (the traceback's first frame of a member); where the
+    listener's own code failed, it goes with all its members (named by the first).  Empty: not a hook."""
+    if isinstance(owner, MoveListener) and owner in listeners:
+        culprit = _member_in(exc, owner.members)
+        gone: list = [culprit] if culprit is not None else [*owner.members, owner]
+    elif isinstance(owner, Rule) and owner in rules:
+        gone = [owner]
+    else:
+        return []
+    for listener in listeners:
+        for rule in gone:
+            if rule in listener.members:
+                listener.drop(rule)
+        if not listener.members and listener not in gone:
+            gone.append(listener)
+    rules[:] = [r for r in rules if r not in gone]
+    return gone
+
+
+def _member_in(exc: Exception, members: list[Rule]) -> Rule | None:
+    """The member whose method was running when ``exc`` was raised (the outermost such frame), if any."""
+    tb = exc.__traceback__
+    while tb is not None:
+        owner = tb.tb_frame.f_locals.get("self")
+        if owner is not None and any(owner is m for m in members):
+            return owner
+        tb = tb.tb_next
+    return None
 
 
 def _rule_failed(result: FileResult, rule: type[Rule], exc: Exception, line_number: int | None) -> None:
