@@ -47,7 +47,7 @@ class Runs:
     ``alone``: the starts of the lines of a run to read on their own, the others being applied in bulk
     around them (None from it: read the run line by line for a while), and the findings the rules make on
     lines they need not read (``RunFinding``: ``add``, FileContext.add_on, adds them in line order);
-    ``codes``: the M-code lines of runs to read on their own; see ``Linter._run``.
+    ``codes``: the M-code lines of runs to read on their own; see ``engine._FileRun.runs``.
     """
 
     def __init__(

@@ -224,6 +224,19 @@ def test_a_failing_member_does_not_crash_the_file(monkeypatch):
     assert {"HY030", "HY039"} <= {f.code for f in result.findings}  # and the listener's other members too
 
 
+def test_a_failing_listener_goes_with_its_members(monkeypatch):
+    # (its own code failed, not a member's: no member to blame alone, so all go, named once by the first)
+    def broken(self, line, cmd):
+        raise RuntimeError("boom")
+
+    monkeypatch.setattr(MoveChecks, "move", broken)
+    result = Linter(Options(dialect="hyrel")).check_text("G0 X1 Y1 E1\nM620 E1\nG0 X2 E1\nM30\n")
+    assert result.error is not None and result.error.count("internal error") == 1
+    assert "internal error in rule HY030" in result.error and "at line 1" in result.error
+    codes = {f.code for f in result.findings}
+    assert "HY020" in codes and "HY030" not in codes
+
+
 @pytest.mark.parametrize("e", ["0", "-0", ".0", "0.000", "+0", "-.5", "-1", "0."])
 def test_hy031_relative_zero_or_negative_prints(e):
     assert lines(f"M83\nG1 X1 Y1 E{e} F600\n", "HY031") == [2]
