@@ -1,8 +1,11 @@
 """Lint one file: read lines, parse, dispatch commands to rules, track the machine state.
 
 One pass, one line at a time; nothing but findings is kept, so memory does not grow with the file.
-Rules are called through a dispatch table built per command code the first time the code is seen, so
-a ``G1`` line only touches the rules that listen to ``G1``.
+``Linter`` checks files; ``Linter._run`` is the pass over one file, in steps on a ``_FileRun``: the
+file's rules (``_make_rules``), their hooks (``_Hooks``) and dispatch (``_Dispatch``: built per command
+code the first time the code is seen, so a ``G1`` line only touches the rules that listen to ``G1``, and
+the G0/G1 move listeners rules declared, ``rules.base.MoveListener``), the plain-move route and the runs
+applied at once (``runs``, gclint/runs.py), the loop (``read``, ``read_line``) and the rules' ``finish``.
 """
 
 from __future__ import annotations
@@ -10,6 +13,7 @@ from __future__ import annotations
 import os
 import re
 from collections.abc import Callable, Iterable
+from copy import copy
 from dataclasses import dataclass, field, replace
 from itertools import chain
 
@@ -20,7 +24,7 @@ from gclint.machine.interpreter import Interpreter
 from gclint.machine.profiles import DEFAULT_PROFILE, get_profile
 from gclint.noqa import INLINE_UNSUPPRESSIBLE, NO_CODES
 from gclint.options import Options
-from gclint.rules.base import ANY_T, Finding, Rule, Severity, all_rules, matches, select_rules
+from gclint.rules.base import ANY_T, Finding, MoveListener, Rule, Severity, all_rules, matches, select_rules
 from gclint.runs import CodeLines, Runs, combined, comment_tests, rule_run_filters
 from gclint.syntax.build import TEXT_CODES
 from gclint.syntax.fastpath import PLAIN_MOVE, run_pattern
@@ -268,299 +272,14 @@ class Linter:
     # -- the loop --------------------------------------------------------------------------------------
 
     def _run(self, source: Source, ctx: FileContext, result: FileResult) -> None:
-        dialect = ctx.dialect
-        classes = [cls for cls in self.rule_classes if cls.applies_to(dialect)]
-        ctx.enabled_codes = frozenset(cls.code for cls in classes)
-        rules: list[Rule] = []
-        for cls in classes:
-            try:
-                rules.append(cls(ctx))
-            except Exception as exc:  # a broken rule (often a plugin) must not stop the check
-                _rule_failed(result, cls, exc, None)
-        by_code: dict[str, list[Callable[[Line, Command], None]]] = {}
-        any_t: list[Callable[[Line, Command], None]] = []
-        unknown: list[Callable[[Line, Command], None]] = []
-        # a Marlin-flavour file is read as Klipper's too unless its firmware is known to be another one
-        flavor = ctx.context.flavor if ctx.context is not None else None
-        no_extended = flavor is not None and not firmware.get(flavor).extended_commands
-        interpreter = ctx.interpreter
-        line_hooks = tuple(r.check_line for r in rules if r.on_line)
-        long_hooks = tuple((r.on_line_longer_than, r.check_line) for r in rules if r.on_line_longer_than is not None)
-        shortest_long = min((n for n, _ in long_hooks), default=None)
-        after_end_hooks = tuple(r.check_line for r in rules if r.on_line_after_m30)
-        start_hooks = tuple((r.on_line_starting_with, r.check_line) for r in rules if r.on_line_starting_with)
-        first_chars = frozenset().union(*(chars for chars, _ in start_hooks))
-        numbered_hooks = tuple(r.check_line for r in rules if r.on_numbered)
-        issue_hooks = tuple(r.check_issues for r in rules if r.on_issue)
-        ignored_hooks = tuple(r.check_ignored for r in rules if r.on_ignored_command)
-        comment_hooks = tuple(r.check_comment for r in rules if r.on_comment)
-        # (security rules: lines a firmware edits before it reads them, read again as it does; rules/security/views.py)
-        views: dict = {}  # (one search per line for the rules that share a pattern)
-        for r in rules:
-            if r.on_line_matching is not None:
-                views.setdefault(r.on_line_matching.search, []).append(r.check_view)
-        view_hooks = tuple((wants, tuple(hooks)) for wants, hooks in views.items())
-        # (lines ending in a bare carriage return, read with the next as LinuxCNC reads them: one line)
-        cr_hooks = tuple(r.check_joined for r in rules if getattr(r, "on_bare_cr", False))
-        for r in rules:
-            for c in r.codes:
-                if c == ANY_T:
-                    any_t.append(r.check)
-                else:
-                    by_code.setdefault(c, []).append(r.check)
-            if r.on_unknown_code:
-                unknown.append(r.check)
-
-        # code -> (handlers always called, (handler, letters) called when a letter is present, the
-        # interpreter's function for the code)
-        dispatch: dict[str | None, tuple[tuple, tuple, Callable[[Command, Line], None]]] = {}
-
-        plain: dict[str, tuple[str, tuple[Callable[..., bool], ...]]] | None = None  # set below
-
-        def disable(hook: Callable, exc: Exception, line_number: int | None) -> None:
-            # A rule raised: say so once (naming the rule, the file and the line), drop the rule for the
-            # rest of this file and go on.  The loops below iterate over tuples, so replacing them here
-            # does not skip the other rules' hooks on the current line.
-            nonlocal line_hooks, numbered_hooks, issue_hooks, comment_hooks, long_hooks, after_end_hooks, plain
-            nonlocal start_hooks, view_hooks, ignored_hooks, cr_hooks
-            rule = getattr(hook, "__self__", None)
-            if rule is None or rule not in rules:  # pragma: no cover - hooks are bound rule methods
-                raise exc
-            rules.remove(rule)
-            _rule_failed(result, type(rule), exc, line_number)
-
-            def keep(hooks: Iterable[Callable]) -> tuple:
-                return tuple(h for h in hooks if getattr(h, "__self__", None) is not rule)
-
-            line_hooks, numbered_hooks = keep(line_hooks), keep(numbered_hooks)
-            issue_hooks, comment_hooks = keep(issue_hooks), keep(comment_hooks)
-            after_end_hooks, ignored_hooks = keep(after_end_hooks), keep(ignored_hooks)
-            long_hooks = tuple((n, h) for n, h in long_hooks if getattr(h, "__self__", None) is not rule)
-            start_hooks = tuple((c, h) for c, h in start_hooks if getattr(h, "__self__", None) is not rule)
-            view_hooks = tuple((wants, keep(hooks)) for wants, hooks in view_hooks)
-            cr_hooks = keep(cr_hooks)
-            for code, handlers in list(by_code.items()):
-                by_code[code] = list(keep(handlers))
-            any_t[:] = keep(any_t)
-            unknown[:] = keep(unknown)
-            dispatch.clear()
-            plain = None  # (conservative: the plain-move route stays off for the rest of the file)
-
-        def build(cmd: Command) -> tuple[tuple, tuple, Callable[[Command, Line], None]]:
-            code = cmd.code
-            handlers = list(by_code.get(code, ())) if code is not None else []
-            if code is not None and cmd.kind == GCODE and code[0] == "T":
-                handlers.extend(any_t)
-            if not dialect.accepts(cmd.kind, code) or (
-                no_extended and cmd.kind == EXTENDED and not (code is not None and dialect.knows(code))
-            ):  # (Prusa's MMU "Tx" and "Tc" read as command words, and are Marlin's)
-                handlers.extend(unknown)
-            always, filtered = [], []
-            for handler in handlers:
-                # (a command with no code, words alone, reaches a rule only as an unknown code: every such rule
-                # looks at it; trigger_letters takes a code)
-                letters = getattr(handler, "__self__").trigger_letters(code) if code is not None else None  # noqa: B009 (typed as a plain callable)
-                if letters is None:
-                    always.append(handler)
-                elif letters:
-                    filtered.append((handler, letters))
-            out = (tuple(always), tuple(filtered), interpreter.handler_for(cmd))
-            dispatch[code] = out
-            return out
-
-        # Plain moves ("G1 X10 Y20 E0.5", most lines of a job) skip the tree when no rule would look at
-        # them: no rule listens to the code unless the line has a letter a plain move never carries, and
-        # the interpreter's own motion handler applies it.  tests/test_plain_moves.py checks that the
-        # findings are the same with and without this route on every corpus file.
-        plain = self._plain_moves(build, interpreter, line_hooks) if "G" not in first_chars else None
-        long_limit = shortest_long if shortest_long is not None else 1 << 62
-        plain_match = PLAIN_MOVE.fullmatch
-        plain_move = interpreter.plain_move
-        running, ignored = ctx.dialect.semantics.running, ctx.dialect.semantics.ignored
-        state = ctx.state
-        read_directives = ctx.read_directives
-        parse = parse_line
-        get = dispatch.get
-
-        # Runs of plain moves, comment lines, empty lines and (when no rule looks at them either) arcs are
-        # applied at once when no rule would look at them (gclint.runs); the other lines come one by one.
-        view_patterns = tuple(wants for wants, _ in view_hooks)
-
-        def effect_of(raw: str) -> tuple[tuple, ...] | None:
-            # (an M-code line of a run the interpreter has nothing to do with, no view pattern is about, and
-            # only pure rules look at: their findings on it, as CodeLines repeats them; None: read it)
-            parsed = parse(raw)
-            if parsed.special or len(parsed.commands) != 1 or "M" in first_chars:
-                return None
-            cmd = parsed.commands[0]
-            if cmd.kind != GCODE or cmd.code in TEXT_CODES:
-                return None
-            always, filtered, apply = get(cmd.code) or build(cmd)
-            if apply != interpreter.apply or any(wants(raw) for wants in view_patterns):
-                return None
-            handlers = [*always, *(h for h, letters in filtered if not letters.isdisjoint(cmd.params))]
-            if not handlers:
-                return ()
-            if not all(getattr(getattr(h, "__self__", None), "pure", False) for h in handlers):
-                return None
-            line = Line(0, raw, "\n", parsed)
-            try:
-                made = ctx.made_by(lambda: [handler(line, cmd) for handler in handlers])
-            except Exception:  # (read on its own, the rule fails again and is dropped)
-                return None
-            if any(fix is not None for _, _, _, fix, _, _ in made):
-                return None  # (a fix names its line)
-            return tuple((rule, column, end, message, severity) for rule, column, message, _, severity, end in made)
-
-        arcs = plain is not None and self._plain_arcs(build, interpreter)
-        run_filters = rule_run_filters(build, arcs) if plain is not None else None
-        runs = Runs(
-            run_pattern(arcs, shortest_long)
-            if plain is not None and (RUNS_IN_SMALL_FILES or not source.head_is_whole)
-            else None,
-            interpreter,
-            comment_tests(rules, view_patterns),
-            together=all(wants.__self__.flags & re.MULTILINE for wants in view_patterns),
-            every_comment=";" in first_chars,
-            longest=shortest_long,
-            alone=combined(run_filters) if run_filters else None,
-            codes=CodeLines(effect_of),
-            add=ctx.add_on,
-        )
-
-        def may_apply() -> bool:
-            # (a rule's plain filter without a run filter, and the hooks after the end of the job, would look
-            # at the moves)
-            return not (plain is None or run_filters is None or (after_end_hooks and state.after_m30))
-
-        joined = _Joined()  # (lines ending in a bare carriage return: cr_hooks)
-
-        def read_joined(number: int, raw: str, ending: str) -> None:
-            text, first = joined.text(raw)
-            line = Line(number, raw, ending, parse(raw))
-            for hook in cr_hooks:
-                try:
-                    hook(line, text, first)
-                except Exception as exc:
-                    disable(hook, exc, number)
-
-        number = 0
-        for number, chunk in runs.lines(source, may_apply):
-            for raw, ending in chunk:
-                number += 1
-                if cr_hooks and (ending == "\r" or joined.parts) and joined.add(number, raw, ending):
-                    read_joined(number, raw, ending)
-                if plain is not None and raw[:1] == "G" and len(raw) <= long_limit:
-                    m = plain_match(raw)
-                    if m is not None:
-                        digit, f_first, x, y, z, e, f = m.groups()
-                        if not (after_end_hooks and state.after_m30):
-                            mode, filters = plain[digit]
-                            if f is None:
-                                f = f_first
-                            for wants in filters:
-                                try:
-                                    if wants(mode, x, y, z, e, f):
-                                        break
-                                except Exception:  # the rule's own check will run (and be dropped if it fails)
-                                    break
-                            else:
-                                plain_move(mode, number, x, y, z, e, f)
-                                continue
-                parsed = parse(raw)
-                line = Line(number, raw, ending, parsed)
-                # Every rule call is guarded (a "try" costs nothing until something raises, Python 3.11+).
-                if parsed.special:
-                    if parsed.comments:
-                        read_directives(line)
-                        for comment_hook in comment_hooks:
-                            try:
-                                for comment in parsed.comments:
-                                    comment_hook(line, comment)
-                            except Exception as exc:
-                                disable(comment_hook, exc, number)
-                    if parsed.issues:
-                        for hook in issue_hooks:
-                            try:
-                                hook(line)
-                            except Exception as exc:
-                                disable(hook, exc, number)
-                    if parsed.line_number is not None or parsed.checksum is not None:
-                        for hook in numbered_hooks:
-                            try:
-                                hook(line)
-                            except Exception as exc:
-                                disable(hook, exc, number)
-                if shortest_long is not None and len(raw) > shortest_long:
-                    for limit, hook in long_hooks:
-                        if len(raw) > limit:
-                            try:
-                                hook(line)
-                            except Exception as exc:
-                                disable(hook, exc, number)
-                if after_end_hooks and state.after_m30:
-                    for hook in after_end_hooks:
-                        try:
-                            hook(line)
-                        except Exception as exc:
-                            disable(hook, exc, number)
-                for hook in line_hooks:
-                    try:
-                        hook(line)
-                    except Exception as exc:
-                        disable(hook, exc, number)
-                if first_chars and raw[:1] in first_chars:
-                    for chars, hook in start_hooks:
-                        if raw[:1] in chars:
-                            try:
-                                hook(line)
-                            except Exception as exc:
-                                disable(hook, exc, number)
-                commands = parsed.commands
-                if len(commands) > 1:  # the dialect says which of them run, and in what order
-                    ran = running(commands)
-                    if len(ran) < len(commands):
-                        for cmd in ignored(commands):
-                            for ignored_hook in ignored_hooks:
-                                try:
-                                    ignored_hook(line, cmd)
-                                except Exception as exc:
-                                    disable(ignored_hook, exc, number)
-                    commands = ran
-                for cmd in commands:
-                    entry = get(cmd.code)
-                    if entry is None:
-                        entry = build(cmd)
-                    always, filtered, apply = entry
-                    for handler in always:
-                        try:
-                            handler(line, cmd)
-                        except Exception as exc:
-                            disable(handler, exc, number)
-                    if filtered:
-                        params = cmd.params
-                        for handler, letters in filtered:
-                            if not letters.isdisjoint(params):
-                                try:
-                                    handler(line, cmd)
-                                except Exception as exc:
-                                    disable(handler, exc, number)
-                    apply(cmd, line)
-                for wants, hooks in view_hooks:
-                    if wants(raw) is not None:
-                        for hook in hooks:
-                            try:
-                                hook(line)
-                            except Exception as exc:
-                                disable(hook, exc, number)
-        if joined.parts and cr_hooks:  # (the file ends in a bare carriage return)
-            read_joined(*joined.last)
-        result.lines = state.line_number = runs.total
-        for r in list(rules):
-            try:
-                r.finish()
-            except Exception as exc:
-                disable(r.finish, exc, None)
+        """Check ``source``: make the file's rules, their hooks and dispatch (``_FileRun``), open the
+        plain-move route and the runs where no rule would look at them, read the lines the runs leave,
+        and finish the rules."""
+        run = _FileRun(self, ctx, result)
+        runs = run.runs(source)
+        run.read(runs.lines(source, run.may_apply))
+        result.lines = ctx.state.line_number = runs.total
+        run.finish()
 
     plain_moves_enabled = True  # the tests switch this off to compare
 
@@ -585,8 +304,8 @@ class Linter:
         None when they may not.
 
         A rule that listens to every G0/G1 allows the route by having a ``plain_filter(mode, x, y, z, e,
-        f)`` that says (True) when a plain move needs its ``check``; rules that listen only for letters
-        a plain move never carries (S, H, A...) do not count."""
+        f)`` that says (True) when a plain move needs its ``check``, a move listener by its ``wants_plain``;
+        rules that listen only for letters a plain move never carries (S, H, A...) do not count."""
         if not self.plain_moves_enabled or line_hooks:
             return None
         out = {}
@@ -596,12 +315,378 @@ class Linter:
                 return None
             if not interpreter.moves_plainly(code):
                 return None
-            found = [getattr(handler.__self__, "plain_filter", None) for handler in always]
+            found = [_plain_filter(handler.__self__) for handler in always]
             filters = tuple(f for f in found if f is not None)
             if len(filters) != len(found):
                 return None
             out[code[1]] = (code, filters)
         return out
+
+
+# -- one file's run ------------------------------------------------------------------------------------------
+#
+# Linter._run is a pipeline: ``_FileRun`` makes the file's rules and gathers their hooks (``_Hooks``) and
+# dispatch (``_Dispatch``), decides the plain-move route and builds the runs (``runs``), then ``read`` is the
+# loop over the lines the runs leave, and ``finish`` ends the rules.  ``disable`` is what a failing rule
+# takes with it.  Every rule call is guarded (a "try" costs nothing until something raises, Python 3.11+).
+
+_Handler = Callable[[Line, Command], None]
+# code -> (handlers always called, (handler, letters) called when a letter is present, the interpreter's
+# function for the code)
+_Entry = tuple[tuple[_Handler, ...], tuple[tuple[_Handler, frozenset[str]], ...], Callable[[Command, Line], None]]
+_Plain = dict[str, tuple[str, tuple[Callable[..., bool], ...]]]  # (Linter._plain_moves)
+
+
+class _Hooks:
+    """The rules' hooks other than their codes, by kind: tuples of bound methods (a rule that fails is taken
+    out by making new tuples, ``without``: a loop over the old one goes on with the other rules' hooks)."""
+
+    __slots__ = ("line", "long", "after_end", "start", "numbered", "issue", "ignored", "comment", "view", "cr")
+
+    def __init__(self, rules: list[Rule]) -> None:
+        self.line = tuple(r.check_line for r in rules if r.on_line)
+        self.long = tuple((r.on_line_longer_than, r.check_line) for r in rules if r.on_line_longer_than is not None)
+        self.after_end = tuple(r.check_line for r in rules if r.on_line_after_m30)
+        self.start = tuple((r.on_line_starting_with, r.check_line) for r in rules if r.on_line_starting_with)
+        self.numbered = tuple(r.check_line for r in rules if r.on_numbered)
+        self.issue = tuple(r.check_issues for r in rules if r.on_issue)
+        self.ignored = tuple(r.check_ignored for r in rules if r.on_ignored_command)
+        self.comment = tuple(r.check_comment for r in rules if r.on_comment)
+        # (security rules: lines a firmware edits before it reads them, read again as it does; rules/security/views.py)
+        views: dict = {}  # (one search per line for the rules that share a pattern)
+        for r in rules:
+            if r.on_line_matching is not None:
+                views.setdefault(r.on_line_matching.search, []).append(r.check_view)
+        self.view = tuple((wants, tuple(hooks)) for wants, hooks in views.items())
+        # (lines ending in a bare carriage return, read with the next as LinuxCNC reads them: one line)
+        self.cr = tuple(r.check_joined for r in rules if getattr(r, "on_bare_cr", False))
+
+    def without(self, gone: list) -> _Hooks:
+        """These hooks but those of the rules in ``gone``."""
+
+        def keep(hooks: Iterable[Callable]) -> tuple:
+            return tuple(h for h in hooks if getattr(h, "__self__", None) not in gone)
+
+        out = copy(self)
+        for kind in ("line", "after_end", "numbered", "issue", "ignored", "comment", "cr"):
+            setattr(out, kind, keep(getattr(self, kind)))
+        out.long = tuple((n, h) for n, h in self.long if getattr(h, "__self__", None) not in gone)
+        out.start = tuple((c, h) for c, h in self.start if getattr(h, "__self__", None) not in gone)
+        out.view = tuple((wants, keep(hooks)) for wants, hooks in self.view)
+        return out
+
+
+class _Dispatch:
+    """Which rules' ``check`` a command goes to: an entry per code (``_Entry``), built the first time the code
+    is seen (``build``), so that a ``G1`` line only touches the rules that listen to ``G1``.  The G0/G1 move
+    listeners (``MoveListener``) stand where their first member stands among the rules."""
+
+    def __init__(self, rules: list[Rule], listeners: list[MoveListener], ctx: FileContext) -> None:
+        self.by_code: dict[str, list[_Handler]] = {}
+        self.any_t: list[_Handler] = []
+        self.unknown: list[_Handler] = []
+        for r in rules:
+            for c in r.codes:
+                if c == ANY_T:
+                    self.any_t.append(r.check)
+                else:
+                    self.by_code.setdefault(c, []).append(r.check)
+            if r.on_unknown_code:
+                self.unknown.append(r.check)
+            for listener in listeners:
+                if listener.members[0] is r:
+                    self.by_code.setdefault("G0", []).append(listener.move)
+                    self.by_code.setdefault("G1", []).append(listener.move)
+        self.dialect, self.interpreter = ctx.dialect, ctx.interpreter
+        # a Marlin-flavour file is read as Klipper's too unless its firmware is known to be another one
+        flavor = ctx.context.flavor if ctx.context is not None else None
+        self.no_extended = flavor is not None and not firmware.get(flavor).extended_commands
+        self.table: dict[str | None, _Entry] = {}  # (the same dict all along: the loop holds its ``get``)
+
+    def build(self, cmd: Command) -> _Entry:
+        """The entry of ``cmd``'s code (kept for the next command with it)."""
+        code, dialect = cmd.code, self.dialect
+        handlers = list(self.by_code.get(code, ())) if code is not None else []
+        if code is not None and cmd.kind == GCODE and code[0] == "T":
+            handlers.extend(self.any_t)
+        if not dialect.accepts(cmd.kind, code) or (
+            self.no_extended and cmd.kind == EXTENDED and not (code is not None and dialect.knows(code))
+        ):  # (Prusa's MMU "Tx" and "Tc" read as command words, and are Marlin's)
+            handlers.extend(self.unknown)
+        always, filtered = [], []
+        for handler in handlers:
+            # (a command with no code, words alone, reaches a rule only as an unknown code: every such rule
+            # looks at it; trigger_letters takes a code; a move listener wants every G0/G1)
+            owner = getattr(handler, "__self__")  # noqa: B009 (typed as a plain callable)
+            letters = owner.trigger_letters(code) if code is not None and isinstance(owner, Rule) else None
+            if letters is None:
+                always.append(handler)
+            elif letters:
+                filtered.append((handler, letters))
+        out = (tuple(always), tuple(filtered), self.interpreter.handler_for(cmd))
+        self.table[code] = out
+        return out
+
+    def without(self, gone: list) -> None:
+        """Stop calling the rules (and listeners) in ``gone``: the entries are built again."""
+        for code, handlers in list(self.by_code.items()):
+            self.by_code[code] = [h for h in handlers if getattr(h, "__self__", None) not in gone]
+        self.any_t[:] = [h for h in self.any_t if getattr(h, "__self__", None) not in gone]
+        self.unknown[:] = [h for h in self.unknown if getattr(h, "__self__", None) not in gone]
+        self.table.clear()
+
+
+class _FileRun:
+    """One file's check in progress (``Linter._run``): its rules, their hooks and dispatch, the plain-move
+    route (``plain``: None when closed), and the lines joined across bare carriage returns."""
+
+    def __init__(self, linter: Linter, ctx: FileContext, result: FileResult) -> None:
+        self.linter, self.ctx, self.result = linter, ctx, result
+        self.state, self.interpreter = ctx.state, ctx.interpreter
+        self.rules = _make_rules(linter.rule_classes, ctx, result)
+        self.hooks = _Hooks(self.rules)
+        # the G0/G1 listeners rules declared (FileContext.move_listener)
+        self.listeners = _live_listeners(ctx.move_listeners, self.rules)
+        self.dispatch = _Dispatch(self.rules, self.listeners, ctx)
+        self.shortest_long = min((n for n, _ in self.hooks.long), default=None)  # (the shortest line a hook wants)
+        self.long_limit = self.shortest_long if self.shortest_long is not None else 1 << 62
+        self.first_chars: frozenset[str] = frozenset().union(*(chars for chars, _ in self.hooks.start))
+        self.view_patterns = tuple(wants for wants, _ in self.hooks.view)
+        self.plain: _Plain | None = None  # (set by ``runs``)
+        self.run_filters: tuple | None = None
+        self.joined = _Joined()  # (lines ending in a bare carriage return: hooks.cr)
+
+    def disable(self, hook: Callable, exc: Exception, line_number: int | None) -> None:
+        """A rule raised: say so once (naming the rule, the file and the line), drop the rule for the rest
+        of this file and go on."""
+        gone = _failed(getattr(hook, "__self__", None), exc, self.rules, self.listeners)
+        if not gone:  # pragma: no cover - hooks are bound methods of rules and listeners
+            raise exc
+        _rule_failed(self.result, type(gone[0]), exc, line_number)
+        self.hooks = self.hooks.without(gone)
+        self.dispatch.without(gone)
+        self.plain = None  # (conservative: the plain-move route stays off for the rest of the file)
+
+    def runs(self, source: Source) -> Runs:
+        """Open the plain-move route where no rule would look at plain moves, and make the file's runs.
+
+        Plain moves ("G1 X10 Y20 E0.5", most lines of a job) skip the tree when no rule would look at them:
+        no rule listens to the code unless the line has a letter a plain move never carries, and the
+        interpreter's own motion handler applies it.  Runs of plain moves, comment lines, empty lines and
+        (when no rule looks at them either) arcs are applied at once (gclint.runs).  tests/test_plain_moves.py
+        checks that the findings are the same with and without them on every corpus file."""
+        linter, build, interpreter = self.linter, self.dispatch.build, self.interpreter
+        if "G" not in self.first_chars:
+            self.plain = linter._plain_moves(build, interpreter, self.hooks.line)
+        plain = self.plain is not None
+        arcs = plain and linter._plain_arcs(build, interpreter)
+        self.run_filters = rule_run_filters(build, arcs) if plain else None
+        view_patterns, first_chars = self.view_patterns, self.first_chars
+        return Runs(
+            run_pattern(arcs, self.shortest_long)
+            if plain and (RUNS_IN_SMALL_FILES or not source.head_is_whole)
+            else None,
+            interpreter,
+            comment_tests(self.rules, view_patterns),
+            together=all(wants.__self__.flags & re.MULTILINE for wants in view_patterns),
+            every_comment=";" in first_chars,
+            longest=self.shortest_long,
+            alone=combined(self.run_filters) if self.run_filters else None,
+            codes=CodeLines(self.effect_of),
+            add=self.ctx.add_on,
+        )
+
+    def may_apply(self) -> bool:
+        """Whether runs may be applied at once now (a rule's plain filter without a run filter, and the hooks
+        after the end of the job, would look at the moves)."""
+        return not (self.plain is None or self.run_filters is None or (self.hooks.after_end and self.state.after_m30))
+
+    def effect_of(self, raw: str) -> tuple[tuple, ...] | None:
+        """What an M-code line of a run does that the interpreter has nothing to do with, no view pattern is
+        about, and only pure rules look at: their findings on it, as CodeLines repeats them; None: read it."""
+        parsed = parse_line(raw)
+        if parsed.special or len(parsed.commands) != 1 or "M" in self.first_chars:
+            return None
+        cmd = parsed.commands[0]
+        if cmd.kind != GCODE or cmd.code in TEXT_CODES:
+            return None
+        always, filtered, apply = self.dispatch.table.get(cmd.code) or self.dispatch.build(cmd)
+        if apply != self.interpreter.apply or any(wants(raw) for wants in self.view_patterns):
+            return None
+        handlers = [*always, *(h for h, letters in filtered if not letters.isdisjoint(cmd.params))]
+        if not handlers:
+            return ()
+        if not all(getattr(getattr(h, "__self__", None), "pure", False) for h in handlers):
+            return None
+        line = Line(0, raw, "\n", parsed)
+        try:
+            made = self.ctx.made_by(lambda: [handler(line, cmd) for handler in handlers])
+        except Exception:  # (read on its own, the rule fails again and is dropped)
+            return None
+        if any(fix is not None for _, _, _, fix, _, _ in made):
+            return None  # (a fix names its line)
+        return tuple((rule, column, end, message, severity) for rule, column, message, _, severity, end in made)
+
+    def read(self, lines: Iterable[tuple[int, list[tuple[str, str]]]]) -> None:
+        """The loop over the lines the runs leave (``(number of the line before, lines)``): a plain move the
+        plain filters let by is applied by its route, without a tree; any other line goes to ``read_line``."""
+        state, joined, read_line = self.state, self.joined, self.read_line
+        plain_match, plain_move = PLAIN_MOVE.fullmatch, self.interpreter.plain_move
+        long_limit, has_cr = self.long_limit, bool(self.hooks.cr)
+        for number, chunk in lines:
+            for raw, ending in chunk:
+                number += 1
+                if has_cr and (ending == "\r" or joined.parts) and joined.add(number, raw, ending):
+                    self.read_joined(number, raw, ending)
+                plain = self.plain
+                if plain is not None and raw[:1] == "G" and len(raw) <= long_limit:
+                    m = plain_match(raw)
+                    if m is not None and not (state.after_m30 and self.hooks.after_end):
+                        digit, f_first, x, y, z, e, f = m.groups()
+                        mode, filters = plain[digit]
+                        if f is None:
+                            f = f_first
+                        for wants in filters:
+                            try:
+                                if wants(mode, x, y, z, e, f):
+                                    break
+                            except Exception:  # the rule's own check will run (and be dropped if it fails)
+                                break
+                        else:
+                            plain_move(mode, number, x, y, z, e, f)
+                            continue
+                read_line(number, raw, ending)
+        if joined.parts and self.hooks.cr:  # (the file ends in a bare carriage return)
+            self.read_joined(*joined.last)
+
+    def read_line(self, number: int, raw: str, ending: str) -> None:
+        """Read one line through its tree: the hooks on lines, then each command the machine runs (the rules
+        that listen to its code, then the interpreter), then the view hooks."""
+        parsed = parse_line(raw)
+        line = Line(number, raw, ending, parsed)
+        hooks = self.hooks
+        if parsed.special:
+            self.special(line)
+        if len(raw) > self.long_limit:
+            self.long_line(line)
+        if self.state.after_m30 and hooks.after_end:
+            self.call_each(self.hooks.after_end, line)
+        if hooks.line:
+            self.call_each(self.hooks.line, line)
+        if self.first_chars and raw[:1] in self.first_chars:
+            self.starting(line)
+        commands = parsed.commands
+        if len(commands) > 1:  # the dialect says which of them run, and in what order
+            commands = self.running(line, commands)
+        get = self.dispatch.table.get
+        for cmd in commands:
+            entry = get(cmd.code)
+            if entry is None:
+                entry = self.dispatch.build(cmd)
+            always, filtered, apply = entry
+            for handler in always:
+                try:
+                    handler(line, cmd)
+                except Exception as exc:
+                    self.disable(handler, exc, number)
+            if filtered:
+                params = cmd.params
+                for handler, letters in filtered:
+                    if not letters.isdisjoint(params):
+                        try:
+                            handler(line, cmd)
+                        except Exception as exc:
+                            self.disable(handler, exc, number)
+            apply(cmd, line)
+        for wants, view_hooks in self.hooks.view:
+            if wants(raw) is not None:
+                self.call_each(view_hooks, line)
+
+    def call_each(self, hooks: tuple[Callable[[Line], None], ...], line: Line) -> None:
+        for hook in hooks:
+            try:
+                hook(line)
+            except Exception as exc:
+                self.disable(hook, exc, line.number)
+
+    def special(self, line: Line) -> None:
+        """The hooks of a line with comments, syntax issues, an N number or a checksum (and its directives)."""
+        parsed = line.parsed
+        if parsed.comments:
+            self.ctx.read_directives(line)
+            for comment_hook in self.hooks.comment:
+                try:
+                    for comment in parsed.comments:
+                        comment_hook(line, comment)
+                except Exception as exc:
+                    self.disable(comment_hook, exc, line.number)
+        if parsed.issues:
+            self.call_each(self.hooks.issue, line)
+        if parsed.line_number is not None or parsed.checksum is not None:
+            self.call_each(self.hooks.numbered, line)
+
+    def long_line(self, line: Line) -> None:
+        size = len(line.raw)
+        for limit, hook in self.hooks.long:
+            if size > limit:
+                try:
+                    hook(line)
+                except Exception as exc:
+                    self.disable(hook, exc, line.number)
+
+    def starting(self, line: Line) -> None:
+        first = line.raw[:1]
+        for chars, hook in self.hooks.start:
+            if first in chars:
+                try:
+                    hook(line)
+                except Exception as exc:
+                    self.disable(hook, exc, line.number)
+
+    def running(self, line: Line, commands: tuple[Command, ...]) -> tuple[Command, ...]:
+        """The commands of a line the machine runs, in its order; the others go to the ignored-command hooks."""
+        semantics = self.ctx.dialect.semantics
+        ran = semantics.running(commands)
+        if len(ran) < len(commands):
+            for cmd in semantics.ignored(commands):
+                for hook in self.hooks.ignored:
+                    try:
+                        hook(line, cmd)
+                    except Exception as exc:
+                        self.disable(hook, exc, line.number)
+        return ran
+
+    def read_joined(self, number: int, raw: str, ending: str) -> None:
+        """The hooks on lines joined across bare carriage returns (``_Joined``), at the line that ends them."""
+        text, first = self.joined.text(raw)
+        line = Line(number, raw, ending, parse_line(raw))
+        for hook in self.hooks.cr:
+            try:
+                hook(line, text, first)
+            except Exception as exc:
+                self.disable(hook, exc, number)
+
+    def finish(self) -> None:
+        """The end of the file: each rule's ``finish``."""
+        for r in list(self.rules):
+            try:
+                r.finish()
+            except Exception as exc:
+                self.disable(r.finish, exc, None)
+
+
+def _make_rules(classes: Iterable[type[Rule]], ctx: FileContext, result: FileResult) -> list[Rule]:
+    """The file's rules: one of each class that applies to its dialect.  A rule whose constructor fails
+    (often a plugin) is named in the result and left out: it must not stop the check."""
+    classes = [cls for cls in classes if cls.applies_to(ctx.dialect)]
+    ctx.enabled_codes = frozenset(cls.code for cls in classes)
+    rules: list[Rule] = []
+    for cls in classes:
+        try:
+            rules.append(cls(ctx))
+        except Exception as exc:
+            _rule_failed(result, cls, exc, None)
+    return rules
 
 
 # A file shorter than the head read at opening (64 KiB) is read line by line, without runs: compiling the runs'
@@ -639,6 +724,60 @@ class _Joined:
         if self.last[1] is raw and parts and parts[-1] is raw:
             parts.pop()  # (the file ended in a bare carriage return: ``raw`` is the last part)
         return "\r".join([*parts, raw])[:PARSE_LIMIT], self.first
+
+
+def _plain_filter(owner: object) -> Callable[..., bool] | None:
+    """The plain filter of the owner of a G0/G1 handler: a move listener's ``wants_plain``, a rule's
+    ``plain_filter`` (None: it has none)."""
+    if isinstance(owner, MoveListener):
+        return owner.wants_plain
+    return getattr(owner, "plain_filter", None)
+
+
+def _live_listeners(listeners: list[MoveListener], rules: list[Rule]) -> list[MoveListener]:
+    """The move listeners with a member among ``rules`` (a rule whose constructor failed after joining is
+    dropped from its listener)."""
+    out = []
+    for listener in listeners:
+        for member in list(listener.members):
+            if member not in rules:
+                listener.drop(member)
+        if listener.members:
+            out.append(listener)
+    return out
+
+
+def _failed(owner: object, exc: Exception, rules: list[Rule], listeners: list[MoveListener]) -> list:
+    """What goes when ``owner``'s hook raised ``exc``: the failing rule first (removed from ``rules`` and
+    dropped from the listeners), then a listener left with no member.  For a move listener, the failing
+    rule is the member whose method was running (the traceback's first frame of a member); where the
+    listener's own code failed, it goes with all its members (named by the first).  Empty: not a hook."""
+    if isinstance(owner, MoveListener) and owner in listeners:
+        culprit = _member_in(exc, owner.members)
+        gone: list = [culprit] if culprit is not None else [*owner.members, owner]
+    elif isinstance(owner, Rule) and owner in rules:
+        gone = [owner]
+    else:
+        return []
+    for listener in listeners:
+        for rule in gone:
+            if rule in listener.members:
+                listener.drop(rule)
+        if not listener.members and listener not in gone:
+            gone.append(listener)
+    rules[:] = [r for r in rules if r not in gone]
+    return gone
+
+
+def _member_in(exc: Exception, members: list[Rule]) -> Rule | None:
+    """The member whose method was running when ``exc`` was raised (the outermost such frame), if any."""
+    tb = exc.__traceback__
+    while tb is not None:
+        owner = tb.tb_frame.f_locals.get("self")
+        if owner is not None and any(owner is m for m in members):
+            return owner
+        tb = tb.tb_next
+    return None
 
 
 def _rule_failed(result: FileResult, rule: type[Rule], exc: Exception, line_number: int | None) -> None:

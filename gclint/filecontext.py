@@ -7,6 +7,7 @@ from __future__ import annotations
 from array import array
 from bisect import bisect_left, bisect_right
 from collections.abc import Callable, Iterator
+from typing import TypeVar
 
 from gclint.context import Context
 from gclint.dialects.base import Dialect
@@ -15,7 +16,7 @@ from gclint.machine.profiles import PrinterProfile, get_profile
 from gclint.machine.state import MachineState
 from gclint.noqa import DIRECTIVE, INLINE_UNSUPPRESSIBLE, NOQA, may_direct, selectors
 from gclint.options import Options
-from gclint.rules.base import Finding, Fix, Rule, Severity, matches
+from gclint.rules.base import Finding, Fix, MoveListener, Rule, Severity, matches
 from gclint.secrets import mask_quoted
 from gclint.syntax.nodes import Line
 
@@ -27,6 +28,8 @@ from gclint.syntax.nodes import Line
 PER_LINE = 10
 MAX_FINDINGS = 20_000
 SOURCE_LIMIT = 2048
+
+_Listener = TypeVar("_Listener", bound=MoveListener)
 _MAX_MERGED_EDITS = 64  # fixes merged into one finding (the rest is fixed by running --fix again)
 _REMEMBERED_LINE = 1024  # comment lines longer than this are not remembered as "no directive"
 
@@ -49,6 +52,8 @@ class FileContext:
         self._current: Line | None = None
         self.enabled_codes: frozenset[str] = frozenset()
         self.shared: dict[str, object] = {}  # objects several rules of this file share (by name)
+        # the file's G0/G1 listeners (``move_listener``): the engine calls them for moves, in place of rules
+        self.move_listeners: list[MoveListener] = []
         self.noqa = NoqaLines()  # line -> the codes its noqa names
         self.noqa_used: set[tuple[int, str]] = set()  # (line, selector) that suppressed a finding
         self.directives = Directives()  # (line, "disable" or "enable", codes), in line order
@@ -69,8 +74,21 @@ class FileContext:
             if release is not None:
                 release()
         self.shared.clear()
+        for listener in self.move_listeners:
+            listener.release()
+        self.move_listeners = []
         self._plain_comments.clear()
         self._latest.clear()
+
+    def move_listener(self, kind: type[_Listener]) -> _Listener:
+        """The file's G0/G1 listener of class ``kind``, made on first ask: the rules that ask for it share it,
+        and the engine calls it for the file's moves (``rules.base.MoveListener``)."""
+        for listener in self.move_listeners:
+            if type(listener) is kind and isinstance(listener, kind):  # (isinstance: for the type checker)
+                return listener
+        made = kind(self)
+        self.move_listeners.append(made)
+        return made
 
     def enabled(self, code: str) -> bool:
         """Whether the rule ``code`` is selected for this run."""

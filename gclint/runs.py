@@ -17,7 +17,7 @@ from operator import itemgetter
 
 from gclint.machine.interpreter import Interpreter
 from gclint.noqa import may_direct
-from gclint.rules.base import RunFinding
+from gclint.rules.base import MoveListener, RunFinding
 from gclint.syntax.fastpath import RUN_CODE_LINE, forget_arcs, run_lines
 from gclint.syntax.nodes import GCODE, Command
 from gclint.syntax.source import Source, line_slices, split_lines
@@ -49,7 +49,7 @@ class Runs:
     ``alone``: the starts of the lines of a run to read on their own, the others being applied in bulk
     around them (None from it: read the run line by line for a while), and the findings the rules make on
     lines they need not read (``RunFinding``: ``add``, FileContext.add_on, adds them in line order);
-    ``codes``: the M-code lines of runs to read on their own; see ``Linter._run``.
+    ``codes``: the M-code lines of runs to read on their own; see ``engine._FileRun.runs``.
     """
 
     def __init__(
@@ -386,19 +386,24 @@ def _always(comment: str) -> bool:  # (the comment hint of a rule that has none:
 
 
 def rule_run_filters(build: Callable, arcs: bool = False) -> tuple[RunFilter, ...] | None:
-    """The run filters of the rules with a plain filter (``run_filter``, see docs/architecture.md), and with
-    ``arcs`` (runs take arcs: ``Linter._plain_arcs``) of the rules listening to G2/G3 for letters those arcs
-    may carry, from the engine's dispatch ``build``; None when one of them has none (then runs are read
-    line by line)."""
+    """The run filters of the rules with a plain filter (``run_filter``, see docs/architecture.md) and of the
+    move listeners (``wants_in_run``), and with ``arcs`` (runs take arcs: ``Linter._plain_arcs``) of the
+    rules listening to G2/G3 for letters those arcs may carry, from the engine's dispatch ``build``; None
+    when one of them has none (then runs are read line by line)."""
     out: list[RunFilter] = []
     for code in ("G0", "G1", *(("G2", "G3") if arcs else ())):
         always, filtered, _ = build(Command(code, GCODE, 1, {}))
-        if code in ("G0", "G1"):
-            listening = [h for h in always if getattr(h.__self__, "plain_filter", None) is not None]
+        if code in ("G0", "G1"):  # (a move listener's filters are its wants_plain and wants_in_run)
+            listening = [
+                h
+                for h in always
+                if isinstance(h.__self__, MoveListener) or getattr(h.__self__, "plain_filter", None) is not None
+            ]
         else:
             listening = [*always, *(h for h, letters in filtered if not letters.isdisjoint("XYZIJEF"))]
         for handler in listening:
-            run_filter = getattr(handler.__self__, "run_filter", None)
+            owner = handler.__self__
+            run_filter = owner.wants_in_run if isinstance(owner, MoveListener) else getattr(owner, "run_filter", None)
             if run_filter is None:
                 return None
             if run_filter not in out:

@@ -1,7 +1,7 @@
 """G0/G1 and flow rules (HY001, HY011-HY015, HY030-HY033, HY039, HY042, HY050, HY053, HY060).
 
-The G0/G1 rules share one listener (``MoveChecks``); these tests also check that any subset of them
-selected alone still works, whichever rule ends up listening for the others.
+The G0/G1 rules share one listener declared to the engine (``MoveChecks``, a ``MoveListener``); these
+tests also check that any subset of them selected alone still works.
 """
 
 from __future__ import annotations
@@ -11,7 +11,7 @@ import itertools
 import pytest
 
 from gclint.engine import Linter, Options, check_text
-from gclint.rules.hyrel.motion import MoveChecks, _listen
+from gclint.rules.hyrel.motion import MoveChecks
 
 MOVE_RULES = ("HY030", "HY031", "HY032", "HY033", "HY039", "HY042", "HY050", "HY053", "HY060")
 
@@ -65,11 +65,27 @@ def test_one_listener_for_g0_g1():
 
     ctx = FileContext("x", get("hyrel"), get_profile("30m"), linter.options)
     rules = [cls(ctx) for cls in linter.rule_classes]
-    listeners = [r for r in rules if "G1" in r.codes and r.code in MOVE_RULES]
-    assert len(listeners) == 1
-    checks = MoveChecks.of(ctx)
-    assert checks.direct and listeners[0].check.__func__ is _listen  # called directly, no dispatch
-    assert listeners[0].check.__self__ is listeners[0]  # a rule's method: the engine can blame it
+    members = [r for r in rules if r.code in MOVE_RULES]
+    assert not [r.code for r in members if "G0" in r.codes or "G1" in r.codes]  # no rule listens for the others
+    (checks,) = ctx.move_listeners
+    assert isinstance(checks, MoveChecks) and checks.members == members
+    assert ctx.move_listener(MoveChecks) is checks  # one per file
+    assert all(getattr(r, "moves", None) is checks for r in members)
+
+
+def test_the_engine_calls_the_listener_itself(monkeypatch):
+    # (no rule's check stands in for it: one call of MoveChecks.move per G0/G1 line read, from the engine)
+    calls = []
+    move = MoveChecks.move
+
+    def counted(self, line, cmd):
+        calls.append((line.number, cmd.code))
+        move(self, line, cmd)
+
+    monkeypatch.setattr(MoveChecks, "move", counted)
+    findings = check_text("G0 X1 Y1 E1\nG1 X2 Y2 A1 F600\nM104 S200\n", dialect="hyrel", printer="30m")
+    assert calls == [(1, "G0"), (2, "G1")]
+    assert {f.code for f in findings} >= {"HY030", "HY042"}
 
 
 # -- G0/G1 rules --------------------------------------------------------------------------------------------
@@ -202,9 +218,23 @@ def test_a_failing_member_does_not_crash_the_file(monkeypatch):
         raise RuntimeError("boom")
 
     monkeypatch.setattr(TravelMarkedPrinting, "move", broken)
-    result = Linter(Options(dialect="hyrel")).check_text("G1 X1 Y1 E-1 F600\nM620 E1\nM30\n")
-    assert result.error is not None and "internal error" in result.error
+    result = Linter(Options(dialect="hyrel")).check_text("G1 X1 Y1 E-1 F600\nM620 E1\nM30\nM18\nG0 X1 E1\n")
+    assert result.error is not None and "internal error in rule HY031" in result.error  # the member, by name
     assert any(f.code == "HY020" for f in result.findings)  # the other rules went on
+    assert {"HY030", "HY039"} <= {f.code for f in result.findings}  # and the listener's other members too
+
+
+def test_a_failing_listener_goes_with_its_members(monkeypatch):
+    # (its own code failed, not a member's: no member to blame alone, so all go, named once by the first)
+    def broken(self, line, cmd):
+        raise RuntimeError("boom")
+
+    monkeypatch.setattr(MoveChecks, "move", broken)
+    result = Linter(Options(dialect="hyrel")).check_text("G0 X1 Y1 E1\nM620 E1\nG0 X2 E1\nM30\n")
+    assert result.error is not None and result.error.count("internal error") == 1
+    assert "internal error in rule HY030" in result.error and "at line 1" in result.error
+    codes = {f.code for f in result.findings}
+    assert "HY020" in codes and "HY030" not in codes
 
 
 @pytest.mark.parametrize("e", ["0", "-0", ".0", "0.000", "+0", "-.5", "-1", "0."])

@@ -325,6 +325,57 @@ class Rule:
         return "\n".join(parts).rstrip() + "\n"
 
 
+class MoveListener:
+    """One listener to the G0/G1 lines of a file on behalf of several rules, declared to the engine.
+
+    Plain moves are millions a job: rules that all want a look at some G0/G1 lines (an E word, an S word,
+    motors off...) do not each listen to G0/G1 (a call per rule per line), they share one listener that
+    decides in one call which of them a line concerns.  A rule gets the file's listener of a kind with
+    ``ctx.move_listener(Kind)`` (made on first ask, ``FileContext.move_listeners``) and joins it
+    (``join``); it keeps G0 and G1 out of its own ``codes``.  The engine then, for that file:
+
+    * calls ``move(line, cmd)`` for every G0/G1 line it reads (with the state before the line), at the
+      place of the first member among the rules (the order findings are made in);
+    * lets a plain move skip the tree unless ``wants_plain(mode, x, y, z, e, f)`` (the words' source texts,
+      or None) is true, and asks ``wants_in_run(text, start, end)`` which lines of a run it must read (the
+      contract of a rule's ``plain_filter`` and ``run_filter``, docs/architecture.md "Plain moves", "Runs");
+    * on a member's failure (found in the traceback: the rule whose method was running) drops that member
+      (``drop``) and goes on with the others;
+    * lets go of it with the file (``FileContext.release`` calls ``release``).
+
+    The defaults want every move: a subclass narrows ``wants_plain`` and ``wants_in_run``.
+    """
+
+    def __init__(self, ctx: FileContext) -> None:
+        self.state = ctx.state
+        self.members: list[Rule] = []  # the rules it calls, in the order they joined
+
+    def join(self, rule: Rule) -> None:
+        """Make ``rule`` a member (the engine blames it, and drops it, when its call fails)."""
+        self.members.append(rule)
+
+    def move(self, line: Line, cmd: Command) -> None:
+        """Called for every G0/G1 line read (not for the plain moves ``wants_plain`` lets by)."""
+
+    def wants_plain(self, mode: str, x: str | None, y: str | None, z: str | None, e: str | None, f: str | None) -> bool:
+        """Whether ``move`` must see this plain move (``mode`` "G0" or "G1", the words' texts or None)."""
+        return True
+
+    def wants_in_run(self, text: str, start: int, end: int) -> list[int | RunFinding] | None:
+        """The starts of the lines of the run ``text[start:end]`` to read on their own (more is allowed, never
+        fewer), or findings in their place (``RunFinding``); None: it may want any line."""
+        return None
+
+    def drop(self, rule: Rule) -> None:
+        """Stop calling ``rule`` (it failed: the engine dropped it for the rest of the file)."""
+        if rule in self.members:
+            self.members.remove(rule)
+
+    def release(self) -> None:
+        """Let go of the members once the file is done (they hold this listener and the file's context)."""
+        self.members = []
+
+
 # How a rule's fixes are applied, by their applicability (Rule.fix_applicability), for its documentation.
 FIX_USAGE = {
     "safe": "gclint check --fix",

@@ -249,14 +249,14 @@ class FlowMultiplierRange(ParamTableRule):
 
     def __init__(self, ctx) -> None:
         super().__init__(ctx)
-        MoveChecks.join(self, "flow_multiplier")  # G1 S is checked from the one G0/G1 listener
-
-    def trigger_letters(self, code: str) -> frozenset[str] | None:
-        # (the member that leads MoveChecks listens to every G0/G1 for all: its moves must all reach it)
-        return None if code in ("G0", "G1") else super().trigger_letters(code)
+        # G1 S is checked from the file's G0/G1 listener (``move``), not through the table's G0/G1 codes
+        self.codes = tuple(c for c in self.codes if c not in ("G0", "G1"))
+        self.moves = ctx.move_listener(MoveChecks)
+        self.moves.join(self, "flow_multiplier")
+        self.run_filter = self.moves.wants_in_run
 
     def move(self, line: Line, cmd: Command) -> None:
-        """G1 lines with S (called by ``MoveChecks``)."""
+        """G1 lines with S (called by ``MoveChecks.move``)."""
         ParamTableRule.check(self, line, cmd)
 
     def range_message(self, cmd: Command, p: Param, problem: str) -> str:

@@ -3,21 +3,23 @@
 Sources: the Hyrel Gcode page ("Controlling Movement", "Controlling Position and Offsets", "Other
 Commands"), the hidden-codes page Sekret! (G38) and the Hyrel firmware source; see docs/sources.md.
 
-G0/G1 lines are the hot path (millions per job).  The rules that look at them do not each listen to
-G0/G1: one ``MoveChecks`` per file listens once on behalf of all the enabled ones and calls a rule only
-when the line has what that rule cares about (an E word, an S word, motors off...), so an ordinary G1
-costs a few dict lookups in total.  Rules in other modules (flow.py) join the same way.
+G0/G1 lines are the hot path (millions per job).  The rules that look at them (``MoveRule``) do not each
+listen to G0/G1: they join the file's ``MoveChecks``, a G0/G1 listener declared to the engine
+(``rules.base.MoveListener``, ``FileContext.move_listener``), which the engine calls once per G0/G1 line and
+which calls a rule only when the line has what that rule cares about (an E word, an S word, motors
+off...), so an ordinary G1 costs a few dict lookups in total; the engine asks it (``wants_plain``,
+``wants_in_run``) which plain moves and lines of runs it must read.  Rules in other modules (flow.py) join
+the same way.
 """
 
 from __future__ import annotations
 
 from itertools import chain, count, islice
 from math import inf
-from types import MethodType
 from typing import ClassVar, Protocol
 
 from gclint.machine.state import NATIVE
-from gclint.rules.base import Rule, RunFinding, Severity, register
+from gclint.rules.base import MoveListener, Rule, RunFinding, Severity, register
 from gclint.syntax.fastpath import (
     E_NOT_FORWARD,
     PLAIN_NUMBER,
@@ -28,7 +30,6 @@ from gclint.syntax.fastpath import (
 )
 from gclint.syntax.nodes import Command, Line, to_number
 
-_MOVES = ("G0", "G1")
 _ARCS = ("G2", "G3", "G2.1", "G3.1", "G2.2", "G3.2", "G2.3", "G3.3")
 
 
@@ -40,19 +41,31 @@ class _Member(Protocol):
     def move(self, line: Line, cmd: Command) -> None: ...
 
 
-class MoveChecks:
-    """The G0/G1 checks of one file, run in one call per line.
+# MoveChecks' slots, one per member rule
+_SLOTS = (
+    "rapid_e",
+    "travel_prints",
+    "relative_print",
+    "flow_multiplier",
+    "motors_off",
+    "axis_on_model",
+    "feed_undefined",
+    "inverse_time",
+    "slicer_e",
+)
+
+
+class MoveChecks(MoveListener):
+    """The G0/G1 checks of the Hyrel rules of one file, run in one call per line: the file's listener of
+    this kind (``ctx.move_listener(MoveChecks)``, ``rules.base.MoveListener``), which the engine calls for
+    G0/G1 lines and asks about plain moves and runs.
 
     Each slot holds the rule to call, or None when the rule is not enabled or has nothing left to look
-    for (rules clear and set their own slot).  One member, the leader, listens to G0/G1 for all: its
-    ``check`` is replaced by ``_listen`` (or ``_listen_and_own`` when it has codes of its own), bound to
-    the leader, so the engine still sees a rule's method (and drops the leader if a check fails).
+    for (rules clear and set their own slot).
     """
 
     def __init__(self, ctx) -> None:
-        self.state = ctx.state
-        self.leader: Rule | None = None
-        self.direct = False  # the leader has no codes of its own: the engine calls _listen itself
+        super().__init__(ctx)
         self.rapid_e: RapidMoveWithE | None = None  # HY030: G0 with E
         self.travel_prints: TravelMarkedPrinting | None = None  # HY031: native-flow G1 with E
         self.relative_print: PrintingInRelativeMode | None = None  # HY032: G1 with E under G91
@@ -63,56 +76,28 @@ class MoveChecks:
         self.inverse_time: NonModalG53OrInverseTime | None = None  # HY053: only while watching a G93
         self.slicer_e: _Member | None = None  # HY060: E amounts that look sliced
 
-    @classmethod
-    def of(cls, ctx) -> MoveChecks:
-        checks = ctx.shared.get("move_checks")
-        if checks is None:
-            checks = ctx.shared["move_checks"] = cls(ctx)
-        return checks
-
-    @classmethod
-    def join(cls, rule: Rule, slot: str | None = None) -> MoveChecks:
-        """Make ``rule`` a member (in ``slot``); one member (the leader) listens to G0/G1 for all.
-
-        The engine creates every rule of a file before it reads their ``codes``, so the leader can
-        change while members join: a member with no codes of its own is preferred, because the engine
-        then calls the G0/G1 hook directly instead of through a dispatch on the code.
-        """
-        checks = cls.of(rule.ctx)
+    def join(self, rule: Rule, slot: str | None = None) -> None:
+        """Make ``rule`` a member, called from ``move`` while it holds ``slot`` (None: the rule sets its
+        slot itself when it has something to look for, as HY053 does while it watches a G93)."""
+        super().join(rule)
         if slot is not None:
-            setattr(checks, slot, rule)
-        own_codes = tuple(c for c in rule.codes if c not in _MOVES)
-        rule.codes = own_codes
-        rule.move_checks = checks  # type: ignore[attr-defined]
-        # (every member's: its checks of arcs in runs want what the members' moves want, wants_in_run)
-        rule.run_filter = checks.wants_in_run
-        leader = checks.leader
-        if leader is None or (not own_codes and not checks.direct):
-            if leader is not None:  # hand over: the old leader goes back to its own codes and check
-                del leader.check
-                del leader.plain_filter
-                leader.codes = tuple(c for c in leader.codes if c not in _MOVES)
-            checks.leader = rule
-            checks.direct = not own_codes
-            rule.codes = (*own_codes, *_MOVES)
-            rule.check = MethodType(_listen if not own_codes else _listen_and_own, rule)  # type: ignore[method-assign]
-            rule.plain_filter = checks.wants_plain
-        return checks
+            setattr(self, slot, rule)
 
-    def release(self) -> None:
-        """Drop the members (``FileContext.release``, once the file is done): they hold this object and the
-        file's context, and the leader holds its own ``check``."""
-        leader = self.leader
-        if leader is not None:
-            vars(leader).pop("check", None)
-        for slot in vars(self):
-            if slot not in ("state", "direct"):
+    def drop(self, rule: Rule) -> None:
+        super().drop(rule)
+        for slot in _SLOTS:
+            if getattr(self, slot) is rule:
                 setattr(self, slot, None)
 
+    def release(self) -> None:
+        super().release()
+        for slot in _SLOTS:
+            setattr(self, slot, None)
+
     def wants_plain(self, mode: str, x: str | None, y: str | None, z: str | None, e: str | None, f: str | None) -> bool:
-        """Whether ``_listen`` would call a member for a plain move (a G0/G1 with only X Y Z E F words,
+        """Whether ``move`` would call a member for a plain move (a G0/G1 with only X Y Z E F words,
         given as source texts or None): the engine builds the line's tree only then.  Mirrors
-        ``_listen`` for lines without S, A or B; tests/test_plain_moves.py checks that they agree."""
+        ``move`` for lines without S, A or B; tests/test_plain_moves.py checks that they agree."""
         st = self.state
         motors_off = self.motors_off
         if motors_off is not None and st.motors_off_line is not None and st.motors_off_line != motors_off.reported_for:
@@ -166,10 +151,35 @@ class MoveChecks:
             found += run_line_starts(RUN_G0_E, text, start, end)
         return found
 
-    def check(self, line: Line, cmd: Command) -> None:
-        """Run the G0/G1 checks of every member on one line."""
-        assert self.leader is not None
-        _listen(self.leader, line, cmd)
+    def move(self, line: Line, cmd: Command) -> None:
+        """The G0/G1 hook (the engine's, for every G0/G1 line read): calls each member only when the line has
+        what it looks for."""
+        p = cmd.params
+        st = self.state
+        if cmd.code == "G1":
+            if "E" in p:
+                travel = self.travel_prints
+                if travel is not None and st.flow_mode == NATIVE:
+                    e = p["E"]
+                    if e is None or not ("X" in p or "Y" in p) or not _prints_forward(st, travel, e):
+                        travel.move(line, cmd)
+                if self.relative_print is not None and not st.absolute and not self.relative_print.reported:
+                    self.relative_print.move(line, cmd)
+                if self.slicer_e is not None:
+                    self.slicer_e.move(line, cmd)
+            if self.feed_undefined is not None and not st.working_feed_set:
+                self.feed_undefined.move(line, cmd)
+            if "S" in p and self.flow_multiplier is not None:
+                self.flow_multiplier.move(line, cmd)
+            if self.inverse_time is not None:
+                self.inverse_time.move(line, cmd)
+        elif "E" in p and self.rapid_e is not None:
+            self.rapid_e.move(line, cmd)
+        motors_off = self.motors_off
+        if motors_off is not None and st.motors_off_line is not None and st.motors_off_line != motors_off.reported_for:
+            motors_off.move(line, cmd)
+        if self.axis_on_model is not None and ("A" in p or "B" in p):
+            self.axis_on_model.move(line, cmd)
 
 
 def _prints_forward(st, travel: TravelMarkedPrinting, e: str) -> bool:
@@ -188,51 +198,11 @@ def _prints_forward(st, travel: TravelMarkedPrinting, e: str) -> bool:
     return e == travel.fine or (e[0] != "-" and bool(e.strip("+0.")))
 
 
-def _listen(leader: Rule, line: Line, cmd: Command) -> None:
-    """The G0/G1 hook: calls each member only when the line has what it looks for."""
-    self: MoveChecks = leader.move_checks  # type: ignore[attr-defined]
-    p = cmd.params
-    st = self.state
-    if cmd.code == "G1":
-        if "E" in p:
-            travel = self.travel_prints
-            if travel is not None and st.flow_mode == NATIVE:
-                e = p["E"]
-                if e is None or not ("X" in p or "Y" in p) or not _prints_forward(st, travel, e):
-                    travel.move(line, cmd)
-            if self.relative_print is not None and not st.absolute and not self.relative_print.reported:
-                self.relative_print.move(line, cmd)
-            if self.slicer_e is not None:
-                self.slicer_e.move(line, cmd)
-        if self.feed_undefined is not None and not st.working_feed_set:
-            self.feed_undefined.move(line, cmd)
-        if "S" in p and self.flow_multiplier is not None:
-            self.flow_multiplier.move(line, cmd)
-        if self.inverse_time is not None:
-            self.inverse_time.move(line, cmd)
-    elif "E" in p and self.rapid_e is not None:
-        self.rapid_e.move(line, cmd)
-    motors_off = self.motors_off
-    if motors_off is not None and st.motors_off_line is not None and st.motors_off_line != motors_off.reported_for:
-        motors_off.move(line, cmd)
-    if self.axis_on_model is not None and ("A" in p or "B" in p):
-        self.axis_on_model.move(line, cmd)
-
-
-def _listen_and_own(leader: Rule, line: Line, cmd: Command) -> None:
-    """The hook of a leader that also has codes of its own."""
-    code = cmd.code
-    if code == "G1" or code == "G0":
-        _listen(leader, line, cmd)
-    else:
-        type(leader).check(leader, line, cmd)
-
-
 class MoveRule(Rule):
-    """A rule that looks at G0/G1 lines through ``MoveChecks`` (see the module docstring).
+    """A rule that looks at G0/G1 lines through the file's ``MoveChecks`` (see the module docstring).
 
-    ``slot`` names its place in ``MoveChecks``; ``move(line, cmd)`` is called for G0/G1 lines,
-    ``check(line, cmd)`` for the other codes the rule lists.
+    ``slot`` names its place in ``MoveChecks``; ``move(line, cmd)`` is called for G0/G1 lines while the
+    slot holds the rule, ``check(line, cmd)`` for the other codes the rule lists (never G0 or G1).
     """
 
     slot: ClassVar[str | None] = None
@@ -240,7 +210,10 @@ class MoveRule(Rule):
 
     def __init__(self, ctx) -> None:
         super().__init__(ctx)
-        self.moves = MoveChecks.join(self, self.slot)
+        self.moves = ctx.move_listener(MoveChecks)
+        self.moves.join(self, self.slot)
+        # (its arcs in runs: the listener answers for the members' checks of arcs too, wants_in_run)
+        self.run_filter = self.moves.wants_in_run
 
     def move(self, line: Line, cmd: Command) -> None:
         """Called for G0/G1 lines (when the slot is set)."""
@@ -679,7 +652,7 @@ class NonModalG53OrInverseTime(MoveRule):
     """
     source = "Gcode page, G53 Clear Offsets and G93 Clear Coordinate Offsets"
     codes = ("G53", "G93", "G94", "G2", "G3")
-    slot = None  # joins MoveChecks.inverse_time only while watching a G93
+    slot = None  # sets MoveChecks.inverse_time only while watching a G93
 
     # inverse time is assumed when this many working moves after G93 all carry F, with changing values
     _WATCH_MOVES = 5
