@@ -382,8 +382,8 @@ def _show_settings(request: CheckRequest, found: _Files) -> NoReturn:
 
     for r in found.problems:
         _error(r.error or "")
-    where = _cache_where(found.files, request.cache_dir, request.no_cache)
     try:
+        where = _cache_where(found.files, request.cache_dir, request.no_cache)
         shown = settings.show_settings(found.files, request.overrides, request.config_file, where)
     except ConfigError as exc:
         _fail(str(exc))
