@@ -1,4 +1,23 @@
-"""gclint check: lint files and folders, fix them, report in every format."""
+"""gclint check: lint files and folders, fix them, report in every format.
+
+The command is a pipeline of named steps over one ``CheckRequest`` (its parameters, checked once):
+
+1. ``CheckRequest.from_click``: the parameters, each checked (the usage errors) and resolved into the
+   ``overrides`` every file's options start from;
+2. ``_collect``: the files the paths name, and what the walk left out (notes);
+3. ``_refuse_overwriting``, ``_cap_jobs``; ``--show-settings`` (``_show_settings``) ends here;
+4. ``CheckRequest.refusal``: the flag combinations refused (after the walk and ``--show-settings``,
+   which ignores them); ``--fix -`` (``_fix_stdin``) ends here;
+5. ``_configure``: every file's configuration read once (a broken one is one usage error), the
+   configuration notes;
+6. ``_prepare``: the progress bar, the cache and the run's options (``_Run``);
+7. ``_check_and_report`` (the report written file by file) or ``_check_and_rewrite`` (``--fix``,
+   ``--diff``, ``--add-noqa``: the whole run, then the files rewritten);
+8. ``_exit_for``: exit 2 for a file that could not be read, 1 for a finding that reaches ``--fail-on``.
+
+Imports are lazy (inside the steps, as the formats' registry is): a one-file check's start-up is measured by
+bench/bench_startup.py, and ``python -X importtime -m gclint check one.gcode`` shows what it loads.
+"""
 
 from __future__ import annotations
 
@@ -6,6 +25,8 @@ import os
 import sys
 from collections.abc import Iterator
 from contextlib import contextmanager
+from dataclasses import dataclass, field, replace
+from typing import TYPE_CHECKING, Any, NoReturn
 
 import click
 
@@ -29,6 +50,173 @@ from gclint.config import ConfigError, check_flavor, parse_heads, parse_known_co
 from gclint.engine import FileResult, Options
 from gclint.machine.profiles import PROFILES
 from gclint.rules.base import RuleError
+
+if TYPE_CHECKING:
+    from gclint.cache import ResultCache
+    from gclint.excludes import LeftOut
+    from gclint.progress import ProgressBar
+    from gclint.runner import RunOptions
+
+
+@dataclass(kw_only=True)
+class CheckRequest:
+    """``gclint check``'s command line: click's parameters (their defaults are the options' own) and the
+    ``overrides`` they resolve to (``from_click``).  The steps read it; none changes it."""
+
+    paths: tuple[str, ...]
+    dialect: str | None
+    printer: str | None
+    flavor: str | None
+    loaded: str | None
+    select: tuple[str, ...]
+    ignore: tuple[str, ...]
+    extend_select: tuple[str, ...]
+    extend_known_codes: tuple[str, ...]
+    fmt: str
+    output: str | None
+    exit_zero: bool
+    fail_on: str
+    exclude: tuple[str, ...]
+    extend_exclude: tuple[str, ...]
+    force_exclude: bool | None
+    respect_gitignore: bool | None
+    statistics: bool
+    no_group: bool
+    jobs: int | None
+    config_file: str | None
+    fix: bool
+    unsafe_fixes: bool
+    show_diff: bool
+    show_fixes: bool
+    add_noqa: bool
+    stdin_filename: str | None
+    no_cache: bool
+    cache_dir: str | None
+    progress: bool | None
+    verbose: bool
+    quiet: bool
+    show_settings: bool
+    # what the command line sets in every file's options (runner.options_for), from the parameters above
+    overrides: dict = field(default_factory=dict)
+
+    @classmethod
+    def from_click(cls, params: dict[str, Any]) -> CheckRequest:
+        """The request of click's parameters, checked: a parameter that is wrong is a usage error (exit 2),
+        the first one found in the order below."""
+        request = cls(**params)
+        request._check_entry()
+        request.overrides = request._resolve()
+        request._check_paths_options()
+        return request
+
+    @property
+    def fixing(self) -> bool:
+        """``--fix`` or ``--diff``: the fixes are applied (or shown)."""
+        return self.fix or self.show_diff
+
+    @property
+    def rewriting(self) -> bool:
+        """``--fix``, ``--diff`` or ``--add-noqa``: the whole run is checked first, then the files rewritten."""
+        return self.fix or self.show_diff or self.add_noqa
+
+    @property
+    def stdin_name(self) -> str:
+        return self.stdin_filename or "-"
+
+    def _check_entry(self) -> None:
+        if os.environ.get("PRE_COMMIT") == "1" and self.paths and "--" not in sys.argv[1:]:
+            # pre-commit appends file names after the hook's args: without "--", a committed file named
+            # "--config=x.gcode" would be read as an option (.pre-commit-hooks.yaml)
+            _fail(
+                "as a pre-commit hook, gclint needs '--' before the file names: end the hook's args with '--'"
+                " (args: [--printer, 30m, --]) so that a file name is never read as an option"
+            )
+        from gclint.reports import FORMATS
+
+        if self.fmt not in FORMATS:
+            _fail(f"unknown format {self.fmt!r} (known: {', '.join(sorted(FORMATS))})")
+
+    def _resolve(self) -> dict:
+        """The overrides: dialect, printer, flavour, heads, known codes and rule selection, each checked."""
+        overrides: dict = {}
+        if self.dialect is not None:
+            overrides["dialect"] = _check_dialect(self.dialect)
+            overrides["dialect_origin"] = "option"
+        if self.printer is not None:
+            overrides["printer"] = _check_printer(self.printer)
+            overrides["printer_origin"] = "option"
+        try:
+            if self.flavor is not None:
+                overrides["flavor"] = check_flavor(self.flavor, "--flavor")
+                overrides["flavor_origin"] = "option"
+            if self.loaded is not None:
+                overrides["loaded"] = parse_heads(self.loaded)
+            if self.extend_known_codes:
+                overrides["extend_known_codes"] = parse_known_codes(",".join(self.extend_known_codes))
+        except ConfigError as exc:
+            _fail(str(exc))
+        from gclint.rules.base import UnknownSelector, resolve_selectors
+
+        try:
+            if self.select:
+                overrides["select"] = resolve_selectors(_split(self.select), "--select: ")
+                overrides.setdefault("ignore", [])  # as ruff: the command line's selection is a new start
+            if self.ignore:
+                overrides["ignore"] = resolve_selectors(_split(self.ignore), "--ignore: ")
+            if self.extend_select:
+                overrides["extend_select"] = resolve_selectors(_split(self.extend_select), "--extend-select: ")
+        except (UnknownSelector, RuleError) as exc:
+            _fail(str(exc))
+        return overrides
+
+    def _check_paths_options(self) -> None:
+        if self.config_file is not None and not os.path.isfile(self.config_file):
+            _fail(f"{self.config_file}: configuration file not found")
+        from gclint.config import check_pattern
+
+        try:
+            for pattern in _split(self.exclude):
+                check_pattern(pattern, "--exclude")
+            for pattern in _split(self.extend_exclude):
+                check_pattern(pattern, "--extend-exclude")
+        except ConfigError as exc:
+            _fail(str(exc))
+
+    def refusal(self) -> str | None:
+        """The usage error of a combination of flags, or None.  Asked after the walk's notes and
+        ``--show-settings`` (which ignores these flags), where gclint has always refused them."""
+        if self.unsafe_fixes and not self.fixing:
+            return "--unsafe-fixes goes with --fix or --diff"
+        if self.add_noqa and self.fixing:
+            return "--add-noqa writes noqa comments; run it without --fix and --diff"
+        if self.statistics and self.fmt in ("sarif", "junit", "html"):
+            return f"--statistics prints a table (text) or JSON (-f json), not {self.fmt}"
+        if self.select and not self.overrides.get("select"):
+            return "--select names no rule (an empty --select would check nothing)"
+        return None
+
+
+@dataclass
+class _Files:
+    """What the paths name: the files to check and what the walk met on the way."""
+
+    files: list[str]
+    problems: list[FileResult]  # paths that could not be read (not found, not G-code...)
+    left_out: list[LeftOut]
+    security_only: list[LeftOut]  # excluded by a configuration found beside them: SC rules only
+    links: dict[str, str]  # a link checked under its own name -> the file it points to
+    walk_roots: dict[str, str]  # file found in a walk -> the real path of the folder walked
+
+
+@dataclass
+class _Run:
+    """What one run needs besides the files: the configuration notes, the progress bar, the cache and
+    the options ``runner.run`` and ``runner.results`` share."""
+
+    configuration: list[str]
+    bar: ProgressBar | None
+    cache: ResultCache | None
+    options: RunOptions
 
 
 @main.command()
@@ -120,249 +308,241 @@ from gclint.rules.base import RuleError
     is_flag=True,
     help="Print the settings each file is checked with and what it would be checked as, then exit.",
 )
-def check(
-    paths: tuple[str, ...],
-    dialect: str | None,
-    printer: str | None,
-    flavor: str | None,
-    loaded: str | None,
-    select: tuple[str, ...],
-    ignore: tuple[str, ...],
-    extend_select: tuple[str, ...],
-    extend_known_codes: tuple[str, ...],
-    fmt: str,
-    output: str | None,
-    exit_zero: bool,
-    fail_on: str,
-    exclude: tuple[str, ...],
-    extend_exclude: tuple[str, ...],
-    force_exclude: bool | None,
-    respect_gitignore: bool | None,
-    statistics: bool,
-    no_group: bool,
-    jobs: int | None,
-    config_file: str | None,
-    fix: bool,
-    unsafe_fixes: bool,
-    stdin_filename: str | None,
-    no_cache: bool,
-    cache_dir: str | None,
-    progress: bool | None,
-    verbose: bool = False,
-    quiet: bool = False,
-    show_settings: bool = False,
-    show_diff: bool = False,
-    show_fixes: bool = False,
-    add_noqa: bool = False,
-) -> None:
+def check(**params: Any) -> None:
     """Check G-code files and folders (- for standard input)."""
-    if quiet:
+    if params["quiet"]:
         _QUIET.append(True)
+    request = CheckRequest.from_click(params)
+    found = _collect(request)
+    _refuse_overwriting(request, found.files)
+    request = replace(request, jobs=_cap_jobs(request.jobs))
+    if request.show_settings:
+        _show_settings(request, found)
+    if (refused := request.refusal()) is not None:
+        _fail(refused)
+    if request.fix and found.files == ["-"]:  # "--fix -": the fixed text on stdout, the findings left on stderr
+        sys.exit(_fix_stdin(request))
+    if request.fixing and "-" in found.files:
+        _fail("--fix and --diff need files; '--fix -' alone fixes standard input to standard output")
+    run = _prepare(request, found, _configure(request, found))
+    if request.rewriting:
+        _check_and_rewrite(request, found, run)
+    else:
+        _check_and_report(request, found, run)
+
+
+def _collect(request: CheckRequest) -> _Files:
+    """The files to check; the walk's notes and what it left out are said on stderr.  ``--stdin-filename``
+    naming an excluded file leaves standard input out (with ``--fix``, it goes through unchanged)."""
     from gclint import runner
-    from gclint.reports import FORMATS, MACHINE_FORMATS, ReportContext, report_class
-    from gclint.reports import writer as write_with
-
-    if os.environ.get("PRE_COMMIT") == "1" and paths and "--" not in sys.argv[1:]:
-        # pre-commit appends file names after the hook's args: without "--", a committed file named
-        # "--config=x.gcode" would be read as an option (.pre-commit-hooks.yaml)
-        _fail(
-            "as a pre-commit hook, gclint needs '--' before the file names: end the hook's args with '--'"
-            " (args: [--printer, 30m, --]) so that a file name is never read as an option"
-        )
-    if fmt not in FORMATS:
-        _fail(f"unknown format {fmt!r} (known: {', '.join(sorted(FORMATS))})")
-    overrides: dict = {}
-    if dialect is not None:
-        overrides["dialect"] = _check_dialect(dialect)
-        overrides["dialect_origin"] = "option"
-    if printer is not None:
-        overrides["printer"] = _check_printer(printer)
-        overrides["printer_origin"] = "option"
-    try:
-        if flavor is not None:
-            overrides["flavor"] = check_flavor(flavor, "--flavor")
-            overrides["flavor_origin"] = "option"
-        if loaded is not None:
-            overrides["loaded"] = parse_heads(loaded)
-        if extend_known_codes:
-            overrides["extend_known_codes"] = parse_known_codes(",".join(extend_known_codes))
-    except ConfigError as exc:
-        _fail(str(exc))
-    from gclint.rules.base import UnknownSelector, resolve_selectors
-
-    try:
-        if select:
-            overrides["select"] = resolve_selectors(_split(select), "--select: ")
-            overrides.setdefault("ignore", [])  # as ruff: the command line's selection is a new start
-        if ignore:
-            overrides["ignore"] = resolve_selectors(_split(ignore), "--ignore: ")
-        if extend_select:
-            overrides["extend_select"] = resolve_selectors(_split(extend_select), "--extend-select: ")
-    except (UnknownSelector, RuleError) as exc:
-        _fail(str(exc))
-    if config_file is not None and not os.path.isfile(config_file):
-        _fail(f"{config_file}: configuration file not found")
-
-    walk_notes: list[str] = []
-    from gclint.config import check_pattern
     from gclint.excludes import Excluder, LeftOut
 
-    try:
-        for pattern in _split(exclude):
-            check_pattern(pattern, "--exclude")
-        for pattern in _split(extend_exclude):
-            check_pattern(pattern, "--extend-exclude")
-    except ConfigError as exc:
-        _fail(str(exc))
-    left_out: list[LeftOut] = []
-    security_only: list[LeftOut] = []  # excluded by a configuration found beside them: SC rules only
-    links: dict[str, str] = {}  # a link checked under its own name -> the file it points to
-    walk_roots: dict[str, str] = {}  # file found in a walk -> the real path of the folder walked
-
+    walk_notes: list[str] = []
+    found = _Files([], [], left_out=[], security_only=[], links={}, walk_roots={})
     excluder = Excluder(
-        exclude=_split(exclude) or None,
-        extend_exclude=_split(extend_exclude),
-        force=force_exclude,
-        respect_gitignore=respect_gitignore,
-        explicit_config=config_file,
+        exclude=_split(request.exclude) or None,
+        extend_exclude=_split(request.extend_exclude),
+        force=request.force_exclude,
+        respect_gitignore=request.respect_gitignore,
+        explicit_config=request.config_file,
     )
-    if stdin_filename and not paths:
+    paths = request.paths
+    if request.stdin_filename and not paths:
         paths = ("-",)  # --stdin-filename alone reads standard input (ruff)
-    files, problems = runner.collect(
-        paths or (".",), walk_notes, excluder, left_out, walk_roots, security_only=security_only, links=links
+    found.files, found.problems = runner.collect(
+        paths or (".",),
+        walk_notes,
+        excluder,
+        found.left_out,
+        found.walk_roots,
+        security_only=found.security_only,
+        links=found.links,
     )
-    if "-" in files and stdin_filename and (why := excluder.excluded(stdin_filename, False, named=True)):
-        files = [f for f in files if f != "-"]  # --force-exclude: the file it stands for is excluded
-        left_out.append(LeftOut(stdin_filename, why))
-        if fix:
+    name = request.stdin_filename
+    if "-" in found.files and name and (why := excluder.excluded(name, False, named=True)):
+        found.files = [f for f in found.files if f != "-"]  # --force-exclude: the file it stands for is excluded
+        found.left_out.append(LeftOut(name, why))
+        if request.fix:
             sys.stdout.buffer.write(sys.stdin.buffer.read())  # --fix -: the text goes through unchanged
             sys.exit(0)
     for note in walk_notes:
         _note(note)
-    _left_out_notes(left_out, verbose, nothing_left=not files and not problems)
-    if output not in (None, "-") and (same := _same_file(output, files)) is not None:
-        _fail(f"{output}: is {same}, one of the files to check: the report would overwrite it")
-    jobs = _cap_jobs(jobs)
+    _left_out_notes(found.left_out, request.verbose, nothing_left=not found.files and not found.problems)
+    return found
+
+
+def _refuse_overwriting(request: CheckRequest, files: list[str]) -> None:
+    if request.output not in (None, "-") and (same := _same_file(request.output, files)) is not None:
+        _fail(f"{request.output}: is {same}, one of the files to check: the report would overwrite it")
+
+
+def _show_settings(request: CheckRequest, found: _Files) -> NoReturn:
+    """``--show-settings``: each file's settings and what it would be checked as, then exit."""
     from gclint import settings
 
-    if show_settings:
-        for r in problems:
-            _error(r.error or "")
+    for r in found.problems:
+        _error(r.error or "")
+    try:
+        where = _cache_where(found.files, request.cache_dir, request.no_cache)
+        shown = settings.show_settings(found.files, request.overrides, request.config_file, where)
+    except ConfigError as exc:
+        _fail(str(exc))
+    click.echo(shown, nl=False)
+    sys.exit(2 if found.problems else 0)
+
+
+def _configure(request: CheckRequest, found: _Files) -> list[str]:
+    """Every file's configuration read once, before anything is checked: a broken one is one usage error
+    (not one per file, as ruff).  Returns the configuration notes (said on stderr unless the report's
+    summary carries them)."""
+    from gclint import runner, settings
+
+    for path in dict.fromkeys(found.files):
         try:
-            shown = settings.show_settings(files, overrides, config_file, _cache_where(files, cache_dir, no_cache))
+            name = request.stdin_filename or path if path == "-" else path
+            runner.options_for(name, Options(), request.overrides, request.config_file)
         except ConfigError as exc:
             _fail(str(exc))
-        click.echo(shown, nl=False)
-        sys.exit(2 if problems else 0)
-    if unsafe_fixes and not (fix or show_diff):
-        _fail("--unsafe-fixes goes with --fix or --diff")
-    if add_noqa and (fix or show_diff):
-        _fail("--add-noqa writes noqa comments; run it without --fix and --diff")
-    if statistics and fmt in ("sarif", "junit", "html"):
-        _fail(f"--statistics prints a table (text) or JSON (-f json), not {fmt}")
-    if select and not overrides.get("select"):
-        _fail("--select names no rule (an empty --select would check nothing)")
-    if fix and files == ["-"]:  # "--fix -": the fixed text on stdout, the findings left on stderr
-        sys.exit(_fix_stdin(overrides, config_file, stdin_filename or "-", unsafe_fixes, exit_zero, fail_on))
-    if (fix or show_diff) and "-" in files:
-        _fail("--fix and --diff need files; '--fix -' alone fixes standard input to standard output")
-    # a broken configuration is one error before anything is checked (not one per file, as ruff)
-    for path in dict.fromkeys(files):
-        try:
-            runner.options_for(stdin_filename or path if path == "-" else path, Options(), overrides, config_file)
-        except ConfigError as exc:
-            _fail(str(exc))
-    configuration = settings.configuration_notes(files, overrides, config_file)
-    configuration += _exclusion_notes(left_out, security_only)
-    if fmt not in TEXT_FORMATS:  # (the text formats end with them, on standard output)
+    configuration = settings.configuration_notes(found.files, request.overrides, request.config_file)
+    configuration += _exclusion_notes(found.left_out, found.security_only)
+    if request.fmt not in TEXT_FORMATS:  # (the text formats end with them, on standard output)
         for note in configuration:
             _note(note, always=True)
+    return configuration
+
+
+def _prepare(request: CheckRequest, found: _Files, configuration: list[str]) -> _Run:
+    """The progress bar, the result cache (not when files are rewritten) and the run's options."""
     from gclint import progress as progress_bar
+    from gclint import runner
     from gclint.cache import ResultCache
 
-    bar = progress_bar.ProgressBar(files) if progress_bar.wanted(progress, fmt, files) else None
-    cache = None if (no_cache or fix or show_diff or add_noqa) else ResultCache(cache_dir)
-    run_options: runner.RunOptions = {  # (the same run, file by file for the reports or whole for the fixes)
-        "explicit_config": config_file,
-        "jobs": jobs or (runner.default_jobs() if len(files) > 1 else 1),
-        "stdin_name": stdin_filename or "-",
+    files = found.files
+    bar = progress_bar.ProgressBar(files) if progress_bar.wanted(request.progress, request.fmt, files) else None
+    cache = None if (request.no_cache or request.rewriting) else ResultCache(request.cache_dir)
+    options: RunOptions = {  # (the same run, file by file for the reports or whole for the fixes)
+        "explicit_config": request.config_file,
+        "jobs": request.jobs or (runner.default_jobs() if len(files) > 1 else 1),
+        "stdin_name": request.stdin_name,
         "progress": bar.advance if bar is not None else None,
         "cache": cache,
-        "security_only": {item.path for item in security_only},
-        "links": links,
+        "security_only": {item.path for item in found.security_only},
+        "links": found.links,
     }
-    if not (fix or show_diff or add_noqa):  # file by file: memory does not grow with the run
-        ctx = ReportContext(tool_version=__version__, group=not no_group, configuration=configuration)
-        report = report_class(fmt, statistics)
-        assert report is not None  # (--statistics with a format that has no table was refused above)
-        with _checking(bar):
-            checked = runner.results(files, Options(), overrides, **run_options)
-            stdin = run_options["stdin_name"] if "-" in files else None
-            checked = (_settle(r, overrides, config_file, links, stdin) for r in checked)
-            tally, slim = _report(report, ctx, output, problems, checked, bar)
-        for note in cache.notes if cache is not None else ():
-            _note(note)
-        if verbose or fmt not in MACHINE_FORMATS:  # after the report: a report that cannot be written is one line
-            from gclint.reports.notes import context_notes
+    return _Run(configuration, bar, cache, options)
 
-            for note in context_notes(slim, verbose=verbose):
-                _note(note)
-        if tally.unread:
-            sys.exit(2)
-        if not exit_zero and _reaches(tally.worst, fail_on):
-            sys.exit(1)
-        return
-    with _checking(bar):
-        results = runner.run(files, Options(), overrides, **run_options)
-    if fix or show_diff or add_noqa:  # never through a link put in a walked folder since it was walked
-        for i, r in enumerate(results):
-            if r.path in links:  # (found as a link: its findings carry no fix, and no noqa is written)
-                continue
-            if (target := runner.outside_walk(r.path, walk_roots)) is not None:
-                error = f"{r.path}: now a link to {target}, outside the folder: not fixed"
-                results[i] = FileResult(r.path, error=error)
-    if add_noqa:
-        sys.exit(_add_noqa(problems + results, links, overrides, config_file, fail_on, exit_zero))
-    fixed = None
-    found = sum(len(r.findings) for r in results)
-    if fix or show_diff:
-        results, fixed = _apply_fixes(
-            results, overrides, config_file, unsafe=unsafe_fixes, write=not show_diff, show=show_fixes
-        )
-        if show_diff:
-            remaining = sum(len(r.findings) for r in results)
-            gone = found - fixed - remaining
-            also = f", {gone} more would end with them" if gone > 0 else ""
-            click.echo(f"Would fix {fixed} finding{'s' if fixed != 1 else ''} ({remaining} remaining{also}).", err=True)
-            sys.exit(2 if any(r.error for r in results + problems) else 1 if fixed else 0)
-    results = problems + results
-    for note in cache.notes if cache is not None else ():
-        _note(note)
+
+def _check_and_report(request: CheckRequest, found: _Files, run: _Run) -> None:
+    """Check and report file by file (memory does not grow with the run), then the notes and the exit code."""
+    from gclint import runner
+    from gclint.reports import ReportContext, report_class
+
+    ctx = ReportContext(tool_version=__version__, group=not request.no_group, configuration=run.configuration)
+    report = report_class(request.fmt, request.statistics)
+    assert report is not None  # (--statistics with a format that has no table was refused above)
+    with _checking(run.bar):
+        checked = runner.results(found.files, Options(), request.overrides, **run.options)
+        stdin = request.stdin_name if "-" in found.files else None
+        checked = (_settle(r, request, found.links, stdin) for r in checked)
+        tally, slim = _report(report, ctx, request.output, found.problems, checked, run.bar)
+    _cache_notes(run.cache)
+    _context_notes(request, slim)
+    _exit_for(request, tally.worst, unread=bool(tally.unread))
+
+
+def _check_and_rewrite(request: CheckRequest, found: _Files, run: _Run) -> None:
+    """``--fix``, ``--diff``, ``--add-noqa``: check the whole run, then rewrite the files (or show the diff);
+    then the report of what remains, the notes and the exit code."""
+    from gclint import runner
+
+    with _checking(run.bar):
+        results = runner.run(found.files, Options(), request.overrides, **run.options)
+    results = _not_through_new_links(results, found)
+    if request.add_noqa:
+        sys.exit(_add_noqa(found.problems + results, found.links, request))
+    before = sum(len(r.findings) for r in results)
+    results, fixed = _apply_fixes(results, request)
+    if request.show_diff:
+        _diff_summary(before, fixed, results, found.problems)
+    results = found.problems + results
+    _cache_notes(run.cache)
     for r in results:
         if r.error:
             _error(r.error)
+    _write_whole_report(request, results, run.configuration, fixed=fixed, found=before)
+    _context_notes(request, results)
+    worst = max((f.severity for r in results for f in r.findings), default=None)
+    _exit_for(request, worst, unread=any(r.error for r in results))
+
+
+def _not_through_new_links(results: list[FileResult], found: _Files) -> list[FileResult]:
+    """Files are never fixed (nor noqa written) through a link put in a walked folder since it was walked."""
+    from gclint import runner
+
+    for i, r in enumerate(results):
+        if r.path in found.links:  # (found as a link: its findings carry no fix, and no noqa is written)
+            continue
+        if (target := runner.outside_walk(r.path, found.walk_roots)) is not None:
+            error = f"{r.path}: now a link to {target}, outside the folder: not fixed"
+            results[i] = FileResult(r.path, error=error)
+    return results
+
+
+def _diff_summary(before: int, fixed: int, results: list[FileResult], problems: list[FileResult]) -> NoReturn:
+    """``--diff``: how many findings the fixes would end, on stderr, then the exit code (1: a fix to make)."""
+    remaining = sum(len(r.findings) for r in results)
+    gone = before - fixed - remaining
+    also = f", {gone} more would end with them" if gone > 0 else ""
+    click.echo(f"Would fix {fixed} finding{'s' if fixed != 1 else ''} ({remaining} remaining{also}).", err=True)
+    sys.exit(2 if any(r.error for r in results + problems) else 1 if fixed else 0)
+
+
+def _write_whole_report(
+    request: CheckRequest, results: list[FileResult], configuration: list[str], *, fixed: int, found: int
+) -> None:
+    """The report of the files as they are after ``--fix`` (the counts instead with ``--statistics``)."""
+    from gclint.reports import ReportContext
+    from gclint.reports import writer as write_with
+
     ctx = ReportContext(
-        tool_version=__version__, fixed=fixed, found=found, group=not no_group, configuration=configuration
+        tool_version=__version__, fixed=fixed, found=found, group=not request.no_group, configuration=configuration
     )
-    writer = write_with(fmt)
-    if statistics:  # the counts instead of the findings, as ruff does (JSON with --format json)
+    writer = write_with(request.fmt)
+    if request.statistics:  # the counts instead of the findings, as ruff does (JSON with --format json)
         from gclint.reports import json_report, text
 
-        writer = json_report.write_statistics if fmt == "json" else text.write_statistics_report
-    _write_report(writer, results, ctx, output)
-    if verbose or fmt not in MACHINE_FORMATS:  # after the report: a report that cannot be written is one line
+        writer = json_report.write_statistics if request.fmt == "json" else text.write_statistics_report
+    _write_report(writer, results, ctx, request.output)
+
+
+def _cache_notes(cache: ResultCache | None) -> None:
+    for note in cache.notes if cache is not None else ():
+        _note(note)
+
+
+def _context_notes(request: CheckRequest, results: list[FileResult]) -> None:
+    """What each file was checked as, when it was weakly decided (every file's with ``-v``)."""
+    from gclint.reports import MACHINE_FORMATS
+
+    if (
+        request.verbose or request.fmt not in MACHINE_FORMATS
+    ):  # after the report: one that cannot be written is one line
         from gclint.reports.notes import context_notes
 
-        for note in context_notes(results, verbose=verbose):
+        for note in context_notes(results, verbose=request.verbose):
             _note(note)
-    if any(r.error for r in results):
+
+
+def _exit_for(request: CheckRequest, worst: Any, *, unread: bool) -> None:
+    """The exit code: 2 when a file could not be read, 1 when a finding reaches ``--fail-on`` (unless
+    ``--exit-zero``), else the command returns (0)."""
+    if unread:
         sys.exit(2)
-    worst = max((f.severity for r in results for f in r.findings), default=None)
-    if not exit_zero and _reaches(worst, fail_on):
+    if not request.exit_zero and _reaches(worst, request.fail_on):
         sys.exit(1)
 
 
-def _settle(r: FileResult, overrides: dict, config_file: str | None, links: dict, stdin: str | None) -> FileResult:
+def _settle(r: FileResult, request: CheckRequest, links: dict, stdin: str | None) -> FileResult:
     """The result with a safe fix that ``--fix`` would take back marked unsafe (gclint.fixes.settle): the
     report's "[*]" marks and "N fixable" count what --fix applies.  Only a file with a safe fix pays for
     the second check; standard input and links found in a walk are left as they are."""
@@ -374,44 +554,30 @@ def _settle(r: FileResult, overrides: dict, config_file: str | None, links: dict
     from gclint.fixes import settle
     from gclint.syntax.source import Source
 
-    linter = runner.linter_for(runner.options_for(r.path, Options(), overrides, config_file))
+    linter = runner.linter_for(runner.options_for(r.path, Options(), request.overrides, request.config_file))
     return settle(r, linter, lambda: Source.open(r.path))
 
 
-def _apply_fixes(
-    results: list[FileResult],
-    overrides: dict,
-    config_file: str | None,
-    *,
-    unsafe: bool,
-    write: bool,
-    show: bool = False,
-) -> tuple[list[FileResult], int]:
-    """Fix each file (gclint.fixes); with ``write=False`` print the diffs instead.  Returns the results
-    as the files are now and the number of findings fixed (or that would be)."""
+def _apply_fixes(results: list[FileResult], request: CheckRequest) -> tuple[list[FileResult], int]:
+    """Fix each file (gclint.fixes); with ``--diff`` print the diffs instead.  Returns the results as the
+    files are now and the number of findings fixed (or that would be)."""
     from gclint import runner
     from gclint.fixes import fix_file
-    from gclint.textsafe import human_path
 
     out: list[FileResult] = []
     fixed = 0
     for r in results:
         if r.error is None:
             # re-check with the very options of the first check (configuration and command line)
-            options = runner.options_for(r.path, Options(), overrides, config_file)
-            outcome = fix_file(r, runner.linter_for(options), unsafe=unsafe, write=write)
+            options = runner.options_for(r.path, Options(), request.overrides, request.config_file)
+            outcome = fix_file(r, runner.linter_for(options), unsafe=request.unsafe_fixes, write=not request.show_diff)
             fixed += outcome.fixed
             for note in outcome.reverted:
                 _note(note)
             if outcome.diff:
                 click.echo(outcome.diff, nl=False)
-            if show and outcome.applied:
-                from collections import Counter
-
-                click.echo(f"Fixed in {human_path(r.path)}:")
-                names = {f.code: f.name for f in outcome.applied}
-                for code, n in sorted(Counter(f.code for f in outcome.applied).items()):
-                    click.echo(f"  {n} x {code} ({names[code]})")
+            if request.show_fixes and outcome.applied:
+                _show_fixes(r.path, outcome.applied)
             r = outcome.result
             if outcome.error is not None:
                 r = FileResult(r.path, r.findings, r.dialect, r.dialect_reason, r.lines, outcome.error, r.context)
@@ -419,14 +585,19 @@ def _apply_fixes(
     return out, fixed
 
 
-def _add_noqa(
-    results: list[FileResult],
-    links: dict[str, str],
-    overrides: dict,
-    config_file: str | None,
-    fail_on: str,
-    exit_zero: bool,
-) -> int:
+def _show_fixes(path: str, applied: list) -> None:
+    """``--show-fixes``: the fixes applied to one file, per code."""
+    from collections import Counter
+
+    from gclint.textsafe import human_path
+
+    click.echo(f"Fixed in {human_path(path)}:")
+    names = {f.code: f.name for f in applied}
+    for code, n in sorted(Counter(f.code for f in applied).items()):
+        click.echo(f"  {n} x {code} ({names[code]})")
+
+
+def _add_noqa(results: list[FileResult], links: dict[str, str], request: CheckRequest) -> int:
     """``--add-noqa``: suppress what each file has now, line by line; says how many lines it marked, and
     which findings it could not mark and why.  Each file written is checked again: the exit code is what
     ``gclint check`` would now say (0 when every file passes)."""
@@ -459,7 +630,7 @@ def _add_noqa(
             failed = True
             continue
         if outcome.fixed:  # (what the file says now, as gclint check reads it)
-            r = runner.check_one(r.path, runner.options_for(r.path, Options(), overrides, config_file))
+            r = runner.check_one(r.path, runner.options_for(r.path, Options(), request.overrides, request.config_file))
         left.append(r)
     click.echo(f"Added a noqa comment to {added} line{'s' if added != 1 else ''}.")
     remaining = [(r.path, f) for r in left for f in r.findings]
@@ -471,12 +642,10 @@ def _add_noqa(
     if failed:
         return 2
     worst = max((f.severity for _, f in remaining), default=None)
-    return 1 if not exit_zero and _reaches(worst, fail_on) else 0
+    return 1 if not request.exit_zero and _reaches(worst, request.fail_on) else 0
 
 
-def _fix_stdin(
-    overrides: dict, config_file: str | None, name: str, unsafe: bool, exit_zero: bool, fail_on: str = "warning"
-) -> int:
+def _fix_stdin(request: CheckRequest) -> int:
     """``gclint check --fix -`` (what editors run): standard input, fixed, to standard output; the
     findings that remain on standard error.  Returns the exit code."""
     import shutil
@@ -492,7 +661,8 @@ def _fix_stdin(
     except SourceError as exc:
         click.echo(f"gclint: {exc}", err=True)
         return 2
-    options = runner.options_for(name, Options(), overrides, config_file)
+    name = request.stdin_name
+    options = runner.options_for(name, Options(), request.overrides, request.config_file)
     linter = runner.linter_for(options)
     with tempfile.SpooledTemporaryFile(max_size=16 << 20) as buffer:  # read twice: check, then fix
         shutil.copyfileobj(given, buffer)
@@ -510,13 +680,13 @@ def _fix_stdin(
             buffer.seek(0)
             shutil.copyfileobj(buffer, sys.stdout.buffer)  # nothing lost: the text goes through unchanged
             return 2
-        outcome = fix_stream(result, linter, read, sys.stdout.buffer, unsafe=unsafe)
+        outcome = fix_stream(result, linter, read, sys.stdout.buffer, unsafe=request.unsafe_fixes)
     sys.stdout.flush()
     from gclint.reports import ReportContext
 
     write_text([outcome.result], sys.stderr, ReportContext(fixed=outcome.fixed))
     worst = max((f.severity for f in outcome.result.findings), default=None)
-    return 1 if not exit_zero and _reaches(worst, fail_on) else 0
+    return 1 if not request.exit_zero and _reaches(worst, request.fail_on) else 0
 
 
 def _cache_where(files: list[str], cache_dir: str | None, no_cache: bool) -> str:

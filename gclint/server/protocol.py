@@ -11,8 +11,12 @@
   the editor's settings (``initializationOptions``, ``workspace/didChangeConfiguration``, or
   ``workspace/configuration`` when the client offers it).
 
-Whatever goes wrong in a handler becomes one line in the client's log (``window/logMessage``); the
-server keeps running.  The document text is kept here (``Snapshot``), with LSP line breaks.
+Each method is one handler, ``handler(server, params)`` (a coroutine function where it waits), registered
+in ``METHODS``: adding a method is a function and a row there (and its capability in ``initialize``).
+``GclintServer`` holds the state and what the handlers share (the log, the checks and the diagnostics
+they publish, the editor's settings).  Whatever goes wrong in a handler becomes one line in the client's
+log (``window/logMessage``); the server keeps running.  The document text is kept here (``Snapshot``),
+with LSP line breaks.
 
 Start-up is kept short (the first diagnostics of a 20,000-line job within half a second of starting the
 process, bench/bench_server.py): only the standard library and gclint are imported, and the rules are
@@ -131,6 +135,10 @@ def _flag(caps: dict, *path: str) -> Any:
 
 
 class GclintServer:
+    """The server's state (the open documents, the settings, what the client can do) and what the
+    protocol's handlers share: the log, the checks and the diagnostics they publish, the editor's
+    settings.  The handlers themselves are the functions below, one per method (``METHODS``)."""
+
     def __init__(self, endpoint: Endpoint) -> None:
         self.endpoint = endpoint
         self.documents: dict[str, Document] = {}
@@ -197,7 +205,7 @@ class GclintServer:
             for doc in list(self.documents.values()):
                 self.schedule(doc, 0)
 
-    # -- checking -----------------------------------------------------------------------------------------
+    # -- checking and diagnostics -------------------------------------------------------------------------
 
     def schedule(self, doc: Document, delay: float) -> None:
         """Check ``doc``'s current text after ``delay`` seconds, abandoning any check of older text."""
@@ -283,50 +291,8 @@ class GclintServer:
         self.checks.shutdown(wait=False, cancel_futures=True)
         self.requests.shutdown(wait=False, cancel_futures=True)
 
-    # -- the protocol's methods -------------------------------------------------------------------------
-
-    def initialize(self, params: Any) -> dict:
-        params = obj(params, "$.params")
-        caps = member(params, "capabilities", "$.params", dict, {})
-        self.encoding = _choose_encoding(caps)
-        formats = _flag(caps, "textDocument", "hover", "contentFormat")
-        self.markdown = isinstance(formats, list) and "markdown" in formats
-        self.versioned_edits = bool(_flag(caps, "workspace", "workspaceEdit", "documentChanges"))
-        self.pull_configuration = bool(_flag(caps, "workspace", "configuration"))
-        self.initialized = True
-        self.apply_settings(params.get("initializationOptions"))
-        self.checks.submit(_warm_up, self.warmed, self.settings)  # while the editor opens the first file
-        return {
-            "capabilities": {
-                "positionEncoding": self.encoding,
-                "textDocumentSync": {"openClose": True, "change": INCREMENTAL, "save": {"includeText": False}},
-                "hoverProvider": True,
-                "codeActionProvider": {"codeActionKinds": [convert.QUICK_FIX, convert.FIX_ALL_KIND]},
-            },
-            "serverInfo": {"name": "gclint", "version": __version__},
-        }
-
-    async def initialized_(self, params: Any) -> None:
-        if self.pull_configuration:
-            await self.pull_settings()
-
-    def shutdown(self, params: Any) -> None:
-        self.shutdown_requested = True
-        self.stop()
-        return None
-
-    def exit(self, params: Any) -> None:
-        self.exit_status = 0 if self.shutdown_requested else 1
-        self.endpoint.stop()
-
-    async def did_change_configuration(self, params: Any) -> None:
-        settings = params.get("settings") if isinstance(params, dict) else None
-        if settings is None or (self.pull_configuration and settings in ({}, {"gclint": None})):
-            await self.pull_settings()  # the client says "changed" and expects to be asked
-        else:
-            self.apply_settings(settings)
-
     async def pull_settings(self) -> None:
+        """Ask the client for its gclint settings (``workspace/configuration``) and take them."""
         try:
             answer = await self.endpoint.request(
                 "workspace/configuration", {"items": [{"section": "gclint"}]}, timeout=CONFIG_WAIT
@@ -337,109 +303,207 @@ class GclintServer:
         if isinstance(answer, list) and answer:
             self.apply_settings(answer[0])
 
-    def did_open(self, params: Any) -> None:
-        params = obj(params, "$.params")
-        item = obj(params.get("textDocument"), "$.params.textDocument")
-        where = "$.params.textDocument"
-        uri = member(item, "uri", where, str)
-        text = member(item, "text", where, str)
-        version = member(item, "version", where, int, None)
-        old = self.documents.get(uri)
-        if old is not None and old.cancel is not None:
-            old.cancel.set()
-        path = _path_of(uri)
-        doc = Document(uri, path, path or unquote(uri), Snapshot(text, version))
-        self.documents[uri] = doc
-        self.warmed.set()  # the check of this document warms up what it needs: no time for the rest
-        self.schedule(doc, 0)
 
-    def did_change(self, params: Any) -> None:
-        params = obj(params, "$.params")
-        uri = document_uri(params)
-        version = member(params["textDocument"], "version", "$.params.textDocument", int, None)
-        changes = member(params, "contentChanges", "$.params", list)
-        doc = self.documents.get(uri)
-        if doc is None:
-            return
-        text = doc.snapshot.text
-        for i, change in enumerate(changes):
-            where = f"$.params.contentChanges[{i}]"
-            change = obj(change, where)
-            new_text = member(change, "text", where, str)
-            if change.get("range") is not None:
-                (l0, c0), (l1, c1) = range_of(change["range"], f"{where}.range")
-                text = Snapshot(text).edited((l0, c0), (l1, c1), new_text, self.encoding)
-            else:
-                text = new_text
-        doc.snapshot = Snapshot(text, version)
-        self.schedule(doc, DEBOUNCE)
+# -- the protocol's methods: one handler per feature, ``handler(server, params)``, registered in METHODS --
+#
+# Lifecycle: what the client can ask of gclint (capabilities), the editor's settings, the warm-up; the end.
 
-    def did_save(self, params: Any) -> None:
-        params = obj(params, "$.params")
-        doc = self.documents.get(document_uri(params))
-        if doc is None:
-            return
-        text = params.get("text")
-        if isinstance(text, str) and text != doc.snapshot.text:
-            doc.snapshot = Snapshot(text, doc.snapshot.version)
-        self.schedule(doc, 0)  # at once: the configuration may have changed too
 
-    def did_close(self, params: Any) -> None:
-        params = obj(params, "$.params")
-        doc = self.documents.pop(document_uri(params), None)
-        if doc is None:
-            return
-        if doc.cancel is not None:
-            doc.cancel.set()
-        if doc.task is not None:
-            doc.task.cancel()
-        self.publish(doc.uri, [])
+def initialize(server: GclintServer, params: Any) -> dict:
+    params = obj(params, "$.params")
+    caps = member(params, "capabilities", "$.params", dict, {})
+    server.encoding = _choose_encoding(caps)
+    formats = _flag(caps, "textDocument", "hover", "contentFormat")
+    server.markdown = isinstance(formats, list) and "markdown" in formats
+    server.versioned_edits = bool(_flag(caps, "workspace", "workspaceEdit", "documentChanges"))
+    server.pull_configuration = bool(_flag(caps, "workspace", "configuration"))
+    server.initialized = True
+    server.apply_settings(params.get("initializationOptions"))
+    server.checks.submit(_warm_up, server.warmed, server.settings)  # while the editor opens the first file
+    return {
+        "capabilities": {
+            "positionEncoding": server.encoding,
+            "textDocumentSync": {"openClose": True, "change": INCREMENTAL, "save": {"includeText": False}},
+            "hoverProvider": True,
+            "codeActionProvider": {"codeActionKinds": [convert.QUICK_FIX, convert.FIX_ALL_KIND]},
+        },
+        "serverInfo": {"name": "gclint", "version": __version__},
+    }
 
-    async def hover(self, params: Any) -> dict | None:
-        params = obj(params, "$.params")
-        uri = document_uri(params)
-        line, character = position(params.get("position"), "$.params.position")
-        doc = self.documents.get(uri)
-        if doc is None:
-            return None
-        snapshot = doc.snapshot
-        encoding = self.encoding
-        char = units_to_char(snapshot.line(line), character, encoding)
-        # the dialect of the last check (it rarely changes while typing); wait only when there is none
-        done = doc.analysis if doc.analysis is not None else await self.current_analysis(doc, HOVER_WAIT)
-        options = done.options if done is not None else analysis.document_options(doc.path, self.settings)[0]
-        dialect, reason = _dialect_for(done, options, snapshot, doc.name)
-        target = await self.run_in_thread(analysis.explain_at, snapshot, line, char, dialect, options.loaded)
-        if target is None:
-            return None
-        return convert.hover(target, convert.Geometry(snapshot, encoding), line + 1, self.markdown, reason)
 
-    async def code_action(self, params: Any) -> list[dict] | None:
-        params = obj(params, "$.params")
-        uri = document_uri(params)
-        (first, _), (last, _) = range_of(params.get("range"), "$.params.range")
-        context = obj(params.get("context"), "$.params.context")
-        only_raw = member(context, "only", "$.params.context", list, None)
-        only = [str(k) for k in only_raw] if only_raw else None
-        doc = self.documents.get(uri)
-        if doc is None:
-            return None
-        done = await self.current_analysis(doc, ANALYSIS_WAIT)
-        if done is None or done.snapshot is not doc.snapshot:
-            return None  # edits computed on other text would land in the wrong places
-        # "fix all" applies what --fix would: the safe fixes that bring no new finding (gclint.fixes)
-        fix_all = await self.run_in_thread(analysis.safe_fix_set, done.result, done.snapshot.text, done.options)
-        actions = convert.code_actions(
-            doc.uri,
-            done.result.findings,
-            convert.Geometry(done.snapshot, self.encoding),
-            first,
-            last,
-            only,
-            version=done.snapshot.version if self.versioned_edits else None,
-            fix_all=fix_all,
-        )
-        return actions or None
+async def initialized(server: GclintServer, params: Any) -> None:
+    if server.pull_configuration:
+        await server.pull_settings()
+
+
+def shutdown(server: GclintServer, params: Any) -> None:
+    server.shutdown_requested = True
+    server.stop()
+    return None
+
+
+def exit_(server: GclintServer, params: Any) -> None:
+    server.exit_status = 0 if server.shutdown_requested else 1
+    server.endpoint.stop()
+
+
+# Configuration: the editor's settings changed (pushed with the notification, or to be pulled).
+
+
+async def did_change_configuration(server: GclintServer, params: Any) -> None:
+    settings = params.get("settings") if isinstance(params, dict) else None
+    if settings is None or (server.pull_configuration and settings in ({}, {"gclint": None})):
+        await server.pull_settings()  # the client says "changed" and expects to be asked
+    else:
+        server.apply_settings(settings)
+
+
+# Document synchronisation: the text is kept here; each change schedules a check, whose diagnostics
+# GclintServer publishes (textDocument/publishDiagnostics); closing a document clears them.
+
+
+def did_open(server: GclintServer, params: Any) -> None:
+    params = obj(params, "$.params")
+    item = obj(params.get("textDocument"), "$.params.textDocument")
+    where = "$.params.textDocument"
+    uri = member(item, "uri", where, str)
+    text = member(item, "text", where, str)
+    version = member(item, "version", where, int, None)
+    old = server.documents.get(uri)
+    if old is not None and old.cancel is not None:
+        old.cancel.set()
+    path = _path_of(uri)
+    doc = Document(uri, path, path or unquote(uri), Snapshot(text, version))
+    server.documents[uri] = doc
+    server.warmed.set()  # the check of this document warms up what it needs: no time for the rest
+    server.schedule(doc, 0)
+
+
+def did_change(server: GclintServer, params: Any) -> None:
+    params = obj(params, "$.params")
+    uri = document_uri(params)
+    version = member(params["textDocument"], "version", "$.params.textDocument", int, None)
+    changes = member(params, "contentChanges", "$.params", list)
+    doc = server.documents.get(uri)
+    if doc is None:
+        return
+    text = doc.snapshot.text
+    for i, change in enumerate(changes):
+        where = f"$.params.contentChanges[{i}]"
+        change = obj(change, where)
+        new_text = member(change, "text", where, str)
+        if change.get("range") is not None:
+            (l0, c0), (l1, c1) = range_of(change["range"], f"{where}.range")
+            text = Snapshot(text).edited((l0, c0), (l1, c1), new_text, server.encoding)
+        else:
+            text = new_text
+    doc.snapshot = Snapshot(text, version)
+    server.schedule(doc, DEBOUNCE)
+
+
+def did_save(server: GclintServer, params: Any) -> None:
+    params = obj(params, "$.params")
+    doc = server.documents.get(document_uri(params))
+    if doc is None:
+        return
+    text = params.get("text")
+    if isinstance(text, str) and text != doc.snapshot.text:
+        doc.snapshot = Snapshot(text, doc.snapshot.version)
+    server.schedule(doc, 0)  # at once: the configuration may have changed too
+
+
+def did_close(server: GclintServer, params: Any) -> None:
+    params = obj(params, "$.params")
+    doc = server.documents.pop(document_uri(params), None)
+    if doc is None:
+        return
+    if doc.cancel is not None:
+        doc.cancel.set()
+    if doc.task is not None:
+        doc.task.cancel()
+    server.publish(doc.uri, [])
+
+
+# Hover: the command under the cursor decoded (gclint explain), with the dialect the check found.
+
+
+async def hover(server: GclintServer, params: Any) -> dict | None:
+    params = obj(params, "$.params")
+    uri = document_uri(params)
+    line, character = position(params.get("position"), "$.params.position")
+    doc = server.documents.get(uri)
+    if doc is None:
+        return None
+    snapshot = doc.snapshot
+    encoding = server.encoding
+    char = units_to_char(snapshot.line(line), character, encoding)
+    # the dialect of the last check (it rarely changes while typing); wait only when there is none
+    done = doc.analysis if doc.analysis is not None else await server.current_analysis(doc, HOVER_WAIT)
+    options = done.options if done is not None else analysis.document_options(doc.path, server.settings)[0]
+    dialect, reason = _dialect_for(done, options, snapshot, doc.name)
+    target = await server.run_in_thread(analysis.explain_at, snapshot, line, char, dialect, options.loaded)
+    if target is None:
+        return None
+    return convert.hover(target, convert.Geometry(snapshot, encoding), line + 1, server.markdown, reason)
+
+
+# Code actions: each fix, "suppress with noqa" for the line, "fix all safe" (also source.fixAll.gclint,
+# for fix-on-save), on the check of the current text.
+
+
+async def code_action(server: GclintServer, params: Any) -> list[dict] | None:
+    params = obj(params, "$.params")
+    uri = document_uri(params)
+    (first, _), (last, _) = range_of(params.get("range"), "$.params.range")
+    context = obj(params.get("context"), "$.params.context")
+    only_raw = member(context, "only", "$.params.context", list, None)
+    only = [str(k) for k in only_raw] if only_raw else None
+    doc = server.documents.get(uri)
+    if doc is None:
+        return None
+    done = await server.current_analysis(doc, ANALYSIS_WAIT)
+    if done is None or done.snapshot is not doc.snapshot:
+        return None  # edits computed on other text would land in the wrong places
+    # "fix all" applies what --fix would: the safe fixes that bring no new finding (gclint.fixes)
+    fix_all = await server.run_in_thread(analysis.safe_fix_set, done.result, done.snapshot.text, done.options)
+    actions = convert.code_actions(
+        doc.uri,
+        done.result.findings,
+        convert.Geometry(done.snapshot, server.encoding),
+        first,
+        last,
+        only,
+        version=done.snapshot.version if server.versioned_edits else None,
+        fix_all=fix_all,
+    )
+    return actions or None
+
+
+@dataclass(frozen=True)
+class Method:
+    """One protocol method gclint answers: its handler (``handler(server, params)``, a coroutine function
+    where it waits), and whether it is a notification (no answer).  Before ``initialize`` requests are
+    refused (``GclintServer.gate``) and notifications dropped, but those marked ``early``."""
+
+    name: str
+    handler: Callable[..., Any]
+    notification: bool = False
+    early: bool = False
+
+
+METHODS: tuple[Method, ...] = (
+    Method("initialize", initialize),
+    Method("initialized", initialized, notification=True),
+    Method("shutdown", shutdown),
+    Method("exit", exit_, notification=True, early=True),
+    Method("workspace/didChangeConfiguration", did_change_configuration, notification=True),
+    Method("textDocument/didOpen", did_open, notification=True),
+    Method("textDocument/didChange", did_change, notification=True),
+    Method("textDocument/didSave", did_save, notification=True),
+    Method("textDocument/didClose", did_close, notification=True),
+    Method("textDocument/hover", hover),
+    Method("textDocument/codeAction", code_action),
+)
 
 
 def _analyse(
@@ -452,15 +516,16 @@ def _analyse(
 
 
 def _guard(server: GclintServer, name: str, handler: Callable) -> Callable:
-    """Any exception in a handler but params that do not fit (answered InvalidParams by the transport)
-    becomes a line in the client's log and an empty answer."""
+    """``handler(server, params)`` as the transport calls it, ``(params)``: any exception but params that
+    do not fit (answered InvalidParams by the transport) becomes a line in the client's log and an empty
+    answer."""
 
     if asyncio.iscoroutinefunction(handler):
 
         @functools.wraps(handler)
         async def wrapped_async(params: Any) -> Any:
             try:
-                return await handler(params)
+                return await handler(server, params)
             except (asyncio.CancelledError, InvalidParams, ResponseError):
                 raise
             except Exception as exc:
@@ -472,7 +537,7 @@ def _guard(server: GclintServer, name: str, handler: Callable) -> Callable:
     @functools.wraps(handler)
     def wrapped(params: Any) -> Any:
         try:
-            return handler(params)
+            return handler(server, params)
         except (InvalidParams, ResponseError):
             raise
         except Exception as exc:
@@ -483,31 +548,19 @@ def _guard(server: GclintServer, name: str, handler: Callable) -> Callable:
 
 
 def create_server(reader: BinaryIO, writer: BinaryIO) -> GclintServer:
+    """A server on this stream, answering the methods of ``METHODS``."""
     endpoint = Endpoint(reader, writer)
     server = GclintServer(endpoint)
     endpoint.problem = server.problem
     endpoint.gate = server.gate
-    requests = {
-        "initialize": server.initialize,
-        "shutdown": server.shutdown,
-        "textDocument/hover": server.hover,
-        "textDocument/codeAction": server.code_action,
-    }
-    notifications = {
-        "initialized": server.initialized_,
-        "exit": server.exit,
-        "workspace/didChangeConfiguration": server.did_change_configuration,
-        "textDocument/didOpen": server.did_open,
-        "textDocument/didChange": server.did_change,
-        "textDocument/didSave": server.did_save,
-        "textDocument/didClose": server.did_close,
-    }
-    endpoint.requests = {m: _guard(server, m, h) for m, h in requests.items()}
-    endpoint.notifications = {m: _guard(server, m, h) for m, h in notifications.items()}
-    # before "initialize" only "exit" is heard (the protocol drops other notifications)
-    for method in notifications:
-        if method != "exit":
-            endpoint.notifications[method] = _before_initialize(server, endpoint.notifications[method])
+    for method in METHODS:
+        handler = _guard(server, method.name, method.handler)
+        if not method.notification:
+            endpoint.requests[method.name] = handler
+        elif method.early:
+            endpoint.notifications[method.name] = handler
+        else:  # (the protocol drops notifications before "initialize")
+            endpoint.notifications[method.name] = _before_initialize(server, handler)
     return server
 
 
