@@ -37,7 +37,7 @@ from tests.conftest import CORPUS
 
 LABELS = Path(__file__).resolve().parent / "data" / "corpus_labels.tsv"
 DIALECTS = ("hyrel", "marlin", "reprap", "machinekit", "carvera", "generic")
-FLAVORS = ("prusa-buddy", "prusa-mk3", "bambu", "klipper", "reprap-2015")
+FLAVORS = ("prusa-buddy", "prusa-mk3", "bambu", "klipper", "fablin", "reprap-2015")
 PRINTERS = ("30m", "esr", "ehr", "16a", "16a-dual")
 NOT_GCODE = "-"
 

@@ -94,9 +94,9 @@ def test_a_note_never_gives_a_habit_as_the_reason_for_another_dialect() -> None:
 
 
 def test_a_code_one_reading_lacks_costs_every_dialect_the_same() -> None:
-    evidence = scores("G1 X1 F600\nM728\nM30\n", "job.gcode")  # M728: Hyrel's alone
+    evidence = scores("G1 X1 F600\nM660\nM30\n", "job.gcode")  # M660: Hyrel's alone
     costs = {
-        key: next(points for points, text in value["evidence"] if "M728" in text)
+        key: next(points for points, text in value["evidence"] if "M660" in text)
         for key, value in evidence.items()
         if "/" not in key and key not in ("hyrel", "generic")
     }
@@ -116,11 +116,6 @@ def test_a_word_the_firmware_rejects_counts_against_it() -> None:
 @pytest.mark.parametrize(
     "path,dialect",
     [
-        # FABtotum's laser codes (M793 head, M61/M62 laser, M728 beep) are none of Marlin 2.x's: no known dialect
-        # runs the file (it was Carvera's, for Carvera's lenience with codes it lacks)
-        ("other/fabtotum_laser_einstein.gcode", "generic"),
-        # M61/M62 are LinuxCNC's codes (no other table has them), M793 nobody's: LinuxCNC, unsure
-        ("other/fabtotum_laser_cardboard_mini.gcode", "machinekit"),
         # G93, A and C axes, an S word alone: LinuxCNC (M428/M429 are its INI's remaps)
         ("linuxcnc/linuxcnc/configs/impeller-7bl-xyzac.ngc", "machinekit"),
         # G42 D08 cutter compensation, G20, R arcs: LinuxCNC runs every line as written (Marlin's G42 is a mesh
@@ -135,6 +130,25 @@ def test_no_dialect_wins_a_file_with_codes_or_words_it_lacks(path: str, dialect:
     context = infer(text, path)
     assert context.dialect == dialect, context.why()
     assert context.weak, context.why()
+
+
+@needs_corpus
+@pytest.mark.parametrize(
+    "path,weak",
+    [
+        # FABtotum's laser jobs: M793 (head soft ID) only FABlin has, M61/M62 (laser power) FABlin and LinuxCNC,
+        # M728 (start tune) FABlin and Hyrel: Marlin with FABlin's inventory explains every line
+        ("other/fabtotum_laser_einstein.gcode", False),
+        # no header, and M61/M62 are LinuxCNC's too: FABlin by M793, unsure (machinekit within reach)
+        ("other/fabtotum_laser_cardboard_mini.gcode", True),
+    ],
+)
+def test_a_code_only_a_flavour_has_counts_for_it(path: str, weak: bool) -> None:
+    text = (CORPUS / path).read_text(encoding="utf-8", errors="replace")
+    context = infer(text, path)
+    assert (context.dialect, context.flavor) == ("marlin", "fablin"), context.why()
+    assert context.weak == weak, context.why()
+    assert "only fablin has M793" in context.why()
 
 
 def test_dl001_cites_no_historic_page_for_another_dialects_code_and_agrees_in_number() -> None:

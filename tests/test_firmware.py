@@ -126,6 +126,23 @@ M74 W24
 """
 
 
+# the start of a FABtotum print job (FABtotum's Cura profile; the corpus's marlin/fabtotum jobs)
+FABTOTUM_HEAD = """M190 S40.000000
+M109 S200.000000
+
+;start gcode
+G4 S1 ;1 millisecond pause to buffer the bep bep
+M728 ;FAB bep bep (start the print, go check the oozing and skirt lines adesion)
+G4 S1 ;1 second pause to reach the printer (run fast)
+G1 X10 Y10 Z70.0 F15000 ;move to oozing point
+G92 E0       ;zero the extruded length
+G1 F250 E70  ;slowly extrude 30mm of filament to clean the nozzle and build up extrusion pressure
+G92 E0       ;zero the extruded length again
+G1 F1800 X95.556 Y107.197 E0.07776
+G1 X96.169 Y106.716 E0.11655
+"""
+
+
 @pytest.mark.parametrize(
     "head, flavor",
     [
@@ -140,6 +157,8 @@ M74 W24
         ("; BambuStudio 01.10.02.76\nG28\nM109 S220\n", None),  # the slicer's name alone says nothing
         ("; printer_model = ENDER3V2\nG28\nM109 S215\n", None),
         ("PRUSA Fir\nG28\nM109 S215\n", None),  # a bare word is not Klipper's NAME KEY=VALUE
+        (FABTOTUM_HEAD, "fablin"),
+        ("G90\nM793 S4\nG1 X41 Y18 F10160.\nG4\nM61 S255\nG1 X41 Y17 F150.\nG4\nM62\n", "fablin"),
     ],
 )
 def test_flavor_from_the_file(head, flavor):
@@ -214,6 +233,26 @@ def test_a_code_no_flavor_documents_is_still_reported(tmp_path):
     (finding,) = [f for f in findings if f["code"] == "DL001"]
     assert finding["message"].startswith("G380 is not a Marlin 2.x or Prusa Buddy firmware code")
     assert "Bambu Lab firmware has it" in finding["message"]
+
+
+def test_a_code_fablin_lacks_is_still_reported_in_a_fabtotum_job(tmp_path):
+    path = tmp_path / "fabtotum.gcode"
+    # M780 ("read Head Product Name") is in the list at the top of FABlin's Marlin_main.cpp as "[unimplemented]":
+    # process_commands() has no case for it
+    path.write_text(FABTOTUM_HEAD + "M780\nM793 S2\nM728 ;FAB bep bep (end print)\n")
+    proc = run_cli("check", str(path), "--no-cache", "-f", "json", "-v")
+    assert "marlin (fablin)" in proc.stderr.decode() + proc.stdout.decode()
+    (finding,) = [f for f in json.loads(proc.stdout) if f["code"] == "DL001"]
+    assert finding["message"] == "M780 is not a Marlin 2.x or FABtotum FABlin firmware code", finding
+
+
+def test_a_fablin_code_in_a_plain_marlin_job_names_fablin(tmp_path):
+    path = tmp_path / "job.gcode"
+    path.write_text("G28\nM109 S215\nG1 X1 E1\nM793 S4\n")
+    proc = run_cli("check", str(path), "--no-cache", "-f", "json", "-d", "marlin", "--flavor", "prusa-buddy")
+    (finding,) = [f for f in json.loads(proc.stdout) if f["code"] == "DL001"]
+    assert finding["message"].startswith("M793 is not a Marlin 2.x or Prusa Buddy firmware code")
+    assert "FABtotum FABlin firmware has it" in finding["message"], finding
 
 
 def test_klipper_commands_in_a_job_for_another_firmware_are_reported(tmp_path):
@@ -343,6 +382,11 @@ FLAVORED = {
     "marlin/bambustudio-01.10.02.76_k1max_example.gcode": "klipper",
     "marlin/orcaslicer-2.3.0-beta2_example.gcode": "klipper",
     "marlin/prusaslicer-2.7.4_vase.gcode": None,  # an Ender-3 V2: plain Marlin
+    # FABtotum's Cura profile ("M728 ;FAB bep bep") and laser jobs (M793 S4, M61/M62): FABlin
+    "marlin/fabtotum/Socket Screwdriver 8 (M5 nuts).gcode": "fablin",
+    "marlin/fabtotum/cable_ties_nylon.gcode": "fablin",
+    "marlin/fabtotum/hand_ok.gcode": "fablin",
+    "other/fabtotum_laser_cardboard_mini.gcode": "fablin",
 }
 
 
@@ -357,3 +401,13 @@ def test_corpus_jobs_get_their_firmware_and_no_dl001_on_its_codes(name):
     documented = [f for f in result.findings if f.code == "DL001" and fw.knows(f.message.split()[0])]
     assert not documented, [f"{f.line}: {f.message}" for f in documented[:5]]
     assert not result.findings, [f"{f.line}: {f.message}" for f in result.findings[:5]]
+
+
+@needs_corpus
+@pytest.mark.parametrize("name", sorted(n for n, fw in FLAVORED.items() if fw == "fablin"))
+def test_fabtotum_jobs_read_as_marlin_fablin_without_dl001_or_dl004(name):
+    # the laser job's bare "G4" waits for nothing but the moves (FABlin: no P, no S, no wait); M793 S4 selects
+    # the laser head, M61 S255 / M62 are its power: none of them unknown, none missing a parameter
+    result = Linter(Options(select=["DL001", "DL004"])).check_path(str(CORPUS / name))
+    assert (result.context.dialect, result.context.flavor) == ("marlin", "fablin"), result.context.why()
+    assert not result.findings, [f"{f.line}: {f.code} {f.message}" for f in result.findings[:5]]

@@ -228,7 +228,7 @@ class _Run:
 @click.option(
     "--flavor",
     metavar="FIRMWARE",
-    help="The firmware the files are for, when they do not say: prusa-buddy, prusa-mk3, bambu, klipper... "
+    help="The firmware the files are for, when they do not say: prusa-buddy, prusa-mk3, bambu, klipper, fablin... "
     "(else read from each file's slicer settings).",
 )
 @click.option(

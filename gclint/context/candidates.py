@@ -1,6 +1,6 @@
 """The readings ``--dialect auto`` chooses between: every known dialect (Hyrel once: v4 or v5 is decided
 afterwards, gclint.context.version), each with the firmware flavours whose files it reads (Marlin with Prusa
-Buddy, Prusa MK3, Bambu, Klipper and the 2015 RepRap firmwares), and ``generic``, the reading of a file no
+Buddy, Prusa MK3, Bambu, Klipper, FABlin and the 2015 RepRap firmwares), and ``generic``, the reading of a file no
 known dialect explains.
 
 A candidate is asked what the scoring needs: whether it has a code (its dialect's table, and its flavour's

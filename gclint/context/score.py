@@ -247,11 +247,17 @@ def _codes(reading: ContentReading, known: tuple[Candidate, ...], add, machine: 
         if not deltas:
             continue
         owners = [c.dialect.name for c in known if c.flavor is None and c.has(code)]
-        owners = owners or [c.flavor.name for c in known if c.flavor is not None and c.has(code)]
+        # a flavour whose dialect's own table lacks the code has it too (FABlin's M728, which Hyrel also has:
+        # not "only hyrel has M728" as the reason a file is FABlin's)
+        flavors = [c.flavor.name for c in known if c.flavor is not None and c.has(code) and code not in c.dialect.codes]
+        mixed = bool(owners and flavors)
+        owners += flavors
         if not owners:
             text = f"{seen}: no known dialect has {code}"
         elif len(owners) == 1:
             text = f"{seen}: only {owners[0]} has {code}"
+        elif mixed:
+            text = f"{seen}: only {', '.join(owners[:-1])} and {owners[-1]} have {code}"
         else:
             missing = [c.dialect.name for c in known if c.flavor is None and c.dialect.name not in has]
             text = f"{seen}: {code} is not a {' or '.join(missing)} code" if missing else f"{seen}: {code}"

@@ -2,8 +2,8 @@
 read from, by repository and commit; docs/sources.md, Firmware inventories).
 
 A dialect (gclint/dialects/) says how a family of files is read and checked; an inventory says which
-codes one firmware accepts.  Prusa (Buddy and MK3), Bambu and Klipper read Marlin-flavour files: their
-inventories are *flavours* of the Marlin dialect.  gclint.context decides a file's flavour from its
+codes one firmware accepts.  Prusa (Buddy and MK3), Bambu, Klipper and FABlin (FABtotum) read Marlin-flavour
+files: their inventories are *flavours* of the Marlin dialect.  gclint.context decides a file's flavour from its
 slicer settings and content (``Context.flavor``), and DL001 does not report a code the flavour's firmware
 documents.  The RepRapFirmware, LinuxCNC and Smoothieware inventories feed the tables of the dialects built
 on them.
@@ -17,6 +17,7 @@ from collections.abc import Iterable
 
 from gclint.firmware.bambu import BAMBU
 from gclint.firmware.base import Firmware, code_set, normal_code
+from gclint.firmware.fablin import FABLIN
 from gclint.firmware.klipper import KLIPPER
 from gclint.firmware.linuxcnc import LINUXCNC
 from gclint.firmware.machinekit_fdm import MACHINEKIT_FDM
@@ -33,6 +34,7 @@ _ALL: tuple[Firmware, ...] = (
     PRUSA_MK3,
     BAMBU,
     KLIPPER,
+    FABLIN,
     REPRAP_2015,
     REPRAPFIRMWARE,
     LINUXCNC,

@@ -21,7 +21,7 @@ class Firmware:
     """One firmware's inventory.
 
     ``dialect`` is the dialect gclint reads the firmware's files in.  A ``flavor`` is a firmware whose
-    files are that dialect's with codes of its own (Prusa, Bambu and Klipper read Marlin-flavour files):
+    files are that dialect's with codes of its own (Prusa, Bambu, Klipper and FABlin read Marlin-flavour files):
     ``detection`` holds the marks gclint.context weighs to decide it, slicer settings in the head or at
     the end of the file (``patterns``) and commands in the content (``clues``).  The other inventories
     (RepRapFirmware, LinuxCNC, Smoothieware) are what their dialect's table is built from.
