@@ -8,9 +8,11 @@ E values.  ``MachineState.flow_mode`` says which one is active.
 
 from __future__ import annotations
 
+from gclint.dialects.addressing import BED, GROUP
 from gclint.dialects.base import Param
 from gclint.rules.base import Rule, Severity, register
 from gclint.rules.dialect import ParamTableRule
+from gclint.rules.hyrel.addressing import is_v5, reported_as_v4
 from gclint.rules.hyrel.motion import MoveChecks, MoveRule
 from gclint.syntax.nodes import Command, Line, to_number
 
@@ -377,3 +379,76 @@ class SlicerEWithoutM229(MoveRule):
                 "ignores them and computes flow from speed, layer height (M756, M221 Z) and width (M221 W); "
                 "add M229 E1 D1 to use them",
             )
+
+
+# -- HY068 ---------------------------------------------------------------------------------------------
+
+# What each head command does to its target (Gcode page, the code's section), for the message.
+_HEAD_COMMAND_ACTS = {
+    "M106": "sets a head's cooling fan or crosslinking LEDs",
+    "M107": "turns off a head's cooling fan or crosslinking LEDs",
+    "M221": "sets a head's flow (pulses per microliter, multiplier, width, height)",
+    "M721": "sets a head's unprime (retract) values",
+    "M722": "sets a head's prime (advance) values",
+    "M620": "enables a head or emitter (laser, UV pen)",
+}
+_ALL_BEDS = 46  # T_v5, "Logical/Vurtual Device Addresses": T46 "All Beds / Chambers"
+
+
+@register
+class HeadCommandOnBed(Rule):
+    code = "HY068"
+    name = "head-command-on-bed"
+    severity = Severity.WARNING
+    summary = "A head command (M106, M107, M221, M721, M722, M620) addressed to a bed or chamber (T24, T25, T46)"
+    explanation = """
+        On Repetrel v5, M106, M107, M221, M721 and M722 act on the device of their T word, and the Gcode
+        page says what that device is: "T# is the target head" (M106 Set Cooling / Etc., M721 Set
+        Unprime Values, M722 Set Prime Values), "T# (target head)" (M107 Stop Cooling / Etc.), "T# is the
+        tool (head) to which these values will be applied" (M221 Set Flow Rate), and for M620 Enable
+        Device "T# (target head - MUST be specified, can NOT be inherited)" (its Parameters list says
+        "T# is the tool position").  The T_v5 page's Chart of Addresses gives T24 to "Bed1 / Chamber1",
+        T25 to "Bed2 / Chamber2" and T46 to "All Beds / Chambers": `M106 T24 S100` addresses a bed, which
+        has no cooling fan, no flow and no prime, so the head the line was meant for is left unchanged.
+        It is most often a T copied from an `M140 T24` line, or a v4 head number (v4 T24 was yoke 2,
+        position 4: HY008 reports that reading when the file's addresses are v4).  Write the head's v5
+        address (T0-T19), its yoke (T41-T44) or omit T for the focused head where the page allows it.
+        What the firmware does with the line is not on the pages (inferred: it is ignored or refused,
+        confidence low); M140/M141 are the bed and chamber commands.  Only v5 files: in v4 numbering
+        T24 and T25 are heads.
+    """
+    # (the bed lines make the file's addresses v5: alone, M106 T24 reads as v4 numbering, HY008's case)
+    example_bad = """
+        M140 S60 T24
+        M190 S60 T24
+        M106 T24 S100
+    """
+    example_good = """
+        M140 S60 T24
+        M190 S60 T24
+        M106 T0 S100
+    """
+    source = (
+        "Gcode page, M106 Set Cooling / Etc., M107 Stop Cooling / Etc., M221 Set Flow Rate, "
+        "M721 Set Unprime Values, M722 Set Prime Values, M620 Enable Device (T# is the target head); "
+        "T_v5, Chart of Addresses"
+    )
+    codes = ("M106", "M107", "M221", "M721", "M722", "M620")
+    families = ("hyrel",)
+
+    def check(self, line: Line, cmd: Command) -> None:
+        if "T" not in cmd.params or not is_v5(self.ctx) or reported_as_v4(self.ctx, cmd):
+            return
+        address = self.ctx.interpreter.address(cmd)
+        if address is None:
+            return
+        if address.kind != BED and not (address.kind == GROUP and address.v5 == _ALL_BEDS):
+            return
+        code = str(cmd.code)
+        self.report(
+            line,
+            f"{code} {_HEAD_COMMAND_ACTS[code]} (T# is the target head), but T{cmd.params['T']} is "
+            f"{address.label}: write the head's address (T0-T19, or a yoke T41-T44); a bed or chamber is "
+            "set with M140/M141",
+            node=cmd.param("T"),
+        )
