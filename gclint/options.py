@@ -3,6 +3,7 @@ engine, the rules (``ctx.options``), the runner and the reports read it; it depe
 
 from __future__ import annotations
 
+import os
 from dataclasses import dataclass, field
 
 
@@ -38,8 +39,13 @@ class Options:
     config_path: str | None = None
 
     def cache_key(self) -> str:
+        """What a cached result depends on besides the file: every setting, and where the configuration is (its
+        per-file-ignores and allow-file-writes patterns are relative to its folder: the same bytes in another
+        folder match other files)."""
         return repr(
             (
+                os.path.abspath(self.config_path) if self.config_path is not None else None,
+                sorted(self.machine_config),
                 self.dialect,
                 self.printer,
                 self.dialect_origin,

@@ -394,3 +394,18 @@ def test_a_committed_cache_folder_link_never_takes_writes_out_of_the_checkout(tm
     # a cache folder the user names outside the checkout is the user's choice
     assert run_cli("check", "--cache-dir", str(outside), "job.gcode", env=env, cwd=repo).returncode == 0
     assert list(outside.rglob("*.json"))
+
+
+def test_the_same_configuration_elsewhere_is_another_cache_key(tmp_path):
+    """allow-file-writes and per-file-ignores patterns are relative to the configuration's folder: the same
+    bytes in another folder match other files, so a cached result made under one must not answer the other
+    (a cached "passed" hid an SC005 error)."""
+    (tmp_path / "p" / "sys").mkdir(parents=True)
+    (tmp_path / "p" / "sys" / "save.g").write_text('M28 "0:/sys/foo.g"\n')
+    rule = 'allow-file-writes = ["sys/*.g"]\n'
+    (tmp_path / "p" / "here.toml").write_text(rule)
+    (tmp_path / "up.toml").write_text(rule)
+    env = {"GCLINT_CACHE_DIR": str(tmp_path / "cache")}
+    assert run_cli("check", "p", "--config", "p/here.toml", cwd=tmp_path, env=env).returncode == 0
+    proc = run_cli("check", "p", "--config", "up.toml", cwd=tmp_path, env=env)
+    assert proc.returncode == 1 and b"SC005" in proc.stdout, proc.stdout
