@@ -46,7 +46,8 @@ HOSTILE = [
     ("; octoprint_apikey = s3cr3t-key-value", {"SC006"}),
     ("; upload http://pi:raspberry@octopi.local/api/files", {"SC006"}),
     ("; Authorization: Bearer abcdEFGH1234ijkl5678", {"SC006"}),
-    ('M587 S"workshop" P"wifi-pass-123"', {"SC006"}),
+    ('M587 S"workshop" P"wifi-pass-123"', {"SC006", "SC007"}),
+    ('M587 S"net" P""', {"SC007"}),  # (no secret, but the printer joins the job's network)
     ("M117 token=abcdef123456", {"SC006"}),
     ("G1 X1 )( ; password=abc123xyz", {"SC006"}),  # a line the grammar refuses: its comment is still read
     ("; ghp_" + "a1B2" * 9, {"SC006"}),
@@ -66,7 +67,6 @@ HARMLESS = [
     "; printhost_password = ",
     "; printhost_authorization_type = key",
     "; print_host = http://octopi.local",
-    'M587 S"net" P""',
     "; password: ****",
     ";TYPE:WALL-OUTER",
     "; thumbnail begin 16x16 1234",

@@ -238,3 +238,22 @@ def test_an_enterprise_wifi_key_password_is_a_secret():
     line = 'M587 S"corp" X1 A"anon" U"0:/sys/user.pem" P"k.pem" Q"MyKeyPassw0rd"\n'
     result = Linter(Options(dialect="reprap", select=["SC006"])).check_text(line, "a.gcode")
     assert result.findings and all("MyKeyPassw0rd" not in (f.source or "") + f.message for f in result.findings)
+
+
+# -- the eighth attack ------------------------------------------------------------------------------------------
+
+
+@pytest.mark.parametrize(
+    "line",
+    ["M552 P10.66.6.6", "M553 P255.0.0.0", "M554 P10.66.6.1", 'M588 S"*"', 'M587 S"net" P"pw"', 'M589 S"evil"'],
+)
+def test_network_settings_a_job_changes(line):
+    # RepRapFirmware GCodes2.cpp cases 552-554 (IP address, netmask, gateway) and 587-589 (Wi-Fi networks, access
+    # point): the printer joins another network or drops off its own
+    assert "SC007" in [c for _, c, _ in _found(f"{line}\n", "reprap", "a.gcode")]
+
+
+def test_network_settings_stay_quiet_where_they_belong():
+    assert _found("M552 P10.0.0.2\nM553 P255.255.255.0\n", "reprap", "sys/config.g") == []
+    # Marlin's M540 S is "abort on endstop hit", no network setting; a query changes nothing
+    assert [c for _, c, _ in _found("M540 S1\nM553\n", "marlin", "a.gcode") if c == "SC007"] == []

@@ -24,6 +24,18 @@ _PROTOCOLS = {
 }
 
 
+# Network settings a job may change (RepRapFirmware src/GCodes/GCodes2.cpp cases 540, 552-554, 587-589; P is the
+# address; Marlin's M552-M554 do the same on Ethernet builds)
+_NETWORK_SETTINGS = {
+    "M552": "P sets the printer's IP address",
+    "M553": "P sets the printer's netmask",
+    "M554": "P sets the printer's gateway",
+    "M540": "P sets the printer's MAC address",
+    "M587": "adds a Wi-Fi network the printer joins",
+    "M588": "forgets remembered Wi-Fi networks",
+    "M589": "sets up the printer's Wi-Fi access point",
+}
+
 STARTUP_FILES = frozenset({"config.g", "config-override.g", "runonce.g"})
 
 
@@ -47,7 +59,12 @@ class OpensNetworkService(_SecurityRule):
         (a change can add a file of any name to a `sys/` folder; silence a macro that config.g runs with
         per-file-ignores in a configuration the CI names).  Switching a service off (S0) is not reported.
         The same holds for "M552 S1" (the network on) and "S2" (a Wi-Fi access point), and for "M586 C"*""
-        (web pages of any site may use the web interface: CORS).
+        (web pages of any site may use the web interface: CORS).  A job that changes the network settings
+        is reported too: "M552 P", "M553 P" and "M554 P" set the IP address, the netmask and the gateway
+        (RepRapFirmware, and Marlin's Ethernet builds), "M540 P" the MAC address, "M587" adds a Wi-Fi
+        network the printer joins, "M588" forgets remembered ones and "M589" sets up its access point
+        (RepRapFirmware GCodes2.cpp cases 540, 552-554, 587-589): the printer may join another network or
+        drop off its own.
     """
     example_bad = "M586 P2 S1"
     example_good = "M586 P2 S0"
@@ -56,7 +73,7 @@ class OpensNetworkService(_SecurityRule):
         " src/Networking/NetworkDefs.h"
         " (protocol numbers: 0 HTTP, 1 FTP, 2 Telnet)"
     )
-    codes = ("M586", "M552")
+    codes = ("M586", "M552", "M553", "M554", "M540", "M587", "M588", "M589")
 
     def __init__(self, ctx) -> None:
         super().__init__(ctx)
@@ -85,6 +102,16 @@ class OpensNetworkService(_SecurityRule):
                 " interface (CORS): a job must not open the machine to other sites",
                 column,
             )
+        setting = _NETWORK_SETTINGS.get(code)
+        if setting is not None and (code in ("M587", "M588", "M589") or protocol is not None):
+            self.report_masked(
+                line,
+                f"the job {setting.replace('P sets', 'sets')} ({code}{' P' if code in ('M552', 'M553', 'M554', 'M540') else ''}): "
+                "a job must not change the network settings (the machine may join another network or drop off its own)",
+                column,
+            )
+        if code not in ("M552", "M586"):
+            return
         if state is None or (_NUMBER.fullmatch(state) and float(state) == 0):
             return
         if code == "M552":
