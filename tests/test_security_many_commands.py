@@ -105,3 +105,13 @@ def test_repeated_commands_are_read_once_and_count_once():
     found = Linter(Options(select=["SC"])).check_text(_line_of(SEGMENT_LIMIT - 1) + "\n", "job.gcode").findings
     assert not [f for f in found if "commands after its first" in f.message]
     assert found and {f.code for f in found} == {"SC005"}
+
+
+def test_many_shell_actions_on_one_line_are_ten_findings_and_one_for_the_rest():
+    # (each SHELL was read to the end of the line: quadratic on a line of 95,000; now ten, then one finding)
+    from gclint.engine import Linter, Options
+
+    text = "M792 " + "; SHELL x " * 2000 + "\n"
+    found = [f for f in Linter(Options(select=["SC001"])).check_text(text, "a.gcode").findings]
+    assert len(found) == 11, [f.message for f in found]
+    assert sum("1990 more SHELL actions follow on this line" in f.message for f in found) == 1

@@ -150,6 +150,9 @@ def holds_action(text: str) -> bool:
     return bool(host_actions(text)) or bool(shell_offsets(text))
 
 
+_SHELLS_PER_LINE = 10  # SHELL actions of one line reported one by one; the rest are one finding
+
+
 def _shell_argument(rest: str, offset: int) -> str:
     """The text after the SHELL at ``offset``, to the end of its segment."""
     tail = rest[offset:]
@@ -304,7 +307,14 @@ class HostRunsProgram(_SecurityRule):
         if not offsets:
             return
         self._reported = line.number
-        for offset in offsets:
+        if len(offsets) > _SHELLS_PER_LINE:  # (one finding for the rest: linear time on a line of 100,000)
+            self.report_masked(
+                line,
+                f"{len(offsets) - _SHELLS_PER_LINE} more SHELL actions follow on this line, each making the host "
+                "computer execute a program",
+                column=column + offsets[_SHELLS_PER_LINE],
+            )
+        for offset in offsets[:_SHELLS_PER_LINE]:
             argument = _shell_argument(rest, offset)
             target = f" {_quote(argument)}" if argument else ""
             if code in ("M0", "M792"):
