@@ -5,6 +5,7 @@ from __future__ import annotations
 import re
 import unicodedata
 
+from gclint.filecontext import PER_LINE
 from gclint.rules.base import Severity, register
 from gclint.rules.security import linuxcnc
 from gclint.rules.security.base import _SecurityRule
@@ -150,7 +151,7 @@ def holds_action(text: str) -> bool:
     return bool(host_actions(text)) or bool(shell_offsets(text))
 
 
-_SHELLS_PER_LINE = 10  # SHELL actions of one line reported one by one; the rest are one finding
+_SHELLS_PER_LINE = PER_LINE - 1  # SHELL actions of a line reported one by one; the rest are one finding
 
 
 def _shell_argument(rest: str, offset: int) -> str:
@@ -307,13 +308,6 @@ class HostRunsProgram(_SecurityRule):
         if not offsets:
             return
         self._reported = line.number
-        if len(offsets) > _SHELLS_PER_LINE:  # (one finding for the rest: linear time on a line of 100,000)
-            self.report_masked(
-                line,
-                f"{len(offsets) - _SHELLS_PER_LINE} more SHELL actions follow on this line, each making the host "
-                "computer execute a program",
-                column=column + offsets[_SHELLS_PER_LINE],
-            )
         for offset in offsets[:_SHELLS_PER_LINE]:
             argument = _shell_argument(rest, offset)
             target = f" {_quote(argument)}" if argument else ""
@@ -330,6 +324,13 @@ class HostRunsProgram(_SecurityRule):
                     "and SHELL after M0 makes the host computer execute a program"
                 )
             self.report_masked(line, message, column=column + offset)
+        if len(offsets) > _SHELLS_PER_LINE:  # (one finding for the rest: linear time on a line of 100,000)
+            self.report_masked(
+                line,
+                f"{len(offsets) - _SHELLS_PER_LINE} more SHELL actions follow on this line, each making the host "
+                "computer execute a program",
+                column=column + offsets[_SHELLS_PER_LINE],
+            )
 
 
 @register
