@@ -5,7 +5,6 @@ from __future__ import annotations
 import re
 import unicodedata
 
-from gclint.filecontext import PER_LINE
 from gclint.rules.base import Severity, register
 from gclint.rules.security import linuxcnc
 from gclint.rules.security.base import _SecurityRule
@@ -151,7 +150,7 @@ def holds_action(text: str) -> bool:
     return bool(host_actions(text)) or bool(shell_offsets(text))
 
 
-_SHELLS_PER_LINE = PER_LINE - 1  # SHELL actions of a line reported one by one; the rest are one finding
+_SHELLS_PER_LINE = 9  # SHELL actions of a line reported one by one, the rest as one finding (filecontext.PER_LINE - 1)
 
 
 def _shell_argument(rest: str, offset: int) -> str:
