@@ -257,3 +257,24 @@ def test_network_settings_stay_quiet_where_they_belong():
     assert _found("M552 P10.0.0.2\nM553 P255.255.255.0\n", "reprap", "sys/config.g") == []
     # Marlin's M540 S is "abort on endstop hit", no network setting; a query changes nothing
     assert [c for _, c, _ in _found("M540 S1\nM553\n", "marlin", "a.gcode") if c == "SC007"] == []
+
+
+@pytest.mark.parametrize(
+    "line,code",
+    [
+        ('G1 X10 Y10 F3000 m30 "0:/sys/config.g"', "SC005"),  # RepRapFirmware reads its letters in either case
+        ("G4 S0 m586 P2 S1", "SC007"),
+        ('M117 "Printing..." M30 "0:/sys/config.g"', "SC005"),  # a quoted message ends at its closing quote
+        ('NM30 "0:/sys/config.g"', "SC005"),  # a line number with no digits: what follows "N" runs
+        ("nm586 P2 S1", "SC007"),
+        ("N SAVE_CONFIG", "SC005"),  # Klipper: a lone "N" word, then the command
+        ("N!! RUN_SHELL_COMMAND CMD=backup", "SC001"),
+    ],
+)
+def test_commands_a_firmware_finds_where_the_grammar_reads_none(line, code):
+    for dialect in ("auto", "reprap", "marlin"):
+        assert code in [c for _, c, _ in _found(f"G28\n{line}\n", dialect, "job.g")], (dialect, line)
+
+
+def test_an_o_word_name_is_no_lower_case_code():
+    assert _found("o<m162> sub\nM67 E#500 Q1\no<m162> endsub\n", "machinekit", "m162.ngc") == []

@@ -36,7 +36,8 @@ _DROPPABLE = re.compile("[\x00-\x08\x0b-\x1f\x7f\udc80-\udcff]")
 # Also a line where an SD-card reader ends a command early (``_sd_card_commands``): a "#" before a letter, a ":"
 # before a letter outside a ";" comment, or more than SD_COMMAND_SIZE characters after a first one that is not ";".
 _VIEW_TRIGGER = re.compile(
-    "(?m)[^\t\n\r\x20-\x7e]|^[^;(\n\r]{2}[^;(\n\r]*?M[ \t]*+[0-9]|[Mm][ \t]*+81[0-9][^;\n\r]*?\\|"
+    "(?m)[^\t\n\r\x20-\x7e]|^[^;(\n\r]{2}[^;(\n\r]*?[Mm][ \t]*+[0-9]|^[ \t]*+[Nn](?![ \t]*+[0-9])"
+    '|[Mm][ \t]*+0*+11[78][ \t]*+"|[Mm][ \t]*+81[0-9][^;\n\r]*?\\|'
     "|#[ \t]*+[A-Za-z]|^[^;\n\r]*?:[ \t]*+[A-Za-z]|^[^;\n\r][^\n\r]{95}|[Mm][ \t]*+0*+911[^;\n\r]*?[Pp]"
 )
 # Smoothieware's GcodeDispatch: comments start at the first ";" or "(", and the rest is cut before each "G"
@@ -80,6 +81,15 @@ _SD_SPLIT_OUTSIDE_COMMENT = re.compile("[#:]")
 # may have are both read (and say so).
 ERASED_VIEW = "read with each backspace or DEL erasing the character before it, comments included (a firmware may)"
 DROPPED_VIEW = "read without its control characters and undecodable bytes (a firmware may drop them)"
+UPPER_VIEW = "read as RepRapFirmware reads its command letters, in either case (StringParser: toupper)"
+NUMBERLESS_VIEW = (
+    'read as a line number with no digits: RepRapFirmware and Klipper run what follows "N" (klippy/gcode.py: a '
+    'lone "N" word; StringParser skips what is not a digit)'
+)
+QUOTED_VIEW = 'read as RepRapFirmware reads a quoted message: M117/M118 "..." ends at its closing quote'
+_LOWER_CODE = re.compile("(?<![<A-Za-z_])[gm](?=[ \t]*+[0-9])")  # (not in an O-word name: "o<m162>")
+_NUMBERLESS = re.compile("[ \t]*+[Nn](?![ \t]*+[0-9])[^A-Za-z\n\r]*+")
+_QUOTED_MESSAGE = re.compile('[ \t]*+(?:[Nn][ \t]*+[0-9]++[ \t]*+)?[Mm][ \t]*+0*+11[78][^"\n\r;]*?"(?:[^"\n\r]|"")*+"')
 INVISIBLE_VIEW = "read without its invisible format characters (a BOM or zero-width space a firmware may skip)"
 WINDOWS_1252_VIEW = "read as Windows-1252 (Repetrel is a Windows program; gclint reads the file as UTF-8)"
 
@@ -173,6 +183,9 @@ def firmware_views(raw: str) -> list[tuple[str, str, int]]:
     * RepRapFirmware: each NUL ends a line; Prusa and Marlin 1.1 reading from the SD card: "#", ":" outside a
       comment and the 95th character end a command (``_sd_card_commands``); the commands of its power-fail
       script (M911 P"...").
+    * RepRapFirmware: command letters in either case ("G1 X1 m30 ..."); a quoted M117/M118 message ends at its
+      closing quote (what follows is another command); a line number with no digits ("NM30", Klipper's
+      "N SAVE_CONFIG"): what follows the N.
     * Smoothieware: each G or M after the first command of the line, of ``raw`` and of the views above
       (but Klipper's, which does not split).
     """
@@ -228,6 +241,16 @@ def _views(raw: str) -> tuple[list[tuple[str, str, int]], bool]:
                 add(NUL_VIEW, piece, at + 1)
                 taken += 1
             at = nxt
+    comment = _SMOOTHIE_COMMENT.search(raw)
+    end = comment.start() if comment is not None else len(raw)
+    if _LOWER_CODE.search(raw, 2, end) is not None:  # ("G1 X1 m30 ...": RepRapFirmware's next command)
+        add(UPPER_VIEW, raw[:2] + _LOWER_CODE.sub(lambda m: m.group(0).upper(), raw[2:end]) + raw[end:], 0)
+    numberless = _NUMBERLESS.match(raw)
+    if numberless is not None and numberless.end() < len(raw):
+        add(NUMBERLESS_VIEW, raw[numberless.end() :], numberless.end())
+    quoted = _QUOTED_MESSAGE.match(raw)
+    if quoted is not None:
+        add(QUOTED_VIEW, raw[quoted.end() :], quoted.end())
     script = _POWER_FAIL.match(raw)
     if script is not None:
         add(POWER_FAIL_VIEW, script.group(1).replace('""', '"'), 0)
