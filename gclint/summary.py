@@ -189,16 +189,18 @@ def summarize(source: Source, context: Context) -> JobSummary:
                     # (not the extruder alone: a prime in place is no layer; nor a move on the same height)
                     layers.printing(start, end)
                     flat_z = z1 if z0 == z1 else None
-                if x1 is not None:
-                    if x1 < x_low:
-                        x_low = x1
-                    if x1 > x_high:
-                        x_high = x1
-                if y1 is not None:
-                    if y1 < y_low:
-                        y_low = y1
-                    if y1 > y_high:
-                        y_high = y1
+                for x in (x0, x1) if length is not None and start != end else (x1,):  # (where it starts too)
+                    if x is not None:
+                        if x < x_low:
+                            x_low = x
+                        if x > x_high:
+                            x_high = x
+                for y in (y0, y1) if length is not None and start != end else (y1,):
+                    if y is not None:
+                        if y < y_low:
+                            y_low = y
+                        if y > y_high:
+                            y_high = y
                 if feed:
                     if feed < feed_low:
                         feed_low = feed

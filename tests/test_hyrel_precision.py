@@ -205,7 +205,9 @@ def test_h_on_g0_applies_the_register_as_on_g1():
     # and G1 both queue the move through motionQ_addCommand, which takes the register from H (Hyrel firmware
     # source, src/MotorDrivers.c): real Hyrel jobs write "G0 Z0 H2", and check, explain and HY004 agree
     assert lint("M660 H2 Z28.2\nG0 Z5 H2\nG1 Z5 F600 H2\n", codes=("HY034",)) == []
-    unset = lint("G0 Z5 H3\n", codes=("HY034",))
+    # (real generators write "G0 Z0 H2" with no M660 in the job: on a G0 only the range is checked)
+    assert lint("G0 Z5 H3\n", codes=("HY034",)) == []
+    unset = lint("G1 Z5 F600 H3\n", codes=("HY034",))
     assert where(unset) == [(1, "HY034", "warning")] and "no M660 H3" in unset[0].message
     assert where(lint("G0 Z5 H70\n", codes=("HY034",))) == [(1, "HY034", "error")]
     assert lint("M660 H2 Z28.2\nG0 Z5 H2\nG81 T20 X100 Y75 I3 P3 Q-2 Z-7.5 F200\n", codes=("HY004",)) == []

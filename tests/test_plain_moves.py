@@ -266,6 +266,7 @@ def test_m_codes_that_change_nothing_go_with_runs(monkeypatch):
     findings = Linter(Options(dialect="marlin")).check_text(job).findings
     assert [(f.code, lines[f.line - 1]) for f in findings if f.code.startswith(("SX", "SC"))] == [
         ("SX002", "M204 S5 S6"),
+        ("SC007", "M587 S1 P1234"),  # (the printer joins the job's Wi-Fi network)
         ("SC006", "M587 S1 P1234"),
     ]
     # in Hyrel M204 is not a code (DL001, a pure rule): its findings are made once and repeated, the

@@ -79,10 +79,11 @@ def test_spirals_are_printing_moves_not_measured(tmp_path: Path) -> None:
     assert _heads(summary)["T0"][2] == 4  # G1, G2, G2.1, G2.2
     assert summary.unmeasured_spirals == 2
     assert summary.unmeasured_moves == 3  # and the first G0, from an unknown position
-    assert summary.x_range == (10.0, 20.0) and summary.y_range == (25.0, 25.0)  # G2.1 ends where it starts
+    # (the G1 prints from X0: where a printing move starts is in the extent; G2.1 ends where it starts)
+    assert summary.x_range == (0.0, 20.0) and summary.y_range == (25.0, 25.0)
     assert "2 spirals (G2.1/G2.2: the path is not modelled)" in render(summary)
     ended = _summary(tmp_path, W0.replace("G2.2 X12", "G2.2 X40"))
-    assert ended.x_range == (10.0, 40.0)  # G2.2 ends at its X
+    assert ended.x_range == (0.0, 40.0)  # G2.2 ends at its X
 
 
 def test_an_all_devices_set_point_goes_to_the_heads_and_beds_it_covers(tmp_path: Path) -> None:
@@ -108,3 +109,8 @@ def test_the_second_bed_is_its_own_row(tmp_path: Path) -> None:
     summary = _summary(tmp_path, "M140 S60\nM190 T25 S70\nM30\n")
     assert summary.devices == {"bed": [60.0], "bed 2 (T25)": [70.0]}
     assert summary.waited_devices == {"bed 2 (T25)": [70.0]}
+
+
+def test_the_extent_holds_where_printing_moves_start(tmp_path: Path) -> None:
+    summary = _summary(tmp_path, "; gclint: dialect=marlin\nG28\nG1 X10 Y10 Z0.2 F1200\nG1 X40 Y10 E2\nM30\n")
+    assert summary.x_range == (10.0, 40.0) and summary.y_range == (10.0, 10.0)

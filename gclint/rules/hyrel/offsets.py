@@ -175,8 +175,8 @@ class ToolHeightRegister(ParamTableRule):
         The page gives H in G1's usage (G0's is `G0 Xn Yn Zn An Bn Fn`), but a G0 applies it too: the
         firmware's G0 and G1 both queue their move through `motionQ_addCommand`, which takes the register
         from H on any move but a G38 probe (Hyrel firmware source, src/GCode.c G_Code_G0_0 and G_Code_G1_0,
-        src/MotorDrivers.c motionQ_addCommand).  Real Hyrel jobs write `G0 Z0 H2`; the register an H on a G0
-        names is checked as on a G1.
+        src/MotorDrivers.c motionQ_addCommand).  Real Hyrel jobs write `G0 Z0 H2` with no M660 in the job
+        (the register set on the machine), so on a G0 only the register's range is checked.
     """
     example_bad = """
         M660 H2 Z28.2
@@ -208,6 +208,8 @@ class ToolHeightRegister(ParamTableRule):
             if "H" not in params:
                 return
             super().check(line, cmd)
+            if code == "G0":
+                return  # (real generators write "G0 Z0 H2" with no M660 in the job: the range only, as before)
             register = int_value(params["H"])
             st = self.state
             if register is None or register == 0 or register > 59 or register in st.tool_height_offsets:
