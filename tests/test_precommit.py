@@ -203,3 +203,15 @@ def test_the_hooks_take_every_file_a_walk_takes():
         for pattern in patterns:
             for extension in GCODE_EXTENSIONS + PACKAGE_EXTENSIONS:
                 assert _re.search(pattern, f"jobs/part{extension}"), (pattern, extension)
+
+
+def test_a_hook_whose_only_file_looks_like_an_option_still_needs_the_double_dash(tmp_path):
+    # args [--printer, 30m] with no "--", and the one file committed named "--output=ok.gcode": it was read as
+    # --output, the folder checked instead and a report written into ok.gcode; now refused
+    env = dict(os.environ, PRE_COMMIT="1")
+    env.pop("GCLINT_CACHE_DIR", None)
+    (tmp_path / "--output=ok.gcode").write_text("M792 ; SHELL C:\\x.exe\n")
+    command = [sys.executable, "-m", "gclint", "check", "--force-exclude", "--printer", "30m", "--output=ok.gcode"]
+    proc = subprocess.run(command, cwd=tmp_path, capture_output=True, env=env, timeout=120)
+    assert proc.returncode == 2 and b"'--'" in proc.stderr, proc.stderr
+    assert not (tmp_path / "ok.gcode").exists()

@@ -124,9 +124,10 @@ class CheckRequest:
         return self.stdin_filename or "-"
 
     def _check_entry(self) -> None:
-        if os.environ.get("PRE_COMMIT") == "1" and self.paths and "--" not in sys.argv[1:]:
+        if os.environ.get("PRE_COMMIT") == "1" and "--" not in sys.argv[1:]:
             # pre-commit appends file names after the hook's args: without "--", a committed file named
-            # "--config=x.gcode" would be read as an option (.pre-commit-hooks.yaml)
+            # "--config=x.gcode" would be read as an option (.pre-commit-hooks.yaml); refused even when no
+            # path is left, since the only file named may have been read as one ("--output=ok.gcode")
             _fail(
                 "as a pre-commit hook, gclint needs '--' before the file names: end the hook's args with '--'"
                 " (args: [--printer, 30m, --]) so that a file name is never read as an option"
