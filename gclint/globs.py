@@ -120,7 +120,7 @@ def _read_class(text: str, i: int) -> tuple[_Class, int]:
 class Part:
     """One part of a pattern (between ``/``): literal characters, ``?``, classes and ``*``."""
 
-    __slots__ = ("tokens", "literal", "suffix", "prefix")
+    __slots__ = ("tokens", "literal", "suffix", "prefix", "segments", "lead", "tail", "least")
 
     def __init__(self, text: str) -> None:
         tokens: list = []
@@ -153,6 +153,22 @@ class Part:
         self.suffix = "".join(rest) if tokens and tokens[0] is _STAR and not _special(rest) else None
         head = tokens[:-1]
         self.prefix = "".join(head) if tokens and tokens[-1] is _STAR and not _special(head) else None
+        # what any name it matches starts and ends with, and its least length: most names are refused on these
+        # before the general loop (a .gitignore of 3,000 "*a*a*...*ac1" lines against long names took a minute)
+        special = [i for i, t in enumerate(tokens) if not isinstance(t, str)]
+        self.lead = "".join(tokens[: special[0]]) if special else ""
+        self.tail = "".join(tokens[special[-1] + 1 :]) if special else ""
+        self.least = sum(1 for t in tokens if t is not _STAR)
+        # literals and "*" only: the literal pieces between stars, found in order (leftmost is right for "*")
+        self.segments = None
+        if special and all(t is _STAR or isinstance(t, str) for t in tokens):
+            pieces: list[str] = [""]
+            for t in tokens:
+                if t is _STAR:
+                    pieces.append("")
+                else:
+                    pieces[-1] += t
+            self.segments = tuple(pieces)
 
     def match(self, name: str) -> bool:
         if self.literal is not None:
@@ -161,7 +177,26 @@ class Part:
             return name.endswith(self.suffix)
         if self.prefix is not None:
             return name.startswith(self.prefix)
+        if len(name) < self.least or not name.startswith(self.lead) or not name.endswith(self.tail):
+            return False
+        if self.segments is not None:
+            return _match_segments(self.segments, name)
         return _match_tokens(self.tokens, name)
+
+
+def _match_segments(segments: tuple[str, ...], name: str) -> bool:
+    """Whether ``name`` matches literal ``segments`` joined by ``*``: the first at the start, the last at the
+    end, the others found in order, each as early as it can be (a later choice never helps)."""
+    first, last = segments[0], segments[-1]
+    if len(name) < len(first) + len(last) or not name.startswith(first) or not name.endswith(last):
+        return False
+    at, end = len(first), len(name) - len(last)
+    for piece in segments[1:-1]:
+        found = name.find(piece, at, end)
+        if found < 0:
+            return False
+        at = found + len(piece)
+    return True
 
 
 def _special(tokens) -> bool:

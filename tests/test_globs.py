@@ -10,6 +10,8 @@ import subprocess
 from pathlib import Path
 
 import pytest
+from hypothesis import given
+from hypothesis import strategies as st
 
 from gclint import globs
 from gclint.gitignore import GitIgnore
@@ -39,7 +41,8 @@ def test_a_backtracking_pattern_is_matched_in_bounded_steps(monkeypatch, length:
     assert not globs.matches(HOSTILE, name)
     assert not globs.matches("**/" + HOSTILE, "x/" + name)
     assert not GitIgnore.from_lines([HOSTILE, "/deep/" + HOSTILE]).decide(name, False)
-    assert 0 < steps[0] <= 4 * len(name) * len(HOSTILE), steps  # (four matches, each within the bound)
+    # (four matches, each within the bound; most names are refused on the pattern's ends with no step at all)
+    assert steps[0] <= 4 * len(name) * len(HOSTILE), steps
 
 
 def test_folders_are_matched_in_bounded_steps_too(monkeypatch) -> None:
@@ -162,3 +165,17 @@ def test_pathspec_is_no_longer_a_dependency() -> None:
     from tests.conftest import ROOT
 
     assert "pathspec" not in (ROOT / "pyproject.toml").read_text()
+
+
+@given(st.text("ab*?", max_size=8), st.text("ab", max_size=10))
+def test_the_shortcuts_answer_as_the_general_loop(pattern: str, name: str) -> None:
+    part = globs.Part(pattern)
+    assert part.match(name) == globs._match_tokens(part.tokens, name), (pattern, name)
+
+
+def test_many_backtracking_patterns_against_long_names_are_refused_on_their_ends() -> None:
+    # the eighth attack: 3,000 ".gitignore" lines "*a*a...*ac<i>" against 100 names of 200 "a"s took a minute
+    ignore = GitIgnore.from_lines(["*a" * 40 + f"c{i}" for i in range(3000)])
+    names = ["a" * 200 + f"{i}.gcode" for i in range(20)]
+    assert not any(ignore.decide(name, False) for name in names)
+    assert globs.matches("*a*b*c", "xxaxxbxxc") and not globs.matches("*a*b*c", "xxbxxaxxc")
