@@ -278,3 +278,10 @@ def test_commands_a_firmware_finds_where_the_grammar_reads_none(line, code):
 
 def test_an_o_word_name_is_no_lower_case_code():
     assert _found("o<m162> sub\nM67 E#500 Q1\no<m162> endsub\n", "machinekit", "m162.ngc") == []
+
+
+def test_a_console_command_by_prefix_in_a_linuxcnc_reading():
+    # SimpleShell matches command names by prefix (strncasecmp): "dfup[1]" runs dfu on a Carvera, though
+    # LinuxCNC would read a D word; a LinuxCNC word is one letter, so "g1 x10" stays LinuxCNC's
+    text = "G21 G90\no100 sub\ng0 x1\no100 endsub\no100 call\ndfup[1]\ng1 x10 f100\nM2\n"
+    assert [(n, c) for n, c, _ in _found(text, "auto", "a.nc") if c == "SC003"] == [(6, "SC003")]

@@ -82,6 +82,7 @@ _CONSOLE_TABLE = (
 # RepRapFirmware's meta commands: lower-case words that RepRapFirmware itself runs (RepRapFirmware
 # source @ fc1cd16c, src/GCodes/GCodeBuffer/StringParser.cpp ProcessConditionalGCode).
 _FIRST_TOKEN = re.compile(r"[^ \t;(]*")
+_LETTERS = re.compile("[A-Za-z]*")
 
 
 def console_command(token: str) -> str | None:
@@ -191,5 +192,9 @@ class ShellPassThrough(_SecurityRule):
                 return False  # ("$1" is LinuxCNC's spindle word)
             if not commands:
                 return parsed.line_number is not None  # "n100 (a comment)"
+            if _LETTERS.match(token).end() > 1 and console_command(token) is not None:  # type: ignore[union-attr]
+                # ("dfup[1]": LinuxCNC's D word, but SimpleShell matches command names by prefix and runs dfu;
+                # a LinuxCNC word is one letter, never followed by more letters)
+                return False
             return commands[0].kind in (GCODE, IMPLICIT, OWORD, ASSIGNMENT)
         return False
