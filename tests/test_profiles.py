@@ -11,6 +11,7 @@ from pathlib import Path
 
 import pytest
 
+from gclint.engine import Linter
 from gclint.options import Options
 from gclint.profiles.bundle import Bundle
 from gclint.profiles.check import check_profile
@@ -282,3 +283,14 @@ def test_vendor_bundles_without_findings(name):
     assert result.error is None and result.findings == [], [
         f"{f.line}:{f.column} {f.code} {f.message}" for f in result.findings
     ]
+
+
+def test_a_secret_in_a_settings_g_code_is_one_finding_with_its_explanation(tmp_path):
+    profile = tmp_path / "printer.ini"
+    profile.write_text(
+        "printer_technology = FFF\nprinter_model = MK3\ngcode_flavor = marlin2\n"
+        "start_gcode = G28\\nM104 S200\\n; printhost_apikey = abc123def\\nG1 X1\nend_gcode = M84\n"
+    )
+    found = [f for f in Linter(Options()).check_path(str(profile)).findings if f.code == "SC006"]
+    assert len(found) == 1 and found[0].message.startswith("API key left in the profile"), found
+    assert "abc123def" not in found[0].message

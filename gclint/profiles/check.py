@@ -113,7 +113,12 @@ def check_profile(path: str, options: Options, linter: Linter | None = None) -> 
     if linter is None:
         linter = Linter(options)
     if any(cls.code == "SC006" for cls in linter.rule_classes):
-        for f in _secrets(path, text, options):
+        secrets = _secrets(path, text, options)
+        if secrets:  # (a secret in a setting's G-code is one finding, the profile's, not two: the G-code one
+            # quotes the line, whose masking hid its own explanation)
+            where = {f.line for f in secrets}
+            findings = {k: f for k, f in findings.items() if not (f.code == "SC006" and f.line in where)}
+        for f in secrets:
             findings.setdefault((f.line, f.column, f.code, f.message), f)
     result.findings = sorted((_named(f, presets.get(key, [])) for key, f in findings.items()), key=Finding.sort_key)
     result.notes = _dedupe(notes)
