@@ -11,7 +11,6 @@ from pathlib import Path
 
 import pytest
 
-from gclint.engine import Linter
 from gclint.options import Options
 from gclint.profiles.bundle import Bundle
 from gclint.profiles.check import check_profile
@@ -291,6 +290,7 @@ def test_a_secret_in_a_settings_g_code_is_one_finding_with_its_explanation(tmp_p
         "printer_technology = FFF\nprinter_model = MK3\ngcode_flavor = marlin2\n"
         "start_gcode = G28\\nM104 S200\\n; printhost_apikey = abc123def\\nG1 X1\nend_gcode = M84\n"
     )
-    found = [f for f in Linter(Options()).check_path(str(profile)).findings if f.code == "SC006"]
-    assert len(found) == 1 and found[0].message.startswith("API key left in the profile"), found
-    assert "abc123def" not in found[0].message
+    proc = run_cli("check", "--no-cache", "-f", "json", str(profile))
+    found = [f for f in json.loads(proc.stdout) if f["code"] == "SC006"]
+    assert len(found) == 1 and found[0]["message"].startswith("API key left in the profile"), found
+    assert "abc123def" not in proc.stdout.decode()
