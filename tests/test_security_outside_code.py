@@ -285,3 +285,13 @@ def test_a_console_command_by_prefix_in_a_linuxcnc_reading():
     # LinuxCNC would read a D word; a LinuxCNC word is one letter, so "g1 x10" stays LinuxCNC's
     text = "G21 G90\no100 sub\ng0 x1\no100 endsub\no100 call\ndfup[1]\ng1 x10 f100\nM2\n"
     assert [(n, c) for n, c, _ in _found(text, "auto", "a.nc") if c == "SC003"] == [(6, "SC003")]
+
+
+def test_a_subroutine_the_job_defines_below_the_call_is_information():
+    # o-code.adoc: a Fanuc-style subprogram "must follow the M98 call"; LinuxCNC looks for 100.ngc first, so
+    # the call is still said, as information; a subroutine the job never defines stays a warning
+    below = "o1 (main)\nM98 P100\nM30\no100\nG0 X0\nM99\n"
+    assert _found(below, "machinekit", "job.ngc") == [(2, "SC004", "info")]
+    called = "o<later> call\nM2\no<later> sub\nG0 X1\no<later> endsub\n"
+    assert _found(called, "machinekit", "job.ngc") == [(1, "SC004", "info")]
+    assert _found("o<nowhere> call\nM2\n", "machinekit", "job.ngc") == [(1, "SC004", "warning")]

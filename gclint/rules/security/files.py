@@ -97,7 +97,9 @@ class RunsFile(_SecurityRule):
         control_back_to).  Such a call, and a call whose name is computed ("o[#1] call"), is reported in
         every dialect, unless the file name.ngc is beside the job (in its folder, a folder in it or a folder
         beside it: a subroutine library's utilitysubs/, a program's subs/): that file is in the same checkout,
-        and the gate reads it too.  Define the subroutine in the job, above the call ("o100 sub").  A Fanuc-style "O100"
+        and the gate reads it too.  Define the subroutine in the job, above the call ("o100 sub").  A call of
+        a subroutine the job defines below it (a Fanuc-style subprogram after its M98, as LinuxCNC's documentation
+        writes them) is information: that subroutine runs unless a file of its name is in the machine's folders.  A Fanuc-style "O100"
         above the call defines nothing: LinuxCNC reads it in order as a program number only, and the
         numbered subprogram "must follow the M98 call" (O-code documentation, "Fanuc-Style Numbered
         Programs"; interp_o_word.cc convert_control_functions).  M98 P with a number is reported always
@@ -151,6 +153,10 @@ class RunsFile(_SecurityRule):
         self._fanuc = False  # within a Fanuc-style subprogram ("O100" ... M99)
         self._joined_tail = 0  # the last line LinuxCNC reads joined to lines before it (check_joined)
         self._called: set[str] = set()  # the subroutines whose outside call was reported
+        # calls of subroutines not defined above them, reported once the job is read: a subroutine the job
+        # defines below the call (a Fanuc-style subprogram "must follow the M98 call") is information
+        self._pending: list[tuple[Line, str | None, str, int]] = []
+        self._defined_anywhere: set[str] = set()
         # a job the user did not say is for LinuxCNC (on the command line or in a --config): a Carvera runs
         # gcodes/macros/<P>.cnc for its M98 P<n> whatever O-words the job defines, and LinuxCNC refuses an M98 to
         # an "o<n> sub" (interp_o_word.cc: "'O.... sub' subroutine must be called with 'O.... call'")
@@ -211,7 +217,7 @@ class RunsFile(_SecurityRule):
             return  # (one finding per subroutine a job calls from outside it: the first call)
         if len(self._called) < self.SUBROUTINES_KEPT:
             self._called.add(label)
-        self.report_masked(line, f"o{label} call {what}: code outside this job", cmd.column)
+        self._outside_call(line, name, f"o{label} call {what}: code outside this job", cmd.column)
 
     # O-word blocks (LinuxCNC's o-code.adoc): what opens one, and what closes what ("while" closes a "do" of its
     # label, else opens a loop)
@@ -221,6 +227,30 @@ class RunsFile(_SecurityRule):
     def check_joined(self, line: Line, text: str, first: int) -> None:
         self._joined_tail = line.number  # (the engine calls this before the line's own commands are read)
         super().check_joined(line, text, first)
+
+    def _outside_call(self, line: Line, name: str | None, message: str, column: int) -> None:
+        if name is None or self._view is not None:  # (a computed name, or a firmware's view: said at once)
+            self.report_masked(line, message, column)
+        else:
+            self._pending.append((line, name, message, column))
+
+    def finish(self) -> None:
+        """The calls of subroutines not defined above them: information where the job defines the subroutine
+        below the call (LinuxCNC runs it unless a file of that name is in its subroutine folders), a warning
+        where the job does not define it at all."""
+        for line, name, message, column in self._pending:
+            if name is not None and linuxcnc.looked_up(name) in self._defined_anywhere:
+                self.report_masked(
+                    line,
+                    message.replace(": code outside this job", "")
+                    + "; the job defines it below the call, which runs unless a file of that name is there",
+                    column,
+                    Severity.INFO,
+                )
+            else:
+                self.report_masked(line, message, column)
+        self._pending = []
+        super().finish()
 
     def _define(self, keyword: str, name: str | None, cmd: Command, counts: bool = True) -> None:
         """Follow the job's O-word blocks; a subroutine counts as defined above a call only where it is defined at
@@ -241,6 +271,8 @@ class RunsFile(_SecurityRule):
             kept = len(self._subroutines) < self.SUBROUTINES_KEPT
             if keyword == "sub" and top and counts and name is not None and kept:
                 self._subroutines.add(name)
+            if keyword == "sub" and top and counts and name is not None and kept:
+                self._defined_anywhere.add(name)
             blocks.append((label, keyword))
             self._open[(label, keyword)] = self._open.get((label, keyword), 0) + 1
         elif keyword == "" and label.isdigit():
@@ -249,6 +281,8 @@ class RunsFile(_SecurityRule):
             # order, LinuxCNC only logs "Entering Fanuc-style program number" and registers nothing
             # (interp_o_word.cc convert_control_functions, O_): a call after it still looks for 100.ngc first.
             self._fanuc = True
+            if len(self._defined_anywhere) < self.SUBROUTINES_KEPT:
+                self._defined_anywhere.add(label)
 
     def _close(self, block: tuple[str, str]) -> None:
         """Close the innermost open ``block`` and the blocks left open inside it; nothing when none is open.
@@ -323,8 +357,9 @@ class RunsFile(_SecurityRule):
                 )
             elif str(number) not in self._subroutines and not linuxcnc.beside(self.ctx.path, str(number)):
                 # (as "o100 call": interp_o_word.cc execute_call)
-                self.report_masked(
+                self._outside_call(
                     line,
+                    str(number),
                     f"M98 P{number} runs the file {_quote(f'{number}.ngc')} from the machine's program or subroutine"
                     f" folders when one is there: LinuxCNC/Machinekit look for it first, since no subprogram O{number}"
                     " is defined above the call: code outside this job",
