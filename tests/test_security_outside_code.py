@@ -295,3 +295,8 @@ def test_a_subroutine_the_job_defines_below_the_call_is_information():
     called = "o<later> call\nM2\no<later> sub\nG0 X1\no<later> endsub\n"
     assert _found(called, "machinekit", "job.ngc") == [(1, "SC004", "info")]
     assert _found("o<nowhere> call\nM2\n", "machinekit", "job.ngc") == [(1, "SC004", "warning")]
+
+
+def test_a_comment_an_sd_card_reader_splits_is_no_user_m_code():
+    # "(Illegal:  O-sub ...)": Prusa's SD reader ends a command at ":", and the view's "O-sub" is no M100-M199
+    assert _found("(Illegal:  O-sub with no M02)\nG0 X1\nM2\n", "machinekit", "job.ngc") == []

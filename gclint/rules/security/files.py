@@ -302,6 +302,8 @@ class RunsFile(_SecurityRule):
         A machine's INI may remap the code instead, to a subroutine file: code outside the job either way.  In a
         ".ngc" file (LinuxCNC's own program extension) read as another dialect, each is reported unless the user
         set that dialect and it has the code."""
+        if not (code[:1] == "M" and code[1:].isdigit() and 100 <= int(code[1:]) <= 199):
+            return  # (an "O" or "M99" a firmware's view of a line holds: no user M-code)
         dialect = self.ctx.dialect
         if dialect.semantics.user_programs:
             runs = code not in dialect.codes
