@@ -300,3 +300,16 @@ def test_a_subroutine_the_job_defines_below_the_call_is_information():
 def test_a_comment_an_sd_card_reader_splits_is_no_user_m_code():
     # "(Illegal:  O-sub ...)": Prusa's SD reader ends a command at ":", and the view's "O-sub" is no M100-M199
     assert _found("(Illegal:  O-sub with no M02)\nG0 X1\nM2\n", "machinekit", "job.ngc") == []
+
+
+@pytest.mark.parametrize(
+    "line,code",
+    [
+        ('M118 S"hi;x" M30 "0:/sys/config.g"', "SC005"),  # (a ";" inside a quoted string starts no comment)
+        ('M291 P"hi;x" S1 M552 S1', "SC007"),
+        ('G10 P0 S"a(b" M586 P1 S1', "SC007"),
+        ("M552 S{1}", "SC007"),  # (an expression may be 1)
+    ],
+)
+def test_the_ninth_attack(line, code):
+    assert code in [c for _, c, _ in _found(f"G28\n{line}\n", "reprap", "job.g")], line

@@ -95,9 +95,8 @@ class RunsFile(_SecurityRule):
         look for the file name.ngc (100.ngc) in the folders the machine's INI file names (PROGRAM_PREFIX,
         SUBROUTINE_PATH) and run it ("Calling Files" in LinuxCNC's O-code documentation; interp_o_word.cc
         control_back_to).  Such a call, and a call whose name is computed ("o[#1] call"), is reported in
-        every dialect, unless the file name.ngc is beside the job (in its folder, a folder in it or a folder
-        beside it: a subroutine library's utilitysubs/, a program's subs/): that file is in the same checkout,
-        and the gate reads it too.  Define the subroutine in the job, above the call ("o100 sub").  A call of
+        every dialect, even when a file name.ngc is beside the job: the machine runs the one in its own folders,
+        which the gate cannot see.  Define the subroutine in the job, above the call ("o100 sub").  A call of
         a subroutine the job defines below it (a Fanuc-style subprogram after its M98, as LinuxCNC's documentation
         writes them) is information: that subroutine runs unless a file of its name is in the machine's folders.  A Fanuc-style "O100"
         above the call defines nothing: LinuxCNC reads it in order as a program number only, and the
@@ -121,7 +120,7 @@ class RunsFile(_SecurityRule):
         (Marlin's M150 sets LED colours), but in a ".ngc" file, LinuxCNC's own extension, they are unless the
         user set that dialect (on the command line or in a --config) and it has the code.  M98 with a number is
         quiet only where LinuxCNC reads it (the user set Machinekit/LinuxCNC, or a ".ngc" program reads as
-        theirs) and the job defines "o<number> sub" above the call or number.ngc is beside it: a Carvera runs
+        theirs) and the job defines "o<number> sub" above the call: a Carvera runs
         gcodes/macros/<number>.cnc whatever the job defines.
     """
     example_bad = 'M98 P"0:/macros/prime.g"'
@@ -201,8 +200,6 @@ class RunsFile(_SecurityRule):
                 " LinuxCNC/Machinekit look for it first, since no subroutine of that name is defined above the call"
             )
         elif name is not None:
-            if linuxcnc.beside(self.ctx.path, name):
-                return  # (a library's own subroutine file, in the checkout: the gate reads it too)
             what = (
                 f"runs the file {_quote(name + '.ngc', 60)} from the machine's program or subroutine folders when one"
                 " is there: LinuxCNC/Machinekit look for it first, since no subroutine of that name is defined"
@@ -357,7 +354,7 @@ class RunsFile(_SecurityRule):
                     f"M98 P{number} runs the file gcodes/macros/{number}.cnc on a Carvera: code outside this job",
                     column,
                 )
-            elif str(number) not in self._subroutines and not linuxcnc.beside(self.ctx.path, str(number)):
+            elif str(number) not in self._subroutines:
                 # (as "o100 call": interp_o_word.cc execute_call)
                 self._outside_call(
                     line,

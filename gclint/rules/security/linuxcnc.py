@@ -19,10 +19,7 @@ last one only).
 
 from __future__ import annotations
 
-import itertools
-import os
 import re
-from functools import lru_cache
 
 from gclint.syntax.nodes import Command
 
@@ -204,48 +201,6 @@ def looked_up(name: str) -> str:
     ``basename(o_name)`` in the subroutines defined so far (a definition is kept under its whole name, so a
     name with a "/" never matches one)."""
     return name.rpartition("/")[2]
-
-
-def beside(job: str, name: str) -> bool:
-    """Whether the file ``name``.ngc a call looks for is beside the job ``job``: in its folder, in a folder in
-    it or in a folder beside it (a subroutine library's ``utilitysubs/``, a test's ``subs/``).  Such a file is
-    in the same checkout, so the gate reads it too: the call runs no code the gate has not seen."""
-    if not job or job.startswith("<") or job == "-":
-        return False
-    here = os.path.dirname(os.path.abspath(job))
-    wanted = {f"{name}.ngc", f"{name.lower()}.ngc"}
-    return any(wanted & _names(folder, _stamp(folder)) for folder in _near(here, _stamp(here)))
-
-
-def _stamp(folder: str) -> int:
-    """The folder's modification time: the listings below are cached by it (a language server runs for days)."""
-    try:
-        return os.stat(folder).st_mtime_ns
-    except OSError:
-        return 0
-
-
-@lru_cache(maxsize=256)
-def _near(folder: str, stamp: int) -> tuple[str, ...]:
-    """The job's folder, the folders in it and the folders beside it (at most 200 of each: bounded)."""
-    out = [folder]
-    for base in (folder, os.path.dirname(folder)):
-        try:
-            with os.scandir(base) as entries:
-                subfolders = [e.path for e in itertools.islice(entries, 2000) if e.is_dir(follow_symlinks=False)]
-        except OSError:
-            continue
-        out += subfolders[:200]
-    return tuple(dict.fromkeys(out))
-
-
-@lru_cache(maxsize=1024)
-def _names(folder: str, stamp: int) -> frozenset[str]:
-    try:
-        with os.scandir(folder) as entries:
-            return frozenset(e.name for e in itertools.islice(entries, 5000) if e.name.endswith(".ngc"))
-    except OSError:
-        return frozenset()
 
 
 # What the shell expands when LinuxCNC looks for the file of a subroutine it has not defined: rs274ngc_pre.cc

@@ -115,8 +115,8 @@ class OpensNetworkService(_SecurityRule):
         if state is None or (_NUMBER.fullmatch(state) and float(state) == 0):
             return
         if code == "M552":
-            if not (_NUMBER.fullmatch(state) and float(state) > 0):
-                return  # (S0 stops the network, S-1 holds the Wi-Fi module in reset)
+            if _NUMBER.fullmatch(state) and float(state) <= 0:
+                return  # (S0 stops the network, S-1 holds the Wi-Fi module in reset; an expression may be 1)
             # (GCodes2.cpp case 552: S1 starts the network, S2 the Wi-Fi access point; the services it starts are
             # those config.g enabled, HTTP by default: src/Networking/NetworkInterface.cpp)
             self.report_masked(

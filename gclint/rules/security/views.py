@@ -37,7 +37,7 @@ _DROPPABLE = re.compile("[\x00-\x08\x0b-\x1f\x7f\udc80-\udcff]")
 # before a letter outside a ";" comment, or more than SD_COMMAND_SIZE characters after a first one that is not ";".
 _VIEW_TRIGGER = re.compile(
     "(?m)[^\t\n\r\x20-\x7e]|^[^;(\n\r]{2}[^;(\n\r]*?[Mm][ \t]*+[0-9]|^[ \t]*+[Nn](?![ \t]*+[0-9])"
-    '|[Mm][ \t]*+0*+11[78][ \t]*+"|[Mm][ \t]*+81[0-9][^;\n\r]*?\\|'
+    '|[Mm][ \t]*+0*+11[78][^"\n\r;]*?"|"[^"\n\r]*?[;(]|[Mm][ \t]*+81[0-9][^;\n\r]*?\\|'
     "|#[ \t]*+[A-Za-z]|^[^;\n\r]*?:[ \t]*+[A-Za-z]|^[^;\n\r][^\n\r]{95}|[Mm][ \t]*+0*+911[^;\n\r]*?[Pp]"
 )
 # Smoothieware's GcodeDispatch: comments start at the first ";" or "(", and the rest is cut before each "G"
@@ -86,6 +86,8 @@ NUMBERLESS_VIEW = (
     'read as a line number with no digits: RepRapFirmware and Klipper run what follows "N" (klippy/gcode.py: a '
     'lone "N" word; StringParser skips what is not a digit)'
 )
+STRING_VIEW = 'read as RepRapFirmware reads a quoted string: a ";" or "(" inside it starts no comment'
+_QUOTED = re.compile('"(?:[^"\n\r]|"")*+"')
 QUOTED_VIEW = 'read as RepRapFirmware reads a quoted message: M117/M118 "..." ends at its closing quote'
 _LOWER_CODE = re.compile("(?<![<A-Za-z_])[gm](?=[ \t]*+[0-9])")  # (not in an O-word name: "o<m162>")
 _NUMBERLESS = re.compile("[ \t]*+[Nn](?![ \t]*+[0-9])[^A-Za-z\n\r]*+")
@@ -248,6 +250,10 @@ def _views(raw: str) -> tuple[list[tuple[str, str, int]], bool]:
     numberless = _NUMBERLESS.match(raw)
     if numberless is not None and numberless.end() < len(raw):
         add(NUMBERLESS_VIEW, raw[numberless.end() :], numberless.end())
+    if '"' in raw:  # ('M118 S"hi;x" M30 ...': the commands after a string that holds ";" or "(")
+        strings = _QUOTED.sub(lambda m: m.group(0).replace(";", "_").replace("(", "_"), raw)
+        if strings != raw:
+            add(STRING_VIEW, strings, 0)
     quoted = _QUOTED_MESSAGE.match(raw)
     if quoted is not None:
         add(QUOTED_VIEW, raw[quoted.end() :], quoted.end())
