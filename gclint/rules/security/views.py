@@ -87,7 +87,7 @@ NUMBERLESS_VIEW = (
     'lone "N" word; StringParser skips what is not a digit)'
 )
 STRING_VIEW = 'read as RepRapFirmware reads a quoted string: a ";" or "(" inside it starts no comment'
-_QUOTED = re.compile('"(?:[^"\n\r]|"")*+"')
+_QUOTED = re.compile('(?<=[A-Za-z])[ \t]*+"(?:[^"\n\r]|"")*+"')  # (a parameter's string: S"...", not o<"name">)
 QUOTED_VIEW = 'read as RepRapFirmware reads a quoted message: M117/M118 "..." ends at its closing quote'
 _LOWER_CODE = re.compile("(?<![<A-Za-z_])[gm](?=[ \t]*+[0-9])")  # (not in an O-word name: "o<m162>")
 _NUMBERLESS = re.compile("[ \t]*+[Nn](?![ \t]*+[0-9])[^A-Za-z\n\r]*+")
