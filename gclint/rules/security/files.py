@@ -54,6 +54,9 @@ def _macro_number(rest: str, cmd: Command | None) -> int | None:
     return int(m.group(1)) if m is not None else None
 
 
+_OUTSIDE = "code outside this job"
+
+
 def _linuxcnc_codes() -> Mapping[str, object]:
     """The codes the Machinekit/LinuxCNC dialect defines (its FDM configuration's M104, M106, M109...)."""
     from gclint import dialects
@@ -98,8 +101,8 @@ class RunsFile(_SecurityRule):
         every dialect, even when a file name.ngc is beside the job: the machine runs the one in its own folders,
         which the gate cannot see.  Define the subroutine in the job, above the call ("o100 sub").  A call of
         a subroutine the job defines below it (a Fanuc-style subprogram after its M98, as LinuxCNC's documentation
-        writes them) is information: that subroutine runs unless a file of its name is in the machine's folders.  A Fanuc-style "O100"
-        above the call defines nothing: LinuxCNC reads it in order as a program number only, and the
+        writes them) is information: that subroutine runs unless a file of its name is in the machine's folders.
+        A Fanuc-style "O100" above the call defines nothing: LinuxCNC reads it in order as a program number only, and the
         numbered subprogram "must follow the M98 call" (O-code documentation, "Fanuc-Style Numbered
         Programs"; interp_o_word.cc convert_control_functions).  M98 P with a number is reported always
         where the job may run on a Carvera (which runs gcodes/macros/<number>.cnc for it): in every dialect
@@ -162,9 +165,8 @@ class RunsFile(_SecurityRule):
         self._user_set = ctx.context.origin in (OPTION, CONFIGURATION) and ctx.options.dialect_trusted
         # A ".ngc" file (LinuxCNC's own program extension; a Carvera plays .nc and .cnc) whose content reads as
         # LinuxCNC/Machinekit: its M98 P<n> is read as LinuxCNC reads it (a Fanuc-style subprogram)
-        self._ngc_program = (
-            str(ctx.path or "").lower().endswith(".ngc") and ctx.context.origin == CONTENT and not ctx.context.assumed
-        )
+        self._ngc_file = str(ctx.path or "").lower().endswith(".ngc")
+        self._ngc_program = self._ngc_file and ctx.context.origin == CONTENT and not ctx.context.assumed
 
     def check(self, line: Line, cmd: Command) -> None:
         if cmd.code == "O":
@@ -214,7 +216,7 @@ class RunsFile(_SecurityRule):
             return  # (one finding per subroutine a job calls from outside it: the first call)
         if len(self._called) < self.SUBROUTINES_KEPT:
             self._called.add(label)
-        self._outside_call(line, name, f"o{label} call {what}: code outside this job", cmd.column)
+        self._outside_call(line, name, f"o{label} call {what}", cmd.column)
 
     # O-word blocks (LinuxCNC's o-code.adoc): what opens one, and what closes what ("while" closes a "do" of its
     # label, else opens a loop)
@@ -225,27 +227,23 @@ class RunsFile(_SecurityRule):
         self._joined_tail = line.number  # (the engine calls this before the line's own commands are read)
         super().check_joined(line, text, first)
 
-    def _outside_call(self, line: Line, name: str | None, message: str, column: int) -> None:
+    def _outside_call(self, line: Line, name: str | None, what: str, column: int) -> None:
+        """A call of a subroutine not defined above it (``what`` says what runs): said once the job is read."""
         if name is None or self._view is not None:  # (a computed name, or a firmware's view: said at once)
-            self.report_masked(line, message, column)
+            self.report_masked(line, f"{what}: {_OUTSIDE}", column)
         else:
-            self._pending.append((line, name, message, column))
+            self._pending.append((line, name, what, column))
 
     def finish(self) -> None:
         """The calls of subroutines not defined above them: information where the job defines the subroutine
         below the call (LinuxCNC runs it unless a file of that name is in its subroutine folders), a warning
         where the job does not define it at all."""
-        for line, name, message, column in self._pending:
+        for line, name, what, column in self._pending:
             if name is not None and linuxcnc.looked_up(name) in self._defined_anywhere:
-                self.report_masked(
-                    line,
-                    message.replace(": code outside this job", "")
-                    + "; the job defines it below the call, which runs unless a file of that name is there",
-                    column,
-                    Severity.INFO,
-                )
+                below = "; the job defines it below the call, which runs unless a file of that name is there"
+                self.report_masked(line, what + below, column, Severity.INFO)
             else:
-                self.report_masked(line, message, column)
+                self.report_masked(line, f"{what}: {_OUTSIDE}", column)
         self._pending = []
         super().finish()
 
@@ -306,11 +304,7 @@ class RunsFile(_SecurityRule):
             runs = code not in dialect.codes
         else:  # (a ".ngc" job, LinuxCNC's own extension, read as another dialect: its content chose that reading,
             # so only a dialect the user set, and that has the code, exempts it, or Machinekit's own table: M104...)
-            runs = (
-                str(self.ctx.path or "").lower().endswith(".ngc")
-                and not (self._user_set and code in dialect.codes)
-                and code not in _linuxcnc_codes()
-            )
+            runs = self._ngc_file and not (self._user_set and code in dialect.codes) and code not in _linuxcnc_codes()
         if runs:
             self.report_masked(
                 line,
@@ -361,7 +355,7 @@ class RunsFile(_SecurityRule):
                     str(number),
                     f"M98 P{number} runs the file {_quote(f'{number}.ngc')} from the machine's program or subroutine"
                     f" folders when one is there: LinuxCNC/Machinekit look for it first, since no subprogram O{number}"
-                    " is defined above the call: code outside this job",
+                    " is defined above the call",
                     column,
                 )
             return

@@ -26,14 +26,14 @@ _PROTOCOLS = {
 
 # Network settings a job may change (RepRapFirmware src/GCodes/GCodes2.cpp cases 540, 552-554, 587-589; P is the
 # address; Marlin's M552-M554 do the same on Ethernet builds)
-_NETWORK_SETTINGS = {
-    "M552": "P sets the printer's IP address",
-    "M553": "P sets the printer's netmask",
-    "M554": "P sets the printer's gateway",
-    "M540": "P sets the printer's MAC address",
-    "M587": "adds a Wi-Fi network the printer joins",
-    "M588": "forgets remembered Wi-Fi networks",
-    "M589": "sets up the printer's Wi-Fi access point",
+_NETWORK_SETTINGS = {  # code -> (only with P, what it does)
+    "M552": (True, "sets the printer's IP address"),
+    "M553": (True, "sets the printer's netmask"),
+    "M554": (True, "sets the printer's gateway"),
+    "M540": (True, "sets the printer's MAC address"),
+    "M587": (False, "adds a Wi-Fi network the printer joins"),
+    "M588": (False, "forgets remembered Wi-Fi networks"),
+    "M589": (False, "sets up the printer's Wi-Fi access point"),
 }
 
 STARTUP_FILES = frozenset({"config.g", "config-override.g", "runonce.g"})
@@ -103,11 +103,12 @@ class OpensNetworkService(_SecurityRule):
                 column,
             )
         setting = _NETWORK_SETTINGS.get(code)
-        if setting is not None and (code in ("M587", "M588", "M589") or protocol is not None):
+        if setting is not None and (not setting[0] or protocol is not None):
+            with_p, what = setting
             self.report_masked(
                 line,
-                f"the job {setting.replace('P sets', 'sets')} ({code}{' P' if code in ('M552', 'M553', 'M554', 'M540') else ''}): "
-                "a job must not change the network settings (the machine may join another network or drop off its own)",
+                f"the job {what} ({code}{' P' if with_p else ''}): a job must not change the network settings (the"
+                " machine may join another network or drop off its own)",
                 column,
             )
         if code not in ("M552", "M586"):

@@ -185,9 +185,9 @@ def firmware_views(raw: str) -> list[tuple[str, str, int]]:
     * RepRapFirmware: each NUL ends a line; Prusa and Marlin 1.1 reading from the SD card: "#", ":" outside a
       comment and the 95th character end a command (``_sd_card_commands``); the commands of its power-fail
       script (M911 P"...").
-    * RepRapFirmware: command letters in either case ("G1 X1 m30 ..."); a quoted M117/M118 message ends at its
-      closing quote (what follows is another command); a line number with no digits ("NM30", Klipper's
-      "N SAVE_CONFIG"): what follows the N.
+    * RepRapFirmware: command letters in either case ("G1 X1 m30 ..."); a ";" or "(" inside a parameter's quoted
+      string starts no comment; a quoted M117/M118 message ends at its closing quote (what follows is another
+      command); a line number with no digits ("NM30", Klipper's "N SAVE_CONFIG"): what follows the N.
     * Smoothieware: each G or M after the first command of the line, of ``raw`` and of the views above
       (but Klipper's, which does not split).
     """
